@@ -1,0 +1,290 @@
+#include "bands/linear_modes.hpp"
+#include "core/log.hpp"
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace nltopo {
+
+PetscErrorCode LinearModesOptionsFromOptions(MPI_Comm comm, LinearModesOptions *o)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, "linear_", "Linear modes (SLEPc EPS on K; solver options -linear_eps_*)", NULL);
+  PetscCall(PetscOptionsInt("-dense_max", "Largest N solved for all eigenpairs; above it, shift-invert around the band edges", NULL,
+                            o->dense_max, &o->dense_max, NULL));
+  PetscCall(PetscOptionsInt("-nev", "Shift-invert path: eigenpairs computed per target", NULL, o->nev, &o->nev, NULL));
+  PetscOptionsEnd();
+  PetscCheck(o->nev >= 1, comm, PETSC_ERR_USER, "-linear_nev must be >= 1, got %" PetscInt_FMT, o->nev);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LinearModes::AppendPairs(const Lattice &lat, EPS eps)
+{
+  PetscInt nconv;
+  PetscFunctionBeginUser;
+  PetscCall(EPSGetConverged(eps, &nconv));
+  for (PetscInt i = 0; i < nconv; i++) {
+    PetscScalar lam;
+    OwnedVec x;
+    PetscCall(DMCreateGlobalVector(lat.SiteDM(), x.out()));
+    PetscCall(EPSGetEigenpair(eps, i, &lam, NULL, x, NULL));
+    // Drop duplicates found from two targets: same value and same vector.
+    bool dup = false;
+    for (size_t j = 0; j < omega_.size() && !dup; j++) {
+      if (std::abs(omega_[j] * omega_[j] - lam) > 1e-8 * std::abs(lam)) continue;
+      PetscScalar d;
+      PetscCall(VecDot(x, modes_[j], &d));
+      dup = std::abs(d) > 0.5;
+    }
+    if (dup) continue;
+    omega_.push_back(std::sqrt(std::max<PetscReal>(lam, 0)));
+    modes_.push_back(std::move(x));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LinearModes::SolveAll(const Lattice &lat)
+{
+  OwnedEPS eps;
+  const PetscInt N = lat.N();
+  PetscFunctionBeginUser;
+  PetscCall(EPSCreate(lat.Comm(), eps.out()));
+  PetscCall(EPSSetOptionsPrefix(eps, "linear_eps_"));
+  PetscCall(EPSSetOperators(eps, lat.K(), NULL));
+  PetscCall(EPSSetProblemType(eps, EPS_HEP));
+  PetscCall(EPSSetType(eps, EPSLAPACK));
+  PetscCall(EPSSetWhichEigenpairs(eps, EPS_SMALLEST_REAL));
+  PetscCall(EPSSetDimensions(eps, N, PETSC_DEFAULT, PETSC_DEFAULT));
+  PetscCall(EPSSetFromOptions(eps));
+  PetscCall(EPSSolve(eps));
+  PetscCall(AppendPairs(lat, eps));
+  complete_ = (PetscInt)omega_.size() == N;
+  PetscCheck(complete_, lat.Comm(), PETSC_ERR_NOT_CONVERGED, "linear modes: only %zu of %" PetscInt_FMT " eigenpairs converged", omega_.size(), N);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LinearModes::SolveNear(const Lattice &lat, const LinearModesOptions &o)
+{
+  const LatticeParams &p = lat.Params();
+  const PetscReal kh = p.KHat(), s = p.K1() + p.K2(), d = std::abs(p.K1() - p.K2());
+  // Targets (omega^2) just outside each closed-form band edge and at k_hat; the
+  // relative offset keeps the shift off an exact eigenvalue (zero pivot).
+  const PetscReal off = 1e-4 * kh;
+  const PetscReal targets[] = {kh - d + off, kh + off, kh + d - off, kh + s + off};
+  PetscFunctionBeginUser;
+  for (PetscReal sigma : targets) {
+    OwnedEPS eps;
+    ST st;
+    KSP ksp;
+    PC pc;
+    PetscCall(EPSCreate(lat.Comm(), eps.out()));
+    PetscCall(EPSSetOptionsPrefix(eps, "linear_eps_"));
+    PetscCall(EPSSetOperators(eps, lat.K(), NULL));
+    PetscCall(EPSSetProblemType(eps, EPS_HEP));
+    PetscCall(EPSSetType(eps, EPSKRYLOVSCHUR));
+    PetscCall(EPSSetTarget(eps, sigma));
+    PetscCall(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE));
+    PetscCall(EPSSetDimensions(eps, o.nev, PETSC_DEFAULT, PETSC_DEFAULT));
+    PetscCall(EPSGetST(eps, &st));
+    PetscCall(STSetType(st, STSINVERT));
+    PetscCall(STGetKSP(st, &ksp));
+    PetscCall(KSPSetType(ksp, KSPPREONLY));
+    PetscCall(KSPGetPC(ksp, &pc));
+    PetscCall(PCSetType(pc, PCLU)); // K - sigma I is indefinite: LU (MUMPS in parallel)
+    PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+    PetscCall(EPSSetFromOptions(eps));
+    PetscCall(EPSSolve(eps));
+    PetscCall(AppendPairs(lat, eps));
+  }
+  // The extreme ends (localised modes outside the bands) with plain Krylov-Schur.
+  for (EPSWhich which : {EPS_LARGEST_REAL, EPS_SMALLEST_REAL}) {
+    OwnedEPS eps;
+    PetscCall(EPSCreate(lat.Comm(), eps.out()));
+    PetscCall(EPSSetOptionsPrefix(eps, "linear_eps_"));
+    PetscCall(EPSSetOperators(eps, lat.K(), NULL));
+    PetscCall(EPSSetProblemType(eps, EPS_HEP));
+    PetscCall(EPSSetType(eps, EPSKRYLOVSCHUR));
+    PetscCall(EPSSetWhichEigenpairs(eps, which));
+    PetscCall(EPSSetDimensions(eps, 1, PETSC_DEFAULT, PETSC_DEFAULT));
+    PetscCall(EPSSolve(eps));
+    PetscCall(AppendPairs(lat, eps));
+  }
+  complete_ = false;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LinearModes::SortAndNormalise()
+{
+  PetscFunctionBeginUser;
+  std::vector<size_t> order(omega_.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return omega_[a] < omega_[b]; });
+  std::vector<PetscReal> w;
+  std::vector<OwnedVec> m;
+  for (size_t k : order) {
+    w.push_back(omega_[k]);
+    m.push_back(std::move(modes_[k]));
+  }
+  omega_ = std::move(w);
+  modes_ = std::move(m);
+  for (auto &x : modes_) { // deterministic sign: the entry of largest magnitude is positive
+    PetscReal mx, mn, nrm;
+    PetscCall(VecNormalize(x, &nrm));
+    PetscCall(VecMax(x, NULL, &mx));
+    PetscCall(VecMin(x, NULL, &mn));
+    if (-mn > mx) PetscCall(VecScale(x, -1.0));
+  }
+  PetscFunctionReturn(0);
+}
+
+// Weight of x on the sites in [a, b] (0-based, inclusive).
+static PetscErrorCode SiteWeight(Vec x, PetscInt a, PetscInt b, PetscReal *w)
+{
+  PetscInt lo, hi;
+  const PetscScalar *v;
+  PetscReal loc = 0;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetOwnershipRange(x, &lo, &hi));
+  PetscCall(VecGetArrayRead(x, &v));
+  for (PetscInt i = std::max(lo, a); i < std::min(hi, b + 1); i++) loc += v[i - lo] * v[i - lo];
+  PetscCall(VecRestoreArrayRead(x, &v));
+  PetscCall(MPIU_Allreduce(&loc, w, 1, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)x)));
+  PetscFunctionReturn(0);
+}
+
+// Zeroes the odd 0-based entries (model.md's odd sites), keeping the even sublattice of model.md.
+static PetscErrorCode ProjectEvenSites(Vec x)
+{
+  PetscInt lo, hi;
+  PetscScalar *v;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetOwnershipRange(x, &lo, &hi));
+  PetscCall(VecGetArray(x, &v));
+  for (PetscInt i = lo; i < hi; i++)
+    if (i % 2 == 0) v[i - lo] = 0; // 0-based even = 1-based odd
+  PetscCall(VecRestoreArray(x, &v));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LinearModes::Identify(const Lattice &lat)
+{
+  const LatticeParams &p = lat.Params();
+  const BandEdges b = InfiniteBandEdges(p);
+  const PetscReal tol = 1e-9;
+  const PetscInt n = omega_.size();
+  PetscFunctionBeginUser;
+  named_ = NamedModes();
+  for (PetscInt j = 0; j < n; j++) {
+    const PetscReal w = omega_[j];
+    if (w <= b.acoustic_top * (1 + tol)) named_.acoustic_top = j;
+    if (w >= b.optical_bottom * (1 - tol) && named_.optical_bottom < 0) named_.optical_bottom = j;
+    if (w >= b.optical_bottom * (1 - tol) && w <= b.optical_top * (1 + tol)) named_.optical_top = j;
+  }
+  if (named_.acoustic_top >= 0 && omega_[named_.acoustic_top] < b.acoustic_bottom * (1 - tol)) named_.acoustic_top = -1;
+  if (named_.optical_bottom >= 0 && omega_[named_.optical_bottom] > b.optical_top * (1 + tol)) named_.optical_bottom = -1;
+  if (p.layout != Layout::Interface) PetscFunctionReturn(0);
+
+  const PetscInt m = p.InterfaceSite();
+  // Interface mode: above the optical band, largest weight on the interface cell (m, m+1).
+  PetscReal best = -1;
+  for (PetscInt j = 0; j < n; j++) {
+    if (omega_[j] <= b.optical_top * (1 + tol)) continue;
+    PetscReal w;
+    PetscCall(SiteWeight(modes_[j], m, m + 1, &w));
+    if (w > best) {
+      best = w;
+      named_.interface = j;
+    }
+  }
+  // Insulated mode: the even-sublattice projection of the eigenspace at
+  // omega^2 = k_hat; the dominant direction of the 2x2 (or kxk) Gram matrix of
+  // the projected eigenvectors, normalised and positive at site m+1.
+  const PetscReal kh = p.KHat();
+  std::vector<PetscInt> cl;
+  for (PetscInt j = 0; j < n; j++)
+    if (std::abs(omega_[j] * omega_[j] - kh) < 1e-6 * kh) cl.push_back(j);
+  named_.insulated_cluster = cl.size();
+  if (cl.empty()) PetscFunctionReturn(0);
+  std::vector<OwnedVec> proj(cl.size());
+  for (size_t a = 0; a < cl.size(); a++) {
+    PetscCall(VecDuplicate(modes_[cl[a]], proj[a].out()));
+    PetscCall(VecCopy(modes_[cl[a]], proj[a]));
+    PetscCall(ProjectEvenSites(proj[a]));
+  }
+  // Power iteration on the small Gram matrix G_ab = proj_a . proj_b.
+  const size_t c = cl.size();
+  std::vector<PetscReal> G(c * c), coef(c, 1.0);
+  for (size_t a = 0; a < c; a++)
+    for (size_t bb = 0; bb < c; bb++) PetscCall(VecDot(proj[a], proj[bb], &G[a * c + bb]));
+  for (int it = 0; it < 200; it++) {
+    std::vector<PetscReal> y(c, 0.0);
+    PetscReal nr = 0;
+    for (size_t a = 0; a < c; a++) {
+      for (size_t bb = 0; bb < c; bb++) y[a] += G[a * c + bb] * coef[bb];
+      nr += y[a] * y[a];
+    }
+    nr = std::sqrt(nr);
+    for (size_t a = 0; a < c; a++) coef[a] = y[a] / nr;
+  }
+  PetscCall(VecDuplicate(modes_[cl[0]], insulated_.out()));
+  PetscCall(VecZeroEntries(insulated_));
+  for (size_t a = 0; a < c; a++) PetscCall(VecAXPY(insulated_, coef[a], proj[a]));
+  PetscReal nrm;
+  PetscCall(VecNormalize(insulated_, &nrm));
+  // Sign: positive at site m+1 (0-based m+1), read on its owner and broadcast.
+  PetscInt lo, hi;
+  PetscReal sgn = 0, g;
+  PetscCall(VecGetOwnershipRange(insulated_, &lo, &hi));
+  if (m + 1 >= lo && m + 1 < hi) {
+    const PetscScalar *v;
+    PetscCall(VecGetArrayRead(insulated_, &v));
+    sgn = v[m + 1 - lo] >= 0 ? 1 : -1;
+    PetscCall(VecRestoreArrayRead(insulated_, &v));
+  }
+  PetscCall(MPIU_Allreduce(&sgn, &g, 1, MPIU_REAL, MPIU_SUM, lat.Comm()));
+  if (g < 0) PetscCall(VecScale(insulated_, -1.0));
+  OwnedVec Kx;
+  PetscScalar rq;
+  PetscCall(VecDuplicate(insulated_, Kx.out()));
+  PetscCall(MatMult(lat.K(), insulated_, Kx));
+  PetscCall(VecDot(insulated_, Kx, &rq));
+  named_.insulated_omega = std::sqrt(rq);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LinearModes::Compute(const Lattice &lat, const LinearModesOptions &o)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(Log().eigen, 0, 0, 0, 0));
+  omega_.clear();
+  modes_.clear();
+  if (lat.N() <= o.dense_max) PetscCall(SolveAll(lat));
+  else PetscCall(SolveNear(lat, o));
+  PetscCall(SortAndNormalise());
+  PetscCall(Identify(lat));
+  PetscCall(PetscLogEventEnd(Log().eigen, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LinearModes::CopyMode(PetscInt j, Vec x) const
+{
+  PetscFunctionBeginUser;
+  PetscCheck(j >= 0 && j < (PetscInt)modes_.size(), PetscObjectComm((PetscObject)x), PETSC_ERR_USER,
+             "linear mode index %" PetscInt_FMT " out of range 0..%zu", j, modes_.size() - 1);
+  PetscCall(VecCopy(modes_[j], x));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LinearModes::Projections(Vec eta, std::vector<PetscReal> *proj2) const
+{
+  PetscFunctionBeginUser;
+  proj2->resize(modes_.size());
+  for (size_t j = 0; j < modes_.size(); j++) {
+    PetscScalar d;
+    PetscCall(VecDot(modes_[j], eta, &d));
+    (*proj2)[j] = d * d;
+  }
+  PetscFunctionReturn(0);
+}
+
+} // namespace nltopo

@@ -1,0 +1,33 @@
+#include "core/log.hpp"
+
+namespace nltopo {
+
+static LogEvents g_log;
+static bool g_registered = false;
+
+PetscErrorCode LogRegister()
+{
+  PetscClassId cid;
+  PetscFunctionBeginUser;
+  if (g_registered) PetscFunctionReturn(0);
+  PetscCall(PetscClassIdRegister("nltopo", &cid));
+  PetscCall(PetscLogEventRegister("RhsLinear", cid, &g_log.rhs_linear));
+  PetscCall(PetscLogEventRegister("RhsCubic", cid, &g_log.rhs_cubic));
+  PetscCall(PetscLogEventRegister("RhsForcing", cid, &g_log.rhs_forcing));
+  PetscCall(PetscLogEventRegister("Energy", cid, &g_log.energy));
+  PetscCall(PetscLogEventRegister("StateJacobian", cid, &g_log.jacobian));
+  PetscCall(PetscLogEventRegister("LinearModes", cid, &g_log.eigen));
+  PetscCall(PetscLogEventRegister("BlochZak", cid, &g_log.bloch));
+  PetscCall(PetscLogEventRegister("OutputHDF5", cid, &g_log.output));
+  PetscCall(PetscLogEventRegister("Diagnostics", cid, &g_log.diagnostics));
+  PetscCall(PetscLogStageRegister("Setup", &g_log.setup));
+  PetscCall(PetscLogStageRegister("Solve", &g_log.solve));
+  PetscCall(PetscLogStageRegister("Analysis", &g_log.analysis));
+  PetscCall(PetscLogStageRegister("Write", &g_log.write));
+  g_registered = true;
+  PetscFunctionReturn(0);
+}
+
+const LogEvents &Log() { return g_log; }
+
+} // namespace nltopo

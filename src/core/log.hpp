@@ -1,0 +1,17 @@
+#pragma once
+// Log stages and events, registered once, so that -log_view shows where the
+// time goes (one event per kernel, one stage per study phase).
+#include <petscsys.h>
+
+namespace nltopo {
+
+struct LogEvents {
+  PetscLogEvent rhs_linear, rhs_cubic, rhs_forcing, energy, jacobian, eigen, bloch, output, diagnostics;
+  PetscLogStage setup, solve, analysis, write;
+};
+
+// Registers on first call; later calls return the same ids.
+const LogEvents &Log();
+PetscErrorCode LogRegister();
+
+} // namespace nltopo

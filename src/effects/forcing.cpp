@@ -1,0 +1,123 @@
+#include "effects/forcing.hpp"
+#include "bands/linear_modes.hpp"
+#include <cmath>
+#include <complex>
+
+namespace nltopo {
+
+static const char *const kProfileNames[] = {"site", "mode", "none"};
+
+PetscErrorCode ToneBurstOptionsFromOptions(MPI_Comm comm, const LatticeParams &lp, ToneBurstOptions *o)
+{
+  PetscInt profile = static_cast<PetscInt>(o->profile);
+  PetscBool set_amp = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  if (o->omega <= 0) o->omega = std::sqrt(lp.KHat());
+  if (o->site < 0 && lp.layout == Layout::Interface) o->site = lp.InterfaceSite() + 1;
+  if (o->site < 0) o->site = 0;
+  PetscInt site1 = o->site + 1;
+  PetscOptionsBegin(comm, "force_", "Tone-burst forcing (model.md, Forcing)", NULL);
+  PetscCall(PetscOptionsEList("-profile", "Force profile eta: site (unit force on one site), mode (a linear eigenvector), none", NULL,
+                              kProfileNames, 3, kProfileNames[profile], &profile, NULL));
+  PetscCall(PetscOptionsReal("-omega", "Excitation frequency omega_ext (default sqrt(k_hat), the insulated frequency)", NULL, o->omega, &o->omega, NULL));
+  PetscCall(PetscOptionsReal("-energy", "Cut-off energy E*: the forcing stops for good the first time E >= E*", NULL, o->energy, &o->energy, NULL));
+  PetscCall(PetscOptionsReal("-amplitude", "Amplitude S; when not given the amplitude rule (README.md) picks it", NULL, o->amplitude, &o->amplitude, &set_amp));
+  PetscCall(PetscOptionsReal("-amplitude_safety", "Amplitude rule: S makes the linear burst energy this multiple of E*", NULL, o->safety, &o->safety, NULL));
+  PetscCall(PetscOptionsReal("-tau_periods", "Burst width tau in excitation periods", NULL, o->tau_periods, &o->tau_periods, NULL));
+  PetscCall(PetscOptionsReal("-t0_taus", "Burst centre t0 in units of tau", NULL, o->t0_taus, &o->t0_taus, NULL));
+  PetscCall(PetscOptionsInt("-site", "Forced site for profile site, 1-based as in model.md (default m+1, the interface even site)", NULL, site1, &site1, NULL));
+  PetscCall(PetscOptionsInt("-mode_index", "Linear mode (0-based, ascending frequency) for profile mode", NULL, o->mode, &o->mode, NULL));
+  PetscOptionsEnd();
+  o->profile = static_cast<ForceProfile>(profile);
+  o->site = site1 - 1; // the option is 1-based (model.md), the code 0-based
+  if (!set_amp) o->amplitude = -1;
+  const PetscInt N = lp.N();
+  PetscCheck(std::isfinite(o->omega) && o->omega > 0, comm, PETSC_ERR_USER, "-force_omega must be positive, got %g", (double)o->omega);
+  PetscCheck(std::isfinite(o->energy) && o->energy > 0, comm, PETSC_ERR_USER, "-force_energy must be positive, got %g", (double)o->energy);
+  PetscCheck(!set_amp || (std::isfinite(o->amplitude) && o->amplitude >= 0), comm, PETSC_ERR_USER, "-force_amplitude must be >= 0, got %g",
+             (double)o->amplitude);
+  PetscCheck(o->safety > 0, comm, PETSC_ERR_USER, "-force_amplitude_safety must be positive, got %g", (double)o->safety);
+  PetscCheck(o->tau_periods > 0 && o->t0_taus >= 0, comm, PETSC_ERR_USER, "-force_tau_periods must be > 0 and -force_t0_taus >= 0, got %g and %g",
+             (double)o->tau_periods, (double)o->t0_taus);
+  PetscCheck(o->profile != ForceProfile::Site || (o->site >= 0 && o->site < N), comm, PETSC_ERR_USER,
+             "-force_site must lie in 1..%" PetscInt_FMT ", got %" PetscInt_FMT, N, o->site + 1);
+  PetscCheck(o->profile != ForceProfile::Mode || (o->mode >= 0 && o->mode < N), comm, PETSC_ERR_USER,
+             "-force_profile mode needs -force_mode_index in 0..%" PetscInt_FMT ", got %" PetscInt_FMT, N - 1, o->mode);
+  PetscFunctionReturn(0);
+}
+
+PetscReal BurstUnitEnergy(const std::vector<PetscReal> &omega_j, const std::vector<PetscReal> &proj2, PetscReal omega, PetscReal tau, PetscReal t0)
+{
+  const PetscReal pi = PETSC_PI;
+  PetscReal burst = 0, quasi = 0;
+  for (size_t j = 0; j < omega_j.size(); j++) {
+    const PetscReal wj = omega_j[j], a2 = proj2[j];
+    const PetscReal A = std::exp(-tau * tau * (omega - wj) * (omega - wj) / 4), B = std::exp(-tau * tau * (omega + wj) * (omega + wj) / 4);
+    const std::complex<PetscReal> s = A + B * std::exp(std::complex<PetscReal>(0, -2 * omega * t0));
+    burst += a2 * pi * tau * tau / 8 * std::norm(s);
+    // Quasi-static response at the envelope peak, resonance regularised at |omega_j - omega| ~ 1/tau.
+    const PetscReal d = wj * wj - omega * omega, reg = 2 * wj / tau;
+    quasi += a2 * std::max(omega * omega, wj * wj) / (2 * (d * d + reg * reg));
+  }
+  return std::max(burst, quasi);
+}
+
+PetscErrorCode ToneBurst::Setup(const Lattice &lat, const ToneBurstOptions &o, const LinearModes *modes)
+{
+  MPI_Comm comm = lat.Comm();
+  PetscFunctionBeginUser;
+  opt_ = o;
+  tau_ = o.tau_periods * 2 * PETSC_PI / o.omega;
+  t0_ = o.t0_taus * tau_;
+  idx_.clear();
+  eta_.clear();
+  const PetscInt xs = lat.OwnedStart(), xe = xs + lat.OwnedCount();
+  OwnedVec eta; // the full profile, for the amplitude rule
+  PetscCall(DMCreateGlobalVector(lat.SiteDM(), eta.out()));
+  switch (o.profile) {
+  case ForceProfile::None: break;
+  case ForceProfile::Site:
+    if (o.site >= xs && o.site < xe) PetscCall(VecSetValue(eta, o.site, 1.0, INSERT_VALUES));
+    break;
+  case ForceProfile::Mode:
+    PetscCheck(modes, comm, PETSC_ERR_USER, "-force_profile mode needs the linear modes of the lattice");
+    PetscCall(modes->CopyMode(o.mode, eta));
+    break;
+  }
+  PetscCall(VecAssemblyBegin(eta));
+  PetscCall(VecAssemblyEnd(eta));
+  const PetscScalar *a;
+  PetscCall(VecGetArrayRead(eta, &a));
+  for (PetscInt i = xs; i < xe; i++)
+    if (a[i - xs] != 0.0) {
+      idx_.push_back(i);
+      eta_.push_back(a[i - xs]);
+    }
+  PetscCall(VecRestoreArrayRead(eta, &a));
+
+  from_rule_ = Present() && o.amplitude < 0;
+  S_ = Present() ? o.amplitude : 0;
+  if (from_rule_) {
+    PetscCheck(modes, comm, PETSC_ERR_USER, "the amplitude rule needs the linear modes; give -force_amplitude for this lattice");
+    std::vector<PetscReal> proj2;
+    PetscCall(modes->Projections(eta, &proj2));
+    e1_ = BurstUnitEnergy(modes->Omega(), proj2, o.omega, tau_, t0_);
+    PetscCheck(e1_ > 0 && std::isfinite(e1_), comm, PETSC_ERR_USER, "amplitude rule: the profile does not couple to any linear mode; give -force_amplitude");
+    S_ = std::sqrt(o.safety * o.energy / e1_);
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscReal ToneBurst::Signal(PetscReal t) const
+{
+  const PetscReal x = (t - t0_) / tau_;
+  return S_ * std::cos(opt_.omega * t) * std::exp(-x * x);
+}
+
+void ToneBurst::Add(PetscReal t, PetscScalar *f, PetscInt sf, PetscInt off) const
+{
+  const PetscReal s = Signal(t);
+  for (size_t k = 0; k < idx_.size(); k++) f[idx_[k] * sf + off] += eta_[k] * s;
+}
+
+} // namespace nltopo

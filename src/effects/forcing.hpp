@@ -1,0 +1,63 @@
+#pragma once
+// The Gaussian tone burst of model.md ("Forcing"):
+//   F(t) = eta * S * cos(omega t) * exp(-((t - t0)/tau)^2),  tau = tau_periods * 2 pi/omega, t0 = t0_taus * tau,
+// switched off for good the first time E(t) >= E*. eta is a profile vector.
+#include "lattice/lattice.hpp"
+#include <vector>
+
+namespace nltopo {
+
+class LinearModes;
+
+enum class ForceProfile { Site = 0, Mode = 1, None = 2 };
+
+struct ToneBurstOptions {
+  ForceProfile profile = ForceProfile::Site;
+  PetscReal omega = 0;         // omega_ext (default sqrt(k_hat): the insulated frequency)
+  PetscReal energy = 1.0;      // E*
+  PetscReal amplitude = -1;    // S; < 0 means "use the amplitude rule"
+  PetscReal safety = 2.0;      // amplitude rule: linear burst energy = safety * E*
+  PetscReal tau_periods = 25, t0_taus = 5;
+  PetscInt site = -1;          // 0-based forced site for profile site (default m+1)
+  PetscInt mode = -1;          // linear mode index for profile mode
+};
+
+PetscErrorCode ToneBurstOptionsFromOptions(MPI_Comm comm, const LatticeParams &lp, ToneBurstOptions *o);
+
+class ToneBurst {
+public:
+  // Builds eta on the owned sites. modes may be NULL unless the profile or
+  // the amplitude rule needs the linear modes.
+  PetscErrorCode Setup(const Lattice &lat, const ToneBurstOptions &o, const LinearModes *modes);
+
+  bool Present() const { return opt_.profile != ForceProfile::None; }
+  PetscReal Omega() const { return opt_.omega; }
+  PetscReal EnergyStar() const { return opt_.energy; }
+  PetscReal Amplitude() const { return S_; }
+  PetscReal Tau() const { return tau_; }
+  PetscReal T0() const { return t0_; }
+  bool AmplitudeFromRule() const { return from_rule_; }
+  PetscReal RuleUnitEnergy() const { return e1_; }
+  const ToneBurstOptions &Options() const { return opt_; }
+
+  // Scalar signal S cos(omega t) exp(-((t - t0)/tau)^2).
+  PetscReal Signal(PetscReal t) const;
+  // f[2i+1] += eta_i * Signal(t) on owned sites with eta_i != 0 (f indexed by global site, stride sf, offset off).
+  void Add(PetscReal t, PetscScalar *f, PetscInt sf, PetscInt off) const;
+
+private:
+  ToneBurstOptions opt_;
+  PetscReal S_ = 0, tau_ = 0, t0_ = 0, e1_ = 0;
+  bool from_rule_ = false;
+  std::vector<PetscInt> idx_;     // owned sites with eta != 0 (global index)
+  std::vector<PetscScalar> eta_;
+};
+
+// Amplitude rule (README.md "Amplitude rule"): the energy a unit-amplitude
+// burst leaves in the LINEAR lattice, e1 = sum_j (phi_j . eta)^2 pi tau^2 / 8 *
+// |exp(-tau^2 (omega - omega_j)^2 / 4) + exp(-tau^2 (omega + omega_j)^2 / 4) e^{-2 i omega t0}|^2,
+// plus the peak energy of the quasi-static off-resonant response; S = sqrt(safety E* / e1).
+PetscReal BurstUnitEnergy(const std::vector<PetscReal> &omega_j, const std::vector<PetscReal> &proj2, PetscReal omega, PetscReal tau,
+                          PetscReal t0);
+
+} // namespace nltopo

@@ -1,0 +1,41 @@
+#pragma once
+// The right-hand side z' = f(t, z) as the sum of the effects the scene enabled
+// (model.md, Equations of motion):
+//   linear coupling  f = L z                 (always: the lattice itself)
+//   cubic bonds      f_v += -f_NL(u)         (only when Gamma != 0)
+//   forcing          f_v += eta S g(t)       (only when configured; dropped for good at cut-off)
+// Each effect has its own log event and call counter, so tests and -log_view
+// can see that an effect the scene did not enable is never computed.
+#include "effects/forcing.hpp"
+#include "lattice/lattice.hpp"
+
+namespace nltopo {
+
+struct EffectCounters {
+  PetscInt rhs = 0, linear = 0, cubic = 0, forcing = 0;
+};
+
+class Rhs {
+public:
+  Rhs(const Lattice &lat, const ToneBurst *forcing);
+
+  // State form: f = [v, -K u - f_NL(u) + F(t)].
+  PetscErrorCode Evaluate(PetscReal t, Vec z, Vec f);
+  // Split (symplectic) form, momentum part: pdot = -K q - f_NL(q) + F(t) (q, pdot: SiteDM layout).
+  PetscErrorCode Momentum(PetscReal t, Vec q, Vec pdot);
+
+  bool Forcing() const { return forcing_ != nullptr; }
+  void DropForcing() { forcing_ = nullptr; }
+  const EffectCounters &Counters() const { return count_; }
+
+private:
+  PetscErrorCode AddLocalEffects(PetscReal t, DM dm, Vec x, Vec f, PetscInt dof);
+
+  const Lattice &lat_;
+  const ToneBurst *forcing_;
+  bool cubic_;
+  PetscMPIInt size_ = 1;
+  EffectCounters count_;
+};
+
+} // namespace nltopo

@@ -1,0 +1,146 @@
+#include "io/output.hpp"
+#include "core/log.hpp"
+#include <petscviewerhdf5.h>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <unistd.h>
+
+namespace nltopo {
+
+PetscErrorCode OutputPathFromOptions(MPI_Comm comm, const char *study, std::string *path)
+{
+  char buf[PETSC_MAX_PATH_LEN];
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(buf, sizeof(buf), "%s.h5", study));
+  PetscOptionsBegin(comm, NULL, "Output (shared/spec/outputs.md)", NULL);
+  PetscCall(PetscOptionsString("-output", "HDF5 file to write (default <study>.h5)", NULL, buf, buf, sizeof(buf), NULL));
+  PetscOptionsEnd();
+  PetscCheck(buf[0], comm, PETSC_ERR_USER, "-output must name a file");
+  *path = buf;
+  PetscFunctionReturn(0);
+}
+
+OutputFile::~OutputFile()
+{
+  if (!viewer_ || committed_) return;
+  viewer_.reset();
+  PetscMPIInt rank = 0;
+  MPI_Comm_rank(comm_, &rank);
+  if (!rank) std::remove(tmp_.c_str()); // never leave a partial file behind
+}
+
+PetscErrorCode OutputFile::Open(MPI_Comm comm, const std::string &path)
+{
+  PetscMPIInt rank;
+  int pid = (int)getpid(), err = 0;
+  char msg[256] = "";
+  PetscFunctionBeginUser;
+  comm_ = comm;
+  path_ = path;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Bcast(&pid, 1, MPI_INT, 0, comm));
+  tmp_ = path + ".tmp." + std::to_string(pid);
+  if (!rank) { // probe: can we create a file next to the target?
+    FILE *f = std::fopen(tmp_.c_str(), "w");
+    if (!f) {
+      err = errno;
+      PetscCall(PetscStrncpy(msg, std::strerror(err), sizeof(msg)));
+    } else {
+      std::fclose(f);
+    }
+  }
+  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm));
+  PetscCallMPI(MPI_Bcast(msg, sizeof(msg), MPI_CHAR, 0, comm));
+  PetscCheck(!err, comm, PETSC_ERR_FILE_OPEN, "cannot write -output %s: %s", path.c_str(), msg);
+  PetscCall(PetscViewerHDF5Open(comm, tmp_.c_str(), FILE_MODE_WRITE, viewer_.out()));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode OutputFile::Commit(const char *study, PetscReal wall_seconds)
+{
+  char *opts;
+  PetscMPIInt rank;
+  int err = 0;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetAll(NULL, &opts));
+  PetscCall(WriteAttr(viewer_, "/", "study", study));
+  PetscCall(WriteAttr(viewer_, "/", "version", NLTOPO_VERSION));
+  PetscCall(WriteAttr(viewer_, "/", "options", opts));
+  PetscCall(WriteAttr(viewer_, "/", "wall_seconds", wall_seconds));
+  PetscCall(PetscFree(opts));
+  viewer_.reset(); // flush and close
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+  if (!rank && std::rename(tmp_.c_str(), path_.c_str())) err = errno;
+  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm_));
+  PetscCheck(!err, comm_, PETSC_ERR_FILE_WRITE, "cannot write -output %s: %s", path_.c_str(), std::strerror(err));
+  committed_ = true;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode WriteRank0(PetscViewer v, const char *group, const char *name, const PetscReal *data, PetscInt n, PetscInt bs)
+{
+  MPI_Comm comm = PetscObjectComm((PetscObject)v);
+  PetscMPIInt rank;
+  OwnedVec x;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Bcast(&n, 1, MPIU_INT, 0, comm));
+  PetscCall(VecCreate(comm, x.out()));
+  PetscCall(VecSetSizes(x, rank ? 0 : n, n));
+  PetscCall(VecSetBlockSize(x, bs));
+  PetscCall(VecSetType(x, VECSTANDARD));
+  if (!rank && n) {
+    PetscScalar *a;
+    PetscCall(VecGetArray(x, &a));
+    for (PetscInt i = 0; i < n; i++) a[i] = data[i];
+    PetscCall(VecRestoreArray(x, &a));
+  }
+  PetscCall(WriteVec(v, group, name, x));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode WriteArray(PetscViewer v, const char *group, const char *name, const std::vector<PetscReal> &data, PetscInt bs)
+{
+  PetscFunctionBeginUser;
+  PetscCall(WriteRank0(v, group, name, data.data(), (PetscInt)data.size(), bs));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode WriteVec(PetscViewer v, const char *group, const char *name, Vec x)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(Log().output, 0, 0, 0, 0));
+  PetscCall(PetscObjectSetName((PetscObject)x, name));
+  PetscCall(PetscViewerHDF5PushGroup(v, group));
+  PetscCall(VecView(x, v));
+  PetscCall(PetscViewerHDF5PopGroup(v));
+  PetscCall(PetscLogEventEnd(Log().output, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode WriteAttr(PetscViewer v, const char *path, const char *name, PetscReal value)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5WriteGroup(v, path));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, path, name, PETSC_REAL, &value));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode WriteAttr(PetscViewer v, const char *path, const char *name, PetscInt value)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5WriteGroup(v, path));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, path, name, PETSC_INT, &value));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode WriteAttr(PetscViewer v, const char *path, const char *name, const char *value)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5WriteGroup(v, path));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, path, name, PETSC_STRING, value));
+  PetscFunctionReturn(0);
+}
+
+} // namespace nltopo

@@ -1,0 +1,40 @@
+#pragma once
+// HDF5 output per shared/spec/outputs.md. The file is written under a
+// temporary name and renamed at Commit(), so a failed or killed run never
+// leaves a partial file at the -output path.
+#include "core/handle.hpp"
+#include <string>
+#include <vector>
+
+namespace nltopo {
+
+// -output <file.h5>, default "<study>.h5".
+PetscErrorCode OutputPathFromOptions(MPI_Comm comm, const char *study, std::string *path);
+
+class OutputFile {
+public:
+  ~OutputFile();
+  // Checks that the path is writable (error names -output) and opens the temporary file.
+  PetscErrorCode Open(MPI_Comm comm, const std::string &path);
+  PetscViewer Viewer() const { return viewer_; }
+  // Writes the root attributes (study, version, options, wall_seconds), closes, renames.
+  PetscErrorCode Commit(const char *study, PetscReal wall_seconds);
+  const std::string &Path() const { return path_; }
+
+private:
+  MPI_Comm comm_ = MPI_COMM_NULL;
+  std::string path_, tmp_;
+  OwnedViewer viewer_;
+  bool committed_ = false;
+};
+
+// A 1-D (bs = 1) or 2-D (n/bs x bs) float64 dataset whose values are given on
+// rank 0 (other ranks pass anything; only rank 0's data is written).
+PetscErrorCode WriteArray(PetscViewer v, const char *group, const char *name, const std::vector<PetscReal> &data, PetscInt bs = 1);
+// A distributed vector (its object name is set to name).
+PetscErrorCode WriteVec(PetscViewer v, const char *group, const char *name, Vec x);
+PetscErrorCode WriteAttr(PetscViewer v, const char *path, const char *name, PetscReal value);
+PetscErrorCode WriteAttr(PetscViewer v, const char *path, const char *name, PetscInt value);
+PetscErrorCode WriteAttr(PetscViewer v, const char *path, const char *name, const char *value);
+
+} // namespace nltopo

@@ -1,0 +1,18 @@
+// nltopo: strongly nonlinear topological lattices on PETSc/SLEPc.
+// Thin driver: initialise, run the -study from the registry, finalise.
+#include "core/errors.hpp"
+#include "studies/registry.hpp"
+#include <slepcsys.h>
+
+static const char help[] = "nltopo: nonlinear SSH interface lattice (see README.md). Use -study <name> with -options_file options/<scene>.opts.\n";
+
+int main(int argc, char **argv)
+{
+  if (!nltopo::OptionsFilesReadable(argc, argv)) return 1;
+  if (SlepcInitialize(&argc, &argv, NULL, help)) return 1;
+  PetscPushErrorHandler(nltopo::OneLineErrorHandler, NULL);
+  PetscErrorCode ierr = nltopo::RunStudyFromOptions(PETSC_COMM_WORLD);
+  PetscPopErrorHandler();
+  PetscErrorCode fin = SlepcFinalize();
+  return (ierr || fin) ? 1 : 0;
+}

@@ -1,0 +1,131 @@
+// -study simulate: one forced tone-burst run with energy cut-off; /simulate of outputs.md.
+#include "bands/linear_modes.hpp"
+#include "core/log.hpp"
+#include "io/output.hpp"
+#include "studies/registry.hpp"
+#include "timeint/simulation.hpp"
+#include <petscviewerhdf5.h>
+
+namespace nltopo {
+
+namespace {
+
+// Streams the sub-sampled displacement u(t) into /simulate/u (nt x N) and
+// keeps t and E(t) for the end of the run.
+class HdfSamples : public SampleSink {
+public:
+  HdfSamples(PetscViewer v, bool store_u) : v_(v), store_u_(store_u) {}
+  PetscErrorCode Init(const Lattice &lat)
+  {
+    PetscFunctionBeginUser;
+    PetscCall(DMCreateGlobalVector(lat.SiteDM(), u_.out()));
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode Sample(PetscReal t, Vec z, const EnergyParts &e) override
+  {
+    PetscFunctionBeginUser;
+    t_.push_back(t);
+    energy_.push_back(e.Total());
+    if (store_u_) {
+      PetscCall(VecStrideGather(z, 0, u_, INSERT_VALUES));
+      PetscCall(PetscViewerHDF5PushTimestepping(v_));
+      PetscCall(PetscViewerHDF5SetTimestep(v_, (PetscInt)t_.size() - 1));
+      PetscCall(WriteVec(v_, "/simulate", "u", u_));
+      PetscCall(PetscViewerHDF5PopTimestepping(v_));
+    }
+    PetscFunctionReturn(0);
+  }
+  std::vector<PetscReal> t_, energy_;
+
+private:
+  PetscViewer v_;
+  bool store_u_;
+  OwnedVec u_;
+};
+
+} // namespace
+
+PetscErrorCode SimulateStudy(MPI_Comm comm)
+{
+  LatticeParams lp;
+  ToneBurstOptions fo;
+  SimulationOptions so;
+  LinearModesOptions mo;
+  PetscBool store_u = PETSC_TRUE;
+  std::string path;
+  OutputFile out;
+  Lattice lat;
+  LinearModes modes;
+  ToneBurst burst;
+  SimulationResult r;
+  PetscLogDouble t_start, t_solve0, t_solve1, t_end;
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t_start));
+  PetscCall(LogRegister());
+  PetscCall(PetscLogStagePush(Log().setup));
+  PetscCall(LatticeParamsFromOptions(comm, &lp));
+  PetscCall(ToneBurstOptionsFromOptions(comm, lp, &fo));
+  PetscCall(SimulationOptionsFromOptions(comm, &so));
+  PetscOptionsBegin(comm, "sim_", "Simulate study output", NULL);
+  PetscCall(PetscOptionsBool("-store_u", "Store the sub-sampled displacement u(t) (/simulate/u)", NULL, store_u, &store_u, NULL));
+  PetscOptionsEnd();
+  const bool need_modes = fo.profile == ForceProfile::Mode || (fo.profile != ForceProfile::None && fo.amplitude < 0);
+  if (need_modes) PetscCall(LinearModesOptionsFromOptions(comm, &mo));
+  PetscCall(OutputPathFromOptions(comm, "simulate", &path));
+  PetscCall(out.Open(comm, path));
+  PetscCall(lat.Setup(comm, lp));
+  if (need_modes) PetscCall(modes.Compute(lat, mo));
+  PetscCall(burst.Setup(lat, fo, need_modes ? &modes : NULL));
+  PetscCall(PetscLogStagePop());
+
+  HdfSamples sink(out.Viewer(), store_u);
+  PetscCall(sink.Init(lat));
+  PetscCall(PetscLogStagePush(Log().solve));
+  PetscCall(PetscTime(&t_solve0));
+  PetscCall(Simulate(lat, &burst, so, NULL, &sink, &r));
+  PetscCall(PetscTime(&t_solve1));
+  PetscCall(PetscLogStagePop());
+
+  PetscCall(PetscPrintf(comm, "nltopo simulate: N = %" PetscInt_FMT ", omega_ext = %.6f, E* = %g, S = %.6g (%s), t_final = %g\n", lat.N(),
+                        (double)burst.Omega(), (double)burst.EnergyStar(), (double)burst.Amplitude(),
+                        burst.AmplitudeFromRule() ? "amplitude rule" : "-force_amplitude", (double)so.t_final));
+  if (r.reached) PetscCall(PetscPrintf(comm, "  cut-off at t_off = %.6f, E_final = %.10g\n", (double)r.t_off, (double)r.energy_final));
+  else if (burst.Present())
+    PetscCall(PetscPrintf(comm, "  WARNING: E* = %g was NOT reached (E_final = %.6g); RMS window from t = %g\n", (double)burst.EnergyStar(),
+                          (double)r.energy_final, (double)r.window_start));
+  PetscCall(PetscPrintf(comm, "  MCR = %.10f, nl_ratio = %.6g, steps = %" PetscInt_FMT " (%" PetscInt_FMT " rejected), RHS evaluations = %" PetscInt_FMT
+                              ", solve %.3f s\n",
+                        (double)r.mcr, (double)r.nl_ratio, r.steps, r.rejected, r.counters.rhs, (double)(t_solve1 - t_solve0)));
+
+  PetscCall(PetscLogStagePush(Log().write));
+  PetscViewer v = out.Viewer();
+  const char *g = "/simulate";
+  PetscCall(WriteArray(v, g, "t", sink.t_));
+  PetscCall(WriteArray(v, g, "energy", sink.energy_));
+  PetscCall(WriteVec(v, g, "rms", r.rms));
+  PetscCall(WriteAttr(v, g, "mcr", r.mcr));
+  PetscCall(WriteAttr(v, g, "t_off", r.t_off));
+  PetscCall(WriteAttr(v, g, "energy_final", r.energy_final));
+  PetscCall(WriteAttr(v, g, "nl_ratio", r.nl_ratio));
+  PetscCall(WriteAttr(v, g, "rhs_evals", r.counters.rhs));
+  PetscCall(WriteAttr(v, g, "steps", r.steps));
+  PetscCall(WriteAttr(v, g, "rejected_steps", r.rejected));
+  PetscCall(WriteAttr(v, g, "energy_reached", (PetscInt)r.reached));
+  PetscCall(WriteAttr(v, g, "window_start", r.window_start));
+  PetscCall(WriteAttr(v, g, "omega_ext", burst.Omega()));
+  PetscCall(WriteAttr(v, g, "energy_star", burst.EnergyStar()));
+  PetscCall(WriteAttr(v, g, "amplitude", burst.Amplitude()));
+  PetscCall(WriteAttr(v, g, "amplitude_rule",
+                      burst.AmplitudeFromRule() ? "linear Gaussian-burst energy = amplitude_safety * E* (README.md, Amplitude rule)" : "user (-force_amplitude)"));
+  PetscCall(WriteAttr(v, g, "amplitude_safety", fo.safety));
+  PetscCall(WriteAttr(v, g, "tau", burst.Tau()));
+  PetscCall(WriteAttr(v, g, "t0", burst.T0()));
+  PetscCall(WriteAttr(v, g, "solve_seconds", (PetscReal)(t_solve1 - t_solve0)));
+  PetscCall(PetscTime(&t_end));
+  PetscCall(out.Commit("simulate", t_end - t_start));
+  PetscCall(PetscLogStagePop());
+  PetscCall(PetscPrintf(comm, "  wrote %s\n", path.c_str()));
+  PetscFunctionReturn(0);
+}
+
+} // namespace nltopo

@@ -1,0 +1,324 @@
+#include "timeint/simulation.hpp"
+#include <petsc/private/petscimpl.h>
+#include "core/log.hpp"
+#include "diagnostics/mcr.hpp"
+#include <cmath>
+#include <cstring>
+
+namespace nltopo {
+
+PetscErrorCode SimulationOptionsFromOptions(MPI_Comm comm, SimulationOptions *o)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, "sim_", "Forced simulation (TS options: -sim_ts_*)", NULL);
+  PetscCall(PetscOptionsReal("-t_final", "Simulated time", NULL, o->t_final, &o->t_final, NULL));
+  PetscCall(PetscOptionsReal("-sample_dt", "Spacing of stored samples of u and E (0: none)", NULL, o->sample_dt, &o->sample_dt, NULL));
+  PetscCall(PetscOptionsReal("-dt", "Initial time step (the fixed step for -sim_ts_type basicsymplectic)", NULL, o->dt, &o->dt, NULL));
+  PetscOptionsEnd();
+  PetscCheck(std::isfinite(o->t_final) && o->t_final > 0, comm, PETSC_ERR_USER, "-sim_t_final must be positive, got %g", (double)o->t_final);
+  PetscCheck(o->sample_dt >= 0, comm, PETSC_ERR_USER, "-sim_sample_dt must be >= 0, got %g", (double)o->sample_dt);
+  PetscCheck(o->dt > 0 && o->dt <= o->t_final, comm, PETSC_ERR_USER, "-sim_dt must lie in (0, -sim_t_final], got %g", (double)o->dt);
+  PetscFunctionReturn(0);
+}
+
+namespace {
+
+struct Run {
+  const Lattice *lat;
+  const ToneBurst *forcing;
+  Rhs rhs;
+  SampleSink *sink;
+  bool event_mode = false, interpolate = true;
+  PetscReal estar = 0, t_final = 0, sample_dt = 0, window_default = 0;
+  PetscInt next_sample = 0;
+  SimulationResult *r;
+  OwnedVec zs; // interpolated sample state
+  // energy cache (the event indicator and the post-step see the same state)
+  PetscObjectId cache_id = 0;
+  PetscObjectState cache_state = -1;
+  EnergyParts cache_e;
+  // RMS / energy-ratio window accumulators (trapezoid over steps)
+  bool accumulating = false;
+  PetscReal t_prev = 0, nl_prev = 0, lin_prev = 0, acc_nl = 0, acc_lin = 0;
+  std::vector<PetscReal> u2_prev, acc_u2;
+
+  Run(const Lattice &l, const ToneBurst *f, SampleSink *s, SimulationResult *res) : lat(&l), forcing(f), rhs(l, f), sink(s), r(res) {}
+
+  PetscErrorCode EnergyAt(Vec z, EnergyParts *e)
+  {
+    PetscObjectId id;
+    PetscObjectState st;
+    PetscFunctionBeginUser;
+    PetscCall(PetscObjectGetId((PetscObject)z, &id));
+    PetscCall(PetscObjectStateGet((PetscObject)z, &st));
+    if (id != cache_id || st != cache_state) {
+      PetscCall(lat->Energy(z, &cache_e));
+      cache_id = id;
+      cache_state = st;
+    }
+    *e = cache_e;
+    PetscFunctionReturn(0);
+  }
+
+  void CutOff(PetscReal t)
+  {
+    rhs.DropForcing();
+    r->t_off = t;
+    r->reached = true;
+    r->window_start = t;
+    accumulating = false; // restart the window at t_off
+  }
+
+  PetscErrorCode Window(PetscReal t, Vec z, const EnergyParts &e)
+  {
+    const PetscScalar *a;
+    const PetscInt n = lat->OwnedCount();
+    PetscFunctionBeginUser;
+    if (!accumulating && t + 1e-12 < r->window_start) PetscFunctionReturn(0);
+    PetscCall(VecGetArrayRead(z, &a));
+    if (!accumulating) {
+      accumulating = true;
+      r->window_start = t;
+      acc_nl = acc_lin = 0;
+      u2_prev.assign(n, 0.0);
+      acc_u2.assign(n, 0.0);
+      for (PetscInt k = 0; k < n; k++) u2_prev[k] = a[2 * k] * a[2 * k];
+    } else {
+      const PetscReal h = 0.5 * (t - t_prev);
+      for (PetscInt k = 0; k < n; k++) {
+        const PetscReal u2 = a[2 * k] * a[2 * k];
+        acc_u2[k] += h * (u2 + u2_prev[k]);
+        u2_prev[k] = u2;
+      }
+      acc_nl += h * (e.quartic + nl_prev);
+      acc_lin += h * (e.linear + lin_prev);
+    }
+    PetscCall(VecRestoreArrayRead(z, &a));
+    t_prev = t;
+    nl_prev = e.quartic;
+    lin_prev = e.linear;
+    PetscFunctionReturn(0);
+  }
+
+  PetscErrorCode Samples(TS ts, PetscReal t, Vec z, const EnergyParts &e)
+  {
+    PetscFunctionBeginUser;
+    if (!sink || sample_dt <= 0) PetscFunctionReturn(0);
+    for (;;) {
+      const PetscReal ts_k = next_sample * sample_dt;
+      if (ts_k > t_final * (1 + 1e-12) || ts_k > t + 1e-9 * sample_dt) break;
+      if (interpolate && std::abs(ts_k - t) > 1e-12 * (1 + t)) {
+        EnergyParts es;
+        PetscCall(TSInterpolate(ts, ts_k, zs));
+        PetscCall(lat->Energy(zs, &es));
+        PetscCall(sink->Sample(ts_k, zs, es));
+      } else {
+        PetscCall(sink->Sample(interpolate ? ts_k : t, z, e));
+      }
+      next_sample++;
+    }
+    PetscFunctionReturn(0);
+  }
+};
+
+PetscErrorCode RhsFunction(TS ts, PetscReal t, Vec z, Vec f, void *ctx)
+{
+  PetscFunctionBeginUser;
+  PetscCall(static_cast<Run *>(ctx)->rhs.Evaluate(t, z, f));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode RhsJacobian(TS ts, PetscReal t, Vec z, Mat A, Mat P, void *ctx)
+{
+  PetscFunctionBeginUser;
+  PetscCall(static_cast<Run *>(ctx)->lat->AssembleStateJacobian(z, P));
+  if (A != P) {
+    PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PositionRate(TS ts, PetscReal t, Vec p, Vec qdot, void *ctx)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(p, qdot)); // unit masses: q' = p
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MomentumRate(TS ts, PetscReal t, Vec q, Vec pdot, void *ctx)
+{
+  PetscFunctionBeginUser;
+  PetscCall(static_cast<Run *>(ctx)->rhs.Momentum(t, q, pdot));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CutOffIndicator(TS ts, PetscReal t, Vec z, PetscScalar *fv, void *ctx)
+{
+  Run *run = static_cast<Run *>(ctx);
+  PetscFunctionBeginUser;
+  if (run->rhs.Forcing()) {
+    EnergyParts e;
+    PetscCall(run->EnergyAt(z, &e));
+    fv[0] = e.Total() - run->estar;
+  } else {
+    fv[0] = 1.0; // after the cut-off the event can never fire again
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CutOffEvent(TS ts, PetscInt nev, PetscInt list[], PetscReal t, Vec z, PetscBool forward, void *ctx)
+{
+  Run *run = static_cast<Run *>(ctx);
+  PetscFunctionBeginUser;
+  if (run->rhs.Forcing()) {
+    run->CutOff(t);
+    PetscCall(TSRestartStep(ts)); // FSAL schemes must not reuse a stage computed with the forcing on
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PostStep(TS ts)
+{
+  Run *run;
+  PetscReal t;
+  Vec z;
+  EnergyParts e;
+  PetscFunctionBeginUser;
+  PetscCall(TSGetApplicationContext(ts, &run));
+  PetscCall(TSGetTime(ts, &t));
+  PetscCall(TSGetSolution(ts, &z));
+  PetscCall(run->EnergyAt(z, &e));
+  PetscCheck(std::isfinite(e.Total()), run->lat->Comm(), PETSC_ERR_FP,
+             "non-finite state at t = %g: the integration diverged (reduce -sim_dt / -sim_ts_dt or tighten -sim_ts_rtol)", (double)t);
+  if (!run->event_mode && run->rhs.Forcing() && e.Total() >= run->estar) run->CutOff(t);
+  PetscCall(run->Window(t, z, e));
+  PetscCall(run->Samples(ts, t, z, e));
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const SimulationOptions &o, Vec z0, SampleSink *sink, SimulationResult *r)
+{
+  MPI_Comm comm = lat.Comm();
+  OwnedTS ts;
+  OwnedMat J;
+  OwnedVec z;
+  OwnedIS isq, isp;
+  TSType type;
+  TSConvergedReason reason;
+  PetscFunctionBeginUser;
+  *r = SimulationResult();
+  Run run(lat, forcing, sink, r);
+  run.estar = forcing ? forcing->EnergyStar() : 0;
+  run.t_final = o.t_final;
+  run.sample_dt = o.sample_dt;
+  // RMS window when E* is never reached: after the burst (t0 + 3 tau), or the
+  // whole run if the burst does not end before t_final (README.md).
+  if (run.rhs.Forcing()) {
+    const PetscReal tb = forcing->T0() + 3 * forcing->Tau();
+    r->window_start = tb < o.t_final ? tb : 0;
+  }
+
+  PetscCall(DMCreateGlobalVector(lat.StateDM(), z.out()));
+  if (z0) PetscCall(VecCopy(z0, z));
+  else PetscCall(VecZeroEntries(z));
+  PetscCall(VecDuplicate(z, run.zs.out()));
+  PetscCall(lat.CreateStateMatrix(J.out()));
+
+  PetscCall(TSCreate(comm, ts.out()));
+  PetscCall(TSSetOptionsPrefix(ts, "sim_"));
+  PetscCall(TSSetApplicationContext(ts, &run));
+  PetscCall(TSSetProblemType(ts, TS_NONLINEAR));
+  PetscCall(TSSetType(ts, TSRK));
+  PetscCall(TSRKSetType(ts, TSRK5DP));
+  PetscCall(TSSetRHSFunction(ts, NULL, RhsFunction, &run));
+  PetscCall(TSSetRHSJacobian(ts, J, J, RhsJacobian, &run));
+  PetscCall(TSSetTolerances(ts, 1e-8, NULL, 1e-8, NULL));
+  PetscCall(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP));
+  PetscCall(TSSetMaxTime(ts, o.t_final));
+  PetscCall(TSSetMaxSteps(ts, PETSC_MAX_INT));
+  PetscCall(TSSetTimeStep(ts, o.dt));
+  PetscCall(TSSetErrorIfStepFails(ts, PETSC_FALSE));
+  PetscCall(TSSetPostStep(ts, PostStep));
+  PetscCall(TSSetFromOptions(ts));
+  PetscCall(TSGetType(ts, &type));
+
+  const bool symplectic = !std::strcmp(type, TSBASICSYMPLECTIC);
+  if (symplectic) {
+    // Fixed step dividing t_final (the type ignores MATCHSTEP), split RHS.
+    PetscReal dt;
+    PetscInt rs, nloc;
+    PetscCall(TSGetTimeStep(ts, &dt));
+    const PetscInt n = (PetscInt)std::ceil(o.t_final / dt - 1e-9);
+    PetscCall(TSSetTimeStep(ts, o.t_final / n));
+    PetscCall(TSSetMaxSteps(ts, n));
+    PetscCall(VecGetOwnershipRange(z, &rs, NULL));
+    PetscCall(VecGetLocalSize(z, &nloc));
+    PetscCall(ISCreateStride(comm, nloc / 2, rs, 2, isq.out()));
+    PetscCall(ISCreateStride(comm, nloc / 2, rs + 1, 2, isp.out()));
+    PetscCall(TSRHSSplitSetIS(ts, "position", isq));
+    PetscCall(TSRHSSplitSetIS(ts, "momentum", isp));
+    PetscCall(TSRHSSplitSetRHSFunction(ts, "position", NULL, PositionRate, &run));
+    PetscCall(TSRHSSplitSetRHSFunction(ts, "momentum", NULL, MomentumRate, &run));
+    run.interpolate = false;
+  } else if (run.rhs.Forcing()) {
+    // Locate the cut-off E(t) = E* exactly (registered after the step size is final: pitfall (a)).
+    PetscInt dir = 1;
+    PetscBool term = PETSC_FALSE;
+    PetscCall(TSSetEventHandler(ts, 1, &dir, &term, CutOffIndicator, CutOffEvent, &run));
+    run.event_mode = true;
+  }
+
+  // Initial sample and window start.
+  {
+    EnergyParts e0;
+    PetscCall(lat.Energy(z, &e0));
+    PetscCall(run.Window(0.0, z, e0));
+    PetscCall(run.Samples(ts, 0.0, z, e0));
+  }
+  PetscCall(TSSetTime(ts, 0.0));
+  PetscCall(TSSetStepNumber(ts, 0));
+  PetscCall(TSSolve(ts, z));
+  PetscCall(TSGetConvergedReason(ts, &reason));
+  {
+    PetscReal t;
+    PetscCall(TSGetTime(ts, &t));
+    PetscCheck(reason >= 0, comm, PETSC_ERR_NOT_CONVERGED, "time integration failed at t = %g: %s (see -sim_ts_* options)", (double)t,
+               TSConvergedReasons[reason]);
+    PetscCheck(t >= o.t_final * (1 - 1e-10), comm, PETSC_ERR_NOT_CONVERGED, "time integration stopped at t = %g before -sim_t_final %g", (double)t,
+               (double)o.t_final);
+  }
+  PetscCall(TSGetStepNumber(ts, &r->steps));
+  PetscCall(TSGetStepRejections(ts, &r->rejected));
+
+  // Window results.
+  PetscCall(PetscLogEventBegin(Log().diagnostics, 0, 0, 0, 0));
+  PetscCall(DMCreateGlobalVector(lat.SiteDM(), r->rms.out()));
+  PetscCall(PetscObjectSetName((PetscObject)r->rms.get(), "rms"));
+  {
+    PetscScalar *a;
+    const PetscReal len = run.t_prev - r->window_start;
+    PetscCall(VecGetArray(r->rms, &a));
+    if (len > 0) {
+      for (PetscInt k = 0; k < lat.OwnedCount(); k++) a[k] = std::sqrt(run.acc_u2[k] / len);
+    } else { // zero-length window: the final displacement
+      for (PetscInt k = 0; k < lat.OwnedCount(); k++) a[k] = std::sqrt(run.u2_prev[k]);
+    }
+    PetscCall(VecRestoreArray(r->rms, &a));
+    r->nl_ratio = run.acc_lin > 0 ? run.acc_nl / run.acc_lin : (run.lin_prev > 0 ? run.nl_prev / run.lin_prev : 0);
+  }
+  PetscCall(Mcr(r->rms, &r->mcr));
+  PetscCall(PetscLogEventEnd(Log().diagnostics, 0, 0, 0, 0));
+  {
+    EnergyParts e;
+    PetscCall(lat.Energy(z, &e));
+    r->energy_final = e.Total();
+  }
+  r->counters = run.rhs.Counters();
+  r->z_final = std::move(z);
+  PetscFunctionReturn(0);
+}
+
+} // namespace nltopo
