@@ -107,6 +107,46 @@ PetscErrorCode WriteArray(PetscViewer v, const char *group, const char *name, co
   PetscFunctionReturn(0);
 }
 
+// Raw HDF5 calls return a negative value on failure.
+#define H5CHK(call) \
+  do { \
+    if ((call) < 0) SETERRQ(PETSC_COMM_SELF, PETSC_ERR_LIB, "HDF5 call failed: %s", #call); \
+  } while (0)
+
+PetscErrorCode WriteColumnBlock(PetscViewer v, const char *group, const char *name, PetscInt rows, PetscInt ncols, PetscInt col0, PetscInt nloc,
+                                const std::vector<PetscReal> &local)
+{
+  hid_t file, grp, space, mem, dset, xfer;
+  PetscMPIInt size;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(Log().output, 0, 0, 0, 0));
+  PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)v), &size));
+  PetscCall(PetscViewerHDF5WriteGroup(v, group));
+  PetscCall(PetscViewerHDF5GetFileId(v, &file));
+  const hsize_t dims[2] = {(hsize_t)rows, (hsize_t)ncols}, start[2] = {0, (hsize_t)col0}, count[2] = {(hsize_t)rows, (hsize_t)nloc};
+  H5CHK(grp = H5Gopen2(file, group, H5P_DEFAULT));
+  H5CHK(space = H5Screate_simple(2, dims, NULL));
+  H5CHK(dset = H5Dcreate2(grp, name, H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  H5CHK(mem = H5Screate_simple(2, count, NULL));
+  if (rows * nloc > 0) H5CHK(H5Sselect_hyperslab(space, H5S_SELECT_SET, start, NULL, count, NULL));
+  else {
+    H5CHK(H5Sselect_none(space));
+    H5CHK(H5Sselect_none(mem));
+  }
+  H5CHK(xfer = H5Pcreate(H5P_DATASET_XFER));
+#if defined(H5_HAVE_PARALLEL)
+  if (size > 1) H5CHK(H5Pset_dxpl_mpio(xfer, H5FD_MPIO_COLLECTIVE));
+#endif
+  H5CHK(H5Dwrite(dset, H5T_NATIVE_DOUBLE, mem, space, xfer, local.data()));
+  H5CHK(H5Pclose(xfer));
+  H5CHK(H5Sclose(mem));
+  H5CHK(H5Dclose(dset));
+  H5CHK(H5Sclose(space));
+  H5CHK(H5Gclose(grp));
+  PetscCall(PetscLogEventEnd(Log().output, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode WriteVec(PetscViewer v, const char *group, const char *name, Vec x)
 {
   PetscFunctionBeginUser;

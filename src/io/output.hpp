@@ -31,6 +31,11 @@ private:
 // A 1-D (bs = 1) or 2-D (n/bs x bs) float64 dataset whose values are given on
 // rank 0 (other ranks pass anything; only rank 0's data is written).
 PetscErrorCode WriteArray(PetscViewer v, const char *group, const char *name, const std::vector<PetscReal> &data, PetscInt bs = 1);
+// A 2-D (rows x ncols) float64 dataset written by columns: each rank gives its
+// columns [col0, col0 + nloc) of every row, row-major (rows x nloc). Used for
+// time series of distributed fields (e.g. /simulate/u, nt x N) in one write.
+PetscErrorCode WriteColumnBlock(PetscViewer v, const char *group, const char *name, PetscInt rows, PetscInt ncols, PetscInt col0, PetscInt nloc,
+                                const std::vector<PetscReal> &local);
 // A distributed vector (its object name is set to name).
 PetscErrorCode WriteVec(PetscViewer v, const char *group, const char *name, Vec x);
 PetscErrorCode WriteAttr(PetscViewer v, const char *path, const char *name, PetscReal value);

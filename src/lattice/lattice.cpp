@@ -16,10 +16,6 @@ PetscErrorCode Lattice::Setup(MPI_Comm comm, const LatticeParams &p)
   PetscCheck(N >= size, comm, PETSC_ERR_USER, "-lattice_cells %" PetscInt_FMT " gives N = %" PetscInt_FMT " sites, fewer than the %d MPI ranks",
              p.cells, N, (int)size);
   PetscCall(DMDACreate1d(comm, DM_BOUNDARY_NONE, N, 2, 1, NULL, da2_.out()));
-  // State coupling pattern per site block: u_i' = v_i (and the diagonal, kept
-  // for implicit shifts), v_i' couples to u_{i-1}, u_i, u_{i+1}.
-  const PetscInt dfill[4] = {1, 1, 1, 1}, ofill[4] = {0, 0, 1, 0};
-  PetscCall(DMDASetBlockFills(da2_, dfill, ofill));
   PetscCall(DMSetUp(da2_));
   PetscCall(DMDASetFieldName(da2_, 0, "u"));
   PetscCall(DMDASetFieldName(da2_, 1, "v"));
@@ -38,7 +34,10 @@ PetscErrorCode Lattice::Setup(MPI_Comm comm, const LatticeParams &p)
 PetscErrorCode Lattice::CreateStateMatrix(Mat *A) const
 {
   PetscFunctionBeginUser;
-  PetscCall(DMCreateMatrix(da2_, A));
+  // Exact pattern (PETSc ordering of a 1D DMDA is natural: row 2i is u_i, 2i+1
+  // is v_i): u_i' = v_i, v_i' couples to u_{i-1}, u_i, u_{i+1}; both diagonals
+  // are stored (as zeros) so implicit TS types can shift the matrix.
+  PetscCall(MatCreateAIJ(comm_, 2 * xm_, 2 * xm_, 2 * p_.N(), 2 * p_.N(), 4, NULL, 1, NULL, A));
   PetscCall(MatSetOption(*A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
   PetscFunctionReturn(0);
 }
@@ -84,24 +83,34 @@ EnergyParts Lattice::LocalEnergy(const PetscScalar *z) const
 
 PetscErrorCode Lattice::Energy(Vec z, EnergyParts *e) const
 {
-  Vec zl;
   const PetscScalar *a;
-  PetscInt gxs;
+  EnergyParts loc;
+  PetscMPIInt size;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(Log().energy, 0, 0, 0, 0));
-  PetscCall(DMGetLocalVector(da2_, &zl));
-  PetscCall(DMGlobalToLocalBegin(da2_, z, INSERT_VALUES, zl));
-  PetscCall(DMGlobalToLocalEnd(da2_, z, INSERT_VALUES, zl));
-  PetscCall(DMDAGetGhostCorners(da2_, &gxs, NULL, NULL, NULL, NULL, NULL));
-  PetscCall(VecGetArrayRead(zl, &a));
-  EnergyParts loc = LocalEnergy(a - 2 * gxs);
-  PetscCall(VecRestoreArrayRead(zl, &a));
-  PetscCall(DMRestoreLocalVector(da2_, &zl));
-  PetscReal in[3] = {loc.kinetic, loc.linear, loc.quartic}, out[3];
-  PetscCall(MPIU_Allreduce(in, out, 3, MPIU_REAL, MPIU_SUM, comm_));
-  e->kinetic = out[0];
-  e->linear = out[1];
-  e->quartic = out[2];
+  PetscCallMPI(MPI_Comm_size(comm_, &size));
+  if (size == 1) { // one rank: the global array holds every neighbour
+    PetscCall(VecGetArrayRead(z, &a));
+    loc = LocalEnergy(a);
+    PetscCall(VecRestoreArrayRead(z, &a));
+    *e = loc;
+  } else {
+    Vec zl;
+    PetscInt gxs;
+    PetscCall(DMGetLocalVector(da2_, &zl));
+    PetscCall(DMGlobalToLocalBegin(da2_, z, INSERT_VALUES, zl));
+    PetscCall(DMGlobalToLocalEnd(da2_, z, INSERT_VALUES, zl));
+    PetscCall(DMDAGetGhostCorners(da2_, &gxs, NULL, NULL, NULL, NULL, NULL));
+    PetscCall(VecGetArrayRead(zl, &a));
+    loc = LocalEnergy(a - 2 * gxs);
+    PetscCall(VecRestoreArrayRead(zl, &a));
+    PetscCall(DMRestoreLocalVector(da2_, &zl));
+    PetscReal in[3] = {loc.kinetic, loc.linear, loc.quartic}, out[3];
+    PetscCall(MPIU_Allreduce(in, out, 3, MPIU_REAL, MPIU_SUM, comm_));
+    e->kinetic = out[0];
+    e->linear = out[1];
+    e->quartic = out[2];
+  }
   PetscCall(PetscLogEventEnd(Log().energy, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -147,10 +156,11 @@ PetscErrorCode Lattice::FillStiffness(const PetscScalar *u, PetscInt su, Mat M, 
       nc++;
     }
     if (state_form) {
-      const PetscInt ru = 2 * i, rv = 2 * i + 1, cv = 2 * i + 1;
-      const PetscScalar one = 1.0;
-      PetscCall(MatSetValues(M, 1, &ru, 1, &cv, &one, INSERT_VALUES)); // u' = v
+      const PetscInt ru = 2 * i, rv = 2 * i + 1, cu[2] = {2 * i, 2 * i + 1};
+      const PetscScalar uvals[2] = {0.0, 1.0}, zero = 0.0;
+      PetscCall(MatSetValues(M, 1, &ru, 2, cu, uvals, INSERT_VALUES)); // u' = v
       PetscCall(MatSetValues(M, 1, &rv, nc, cols, vals, INSERT_VALUES)); // v' = -K_T u
+      PetscCall(MatSetValues(M, 1, &rv, 1, &rv, &zero, INSERT_VALUES)); // stored diagonal
     } else {
       PetscCall(MatSetValues(M, 1, &i, nc, cols, vals, INSERT_VALUES));
     }

@@ -4,43 +4,34 @@
 #include "io/output.hpp"
 #include "studies/registry.hpp"
 #include "timeint/simulation.hpp"
-#include <petscviewerhdf5.h>
 
 namespace nltopo {
 
 namespace {
 
-// Streams the sub-sampled displacement u(t) into /simulate/u (nt x N) and
-// keeps t and E(t) for the end of the run.
-class HdfSamples : public SampleSink {
+// Keeps the sub-sampled displacement u(t) (the owned sites of every sample)
+// and E(t); written once at the end as /simulate/u (nt x N).
+class Samples : public SampleSink {
 public:
-  HdfSamples(PetscViewer v, bool store_u) : v_(v), store_u_(store_u) {}
-  PetscErrorCode Init(const Lattice &lat)
-  {
-    PetscFunctionBeginUser;
-    PetscCall(DMCreateGlobalVector(lat.SiteDM(), u_.out()));
-    PetscFunctionReturn(0);
-  }
+  Samples(const Lattice &lat, bool store_u) : xm_(lat.OwnedCount()), store_u_(store_u) {}
   PetscErrorCode Sample(PetscReal t, Vec z, const EnergyParts &e) override
   {
     PetscFunctionBeginUser;
     t_.push_back(t);
     energy_.push_back(e.Total());
     if (store_u_) {
-      PetscCall(VecStrideGather(z, 0, u_, INSERT_VALUES));
-      PetscCall(PetscViewerHDF5PushTimestepping(v_));
-      PetscCall(PetscViewerHDF5SetTimestep(v_, (PetscInt)t_.size() - 1));
-      PetscCall(WriteVec(v_, "/simulate", "u", u_));
-      PetscCall(PetscViewerHDF5PopTimestepping(v_));
+      const PetscScalar *a;
+      PetscCall(VecGetArrayRead(z, &a));
+      for (PetscInt k = 0; k < xm_; k++) u_.push_back(a[2 * k]);
+      PetscCall(VecRestoreArrayRead(z, &a));
     }
     PetscFunctionReturn(0);
   }
-  std::vector<PetscReal> t_, energy_;
+  std::vector<PetscReal> t_, energy_, u_;
 
 private:
-  PetscViewer v_;
+  PetscInt xm_;
   bool store_u_;
-  OwnedVec u_;
 };
 
 } // namespace
@@ -78,8 +69,7 @@ PetscErrorCode SimulateStudy(MPI_Comm comm)
   PetscCall(burst.Setup(lat, fo, need_modes ? &modes : NULL));
   PetscCall(PetscLogStagePop());
 
-  HdfSamples sink(out.Viewer(), store_u);
-  PetscCall(sink.Init(lat));
+  Samples sink(lat, store_u);
   PetscCall(PetscLogStagePush(Log().solve));
   PetscCall(PetscTime(&t_solve0));
   PetscCall(Simulate(lat, &burst, so, NULL, &sink, &r));
@@ -102,6 +92,7 @@ PetscErrorCode SimulateStudy(MPI_Comm comm)
   const char *g = "/simulate";
   PetscCall(WriteArray(v, g, "t", sink.t_));
   PetscCall(WriteArray(v, g, "energy", sink.energy_));
+  if (store_u) PetscCall(WriteColumnBlock(v, g, "u", (PetscInt)sink.t_.size(), lat.N(), lat.OwnedStart(), lat.OwnedCount(), sink.u_));
   PetscCall(WriteVec(v, g, "rms", r.rms));
   PetscCall(WriteAttr(v, g, "mcr", r.mcr));
   PetscCall(WriteAttr(v, g, "t_off", r.t_off));

@@ -1,0 +1,61 @@
+#pragma once
+// Shared helpers for the unit tests (every test runs on 1 and 2 ranks).
+#include "lattice/lattice.hpp"
+#include <catch2/catch.hpp>
+#include <petscsys.h>
+#include <vector>
+
+#define PCHK(...) REQUIRE((__VA_ARGS__) == 0)
+
+namespace nltopo::test {
+
+inline int Rank()
+{
+  int r;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &r);
+  return r;
+}
+
+// A global vector as a std::vector on every rank.
+inline std::vector<PetscReal> Gather(Vec x)
+{
+  Vec s;
+  VecScatter sc;
+  const PetscScalar *a;
+  PetscInt n;
+  VecScatterCreateToAll(x, &sc, &s);
+  VecScatterBegin(sc, x, s, INSERT_VALUES, SCATTER_FORWARD);
+  VecScatterEnd(sc, x, s, INSERT_VALUES, SCATTER_FORWARD);
+  VecGetSize(s, &n);
+  VecGetArrayRead(s, &a);
+  std::vector<PetscReal> v(a, a + n);
+  VecRestoreArrayRead(s, &a);
+  VecScatterDestroy(&sc);
+  VecDestroy(&s);
+  return v;
+}
+
+// Sets x from a full std::vector (same on every rank).
+inline void Scatter(const std::vector<PetscReal> &v, Vec x)
+{
+  PetscInt lo, hi;
+  PetscScalar *a;
+  VecGetOwnershipRange(x, &lo, &hi);
+  VecGetArray(x, &a);
+  for (PetscInt i = lo; i < hi; i++) a[i - lo] = v[i];
+  VecRestoreArray(x, &a);
+}
+
+// Deterministic pseudo-random numbers in (-1, 1), identical on all ranks.
+inline std::vector<PetscReal> Pseudo(size_t n, unsigned seed)
+{
+  std::vector<PetscReal> v(n);
+  unsigned s = seed * 2654435761u + 12345u;
+  for (auto &x : v) {
+    s = s * 1664525u + 1013904223u;
+    x = 2.0 * (s >> 8) / double(1u << 24) - 1.0;
+  }
+  return v;
+}
+
+} // namespace nltopo::test

@@ -1,0 +1,164 @@
+// Forced and free runs: effects composed per scene (counters), energy
+// conservation tied to the TS tolerance, the cut-off.
+#include "bands/linear_modes.hpp"
+#include "helpers.hpp"
+#include "timeint/simulation.hpp"
+#include <cmath>
+
+using namespace nltopo;
+using namespace nltopo::test;
+
+// Sets PETSc options for the duration of a scope.
+struct ScopedOptions {
+  std::vector<std::string> names;
+  ScopedOptions(std::initializer_list<std::pair<const char *, const char *>> kv)
+  {
+    for (auto &p : kv) {
+      PetscOptionsSetValue(NULL, p.first, p.second);
+      names.push_back(p.first);
+    }
+  }
+  ~ScopedOptions()
+  {
+    for (auto &n : names) PetscOptionsClearValue(NULL, n.c_str());
+  }
+};
+
+static ToneBurstOptions SiteBurst(PetscReal S, PetscReal estar)
+{
+  ToneBurstOptions o;
+  o.profile = ForceProfile::Site;
+  o.omega = std::sqrt(3.0);
+  o.site = 51; // model.md's site 52 = m + 1
+  o.amplitude = S;
+  o.energy = estar;
+  return o;
+}
+
+class EnergyTrace : public SampleSink {
+public:
+  std::vector<PetscReal> t, e;
+  PetscErrorCode Sample(PetscReal tt, Vec, const EnergyParts &en) override
+  {
+    t.push_back(tt);
+    e.push_back(en.Total());
+    return 0;
+  }
+};
+
+TEST_CASE("a linear scene never runs the cubic kernel; a nonlinear one always does", "[effects]")
+{
+  for (PetscReal Gamma : {0.0, 0.5}) {
+    LatticeParams p;
+    p.Gamma = Gamma;
+    Lattice lat;
+    PCHK(lat.Setup(PETSC_COMM_WORLD, p));
+    ToneBurst burst;
+    PCHK(burst.Setup(lat, SiteBurst(0.05, 1e30), nullptr));
+    SimulationOptions so;
+    so.t_final = 50;
+    SimulationResult r;
+    PCHK(Simulate(lat, &burst, so, NULL, NULL, &r));
+    REQUIRE(r.counters.rhs > 0);
+    REQUIRE(r.counters.linear == r.counters.rhs);
+    REQUIRE(r.counters.cubic == (Gamma == 0 ? 0 : r.counters.rhs));
+    REQUIRE(r.counters.forcing == r.counters.rhs); // never cut off (E* = 1e30)
+    REQUIRE(!r.reached);
+  }
+}
+
+TEST_CASE("after the cut-off the forcing is never evaluated; no forcing, no forcing calls", "[effects]")
+{
+  LatticeParams p;
+  Lattice lat;
+  PCHK(lat.Setup(PETSC_COMM_WORLD, p));
+  ToneBurst burst;
+  PCHK(burst.Setup(lat, SiteBurst(0.05, 0.2), nullptr));
+  // Two runs share every step up to t_off; the longer one must not evaluate the forcing once more.
+  SimulationResult a, b;
+  SimulationOptions so;
+  so.t_final = 500;
+  PCHK(Simulate(lat, &burst, so, NULL, NULL, &a));
+  so.t_final = 800;
+  PCHK(Simulate(lat, &burst, so, NULL, NULL, &b));
+  REQUIRE(a.reached);
+  REQUIRE(b.reached);
+  REQUIRE(a.t_off == b.t_off);
+  REQUIRE(b.counters.rhs > a.counters.rhs + 100);
+  REQUIRE(b.counters.forcing == a.counters.forcing);
+  REQUIRE(a.counters.forcing < a.counters.rhs);
+  // The cut-off is located: E(t_off) = E* to the event tolerance, then conserved.
+  REQUIRE(b.energy_final == Approx(0.2).epsilon(1e-3));
+
+  ToneBurstOptions none = SiteBurst(0.05, 0.2);
+  none.profile = ForceProfile::None;
+  ToneBurst off;
+  PCHK(off.Setup(lat, none, nullptr));
+  SimulationResult c;
+  so.t_final = 50;
+  PCHK(Simulate(lat, &off, so, NULL, NULL, &c));
+  REQUIRE(c.counters.forcing == 0);
+  REQUIRE(c.energy_final == 0.0);
+}
+
+// Free run from the insulated mode's shape with E = 100 (strongly nonlinear).
+static PetscErrorCode FreeRun(const Lattice &lat, Vec z0, PetscReal t_final, EnergyTrace *trace, PetscReal *drift)
+{
+  SimulationOptions so;
+  so.t_final = t_final;
+  so.sample_dt = 1.0;
+  SimulationResult r;
+  PetscFunctionBeginUser;
+  PetscCall(Simulate(lat, nullptr, so, z0, trace, &r));
+  PetscReal d = 0;
+  for (PetscReal e : trace->e) d = std::max(d, std::abs(e - trace->e[0]) / trace->e[0]);
+  *drift = d;
+  PetscFunctionReturn(0);
+}
+
+TEST_CASE("free run at E = 100 conserves energy to a bound tied to the TS tolerance", "[simulation]")
+{
+  LatticeParams p;
+  Lattice lat;
+  PCHK(lat.Setup(PETSC_COMM_WORLD, p));
+  LinearModes modes;
+  PCHK(modes.Compute(lat, LinearModesOptions()));
+  OwnedVec z0;
+  PCHK(DMCreateGlobalVector(lat.StateDM(), z0.out()));
+  PCHK(VecZeroEntries(z0));
+  PCHK(VecStrideScatter(modes.Insulated(), 1, z0, INSERT_VALUES));
+  PCHK(VecScale(z0, std::sqrt(200.0))); // E = 1/2 v.v = 100
+  EnergyParts e0;
+  PCHK(lat.Energy(z0, &e0));
+  REQUIRE(e0.Total() == Approx(100.0).epsilon(1e-12));
+
+  PetscReal d8, d10, ds;
+  {
+    ScopedOptions o({{"-sim_ts_rtol", "1e-8"}, {"-sim_ts_atol", "1e-8"}});
+    EnergyTrace tr;
+    PCHK(FreeRun(lat, z0, 100, &tr, &d8));
+  }
+  {
+    ScopedOptions o({{"-sim_ts_rtol", "1e-10"}, {"-sim_ts_atol", "1e-10"}});
+    EnergyTrace tr;
+    PCHK(FreeRun(lat, z0, 100, &tr, &d10));
+  }
+  // dopri5's error per unit time scales ~ tol: 100x tighter tolerance, >= 30x less drift.
+  REQUIRE(d8 < 1e3 * 1e-8);
+  REQUIRE(d10 < 1e3 * 1e-10);
+  REQUIRE(d8 / d10 > 30);
+  {
+    // Symplectic (Stormer-Verlet, fixed dt): bounded energy error, no secular drift.
+    ScopedOptions o({{"-sim_ts_type", "basicsymplectic"}, {"-sim_ts_basicsymplectic_type", "2"}, {"-sim_ts_dt", "0.01"}});
+    EnergyTrace tr;
+    PCHK(FreeRun(lat, z0, 200, &tr, &ds));
+    const size_t h = tr.e.size() / 2;
+    PetscReal first = 0, second = 0;
+    for (size_t k = 0; k < tr.e.size(); k++) (k < h ? first : second) = std::max(k < h ? first : second, std::abs(tr.e[k] - 100.0) / 100.0);
+    INFO("symplectic max error first half " << first << " second half " << second);
+    REQUIRE(ds < 1e-2);
+    REQUIRE(second < 1.5 * first);
+  }
+  INFO("drift rk5dp 1e-8: " << d8 << ", 1e-10: " << d10 << ", symplectic dt 0.01: " << ds);
+  CHECK(true);
+}
