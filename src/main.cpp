@@ -8,7 +8,7 @@ static const char help[] = "nltopo: nonlinear SSH interface lattice (see README.
 
 int main(int argc, char **argv)
 {
-  if (!nltopo::OptionsFilesReadable(argc, argv)) return 1;
+  if (!nltopo::PreflightArguments(argc, argv)) return 1;
   if (SlepcInitialize(&argc, &argv, NULL, help)) return 1;
   PetscPushErrorHandler(nltopo::OneLineErrorHandler, NULL);
   PetscErrorCode ierr = nltopo::RunStudyFromOptions(PETSC_COMM_WORLD);

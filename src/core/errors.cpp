@@ -1,5 +1,6 @@
 #include "core/errors.hpp"
 #include <cstdio>
+#include <cstdlib>
 #include <cerrno>
 #include <cstring>
 #include <unistd.h>
@@ -23,18 +24,39 @@ PetscErrorCode OneLineErrorHandler(MPI_Comm comm, int line, const char *fun, con
   return n;
 }
 
-bool OptionsFilesReadable(int argc, char **argv)
+static bool CaseTrap(const char *token, const char *where)
+{
+  if (std::strcmp(token, "-lattice_Gamma")) return false;
+  std::fprintf(stderr, "nltopo: error: %s: -lattice_Gamma is the same option as -lattice_gamma (PETSc option names are case-insensitive); set the cubic coefficient with -lattice_cubic\n", where);
+  return true;
+}
+
+bool PreflightArguments(int argc, char **argv)
 {
   for (int i = 1; i < argc; i++) {
+    if (CaseTrap(argv[i], "command line")) return false;
     if (std::strcmp(argv[i], "-options_file")) continue;
     if (i + 1 >= argc) {
       std::fprintf(stderr, "nltopo: error: -options_file needs a file name\n");
       return false;
     }
-    if (access(argv[i + 1], R_OK)) {
+    std::FILE *f = std::fopen(argv[i + 1], "r");
+    if (!f) {
       std::fprintf(stderr, "nltopo: error: cannot read -options_file %s: %s\n", argv[i + 1], std::strerror(errno));
       return false;
     }
+    char line[4096], tok[4096];
+    bool bad = false;
+    while (!bad && std::fgets(line, sizeof(line), f))
+      if (std::sscanf(line, " %4095s", tok) == 1) bad = CaseTrap(tok, argv[i + 1]);
+    std::fclose(f);
+    if (bad) return false;
+  }
+  if (const char *env = std::getenv("PETSC_OPTIONS")) {
+    char tok[4096];
+    int n = 0;
+    for (const char *p = env; std::sscanf(p, " %4095s%n", tok, &n) == 1; p += n)
+      if (CaseTrap(tok, "PETSC_OPTIONS")) return false;
   }
   return true;
 }

@@ -9,8 +9,11 @@ namespace nltopo {
 PetscErrorCode OneLineErrorHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p,
                                    const char *mess, void *ctx);
 
-// Checks every "-options_file F" in argv before PETSc reads it, so a missing
-// file gives one line naming it. Returns false (and prints) on the first bad one.
-bool OptionsFilesReadable(int argc, char **argv);
+// Checks the command line before PETSc reads it: every "-options_file F" must
+// be readable (one line naming it otherwise), and neither the command line,
+// those files nor PETSC_OPTIONS may use "-lattice_Gamma", which PETSc's
+// case-insensitive options database would silently read as -lattice_gamma.
+// Returns false (and prints) on the first problem.
+bool PreflightArguments(int argc, char **argv);
 
 } // namespace nltopo

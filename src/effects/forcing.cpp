@@ -114,10 +114,10 @@ PetscReal ToneBurst::Signal(PetscReal t) const
   return S_ * std::cos(opt_.omega * t) * std::exp(-x * x);
 }
 
-void ToneBurst::Add(PetscReal t, PetscScalar *f, PetscInt sf, PetscInt off) const
+void ToneBurst::Add(PetscReal t, PetscScalar *a) const
 {
   const PetscReal s = Signal(t);
-  for (size_t k = 0; k < idx_.size(); k++) f[idx_[k] * sf + off] += eta_[k] * s;
+  for (size_t k = 0; k < idx_.size(); k++) a[idx_[k]] += eta_[k] * s;
 }
 
 } // namespace nltopo

@@ -42,8 +42,8 @@ public:
 
   // Scalar signal S cos(omega t) exp(-((t - t0)/tau)^2).
   PetscReal Signal(PetscReal t) const;
-  // f[2i+1] += eta_i * Signal(t) on owned sites with eta_i != 0 (f indexed by global site, stride sf, offset off).
-  void Add(PetscReal t, PetscScalar *f, PetscInt sf, PetscInt off) const;
+  // a[i] += eta_i * Signal(t) on owned sites with eta_i != 0 (a indexed by global site).
+  void Add(PetscReal t, PetscScalar *a) const;
 
 private:
   ToneBurstOptions opt_;

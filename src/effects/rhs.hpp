@@ -29,12 +29,12 @@ public:
   const EffectCounters &Counters() const { return count_; }
 
 private:
-  PetscErrorCode AddLocalEffects(PetscReal t, DM dm, Vec x, Vec f, PetscInt dof);
+  // Cubic bonds and forcing: x holds u (state or SiteDM vector), a[i] the acceleration of site i.
+  PetscErrorCode AddLocalEffects(PetscReal t, Vec x, PetscScalar *a);
 
   const Lattice &lat_;
   const ToneBurst *forcing_;
   bool cubic_;
-  PetscMPIInt size_ = 1;
   EffectCounters count_;
 };
 

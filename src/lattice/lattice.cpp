@@ -1,28 +1,32 @@
 #include "lattice/lattice.hpp"
 #include "core/log.hpp"
+#include <algorithm>
 #include <petscdmda.h>
 
 namespace nltopo {
 
 PetscErrorCode Lattice::Setup(MPI_Comm comm, const LatticeParams &p)
 {
-  PetscMPIInt size;
+  const PetscInt *lx;
   PetscFunctionBeginUser;
   PetscCall(LogRegister());
   comm_ = comm;
   p_ = p;
   const PetscInt N = p.N();
-  PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscCheck(N >= size, comm, PETSC_ERR_USER, "-lattice_cells %" PetscInt_FMT " gives N = %" PetscInt_FMT " sites, fewer than the %d MPI ranks",
-             p.cells, N, (int)size);
-  PetscCall(DMDACreate1d(comm, DM_BOUNDARY_NONE, N, 2, 1, NULL, da2_.out()));
-  PetscCall(DMSetUp(da2_));
-  PetscCall(DMDASetFieldName(da2_, 0, "u"));
-  PetscCall(DMDASetFieldName(da2_, 1, "v"));
-  PetscCall(DMDACreateCompatibleDMDA(da2_, 1, da1_.out()));
-  PetscCall(DMDAGetCorners(da1_, &xs_, NULL, NULL, &xm_, NULL, NULL));
+  PetscCallMPI(MPI_Comm_size(comm, &size_));
+  PetscCheck(N >= size_, comm, PETSC_ERR_USER, "-lattice_cells %" PetscInt_FMT " gives N = %" PetscInt_FMT " sites, fewer than the %d MPI ranks",
+             p.cells, N, (int)size_);
+  PetscCall(DMDACreate1d(comm, DM_BOUNDARY_NONE, N, 1, 1, NULL, da_.out()));
+  PetscCall(DMSetUp(da_));
+  PetscCall(DMDASetFieldName(da_, 0, "u"));
+  PetscCall(DMDAGetCorners(da_, &xs_, NULL, NULL, &xm_, NULL, NULL));
+  PetscCall(DMDAGetOwnershipRanges(da_, &lx, NULL, NULL));
+  starts_.assign(1, 0);
+  for (PetscMPIInt r = 0; r < size_; r++) starts_.push_back(starts_.back() + lx[r]);
+  PetscCall(ISCreateStride(comm, xm_, 2 * xs_, 1, is_u_.out()));
+  PetscCall(ISCreateStride(comm, xm_, 2 * xs_ + xm_, 1, is_v_.out()));
 
-  PetscCall(DMCreateMatrix(da1_, K_.out()));
+  PetscCall(DMCreateMatrix(da_, K_.out()));
   PetscCall(PetscObjectSetName((PetscObject)K_.get(), "K"));
   PetscCall(AssembleTangentStiffness(NULL, K_));
   PetscCall(CreateStateMatrix(L_.out()));
@@ -31,80 +35,120 @@ PetscErrorCode Lattice::Setup(MPI_Comm comm, const LatticeParams &p)
   PetscFunctionReturn(0);
 }
 
+PetscInt Lattice::OwnerCount(PetscInt site) const
+{
+  const auto it = std::upper_bound(starts_.begin(), starts_.end(), site) - 1;
+  return *(it + 1) - *it;
+}
+
+PetscInt Lattice::StateIndexU(PetscInt site) const
+{
+  const auto it = std::upper_bound(starts_.begin(), starts_.end(), site) - 1;
+  return *it + site; // 2 * start + (site - start)
+}
+
+PetscErrorCode Lattice::CreateStateVector(Vec *z) const
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecCreateMPI(comm_, 2 * xm_, 2 * p_.N(), z));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Lattice::CreateStateMatrix(Mat *A) const
 {
   PetscFunctionBeginUser;
-  // Exact pattern (PETSc ordering of a 1D DMDA is natural: row 2i is u_i, 2i+1
-  // is v_i): u_i' = v_i, v_i' couples to u_{i-1}, u_i, u_{i+1}; both diagonals
-  // are stored (as zeros) so implicit TS types can shift the matrix.
+  // u_i' = v_i; v_i' couples to u_{i-1}, u_i, u_{i+1} (one of them may be on
+  // a neighbouring rank); both diagonals are stored (as zeros) so implicit TS
+  // types can shift the matrix.
   PetscCall(MatCreateAIJ(comm_, 2 * xm_, 2 * xm_, 2 * p_.N(), 2 * p_.N(), 4, NULL, 1, NULL, A));
   PetscCall(MatSetOption(*A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
   PetscFunctionReturn(0);
 }
 
-void Lattice::AddCubicAcceleration(const PetscScalar *u, PetscInt su, PetscScalar *f, PetscInt sf) const
+PetscErrorCode Lattice::GetGhostedU(Vec x, Vec *ul, const PetscScalar **u) const
+{
+  PetscInt n, gxs;
+  PetscFunctionBeginUser;
+  *ul = NULL;
+  if (size_ == 1) { // the global array holds every neighbour (u first in a state vector)
+    PetscCall(VecGetArrayRead(x, u));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(VecGetLocalSize(x, &n));
+  Vec xu = x;
+  if (n == 2 * xm_) PetscCall(VecGetSubVector(x, is_u_, &xu)); // zero-copy: contiguous per rank
+  PetscCall(DMGetLocalVector(da_, ul));
+  PetscCall(DMGlobalToLocalBegin(da_, xu, INSERT_VALUES, *ul));
+  PetscCall(DMGlobalToLocalEnd(da_, xu, INSERT_VALUES, *ul));
+  if (xu != x) PetscCall(VecRestoreSubVector(x, is_u_, &xu));
+  PetscCall(DMDAGetGhostCorners(da_, &gxs, NULL, NULL, NULL, NULL, NULL));
+  PetscCall(VecGetArrayRead(*ul, u));
+  *u -= gxs;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Lattice::RestoreGhostedU(Vec x, Vec *ul, const PetscScalar **u) const
+{
+  PetscFunctionBeginUser;
+  if (!*ul) {
+    PetscCall(VecRestoreArrayRead(x, u));
+    PetscFunctionReturn(0);
+  }
+  PetscInt gxs;
+  PetscCall(DMDAGetGhostCorners(da_, &gxs, NULL, NULL, NULL, NULL, NULL));
+  *u += gxs;
+  PetscCall(VecRestoreArrayRead(*ul, u));
+  PetscCall(DMRestoreLocalVector(da_, ul));
+  PetscFunctionReturn(0);
+}
+
+void Lattice::AddCubicAcceleration(const PetscScalar *u, PetscScalar *a) const
 {
   const PetscReal G = p_.Gamma;
   const PetscInt N = p_.N();
   for (PetscInt i = xs_; i < xs_ + xm_; i++) {
-    PetscScalar a = 0;
+    PetscScalar s = 0;
     if (i > 0 && p_.Stiff(i - 1)) {
-      const PetscScalar d = u[(i - 1) * su] - u[i * su];
-      a += G * d * d * d;
+      const PetscScalar d = u[i - 1] - u[i];
+      s += G * d * d * d;
     }
     if (i < N - 1 && p_.Stiff(i)) {
-      const PetscScalar d = u[i * su] - u[(i + 1) * su];
-      a -= G * d * d * d;
+      const PetscScalar d = u[i] - u[i + 1];
+      s -= G * d * d * d;
     }
-    f[i * sf] += a;
+    a[i] += s;
   }
-}
-
-EnergyParts Lattice::LocalEnergy(const PetscScalar *z) const
-{
-  EnergyParts e;
-  const PetscReal G = p_.Gamma, kh = p_.KHat();
-  const PetscInt N = p_.N();
-  for (PetscInt i = xs_; i < xs_ + xm_; i++) {
-    const PetscScalar u = z[2 * i], v = z[2 * i + 1];
-    e.kinetic += 0.5 * v * v;
-    e.linear += 0.5 * kh * u * u;
-    if (i < N - 1) { // bond i is owned by the rank owning site i
-      const PetscScalar un = z[2 * i + 2];
-      e.linear -= p_.Bond(i) * u * un; // 1/2 u.K u: the two off-diagonal entries of bond i
-      if (p_.Stiff(i)) {
-        const PetscScalar d = u - un;
-        e.quartic += 0.25 * G * d * d * d * d;
-      }
-    }
-  }
-  return e;
 }
 
 PetscErrorCode Lattice::Energy(Vec z, EnergyParts *e) const
 {
-  const PetscScalar *a;
+  const PetscScalar *u, *zl;
+  Vec ul;
   EnergyParts loc;
-  PetscMPIInt size;
+  const PetscReal G = p_.Gamma, kh = p_.KHat();
+  const PetscInt N = p_.N();
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(Log().energy, 0, 0, 0, 0));
-  PetscCallMPI(MPI_Comm_size(comm_, &size));
-  if (size == 1) { // one rank: the global array holds every neighbour
-    PetscCall(VecGetArrayRead(z, &a));
-    loc = LocalEnergy(a);
-    PetscCall(VecRestoreArrayRead(z, &a));
-    *e = loc;
-  } else {
-    Vec zl;
-    PetscInt gxs;
-    PetscCall(DMGetLocalVector(da2_, &zl));
-    PetscCall(DMGlobalToLocalBegin(da2_, z, INSERT_VALUES, zl));
-    PetscCall(DMGlobalToLocalEnd(da2_, z, INSERT_VALUES, zl));
-    PetscCall(DMDAGetGhostCorners(da2_, &gxs, NULL, NULL, NULL, NULL, NULL));
-    PetscCall(VecGetArrayRead(zl, &a));
-    loc = LocalEnergy(a - 2 * gxs);
-    PetscCall(VecRestoreArrayRead(zl, &a));
-    PetscCall(DMRestoreLocalVector(da2_, &zl));
+  PetscCall(GetGhostedU(z, &ul, &u));
+  PetscCall(VecGetArrayRead(z, &zl));
+  const PetscScalar *v = zl + xm_;
+  for (PetscInt i = xs_; i < xs_ + xm_; i++) {
+    const PetscScalar ui = u[i], vi = v[i - xs_];
+    loc.kinetic += 0.5 * vi * vi;
+    loc.linear += 0.5 * kh * ui * ui;
+    if (i < N - 1) { // bond i is owned by the rank owning site i
+      const PetscScalar un = u[i + 1];
+      loc.linear -= p_.Bond(i) * ui * un; // the two off-diagonal entries of bond i in 1/2 u.K u
+      if (p_.Stiff(i)) {
+        const PetscScalar d = ui - un;
+        loc.quartic += 0.25 * G * d * d * d * d;
+      }
+    }
+  }
+  PetscCall(VecRestoreArrayRead(z, &zl));
+  PetscCall(RestoreGhostedU(z, &ul, &u));
+  if (size_ == 1) *e = loc;
+  else {
     PetscReal in[3] = {loc.kinetic, loc.linear, loc.quartic}, out[3];
     PetscCall(MPIU_Allreduce(in, out, 3, MPIU_REAL, MPIU_SUM, comm_));
     e->kinetic = out[0];
@@ -115,7 +159,7 @@ PetscErrorCode Lattice::Energy(Vec z, EnergyParts *e) const
   PetscFunctionReturn(0);
 }
 
-void Lattice::TangentRow(PetscInt i, const PetscScalar *u, PetscInt su, PetscScalar c[3]) const
+void Lattice::TangentRow(PetscInt i, const PetscScalar *u, PetscScalar c[3]) const
 {
   const PetscInt N = p_.N();
   c[0] = c[2] = 0;
@@ -123,7 +167,7 @@ void Lattice::TangentRow(PetscInt i, const PetscScalar *u, PetscInt su, PetscSca
   if (i > 0) {
     c[0] = -p_.Bond(i - 1);
     if (u && p_.Stiff(i - 1)) {
-      const PetscScalar d = u[(i - 1) * su] - u[i * su], s = 3 * p_.Gamma * d * d;
+      const PetscScalar d = u[i - 1] - u[i], s = 3 * p_.Gamma * d * d;
       c[0] -= s;
       c[1] += s;
     }
@@ -131,32 +175,31 @@ void Lattice::TangentRow(PetscInt i, const PetscScalar *u, PetscInt su, PetscSca
   if (i < N - 1) {
     c[2] = -p_.Bond(i);
     if (u && p_.Stiff(i)) {
-      const PetscScalar d = u[i * su] - u[(i + 1) * su], s = 3 * p_.Gamma * d * d;
+      const PetscScalar d = u[i] - u[i + 1], s = 3 * p_.Gamma * d * d;
       c[2] -= s;
       c[1] += s;
     }
   }
 }
 
-PetscErrorCode Lattice::FillStiffness(const PetscScalar *u, PetscInt su, Mat M, bool state_form) const
+PetscErrorCode Lattice::FillStiffness(const PetscScalar *u, Mat M, bool state_form) const
 {
   const PetscInt N = p_.N();
   PetscFunctionBeginUser;
   PetscCall(MatZeroEntries(M));
   for (PetscInt i = xs_; i < xs_ + xm_; i++) {
-    PetscScalar c[3];
-    TangentRow(i, u, su, c);
+    PetscScalar c[3], vals[3];
     PetscInt cols[3], nc = 0;
-    PetscScalar vals[3];
+    TangentRow(i, u, c);
     for (PetscInt o = -1; o <= 1; o++) {
       const PetscInt j = i + o;
       if (j < 0 || j >= N) continue;
-      cols[nc] = state_form ? 2 * j : j;
+      cols[nc] = state_form ? StateIndexU(j) : j;
       vals[nc] = state_form ? -c[o + 1] : c[o + 1];
       nc++;
     }
     if (state_form) {
-      const PetscInt ru = 2 * i, rv = 2 * i + 1, cu[2] = {2 * i, 2 * i + 1};
+      const PetscInt ru = StateIndexU(i), rv = StateIndexV(i), cu[2] = {ru, rv};
       const PetscScalar uvals[2] = {0.0, 1.0}, zero = 0.0;
       PetscCall(MatSetValues(M, 1, &ru, 2, cu, uvals, INSERT_VALUES)); // u' = v
       PetscCall(MatSetValues(M, 1, &rv, nc, cols, vals, INSERT_VALUES)); // v' = -K_T u
@@ -174,20 +217,14 @@ PetscErrorCode Lattice::AssembleTangentStiffness(Vec u, Mat KT) const
 {
   PetscFunctionBeginUser;
   if (!u || !HasCubic()) {
-    PetscCall(FillStiffness(NULL, 1, KT, false));
+    PetscCall(FillStiffness(NULL, KT, false));
     PetscFunctionReturn(0);
   }
-  Vec ul;
   const PetscScalar *a;
-  PetscInt gxs;
-  PetscCall(DMGetLocalVector(da1_, &ul));
-  PetscCall(DMGlobalToLocalBegin(da1_, u, INSERT_VALUES, ul));
-  PetscCall(DMGlobalToLocalEnd(da1_, u, INSERT_VALUES, ul));
-  PetscCall(DMDAGetGhostCorners(da1_, &gxs, NULL, NULL, NULL, NULL, NULL));
-  PetscCall(VecGetArrayRead(ul, &a));
-  PetscCall(FillStiffness(a - gxs, 1, KT, false));
-  PetscCall(VecRestoreArrayRead(ul, &a));
-  PetscCall(DMRestoreLocalVector(da1_, &ul));
+  Vec ul;
+  PetscCall(GetGhostedU(u, &ul, &a));
+  PetscCall(FillStiffness(a, KT, false));
+  PetscCall(RestoreGhostedU(u, &ul, &a));
   PetscFunctionReturn(0);
 }
 
@@ -196,19 +233,13 @@ PetscErrorCode Lattice::AssembleStateJacobian(Vec z, Mat A) const
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(Log().jacobian, 0, 0, 0, 0));
   if (!z || !HasCubic()) {
-    PetscCall(FillStiffness(NULL, 2, A, true));
+    PetscCall(FillStiffness(NULL, A, true));
   } else {
-    Vec zl;
     const PetscScalar *a;
-    PetscInt gxs;
-    PetscCall(DMGetLocalVector(da2_, &zl));
-    PetscCall(DMGlobalToLocalBegin(da2_, z, INSERT_VALUES, zl));
-    PetscCall(DMGlobalToLocalEnd(da2_, z, INSERT_VALUES, zl));
-    PetscCall(DMDAGetGhostCorners(da2_, &gxs, NULL, NULL, NULL, NULL, NULL));
-    PetscCall(VecGetArrayRead(zl, &a));
-    PetscCall(FillStiffness(a - 2 * gxs, 2, A, true));
-    PetscCall(VecRestoreArrayRead(zl, &a));
-    PetscCall(DMRestoreLocalVector(da2_, &zl));
+    Vec ul;
+    PetscCall(GetGhostedU(z, &ul, &a));
+    PetscCall(FillStiffness(a, A, true));
+    PetscCall(RestoreGhostedU(z, &ul, &a));
   }
   PetscCall(PetscLogEventEnd(Log().jacobian, 0, 0, 0, 0));
   PetscFunctionReturn(0);

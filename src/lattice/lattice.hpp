@@ -1,11 +1,17 @@
 #pragma once
-// The lattice on PETSc: a 1D DMDA over the sites (dof 1 for u-only vectors,
-// dof 2 for the interleaved state z = [u_i, v_i]), the linear stiffness K and
-// the state operator L = [[0, I], [-K, 0]] as AIJ matrices, and the kernels of
-// model.md (cubic bond forces on ghosted local arrays, energy, tangent
-// stiffness, state Jacobian). The same code runs on 1 or P ranks.
+// The lattice on PETSc: a 1D DMDA over the sites (dof 1: u-only vectors, ghost
+// exchange, K), the linear stiffness K and the state operator
+// L = [[0, I], [-K, 0]] as AIJ matrices, and the kernels of model.md (cubic
+// bond forces on ghosted local arrays, energy, tangent stiffness, state
+// Jacobian). The same code runs on 1 or P ranks.
+//
+// State layout: z = [u, v] with each rank owning [u_local | v_local] for its
+// sites (on one rank exactly [u_1..u_N, v_1..v_N]). Both halves are
+// contiguous per rank, so the u and v parts are zero-copy sub-vectors (the
+// position/momentum split of symplectic TS) with the SiteDM layout.
 #include "core/handle.hpp"
 #include "lattice/params.hpp"
+#include <vector>
 
 namespace nltopo {
 
@@ -21,44 +27,53 @@ public:
   const LatticeParams &Params() const { return p_; }
   PetscInt N() const { return p_.N(); }
   MPI_Comm Comm() const { return comm_; }
-  DM SiteDM() const { return da1_; }   // dof 1: u-only vectors, K
-  DM StateDM() const { return da2_; }  // dof 2: z = [u, v] interleaved per site
+  DM SiteDM() const { return da_; }    // u-only vectors and K
   Mat K() const { return K_; }         // N x N linear stiffness
   Mat L() const { return L_; }         // 2N x 2N linear state operator
   PetscInt OwnedStart() const { return xs_; }
   PetscInt OwnedCount() const { return xm_; }
   bool HasCubic() const { return p_.Gamma != 0.0; }
+  bool Serial() const { return size_ == 1; }
 
-  // Creates a matrix with the state-Jacobian pattern (same as L).
-  PetscErrorCode CreateStateMatrix(Mat *A) const;
+  PetscErrorCode CreateStateVector(Vec *z) const;
+  PetscErrorCode CreateStateMatrix(Mat *A) const; // the pattern of L / the state Jacobian
+  IS PositionIS() const { return is_u_; }         // global indices of the u part
+  IS MomentumIS() const { return is_v_; }         // global indices of the v part
+  PetscInt StateIndexU(PetscInt site) const;      // global state index of u_site
+  PetscInt StateIndexV(PetscInt site) const { return StateIndexU(site) + OwnerCount(site); }
 
-  // Adds sign * (restoring cubic acceleration) to the owned sites of f:
-  //   f_i += sign * (Gamma (u_{i-1}-u_i)^3 [stiff] - Gamma (u_i-u_{i+1})^3 [stiff]),
-  // i.e. sign = +1 adds -f_NL (model.md). u and f are indexed by GLOBAL site
-  // index with strides su, sf (u must hold ghosts xs-1 and xs+xm).
-  void AddCubicAcceleration(const PetscScalar *u, PetscInt su, PetscScalar *f, PetscInt sf) const;
+  // Ghosted local array of the u part of x (a state vector or a SiteDM vector),
+  // indexed by GLOBAL site (valid for xs-1 .. xs+xm). Serial: x's own array,
+  // no copy (*ul = NULL). Pair every Get with a Restore of the same arguments.
+  PetscErrorCode GetGhostedU(Vec x, Vec *ul, const PetscScalar **u) const;
+  PetscErrorCode RestoreGhostedU(Vec x, Vec *ul, const PetscScalar **u) const;
 
-  // Energy parts of the state z (global, StateDM layout); collective.
+  // Adds the restoring cubic acceleration -f_NL(u) (model.md) to a[i] for owned
+  // sites i; u ghosted and a indexed by global site.
+  void AddCubicAcceleration(const PetscScalar *u, PetscScalar *a) const;
+
+  // Energy parts of the state z (collective).
   PetscErrorCode Energy(Vec z, EnergyParts *e) const;
-  // Same from a ghosted local state array indexed by global site (z[2i], z[2i+1]); local sums only.
-  EnergyParts LocalEnergy(const PetscScalar *z) const;
 
   // Tangent stiffness K_T(u) = K + sum_stiff 3 Gamma d^2 (e_i - e_j)(e_i - e_j)^T
-  // into a SiteDM matrix; u is a global SiteDM vector (NULL: K itself).
+  // into a SiteDM matrix; u a SiteDM vector (NULL: K itself).
   PetscErrorCode AssembleTangentStiffness(Vec u, Mat KT) const;
-  // State Jacobian A = [[0, I], [-K_T(u), 0]] at the global state z (NULL: L).
+  // State Jacobian A = [[0, I], [-K_T(u), 0]] at the state z (NULL: L).
   PetscErrorCode AssembleStateJacobian(Vec z, Mat A) const;
 
 private:
-  // Row i of K_T at ghosted u (NULL: linear): coefficients of u_{i-1}, u_i, u_{i+1}.
-  void TangentRow(PetscInt i, const PetscScalar *u, PetscInt su, PetscScalar c[3]) const;
-  PetscErrorCode FillStiffness(const PetscScalar *u, PetscInt su, Mat M, bool state_form) const;
+  PetscInt OwnerCount(PetscInt site) const; // sites owned by the owner of site
+  void TangentRow(PetscInt i, const PetscScalar *u, PetscScalar c[3]) const;
+  PetscErrorCode FillStiffness(const PetscScalar *u, Mat M, bool state_form) const;
 
   MPI_Comm comm_ = MPI_COMM_NULL;
+  PetscMPIInt size_ = 1;
   LatticeParams p_;
-  OwnedDM da1_, da2_;
+  OwnedDM da_;
   OwnedMat K_, L_;
+  OwnedIS is_u_, is_v_;
   PetscInt xs_ = 0, xm_ = 0;
+  std::vector<PetscInt> starts_; // first site of every rank, plus N
 };
 
 } // namespace nltopo

@@ -22,7 +22,7 @@ public:
     if (store_u_) {
       const PetscScalar *a;
       PetscCall(VecGetArrayRead(z, &a));
-      for (PetscInt k = 0; k < xm_; k++) u_.push_back(a[2 * k]);
+      u_.insert(u_.end(), a, a + xm_); // the u half of this rank's block
       PetscCall(VecRestoreArrayRead(z, &a));
     }
     PetscFunctionReturn(0);

@@ -13,11 +13,9 @@ PetscErrorCode SimulationOptionsFromOptions(MPI_Comm comm, SimulationOptions *o)
   PetscOptionsBegin(comm, "sim_", "Forced simulation (TS options: -sim_ts_*)", NULL);
   PetscCall(PetscOptionsReal("-t_final", "Simulated time", NULL, o->t_final, &o->t_final, NULL));
   PetscCall(PetscOptionsReal("-sample_dt", "Spacing of stored samples of u and E (0: none)", NULL, o->sample_dt, &o->sample_dt, NULL));
-  PetscCall(PetscOptionsReal("-dt", "Initial time step (the fixed step for -sim_ts_type basicsymplectic)", NULL, o->dt, &o->dt, NULL));
   PetscOptionsEnd();
   PetscCheck(std::isfinite(o->t_final) && o->t_final > 0, comm, PETSC_ERR_USER, "-sim_t_final must be positive, got %g", (double)o->t_final);
   PetscCheck(o->sample_dt >= 0, comm, PETSC_ERR_USER, "-sim_sample_dt must be >= 0, got %g", (double)o->sample_dt);
-  PetscCheck(o->dt > 0 && o->dt <= o->t_final, comm, PETSC_ERR_USER, "-sim_dt must lie in (0, -sim_t_final], got %g", (double)o->dt);
   PetscFunctionReturn(0);
 }
 
@@ -82,11 +80,11 @@ struct Run {
       acc_nl = acc_lin = 0;
       u2_prev.assign(n, 0.0);
       acc_u2.assign(n, 0.0);
-      for (PetscInt k = 0; k < n; k++) u2_prev[k] = a[2 * k] * a[2 * k];
+      for (PetscInt k = 0; k < n; k++) u2_prev[k] = a[k] * a[k];
     } else {
       const PetscReal h = 0.5 * (t - t_prev);
       for (PetscInt k = 0; k < n; k++) {
-        const PetscReal u2 = a[2 * k] * a[2 * k];
+        const PetscReal u2 = a[k] * a[k];
         acc_u2[k] += h * (u2 + u2_prev[k]);
         u2_prev[k] = u2;
       }
@@ -190,7 +188,7 @@ PetscErrorCode PostStep(TS ts)
   PetscCall(TSGetSolution(ts, &z));
   PetscCall(run->EnergyAt(z, &e));
   PetscCheck(std::isfinite(e.Total()), run->lat->Comm(), PETSC_ERR_FP,
-             "non-finite state at t = %g: the integration diverged (reduce -sim_dt / -sim_ts_dt or tighten -sim_ts_rtol)", (double)t);
+             "non-finite state at t = %g: the integration diverged (reduce -sim_ts_dt or tighten -sim_ts_rtol)", (double)t);
   if (!run->event_mode && run->rhs.Forcing() && e.Total() >= run->estar) run->CutOff(t);
   PetscCall(run->Window(t, z, e));
   PetscCall(run->Samples(ts, t, z, e));
@@ -205,7 +203,6 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
   OwnedTS ts;
   OwnedMat J;
   OwnedVec z;
-  OwnedIS isq, isp;
   TSType type;
   TSConvergedReason reason;
   PetscFunctionBeginUser;
@@ -221,7 +218,7 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
     r->window_start = tb < o.t_final ? tb : 0;
   }
 
-  PetscCall(DMCreateGlobalVector(lat.StateDM(), z.out()));
+  PetscCall(lat.CreateStateVector(z.out()));
   if (z0) PetscCall(VecCopy(z0, z));
   else PetscCall(VecZeroEntries(z));
   PetscCall(VecDuplicate(z, run.zs.out()));
@@ -239,7 +236,7 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
   PetscCall(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP));
   PetscCall(TSSetMaxTime(ts, o.t_final));
   PetscCall(TSSetMaxSteps(ts, PETSC_MAX_INT));
-  PetscCall(TSSetTimeStep(ts, o.dt));
+  PetscCall(TSSetTimeStep(ts, 0.01)); // initial step; -sim_ts_dt overrides (the fixed step of basicsymplectic)
   PetscCall(TSSetErrorIfStepFails(ts, PETSC_FALSE));
   PetscCall(TSSetPostStep(ts, PostStep));
   PetscCall(TSSetFromOptions(ts));
@@ -249,17 +246,13 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
   if (symplectic) {
     // Fixed step dividing t_final (the type ignores MATCHSTEP), split RHS.
     PetscReal dt;
-    PetscInt rs, nloc;
     PetscCall(TSGetTimeStep(ts, &dt));
+    PetscCheck(dt > 0 && dt <= o.t_final, comm, PETSC_ERR_USER, "-sim_ts_dt must lie in (0, -sim_t_final], got %g", (double)dt);
     const PetscInt n = (PetscInt)std::ceil(o.t_final / dt - 1e-9);
     PetscCall(TSSetTimeStep(ts, o.t_final / n));
     PetscCall(TSSetMaxSteps(ts, n));
-    PetscCall(VecGetOwnershipRange(z, &rs, NULL));
-    PetscCall(VecGetLocalSize(z, &nloc));
-    PetscCall(ISCreateStride(comm, nloc / 2, rs, 2, isq.out()));
-    PetscCall(ISCreateStride(comm, nloc / 2, rs + 1, 2, isp.out()));
-    PetscCall(TSRHSSplitSetIS(ts, "position", isq));
-    PetscCall(TSRHSSplitSetIS(ts, "momentum", isp));
+    PetscCall(TSRHSSplitSetIS(ts, "position", lat.PositionIS()));
+    PetscCall(TSRHSSplitSetIS(ts, "momentum", lat.MomentumIS()));
     PetscCall(TSRHSSplitSetRHSFunction(ts, "position", NULL, PositionRate, &run));
     PetscCall(TSRHSSplitSetRHSFunction(ts, "momentum", NULL, MomentumRate, &run));
     run.interpolate = false;

@@ -12,7 +12,6 @@ namespace nltopo {
 struct SimulationOptions {
   PetscReal t_final = 1000;  // simulated time
   PetscReal sample_dt = 1.0; // spacing of the stored samples (0: store none)
-  PetscReal dt = 0.01;       // initial step (the fixed step for basicsymplectic)
 };
 PetscErrorCode SimulationOptionsFromOptions(MPI_Comm comm, SimulationOptions *o);
 
@@ -32,7 +31,7 @@ struct SimulationResult {
   bool reached = false;        // E* reached while the forcing was on
   EffectCounters counters;     // counters.rhs = RHS evaluations
   OwnedVec rms;                // RMS displacement per site (SiteDM)
-  OwnedVec z_final;            // final state (StateDM)
+  OwnedVec z_final;            // final state
 };
 
 // forcing may be NULL (free run). z0 NULL starts from rest.

@@ -46,6 +46,30 @@ inline void Scatter(const std::vector<PetscReal> &v, Vec x)
   VecRestoreArray(x, &a);
 }
 
+// Fills the state vector z from full u and v (same on every rank).
+inline void SetState(const Lattice &lat, const std::vector<PetscReal> &u, const std::vector<PetscReal> &v, Vec z)
+{
+  for (PetscInt i = lat.OwnedStart(); i < lat.OwnedStart() + lat.OwnedCount(); i++) {
+    VecSetValue(z, lat.StateIndexU(i), u[i], INSERT_VALUES);
+    VecSetValue(z, lat.StateIndexV(i), v[i], INSERT_VALUES);
+  }
+  VecAssemblyBegin(z);
+  VecAssemblyEnd(z);
+}
+
+// Splits a state vector into full u and v on every rank.
+inline void GetState(const Lattice &lat, Vec z, std::vector<PetscReal> *u, std::vector<PetscReal> *v)
+{
+  const auto all = Gather(z);
+  const PetscInt N = lat.N();
+  u->resize(N);
+  v->resize(N);
+  for (PetscInt i = 0; i < N; i++) {
+    (*u)[i] = all[lat.StateIndexU(i)];
+    (*v)[i] = all[lat.StateIndexV(i)];
+  }
+}
+
 // Deterministic pseudo-random numbers in (-1, 1), identical on all ranks.
 inline std::vector<PetscReal> Pseudo(size_t n, unsigned seed)
 {

@@ -70,37 +70,35 @@ TEST_CASE("state operator L z = [v, -K u]", "[lattice]")
   PCHK(lat.Setup(PETSC_COMM_WORLD, p));
   const PetscInt N = lat.N();
   OwnedVec z, f, u, Ku;
-  PCHK(DMCreateGlobalVector(lat.StateDM(), z.out()));
+  PCHK(lat.CreateStateVector(z.out()));
   PCHK(VecDuplicate(z, f.out()));
   PCHK(DMCreateGlobalVector(lat.SiteDM(), u.out()));
   PCHK(VecDuplicate(u, Ku.out()));
-  const auto zv = Pseudo(2 * N, 1);
-  Scatter(zv, z);
+  const auto uv = Pseudo(N, 1), vv = Pseudo(N, 2);
+  SetState(lat, uv, vv, z);
+  Scatter(uv, u);
   PCHK(MatMult(lat.L(), z, f));
-  PCHK(VecStrideGather(z, 0, u, INSERT_VALUES));
   PCHK(MatMult(lat.K(), u, Ku));
-  const auto fv = Gather(f), kv = Gather(Ku);
+  const auto kv = Gather(Ku);
+  std::vector<PetscReal> fu, fv;
+  GetState(lat, f, &fu, &fv);
   for (PetscInt i = 0; i < N; i++) {
-    REQUIRE(fv[2 * i] == Approx(zv[2 * i + 1]).margin(1e-15));
-    REQUIRE(fv[2 * i + 1] == Approx(-kv[i]).margin(1e-14));
+    REQUIRE(fu[i] == Approx(vv[i]).margin(1e-15));
+    REQUIRE(fv[i] == Approx(-kv[i]).margin(1e-14));
   }
 }
 
 // Acceleration a(u) = -(K u + f_NL(u)) from the effects-composed RHS at v = 0.
 static std::vector<PetscReal> Acceleration(const Lattice &lat, const std::vector<PetscReal> &u)
 {
-  const PetscInt N = lat.N();
-  std::vector<PetscReal> zv(2 * N, 0.0);
-  for (PetscInt i = 0; i < N; i++) zv[2 * i] = u[i];
   Vec z, f;
-  DMCreateGlobalVector(lat.StateDM(), &z);
+  lat.CreateStateVector(&z);
   VecDuplicate(z, &f);
-  Scatter(zv, z);
+  SetState(lat, u, std::vector<PetscReal>(lat.N(), 0.0), z);
   Rhs rhs(lat, nullptr);
   rhs.Evaluate(0.0, z, f);
-  auto fv = Gather(f);
-  std::vector<PetscReal> a(N);
-  for (PetscInt i = 0; i < N; i++) a[i] = fv[2 * i + 1];
+  std::vector<PetscReal> fu, a;
+  GetState(lat, f, &fu, &a);
   VecDestroy(&z);
   VecDestroy(&f);
   return a;
@@ -108,12 +106,9 @@ static std::vector<PetscReal> Acceleration(const Lattice &lat, const std::vector
 
 static PetscReal PotentialEnergy(const Lattice &lat, const std::vector<PetscReal> &u)
 {
-  const PetscInt N = lat.N();
-  std::vector<PetscReal> zv(2 * N, 0.0);
-  for (PetscInt i = 0; i < N; i++) zv[2 * i] = u[i];
   Vec z;
-  DMCreateGlobalVector(lat.StateDM(), &z);
-  Scatter(zv, z);
+  lat.CreateStateVector(&z);
+  SetState(lat, u, std::vector<PetscReal>(lat.N(), 0.0), z);
   EnergyParts e;
   lat.Energy(z, &e);
   VecDestroy(&z);
@@ -158,10 +153,8 @@ TEST_CASE("tangent stiffness and state Jacobian equal central differences of the
   Scatter(u, uv);
   PCHK(DMCreateMatrix(lat.SiteDM(), KT.out()));
   PCHK(lat.AssembleTangentStiffness(uv, KT));
-  PCHK(DMCreateGlobalVector(lat.StateDM(), z.out()));
-  std::vector<PetscReal> zv(2 * N, 0.0);
-  for (PetscInt i = 0; i < N; i++) zv[2 * i] = u[i];
-  Scatter(zv, z);
+  PCHK(lat.CreateStateVector(z.out()));
+  SetState(lat, u, std::vector<PetscReal>(N, 0.0), z);
   PCHK(lat.CreateStateMatrix(A.out()));
   PCHK(lat.AssembleStateJacobian(z, A));
   const PetscReal h = 1e-6;
@@ -175,13 +168,13 @@ TEST_CASE("tangent stiffness and state Jacobian equal central differences of the
     for (PetscInt i = lo; i < hi; i++) {
       const PetscReal fd = -(ap[i] - am[i]) / (2 * h); // K_T = -da/du
       PetscScalar kt, aij;
-      const PetscInt ri = 2 * i + 1, cj = 2 * j;
+      const PetscInt ri = lat.StateIndexV(i), cj = lat.StateIndexU(j);
       PCHK(MatGetValues(KT, 1, &i, 1, &j, &kt));
       PCHK(MatGetValues(A, 1, &ri, 1, &cj, &aij));
       REQUIRE(kt == Approx(fd).epsilon(1e-6).margin(1e-7));
       REQUIRE(aij == Approx(-fd).epsilon(1e-6).margin(1e-7));
       // u' = v block: identity
-      const PetscInt ru = 2 * i, cv = 2 * j + 1;
+      const PetscInt ru = lat.StateIndexU(i), cv = lat.StateIndexV(j);
       PetscScalar one;
       PCHK(MatGetValues(A, 1, &ru, 1, &cv, &one));
       REQUIRE(one == (i == j ? 1.0 : 0.0));

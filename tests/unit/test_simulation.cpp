@@ -124,10 +124,10 @@ TEST_CASE("free run at E = 100 conserves energy to a bound tied to the TS tolera
   LinearModes modes;
   PCHK(modes.Compute(lat, LinearModesOptions()));
   OwnedVec z0;
-  PCHK(DMCreateGlobalVector(lat.StateDM(), z0.out()));
-  PCHK(VecZeroEntries(z0));
-  PCHK(VecStrideScatter(modes.Insulated(), 1, z0, INSERT_VALUES));
-  PCHK(VecScale(z0, std::sqrt(200.0))); // E = 1/2 v.v = 100
+  PCHK(lat.CreateStateVector(z0.out()));
+  auto v0 = Gather(modes.Insulated());
+  for (auto &x : v0) x *= std::sqrt(200.0); // E = 1/2 v.v = 100
+  SetState(lat, std::vector<PetscReal>(lat.N(), 0.0), v0, z0);
   EnergyParts e0;
   PCHK(lat.Energy(z0, &e0));
   REQUIRE(e0.Total() == Approx(100.0).epsilon(1e-12));

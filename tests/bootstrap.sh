@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Set-up on a fresh Debian bookworm machine (as root, or with sudo), then:
+#   bash tests/bootstrap.sh demo   installs, builds, runs options/simulate.opts (writes simulate.h5)
+#   bash tests/bootstrap.sh test   installs, builds, runs the whole test suite with ctest
+# Idempotent: installs only missing Debian packages, reuses ./build.
+set -euo pipefail
+mode=${1:-demo}
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+cd "$root"
+
+packages=(g++ make cmake pkg-config git petsc-dev slepc-dev libhdf5-openmpi-dev catch2 openmpi-bin
+          python3 python3-h5py python3-numpy python3-matplotlib)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  sudo=""; [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  echo "== installing Debian packages: ${missing[*]}"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+echo "== configure and build (build/)"
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > build.log 2>&1 || { cat build.log; exit 1; }
+cmake --build build -j"$(nproc)" >> build.log 2>&1 || { tail -50 build.log; exit 1; }
+
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+case "$mode" in
+  demo) ./build/nltopo -options_file options/simulate.opts ;;
+  test) cd build && ctest --output-on-failure --timeout 900 ;;
+  *) echo "usage: bash tests/bootstrap.sh demo|test" >&2; exit 2 ;;
+esac
