@@ -1,0 +1,13 @@
+# Shared set-up for scene tests: bash <scene>.sh <nltopo> <source dir> <work dir>
+# Every run passes -options_left; ctest fails the test if PETSc reports an unused option.
+set -euo pipefail
+NLTOPO=$1
+SRC=$2
+WORK=$3
+rm -rf "$WORK"
+mkdir -p "$WORK"
+cd "$WORK"
+PY=/usr/bin/python3 # Debian's python3 with h5py and numpy
+MPIEXEC=${MPIEXEC:-mpiexec}
+run1() { "$NLTOPO" "$@" -options_left; }
+run2() { "$MPIEXEC" -n 2 "$NLTOPO" "$@" -options_left; }

@@ -1,0 +1,36 @@
+# options/simulate.opts: a paper-default forced run; outputs.md /simulate; MCR equal on 1 and 2 ranks to 1e-8.
+source "$(dirname "$0")/lib.sh"
+run1 -options_file "$SRC/options/simulate.opts" -output sim1.h5 | tee out1.txt
+run2 -options_file "$SRC/options/simulate.opts" -output sim2.h5 | tee out2.txt
+$PY - <<'PYEOF'
+import h5py, numpy as np
+f, g = h5py.File("sim1.h5", "r"), h5py.File("sim2.h5", "r")
+for k in ("study", "version", "options", "wall_seconds"):
+    assert k in f.attrs, k
+S = f["simulate"]
+N, nt = 102, 1001
+assert S["t"].shape == (nt,) and S["energy"].shape == (nt,) and S["u"].shape == (nt, N) and S["rms"].shape == (N,)
+a = S.attrs
+for k in ("mcr", "t_off", "energy_final", "nl_ratio", "rhs_evals", "steps"):
+    assert k in a, k
+assert a["energy_reached"] == 1 and 0 < a["t_off"] < 1000
+assert abs(a["energy_final"] - 1.0) < 1e-3, a["energy_final"]
+t, E = S["t"][:], S["energy"][:]
+assert abs(t[-1] - 1000) < 1e-9 and E[0] == 0
+after = E[t > a["t_off"]]
+assert np.abs(after - a["energy_final"]).max() < 1e-3, "energy conserved after the cut-off"
+# the per-step RMS agrees with the RMS of the 1 s samples over the same window
+u = S["u"][:]
+w = t >= a["window_start"]
+rms_samples = np.sqrt((u[w] ** 2).mean(axis=0))
+assert np.abs(rms_samples - S["rms"][:]).max() < 0.02 * S["rms"][:].max()
+# the insulated mode is excited: even sites dominate around the interface
+rms = S["rms"][:]
+assert rms[51] > 5 * rms[50] and 0.3 < a["mcr"] < 0.4, a["mcr"]
+# 1 and 2 ranks: same MCR to 1e-8, same trajectory
+b = g["simulate"].attrs
+assert abs(a["mcr"] - b["mcr"]) < 1e-8, (a["mcr"], b["mcr"])
+assert abs(a["t_off"] - b["t_off"]) < 1e-8
+assert np.abs(g["simulate/u"][:] - u).max() < 1e-8
+print("simulate scene OK: MCR", a["mcr"], "np2 diff", abs(a["mcr"] - b["mcr"]))
+PYEOF
