@@ -26,7 +26,9 @@ PetscReal WrapPhase(PetscReal a)
   const PetscReal two_pi = 2 * PETSC_PI;
   PetscReal w = std::fmod(a + PETSC_PI / 2, two_pi);
   if (w < 0) w += two_pi;
-  return w - PETSC_PI / 2;
+  w -= PETSC_PI / 2;
+  return std::abs(w) < 1e-14 ? 0.0 : w; // no "-0.000000" from round-off of an exact 0
+
 }
 
 PetscReal ZakPhase(PetscReal k_intra, PetscReal k_inter, int band, PetscInt nq, unsigned gauge_seed)

@@ -1,7 +1,8 @@
 #pragma once
 // The right-hand side z' = f(t, z) as the sum of the effects the scene enabled
 // (model.md, Equations of motion):
-//   linear coupling  f = L z                 (always: the lattice itself)
+//   linear coupling  f = [v, -K u]           (always: the lattice itself; a stencil
+//                                            over the bond rule that assembles K and L)
 //   cubic bonds      f_v += -f_NL(u)         (only when Gamma != 0)
 //   forcing          f_v += eta S g(t)       (only when configured; dropped for good at cut-off)
 // Each effect has its own log event and call counter, so tests and -log_view
@@ -29,8 +30,8 @@ public:
   const EffectCounters &Counters() const { return count_; }
 
 private:
-  // Cubic bonds and forcing: x holds u (state or SiteDM vector), a[i] the acceleration of site i.
-  PetscErrorCode AddLocalEffects(PetscReal t, Vec x, PetscScalar *a);
+  // Cubic bonds and forcing: u ghosted, a[i] the acceleration of site i (both by global site).
+  PetscErrorCode AddLocalEffects(PetscReal t, const PetscScalar *u, PetscScalar *a);
 
   const Lattice &lat_;
   const ToneBurst *forcing_;

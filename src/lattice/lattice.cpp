@@ -23,6 +23,12 @@ PetscErrorCode Lattice::Setup(MPI_Comm comm, const LatticeParams &p)
   PetscCall(DMDAGetOwnershipRanges(da_, &lx, NULL, NULL));
   starts_.assign(1, 0);
   for (PetscMPIInt r = 0; r < size_; r++) starts_.push_back(starts_.back() + lx[r]);
+  kb_.assign(xm_ + 1, 0.0);
+  for (PetscInt b = xs_ - 1; b < xs_ + xm_; b++)
+    if (b >= 0 && b < N - 1) kb_[b - xs_ + 1] = p.Bond(b);
+  stiff_.clear();
+  for (PetscInt b = std::max<PetscInt>(xs_ - 1, 0); b < std::min(xs_ + xm_, N - 1); b++)
+    if (p.Stiff(b)) stiff_.push_back(b);
   PetscCall(ISCreateStride(comm, xm_, 2 * xs_, 1, is_u_.out()));
   PetscCall(ISCreateStride(comm, xm_, 2 * xs_ + xm_, 1, is_v_.out()));
 
@@ -102,21 +108,26 @@ PetscErrorCode Lattice::RestoreGhostedU(Vec x, Vec *ul, const PetscScalar **u) c
   PetscFunctionReturn(0);
 }
 
+void Lattice::LinearAcceleration(const PetscScalar *u, PetscScalar *a) const
+{
+  const PetscReal kh = p_.KHat();
+  const PetscInt N = p_.N(), lo = std::max<PetscInt>(xs_, 1), hi = std::min(xs_ + xm_, N - 1);
+  const PetscReal *kb = kb_.data() - xs_ + 1; // kb[b]: bond b
+  for (PetscInt i = lo; i < hi; i++) a[i] = kb[i - 1] * u[i - 1] - kh * u[i] + kb[i] * u[i + 1];
+  if (xs_ == 0) a[0] = -kh * u[0] + (N > 1 ? kb[0] * u[1] : 0.0);
+  if (xs_ + xm_ == N && N > 1) a[N - 1] = kb[N - 2] * u[N - 2] - kh * u[N - 1];
+}
+
 void Lattice::AddCubicAcceleration(const PetscScalar *u, PetscScalar *a) const
 {
+  // Each stiff bond once: F = Gamma d^3, d = u_b - u_{b+1}, pulls site b back
+  // and site b+1 forward (only owned sites are written).
   const PetscReal G = p_.Gamma;
-  const PetscInt N = p_.N();
-  for (PetscInt i = xs_; i < xs_ + xm_; i++) {
-    PetscScalar s = 0;
-    if (i > 0 && p_.Stiff(i - 1)) {
-      const PetscScalar d = u[i - 1] - u[i];
-      s += G * d * d * d;
-    }
-    if (i < N - 1 && p_.Stiff(i)) {
-      const PetscScalar d = u[i] - u[i + 1];
-      s -= G * d * d * d;
-    }
-    a[i] += s;
+  const PetscInt lo = xs_, hi = xs_ + xm_;
+  for (const PetscInt b : stiff_) {
+    const PetscScalar d = u[b] - u[b + 1], F = G * d * d * d;
+    if (b >= lo) a[b] -= F;
+    if (b + 1 < hi) a[b + 1] += F;
   }
 }
 

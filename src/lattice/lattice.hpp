@@ -48,6 +48,9 @@ public:
   PetscErrorCode GetGhostedU(Vec x, Vec *ul, const PetscScalar **u) const;
   PetscErrorCode RestoreGhostedU(Vec x, Vec *ul, const PetscScalar **u) const;
 
+  // a[i] = -(K u)_i for owned sites i (the linear coupling as a stencil over the
+  // same bond rule that assembles K); u ghosted and a indexed by global site.
+  void LinearAcceleration(const PetscScalar *u, PetscScalar *a) const;
   // Adds the restoring cubic acceleration -f_NL(u) (model.md) to a[i] for owned
   // sites i; u ghosted and a indexed by global site.
   void AddCubicAcceleration(const PetscScalar *u, PetscScalar *a) const;
@@ -74,6 +77,8 @@ private:
   OwnedIS is_u_, is_v_;
   PetscInt xs_ = 0, xm_ = 0;
   std::vector<PetscInt> starts_; // first site of every rank, plus N
+  std::vector<PetscInt> stiff_;  // stiff bonds touching an owned site (bond b joins b, b+1)
+  std::vector<PetscReal> kb_;    // k of bonds xs-1 .. xs+xm-1 (0 outside the chain): kb_[b - xs + 1]
 };
 
 } // namespace nltopo

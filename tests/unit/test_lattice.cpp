@@ -88,6 +88,30 @@ TEST_CASE("state operator L z = [v, -K u]", "[lattice]")
   }
 }
 
+TEST_CASE("the linear-coupling effect (stencil) equals the assembled L z", "[lattice][effects]")
+{
+  for (Layout layout : {Layout::Interface, Layout::Left, Layout::Right}) {
+    LatticeParams p;
+    p.cells = 4;
+    p.layout = layout;
+    p.Gamma = 0; // linear scene: the RHS is the linear effect alone
+    Lattice lat;
+    PCHK(lat.Setup(PETSC_COMM_WORLD, p));
+    OwnedVec z, f, g;
+    PCHK(lat.CreateStateVector(z.out()));
+    PCHK(VecDuplicate(z, f.out()));
+    PCHK(VecDuplicate(z, g.out()));
+    SetState(lat, Pseudo(lat.N(), 11), Pseudo(lat.N(), 12), z);
+    Rhs rhs(lat, nullptr);
+    PCHK(rhs.Evaluate(0.0, z, f));
+    PCHK(MatMult(lat.L(), z, g));
+    PCHK(VecAXPY(g, -1.0, f));
+    PetscReal err;
+    PCHK(VecNorm(g, NORM_INFINITY, &err));
+    REQUIRE(err < 1e-14);
+  }
+}
+
 // Acceleration a(u) = -(K u + f_NL(u)) from the effects-composed RHS at v = 0.
 static std::vector<PetscReal> Acceleration(const Lattice &lat, const std::vector<PetscReal> &u)
 {
