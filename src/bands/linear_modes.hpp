@@ -9,7 +9,8 @@ namespace nltopo {
 
 struct LinearModesOptions {
   PetscInt dense_max = 2000; // N above this: shift-invert around the band edges instead of all pairs
-  PetscInt nev = 6;          // shift-invert: eigenpairs per target
+  PetscInt nev = 4;          // shift-invert: eigenpairs per target
+  PetscReal offset = 1e-6;   // shift-invert: targets sit this far (relative) outside each band edge
 };
 PetscErrorCode LinearModesOptionsFromOptions(MPI_Comm comm, LinearModesOptions *o);
 

@@ -1,5 +1,5 @@
 # Bad input: one line naming the option/file/time, non-zero exit, no HDF5 file left behind.
-source "$(dirname "$0")/lib.sh"
+source "$(dirname "$0")/common.bash"
 fail() { echo "FAILED: $*" >&2; exit 1; }
 expect_error() { # expect_error <pattern> <output file> nltopo args...
   local pattern=$1 out=$2; shift 2

@@ -1,5 +1,5 @@
 # -help lists every option of the studies with its help text.
-source "$(dirname "$0")/lib.sh"
+source "$(dirname "$0")/common.bash"
 "$NLTOPO" -help -study simulate -sim_t_final 1 -output h.h5 > help_sim.txt
 "$NLTOPO" -help -study linear -output h2.h5 > help_lin.txt
 for opt in -study -output -lattice_k -lattice_gamma -lattice_gamma0 -lattice_cubic -lattice_cells -lattice_layout \

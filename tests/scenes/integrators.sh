@@ -1,6 +1,6 @@
 # The simulate study with a symplectic and an implicit TS: both run the paper-default
 # scene, reach E*, and agree with Dormand-Prince on the MCR.
-source "$(dirname "$0")/lib.sh"
+source "$(dirname "$0")/common.bash"
 run1 -options_file "$SRC/options/simulate.opts" -output rk.h5 -sim_store_u 0
 run1 -options_file "$SRC/options/simulate.opts" -output sym.h5 -sim_store_u 0 \
      -sim_ts_type basicsymplectic -sim_ts_basicsymplectic_type 2 -sim_ts_dt 0.02

@@ -1,5 +1,5 @@
 # options/linear.opts: insulated frequency, band edges, Zak phases, outputs.md /linear; 1 and 2 ranks agree.
-source "$(dirname "$0")/lib.sh"
+source "$(dirname "$0")/common.bash"
 run1 -options_file "$SRC/options/linear.opts" -output lin1.h5 | tee out1.txt
 run2 -options_file "$SRC/options/linear.opts" -output lin2.h5 > out2.txt
 grep -q "insulated omega      1.73205080" out1.txt
@@ -38,4 +38,18 @@ assert np.abs(M["omega"][:] - w).max() < 1e-12
 assert np.abs(M["modes"][:] - X).max() < 1e-8
 assert np.abs(M["insulated_mode"][:] - L["insulated_mode"][:]).max() < 1e-10
 print("linear scene OK")
+PYEOF
+# Large N: the shift-invert path (N = 10002 > -linear_dense_max) on 2 ranks
+run2 -options_file "$SRC/options/linear.opts" -lattice_cells 2500 -output big.h5 > out_big.txt
+$PY - <<'PYEOF'
+import h5py, math
+L = h5py.File("big.h5", "r")["linear"]
+a = L.attrs
+assert "modes_selected" in L and L["modes_selected"].shape[1] == 10002
+assert abs(a["insulated_omega"] - math.sqrt(3)) < 1e-10
+assert abs(a["interface_omega"] - 2.2702567967) < 1e-8
+# finite edges converge to the closed form as (pi/N)^2
+for k, inf in (("acoustic_top", math.sqrt(2.2)), ("optical_bottom", math.sqrt(3.8)), ("optical_top", math.sqrt(5.0))):
+    assert abs(a[k] - inf) < 1e-5, (k, a[k], inf)
+print("large-N linear OK")
 PYEOF

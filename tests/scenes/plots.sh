@@ -1,5 +1,5 @@
 # The plot scripts draw their figures from real study outputs.
-source "$(dirname "$0")/lib.sh"
+source "$(dirname "$0")/common.bash"
 run1 -options_file "$SRC/options/linear.opts" -output lin.h5 > /dev/null
 run1 -options_file "$SRC/options/simulate.opts" -output sim.h5 -sim_t_final 600 > /dev/null
 $PY "$SRC/src/plots/plot_linear.py" lin.h5 lin.png

@@ -1,5 +1,5 @@
 # options/simulate.opts: a paper-default forced run; outputs.md /simulate; MCR equal on 1 and 2 ranks to 1e-8.
-source "$(dirname "$0")/lib.sh"
+source "$(dirname "$0")/common.bash"
 run1 -options_file "$SRC/options/simulate.opts" -output sim1.h5 | tee out1.txt
 run2 -options_file "$SRC/options/simulate.opts" -output sim2.h5 | tee out2.txt
 $PY - <<'PYEOF'
