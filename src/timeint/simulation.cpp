@@ -13,8 +13,10 @@ PetscErrorCode SimulationOptionsFromOptions(MPI_Comm comm, SimulationOptions *o)
   PetscOptionsBegin(comm, "sim_", "Forced simulation (TS options: -sim_ts_*)", NULL);
   PetscCall(PetscOptionsReal("-t_final", "Simulated time", NULL, o->t_final, &o->t_final, NULL));
   PetscCall(PetscOptionsReal("-sample_dt", "Spacing of stored samples of u and E (0: none)", NULL, o->sample_dt, &o->sample_dt, NULL));
+  PetscCall(PetscOptionsReal("-progress", "Print a progress line every this many wall seconds (0: never)", NULL, o->progress, &o->progress, NULL));
   PetscOptionsEnd();
   PetscCheck(std::isfinite(o->t_final) && o->t_final > 0, comm, PETSC_ERR_USER, "-sim_t_final must be positive, got %g", (double)o->t_final);
+  PetscCheck(o->progress >= 0, comm, PETSC_ERR_USER, "-sim_progress must be >= 0, got %g", (double)o->progress);
   PetscCheck(o->sample_dt >= 0, comm, PETSC_ERR_USER, "-sim_sample_dt must be >= 0, got %g", (double)o->sample_dt);
   PetscFunctionReturn(0);
 }
@@ -27,7 +29,8 @@ struct Run {
   Rhs rhs;
   SampleSink *sink;
   bool event_mode = false, interpolate = true;
-  PetscReal estar = 0, t_final = 0, sample_dt = 0, window_default = 0;
+  PetscReal estar = 0, t_final = 0, sample_dt = 0, window_default = 0, progress = 0;
+  PetscLogDouble wall0 = 0, wall_last = 0;
   PetscInt next_sample = 0;
   SimulationResult *r;
   OwnedVec zs; // interpolated sample state
@@ -192,6 +195,19 @@ PetscErrorCode PostStep(TS ts)
   if (!run->event_mode && run->rhs.Forcing() && e.Total() >= run->estar) run->CutOff(t);
   PetscCall(run->Window(t, z, e));
   PetscCall(run->Samples(ts, t, z, e));
+  if (run->progress > 0) { // long runs say where they are (rank 0, one line per interval)
+    PetscLogDouble now;
+    PetscCall(PetscTime(&now));
+    if (now - run->wall_last >= run->progress) {
+      PetscInt step;
+      PetscCall(TSGetStepNumber(ts, &step));
+      run->wall_last = now;
+      const double frac = t / run->t_final, el = now - run->wall0;
+      PetscCall(PetscPrintf(run->lat->Comm(), "  [simulate] t = %.6g / %g (%.1f %%), %" PetscInt_FMT " steps, E = %.6g, %s, %.0f s elapsed, ETA %.0f s\n",
+                            (double)t, (double)run->t_final, 100 * frac, step, (double)e.Total(), run->rhs.Forcing() ? "forcing on" : "forcing off",
+                            el, frac > 0 ? el * (1 - frac) / frac : 0.0));
+    }
+  }
   PetscFunctionReturn(0);
 }
 
@@ -211,6 +227,9 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
   run.estar = forcing ? forcing->EnergyStar() : 0;
   run.t_final = o.t_final;
   run.sample_dt = o.sample_dt;
+  run.progress = o.progress;
+  PetscCall(PetscTime(&run.wall0));
+  run.wall_last = run.wall0;
   // RMS window when E* is never reached: after the burst (t0 + 3 tau), or the
   // whole run if the burst does not end before t_final (README.md).
   if (run.rhs.Forcing()) {

@@ -12,6 +12,7 @@ namespace nltopo {
 struct SimulationOptions {
   PetscReal t_final = 1000;  // simulated time
   PetscReal sample_dt = 1.0; // spacing of the stored samples (0: store none)
+  PetscReal progress = 10;   // wall seconds between progress lines (0: none)
 };
 PetscErrorCode SimulationOptionsFromOptions(MPI_Comm comm, SimulationOptions *o);
 
