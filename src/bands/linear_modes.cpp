@@ -21,6 +21,18 @@ PetscErrorCode LinearModesOptionsFromOptions(MPI_Comm comm, LinearModesOptions *
   PetscFunctionReturn(0);
 }
 
+// An EPS on K with the -linear_eps_* prefix (Hermitian problem).
+static PetscErrorCode CreateEps(const Lattice &lat, EPSType type, EPS *eps)
+{
+  PetscFunctionBeginUser;
+  PetscCall(EPSCreate(lat.Comm(), eps));
+  PetscCall(EPSSetOptionsPrefix(*eps, "linear_"));
+  PetscCall(EPSSetOperators(*eps, lat.K(), NULL));
+  PetscCall(EPSSetProblemType(*eps, EPS_HEP));
+  PetscCall(EPSSetType(*eps, type));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode LinearModes::AppendPairs(const Lattice &lat, EPS eps)
 {
   PetscInt nconv;
@@ -51,11 +63,7 @@ PetscErrorCode LinearModes::SolveAll(const Lattice &lat)
   OwnedEPS eps;
   const PetscInt N = lat.N();
   PetscFunctionBeginUser;
-  PetscCall(EPSCreate(lat.Comm(), eps.out()));
-  PetscCall(EPSSetOptionsPrefix(eps, "linear_"));
-  PetscCall(EPSSetOperators(eps, lat.K(), NULL));
-  PetscCall(EPSSetProblemType(eps, EPS_HEP));
-  PetscCall(EPSSetType(eps, EPSLAPACK));
+  PetscCall(CreateEps(lat, EPSLAPACK, eps.out()));
   PetscCall(EPSSetWhichEigenpairs(eps, EPS_SMALLEST_REAL));
   PetscCall(EPSSetDimensions(eps, N, PETSC_DEFAULT, PETSC_DEFAULT));
   PetscCall(EPSSetFromOptions(eps));
@@ -87,11 +95,7 @@ PetscErrorCode LinearModes::SolveNear(const Lattice &lat, const LinearModesOptio
     ST st;
     KSP ksp;
     PC pc;
-    PetscCall(EPSCreate(lat.Comm(), eps.out()));
-    PetscCall(EPSSetOptionsPrefix(eps, "linear_"));
-    PetscCall(EPSSetOperators(eps, lat.K(), NULL));
-    PetscCall(EPSSetProblemType(eps, EPS_HEP));
-    PetscCall(EPSSetType(eps, EPSKRYLOVSCHUR));
+    PetscCall(CreateEps(lat, EPSKRYLOVSCHUR, eps.out()));
     PetscCall(EPSSetTarget(eps, sigma));
     PetscCall(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE));
     PetscCall(EPSSetDimensions(eps, nevs[k], PETSC_DEFAULT, PETSC_DEFAULT));
@@ -111,11 +115,7 @@ PetscErrorCode LinearModes::SolveNear(const Lattice &lat, const LinearModesOptio
   // The extreme ends (localised modes outside the bands) with plain Krylov-Schur.
   for (EPSWhich which : {EPS_LARGEST_REAL, EPS_SMALLEST_REAL}) {
     OwnedEPS eps;
-    PetscCall(EPSCreate(lat.Comm(), eps.out()));
-    PetscCall(EPSSetOptionsPrefix(eps, "linear_"));
-    PetscCall(EPSSetOperators(eps, lat.K(), NULL));
-    PetscCall(EPSSetProblemType(eps, EPS_HEP));
-    PetscCall(EPSSetType(eps, EPSKRYLOVSCHUR));
+    PetscCall(CreateEps(lat, EPSKRYLOVSCHUR, eps.out()));
     PetscCall(EPSSetWhichEigenpairs(eps, which));
     PetscCall(EPSSetDimensions(eps, 1, PETSC_DEFAULT, PETSC_DEFAULT));
     PetscCall(EPSSetFromOptions(eps));

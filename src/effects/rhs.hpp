@@ -30,6 +30,8 @@ public:
   const EffectCounters &Counters() const { return count_; }
 
 private:
+  // a[i] = -(K u)_i + the local effects, for u the u part of x (state or SiteDM vector).
+  PetscErrorCode Accelerate(PetscReal t, Vec x, PetscScalar *a);
   // Cubic bonds and forcing: u ghosted, a[i] the acceleration of site i (both by global site).
   PetscErrorCode AddLocalEffects(PetscReal t, const PetscScalar *u, PetscScalar *a);
 
