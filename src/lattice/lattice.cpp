@@ -63,9 +63,9 @@ PetscErrorCode Lattice::CreateStateVector(Vec *z) const
 PetscErrorCode Lattice::CreateStateMatrix(Mat *A) const
 {
   PetscFunctionBeginUser;
-  // u_i' = v_i; v_i' couples to u_{i-1}, u_i, u_{i+1} (one of them may be on
-  // a neighbouring rank); both diagonals are stored (as zeros) so implicit TS
-  // types can shift the matrix.
+  // Every row couples to u_{i-1}, u_i, u_{i+1} (one of them may be on a
+  // neighbouring rank) and v_i: the pattern of L, of the state Jacobian, of the
+  // unfolded Jacobian of the orbit solver, and of implicit TS shifts.
   PetscCall(MatCreateAIJ(comm_, 2 * xm_, 2 * xm_, 2 * p_.N(), 2 * p_.N(), 4, NULL, 1, NULL, A));
   PetscCall(MatSetOption(*A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
   PetscFunctionReturn(0);
@@ -193,31 +193,40 @@ void Lattice::TangentRow(PetscInt i, const PetscScalar *u, PetscScalar c[3]) con
   }
 }
 
-PetscErrorCode Lattice::FillStiffness(const PetscScalar *u, Mat M, bool state_form) const
+PetscErrorCode Lattice::FillStiffness(const PetscScalar *u, Mat M, bool state_form, PetscReal beta) const
 {
   const PetscInt N = p_.N();
   PetscFunctionBeginUser;
   PetscCall(MatZeroEntries(M));
   for (PetscInt i = xs_; i < xs_ + xm_; i++) {
-    PetscScalar c[3], vals[3];
-    PetscInt cols[3], nc = 0;
+    PetscScalar c[3], ku[3];
+    PetscInt cols[4], nc = 0;
     TangentRow(i, u, c);
     for (PetscInt o = -1; o <= 1; o++) {
       const PetscInt j = i + o;
       if (j < 0 || j >= N) continue;
       cols[nc] = state_form ? StateIndexU(j) : j;
-      vals[nc] = state_form ? -c[o + 1] : c[o + 1];
-      nc++;
+      ku[nc++] = c[o + 1];
     }
-    if (state_form) {
-      const PetscInt ru = StateIndexU(i), rv = StateIndexV(i), cu[2] = {ru, rv};
-      const PetscScalar uvals[2] = {0.0, 1.0}, zero = 0.0;
-      PetscCall(MatSetValues(M, 1, &ru, 2, cu, uvals, INSERT_VALUES)); // u' = v
-      PetscCall(MatSetValues(M, 1, &rv, nc, cols, vals, INSERT_VALUES)); // v' = -K_T u
-      PetscCall(MatSetValues(M, 1, &rv, 1, &rv, &zero, INSERT_VALUES)); // stored diagonal
-    } else {
-      PetscCall(MatSetValues(M, 1, &i, nc, cols, vals, INSERT_VALUES));
+    if (!state_form) {
+      PetscCall(MatSetValues(M, 1, &i, nc, cols, ku, INSERT_VALUES));
+      continue;
     }
+    // Rows of (I + beta [[0, -I], [I, 0]]) [[0, I], [-K_T, 0]] over the columns
+    // (u_{i-1}, u_i, u_{i+1}, v_i); all four are always stored (zeros when
+    // beta = 0) so the pattern never changes:
+    //   u row: [ beta K_T | 1 ],   v row: [ -K_T | beta ].
+    const PetscInt ru = StateIndexU(i), rv = StateIndexV(i);
+    PetscScalar urow[4], vrow[4];
+    for (PetscInt k = 0; k < nc; k++) {
+      urow[k] = beta * ku[k];
+      vrow[k] = -ku[k];
+    }
+    cols[nc] = rv;
+    urow[nc] = 1.0;
+    vrow[nc] = beta;
+    PetscCall(MatSetValues(M, 1, &ru, nc + 1, cols, urow, INSERT_VALUES));
+    PetscCall(MatSetValues(M, 1, &rv, nc + 1, cols, vrow, INSERT_VALUES));
   }
   PetscCall(MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY));
@@ -228,28 +237,28 @@ PetscErrorCode Lattice::AssembleTangentStiffness(Vec u, Mat KT) const
 {
   PetscFunctionBeginUser;
   if (!u || !HasCubic()) {
-    PetscCall(FillStiffness(NULL, KT, false));
+    PetscCall(FillStiffness(NULL, KT, false, 0));
     PetscFunctionReturn(0);
   }
   const PetscScalar *a;
   Vec ul;
   PetscCall(GetGhostedU(u, &ul, &a));
-  PetscCall(FillStiffness(a, KT, false));
+  PetscCall(FillStiffness(a, KT, false, 0));
   PetscCall(RestoreGhostedU(u, &ul, &a));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Lattice::AssembleStateJacobian(Vec z, Mat A) const
+PetscErrorCode Lattice::AssembleStateJacobian(Vec z, Mat A, PetscReal beta) const
 {
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(Log().jacobian, 0, 0, 0, 0));
   if (!z || !HasCubic()) {
-    PetscCall(FillStiffness(NULL, A, true));
+    PetscCall(FillStiffness(NULL, A, true, beta));
   } else {
     const PetscScalar *a;
     Vec ul;
     PetscCall(GetGhostedU(z, &ul, &a));
-    PetscCall(FillStiffness(a, A, true));
+    PetscCall(FillStiffness(a, A, true, beta));
     PetscCall(RestoreGhostedU(z, &ul, &a));
   }
   PetscCall(PetscLogEventEnd(Log().jacobian, 0, 0, 0, 0));

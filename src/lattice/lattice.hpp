@@ -61,13 +61,15 @@ public:
   // Tangent stiffness K_T(u) = K + sum_stiff 3 Gamma d^2 (e_i - e_j)(e_i - e_j)^T
   // into a SiteDM matrix; u a SiteDM vector (NULL: K itself).
   PetscErrorCode AssembleTangentStiffness(Vec u, Mat KT) const;
-  // State Jacobian A = [[0, I], [-K_T(u), 0]] at the state z (NULL: L).
-  PetscErrorCode AssembleStateJacobian(Vec z, Mat A) const;
+  // State Jacobian A = [[0, I], [-K_T(u), 0]] at the state z (NULL: L). With
+  // beta != 0, the Jacobian (I + beta [[0, -I], [I, 0]]) A of the unfolded
+  // field f + beta grad E used by the periodic-orbit solver (orbits/flow.hpp).
+  PetscErrorCode AssembleStateJacobian(Vec z, Mat A, PetscReal beta = 0) const;
 
 private:
   PetscInt OwnerCount(PetscInt site) const; // sites owned by the owner of site
   void TangentRow(PetscInt i, const PetscScalar *u, PetscScalar c[3]) const;
-  PetscErrorCode FillStiffness(const PetscScalar *u, Mat M, bool state_form) const;
+  PetscErrorCode FillStiffness(const PetscScalar *u, Mat M, bool state_form, PetscReal beta) const;
 
   MPI_Comm comm_ = MPI_COMM_NULL;
   PetscMPIInt size_ = 1;

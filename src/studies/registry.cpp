@@ -6,6 +6,7 @@ namespace nltopo {
 static const StudyEntry kStudies[] = {
   {"linear", "linear modes of K, named modes, Bloch bands and Zak phases", LinearStudy},
   {"simulate", "one forced tone-burst run with energy cut-off", SimulateStudy},
+  {"continuation", "NNM branches by shooting and pseudo-arclength continuation", ContinuationStudy},
 };
 
 PetscErrorCode RunStudyFromOptions(MPI_Comm comm)

@@ -1,0 +1,216 @@
+#include "orbits/continuation.hpp"
+#include "diagnostics/mcr.hpp"
+#include <cmath>
+
+namespace nltopo {
+
+PetscErrorCode ContinuationOptionsFromOptions(MPI_Comm comm, ContinuationOptions *o)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, "cont_", "NNM continuation", NULL);
+  PetscCall(PetscOptionsReal("-energy_min", "Energy of the first orbit (near the linear mode)", NULL, o->energy_min, &o->energy_min, NULL));
+  PetscCall(PetscOptionsReal("-energy_max", "Stop when the energy exceeds this", NULL, o->energy_max, &o->energy_max, NULL));
+  PetscCall(PetscOptionsInt("-max_points", "Stop after this many orbits", NULL, o->max_points, &o->max_points, NULL));
+  PetscCall(PetscOptionsReal("-max_change", "Largest relative change of the orbit z0 per step", NULL, o->max_change, &o->max_change, NULL));
+  PetscCall(PetscOptionsReal("-ds_min", "Step collapse: stop when the step falls below this times ||z0||", NULL, o->ds_min, &o->ds_min, NULL));
+  PetscCall(PetscOptionsInt("-newton_target", "Newton iterations per point that the step size aims at", NULL, o->newton_target, &o->newton_target, NULL));
+  PetscCall(PetscOptionsReal("-interaction_corr", "Flag a modal interaction when consecutive shapes correlate less than this", NULL,
+                             o->interaction_corr, &o->interaction_corr, NULL));
+  PetscCall(PetscOptionsBool("-verbose", "Print one line per continuation point", NULL, o->verbose, &o->verbose, NULL));
+  PetscOptionsEnd();
+  PetscCheck(o->energy_min > 0 && o->energy_max > o->energy_min, comm, PETSC_ERR_USER,
+             "-cont_energy_min must be positive and below -cont_energy_max, got %g and %g", (double)o->energy_min, (double)o->energy_max);
+  PetscCheck(o->max_points >= 1, comm, PETSC_ERR_USER, "-cont_max_points must be >= 1, got %" PetscInt_FMT, o->max_points);
+  PetscCheck(o->max_change > 0 && o->max_change < 1, comm, PETSC_ERR_USER, "-cont_max_change must lie in (0, 1), got %g", (double)o->max_change);
+  PetscFunctionReturn(0);
+}
+
+namespace {
+
+// Correlation of the displacement parts of two states, and the norm of the first's u.
+PetscErrorCode ShapeCorrelation(const Lattice &lat, Vec a, Vec b, PetscReal *corr)
+{
+  const PetscScalar *x, *y;
+  const PetscInt m = lat.OwnedCount();
+  PetscReal loc[3] = {0, 0, 0}, g[3];
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(a, &x));
+  PetscCall(VecGetArrayRead(b, &y));
+  for (PetscInt k = 0; k < m; k++) {
+    loc[0] += x[k] * y[k];
+    loc[1] += x[k] * x[k];
+    loc[2] += y[k] * y[k];
+  }
+  PetscCall(VecRestoreArrayRead(b, &y));
+  PetscCall(VecRestoreArrayRead(a, &x));
+  PetscCall(MPIU_Allreduce(loc, g, 3, MPIU_REAL, MPIU_SUM, lat.Comm()));
+  *corr = (g[1] > 0 && g[2] > 0) ? std::abs(g[0]) / std::sqrt(g[1] * g[2]) : 0;
+  PetscFunctionReturn(0);
+}
+
+// MCR of the displacement part of z (model.md's MCR on u0, the orbit at its section).
+PetscErrorCode DisplacementMcr(const Lattice &lat, Vec z, PetscReal *mcr)
+{
+  Vec u;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetSubVector(z, lat.PositionIS(), &u));
+  PetscCall(Mcr(u, mcr));
+  PetscCall(VecRestoreSubVector(z, lat.PositionIS(), &u));
+  PetscFunctionReturn(0);
+}
+
+// Appends z in natural [u, v] order to rank 0's row store.
+PetscErrorCode AppendRow(const Lattice &lat, Vec z, std::vector<PetscReal> *rows)
+{
+  VecScatter sc;
+  Vec s;
+  const PetscScalar *a;
+  PetscMPIInt rank;
+  PetscFunctionBeginUser;
+  PetscCall(VecScatterCreateToZero(z, &sc, &s));
+  PetscCall(VecScatterBegin(sc, z, s, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(sc, z, s, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCallMPI(MPI_Comm_rank(lat.Comm(), &rank));
+  if (!rank) {
+    const PetscInt N = lat.N();
+    PetscCall(VecGetArrayRead(s, &a));
+    const size_t off = rows->size();
+    rows->resize(off + 2 * N);
+    for (PetscInt i = 0; i < N; i++) {
+      (*rows)[off + i] = a[lat.StateIndexU(i)];
+      (*rows)[off + N + i] = a[lat.StateIndexV(i)];
+    }
+    PetscCall(VecRestoreArrayRead(s, &a));
+  }
+  PetscCall(VecScatterDestroy(&sc));
+  PetscCall(VecDestroy(&s));
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, const ContinuationOptions &o, const char *name, Branch *b)
+{
+  PeriodicFlow &flow = shoot.Flow();
+  const Lattice &lat = flow.Lat();
+  MPI_Comm comm = lat.Comm();
+  OwnedVec z, zprev, X, Xprev, Xpred, t, tprev;
+  PetscReal T, beta, ds;
+  PetscInt its;
+  bool ok;
+  PetscFunctionBeginUser;
+  *b = Branch();
+  PetscCall(lat.CreateStateVector(z.out()));
+  PetscCall(VecDuplicate(z, zprev.out()));
+  PetscCall(shoot.CreateUnknowns(X.out()));
+  for (OwnedVec *v : {&Xprev, &Xpred, &t, &tprev}) PetscCall(VecDuplicate(X, v->out()));
+
+  // Guess (u, v = 0) scaled to the starting energy (linear scaling: E ~ amplitude^2).
+  {
+    PetscScalar *a;
+    const PetscScalar *u;
+    EnergyParts e;
+    PetscCall(VecZeroEntries(z));
+    PetscCall(VecGetArray(z, &a));
+    PetscCall(VecGetArrayRead(u_guess, &u));
+    PetscCall(PetscArraycpy(a, u, lat.OwnedCount()));
+    PetscCall(VecRestoreArrayRead(u_guess, &u));
+    PetscCall(VecRestoreArray(z, &a));
+    PetscCall(lat.Energy(z, &e));
+    PetscCheck(e.Total() > 0, comm, PETSC_ERR_USER, "continuation %s: the starting shape has zero energy", name);
+    PetscCall(VecScale(z, std::sqrt(o.energy_min / e.Total())));
+  }
+  PetscCall(shoot.Pack(z, T_guess, 0.0, X));
+  PetscCall(shoot.SetEnergyConstraint(z, o.energy_min));
+  PetscCall(shoot.Solve(X, &ok, &its));
+  PetscCheck(ok, comm, PETSC_ERR_NOT_CONVERGED, "continuation %s: no periodic orbit found at -cont_energy_min %g (Newton failed after %" PetscInt_FMT " iterations)",
+             name, (double)o.energy_min, its);
+  PetscCall(shoot.Tangent(X, NULL, t));
+
+  PetscReal znorm;
+  PetscCall(shoot.Unpack(X, z, &T, &beta));
+  PetscCall(VecNorm(z, NORM_2, &znorm));
+  ds = o.max_change * znorm;
+  PetscInt newton_its = its;
+  for (;;) {
+    // Record the point.
+    EnergyParts e;
+    PetscReal mcr, corr = 1;
+    PetscCall(shoot.Unpack(X, z, &T, &beta));
+    PetscCall(lat.Energy(z, &e));
+    PetscCall(DisplacementMcr(lat, z, &mcr));
+    if (!b->energy.empty()) PetscCall(ShapeCorrelation(lat, zprev, z, &corr));
+    b->energy.push_back(e.Total());
+    b->period.push_back(T);
+    b->omega.push_back(2 * PETSC_PI / T);
+    b->mcr.push_back(mcr);
+    b->shape_corr.push_back(corr);
+    b->beta.push_back(beta);
+    b->newton_its.push_back(newton_its);
+    PetscCall(AppendRow(lat, z, &b->z0));
+    const PetscInt k = (PetscInt)b->energy.size() - 1;
+    if (corr < o.interaction_corr) {
+      b->interactions.push_back(k);
+      PetscCall(PetscPrintf(comm, "  [%s] modal interaction at point %" PetscInt_FMT ": shape correlation %.3f, MCR %.3f -> %.3f, omega %.6f, E %.4g\n", name,
+                            k, (double)corr, (double)b->mcr[k - 1], (double)mcr, (double)b->omega[k], (double)e.Total()));
+    }
+    if (o.verbose)
+      PetscCall(PetscPrintf(comm, "  [%s] %4" PetscInt_FMT "  E = %-11.5g omega = %.8f  MCR = %.4f  Newton %" PetscInt_FMT "  |beta| = %.1e\n", name, k,
+                            (double)e.Total(), (double)(2 * PETSC_PI / T), (double)mcr, newton_its, (double)std::abs(beta)));
+    if (e.Total() >= o.energy_max) {
+      b->stop_reason = "reached -cont_energy_max";
+      b->reached_max = true;
+      break;
+    }
+    if ((PetscInt)b->energy.size() >= o.max_points) {
+      b->stop_reason = "reached -cont_max_points";
+      break;
+    }
+    if (e.Total() < 0.1 * o.energy_min) {
+      b->stop_reason = "the branch returned below -cont_energy_min";
+      break;
+    }
+    // Next point: predictor + corrector, shrinking ds on failure or too large a change.
+    PetscCall(VecCopy(X, Xprev));
+    PetscCall(VecCopy(t, tprev));
+    PetscCall(VecCopy(z, zprev));
+    PetscCall(VecNorm(z, NORM_2, &znorm));
+    bool accepted = false;
+    while (!accepted) {
+      if (ds < o.ds_min * znorm) break;
+      PetscCall(VecWAXPY(Xpred, ds, tprev, Xprev));
+      PetscCall(VecCopy(Xpred, X));
+      PetscCall(shoot.SetArclengthConstraint(zprev, tprev, Xpred));
+      PetscCall(shoot.Solve(X, &ok, &its));
+      if (ok) {
+        PetscReal dz;
+        PetscCall(shoot.Unpack(X, z, &T, &beta));
+        PetscCall(VecAXPY(z, -1.0, zprev));
+        PetscCall(VecNorm(z, NORM_2, &dz));
+        ok = dz <= o.max_change * znorm * 1.5;
+      }
+      if (!ok) {
+        ds *= 0.5;
+        continue;
+      }
+      accepted = true;
+    }
+    if (!accepted) {
+      b->stop_reason = "step collapse (Newton failed or the orbit changed too fast at every step size): see the last points";
+      break;
+    }
+    newton_its = its;
+    PetscCall(shoot.Tangent(X, tprev, t));
+    // Step control: Newton effort, then the cap from the largest change of the orbit.
+    if (its <= o.newton_target - 1) ds *= 1.6;
+    else if (its > o.newton_target + 1) ds *= 0.6;
+    PetscCall(shoot.Unpack(X, z, &T, &beta));
+    PetscCall(VecNorm(z, NORM_2, &znorm));
+    ds = std::min(ds, o.max_change * znorm);
+  }
+  PetscCall(PetscPrintf(comm, "  [%s] %zu points, E %.4g .. %.4g, omega %.6f .. %.6f: %s\n", name, b->energy.size(), (double)b->energy.front(),
+                        (double)b->energy.back(), (double)b->omega.front(), (double)b->omega.back(), b->stop_reason.c_str()));
+  PetscFunctionReturn(0);
+}
+
+} // namespace nltopo

@@ -1,0 +1,38 @@
+#pragma once
+// Pseudo-arclength continuation of an NNM family in X = (z0, T, beta):
+// tangent predictor X + ds t, Newton corrector with the arclength constraint
+// t . (X - X_pred) = 0 and the Poincare phase condition through the previous
+// orbit, tangent of the family from J t = e_last (oriented along the previous
+// tangent, so folds in T or E are passed, not reversed), adaptive ds from the
+// Newton iteration count and a maximum relative change of the orbit per step.
+// Stops at -cont_energy_max, after -cont_max_points, or when ds collapses
+// (reported, never silent). A drop of the shape correlation between
+// consecutive orbits flags a modal interaction.
+#include "orbits/shooting.hpp"
+
+namespace nltopo {
+
+struct ContinuationOptions {
+  PetscReal energy_min = 1e-5, energy_max = 1e3;
+  PetscInt max_points = 1000;
+  PetscReal max_change = 0.2;       // max ||z0_new - z0_old|| / ||z0_old|| per step
+  PetscReal ds_min = 1e-9;          // relative to ||z0||: below it the branch stops
+  PetscInt newton_target = 4;       // grow ds below, shrink above
+  PetscReal interaction_corr = 0.9; // shape correlation below this flags a modal interaction
+  PetscBool verbose = PETSC_TRUE;
+};
+PetscErrorCode ContinuationOptionsFromOptions(MPI_Comm comm, ContinuationOptions *o);
+
+struct Branch {
+  std::vector<PetscReal> energy, omega, period, mcr, shape_corr, beta;
+  std::vector<PetscInt> newton_its;
+  std::vector<PetscReal> z0;  // rank 0: npts x 2N rows [u_1..u_N, v_1..v_N]
+  std::vector<PetscInt> interactions; // point indices flagged as modal interactions
+  std::string stop_reason;
+  bool reached_max = false;
+};
+
+// Continues the family through the orbit guess (u_guess, v = 0) of period T_guess.
+PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, const ContinuationOptions &o, const char *name, Branch *b);
+
+} // namespace nltopo

@@ -1,0 +1,217 @@
+#include "orbits/flow.hpp"
+#include "core/log.hpp"
+#include <cstring>
+
+namespace nltopo {
+
+PetscErrorCode FlowOptionsFromOptions(MPI_Comm comm, FlowOptions *o)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, "nnm_", "Periodic-orbit flow (TS options: -nnm_ts_*)", NULL);
+  PetscCall(PetscOptionsInt("-steps_per_period", "Fixed RK steps per period of the shooting integration", NULL, o->steps, &o->steps, NULL));
+  PetscOptionsEnd();
+  PetscCheck(o->steps >= 8, comm, PETSC_ERR_USER, "-nnm_steps_per_period must be >= 8, got %" PetscInt_FMT, o->steps);
+  PetscFunctionReturn(0);
+}
+
+namespace {
+PetscErrorCode FlowRhs(TS ts, PetscReal t, Vec z, Vec f, void *ctx)
+{
+  PetscFunctionBeginUser;
+  PetscCall(static_cast<PeriodicFlow *>(ctx)->EvalRhs(t, z, f));
+  PetscFunctionReturn(0);
+}
+PetscErrorCode FlowJacobian(TS ts, PetscReal t, Vec z, Mat A, Mat P, void *ctx)
+{
+  PetscFunctionBeginUser;
+  PetscCall(static_cast<PeriodicFlow *>(ctx)->EvalJacobian(z, P));
+  PetscFunctionReturn(0);
+}
+PetscErrorCode FlowJacobianP(TS ts, PetscReal t, Vec z, Mat Jp, void *ctx)
+{
+  PetscFunctionBeginUser;
+  PetscCall(static_cast<PeriodicFlow *>(ctx)->EvalJacobianP(z, Jp));
+  PetscFunctionReturn(0);
+}
+} // namespace
+
+PeriodicFlow::~PeriodicFlow() { delete rhs_; }
+
+PetscErrorCode PeriodicFlow::Setup(const Lattice &lat, const FlowOptions &o)
+{
+  const PetscInt n = 2 * lat.N(), nl = 2 * lat.OwnedCount();
+  PetscFunctionBeginUser;
+  lat_ = &lat;
+  opt_ = o;
+  delete rhs_;
+  rhs_ = new Rhs(lat, nullptr);
+  PetscCall(lat.CreateStateMatrix(J_.out()));
+  PetscCall(MatCreateDense(lat.Comm(), nl, PETSC_DECIDE, n, n + 1, NULL, Jp_mono_.out()));
+  PetscCall(MatCreateDense(lat.Comm(), nl, PETSC_DECIDE, n, 2, NULL, Jp_tlm_.out()));
+  PetscCall(MatCreateDense(lat.Comm(), nl, PETSC_DECIDE, n, 2, NULL, S_tlm_.out()));
+  PetscCall(CreateTS(ts_.out(), NULL));
+  PetscCall(CreateTS(ts_mono_.out(), Jp_mono_));
+  PetscCall(CreateTS(ts_tlm_.out(), Jp_tlm_));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PeriodicFlow::CreateTS(TS *ts, Mat jacp)
+{
+  TSAdapt adapt;
+  TSAdaptType atype;
+  PetscBool none;
+  PetscFunctionBeginUser;
+  PetscCall(TSCreate(lat_->Comm(), ts));
+  PetscCall(TSSetOptionsPrefix(*ts, "nnm_"));
+  PetscCall(TSSetProblemType(*ts, TS_NONLINEAR));
+  PetscCall(TSSetType(*ts, TSRK));
+  PetscCall(TSRKSetType(*ts, TSRK5DP));
+  PetscCall(TSGetAdapt(*ts, &adapt));
+  PetscCall(TSAdaptSetType(adapt, TSADAPTNONE));
+  PetscCall(TSSetRHSFunction(*ts, NULL, FlowRhs, this));
+  PetscCall(TSSetRHSJacobian(*ts, J_, J_, FlowJacobian, this));
+  if (jacp) PetscCall(TSSetRHSJacobianP(*ts, jacp, FlowJacobianP, this));
+  PetscCall(TSSetExactFinalTime(*ts, TS_EXACTFINALTIME_MATCHSTEP));
+  PetscCall(TSSetFromOptions(*ts));
+  PetscCall(TSGetAdapt(*ts, &adapt));
+  PetscCall(TSAdaptGetType(adapt, &atype));
+  PetscCall(PetscStrcmp(atype, TSADAPTNONE, &none));
+  PetscCheck(none, lat_->Comm(), PETSC_ERR_USER,
+             "-nnm_ts_adapt_type must be none (fixed steps T/n): PETSc 3.18 forward sensitivities are wrong with adaptive RK; got %s", atype);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PeriodicFlow::EvalRhs(PetscReal t, Vec z, Vec f)
+{
+  PetscFunctionBeginUser;
+  PetscCall(rhs_->Evaluate(t, z, f));
+  if (beta_ != 0) { // f + beta grad E = [f_u - beta f_v, f_v + beta f_u]
+    PetscScalar *a;
+    const PetscInt m = lat_->OwnedCount();
+    PetscCall(VecGetArray(f, &a));
+    for (PetscInt k = 0; k < m; k++) {
+      const PetscScalar fu = a[k], fv = a[m + k];
+      a[k] = fu - beta_ * fv;
+      a[m + k] = fv + beta_ * fu;
+    }
+    PetscCall(VecRestoreArray(f, &a));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PeriodicFlow::EvalJacobian(Vec z, Mat A)
+{
+  PetscFunctionBeginUser;
+  PetscCall(lat_->AssembleStateJacobian(z, A, beta_));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PeriodicFlow::Field(Vec z, Vec f)
+{
+  PetscFunctionBeginUser;
+  PetscCall(rhs_->Evaluate(0, z, f));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PeriodicFlow::GradEnergy(Vec z, Vec g)
+{
+  PetscScalar *a;
+  const PetscInt m = lat_->OwnedCount();
+  PetscFunctionBeginUser;
+  PetscCall(rhs_->Evaluate(0, z, g));
+  PetscCall(VecGetArray(g, &a));
+  for (PetscInt k = 0; k < m; k++) { // [f_u, f_v] = [v, -dV/du] -> [dV/du, v]
+    const PetscScalar fu = a[k];
+    a[k] = -a[m + k];
+    a[m + k] = fu;
+  }
+  PetscCall(VecRestoreArray(g, &a));
+  PetscFunctionReturn(0);
+}
+
+// d f / d beta = grad E(z): the last column of the parameter Jacobian.
+PetscErrorCode PeriodicFlow::EvalJacobianP(Vec z, Mat Jp)
+{
+  PetscInt ncol;
+  Vec g, col;
+  PetscFunctionBeginUser;
+  PetscCall(MatGetSize(Jp, NULL, &ncol));
+  PetscCall(MatZeroEntries(Jp));
+  PetscCall(VecDuplicate(z, &g));
+  PetscCall(GradEnergy(z, g));
+  PetscCall(MatDenseGetColumnVecWrite(Jp, ncol - 1, &col));
+  PetscCall(VecCopy(g, col));
+  PetscCall(MatDenseRestoreColumnVecWrite(Jp, ncol - 1, &col));
+  PetscCall(VecDestroy(&g));
+  PetscCall(MatAssemblyBegin(Jp, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(Jp, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PeriodicFlow::Run(TS ts, Vec z0, PetscReal T, Vec zT)
+{
+  TSConvergedReason reason;
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(z0, zT));
+  PetscCall(TSSetTime(ts, 0.0));
+  PetscCall(TSSetStepNumber(ts, 0));
+  PetscCall(TSSetTimeStep(ts, T / opt_.steps));
+  PetscCall(TSSetMaxTime(ts, T));
+  PetscCall(TSSetMaxSteps(ts, opt_.steps));
+  PetscCall(TSSolve(ts, zT));
+  PetscCall(TSGetConvergedReason(ts, &reason));
+  PetscCheck(reason >= 0, lat_->Comm(), PETSC_ERR_NOT_CONVERGED, "periodic-orbit integration failed: %s", TSConvergedReasons[reason]);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PeriodicFlow::Integrate(Vec z0, PetscReal T, PetscReal beta, Vec zT)
+{
+  PetscFunctionBeginUser;
+  beta_ = beta;
+  PetscCall(Run(ts_, z0, T, zT));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PeriodicFlow::CreateSensitivityMatrix(Mat *S) const
+{
+  PetscFunctionBeginUser;
+  PetscCall(MatCreateDense(lat_->Comm(), 2 * lat_->OwnedCount(), PETSC_DECIDE, 2 * lat_->N(), 2 * lat_->N() + 1, NULL, S));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PeriodicFlow::IntegrateWithMonodromy(Vec z0, PetscReal T, PetscReal beta, Vec zT, Mat S)
+{
+  PetscFunctionBeginUser;
+  beta_ = beta;
+  PetscCall(MatZeroEntries(S));
+  PetscCall(MatShift(S, 1.0)); // [I | 0]: initial-condition columns, then the beta column
+  PetscCall(TSForwardSetSensitivities(ts_mono_, 2 * lat_->N() + 1, S));
+  PetscCall(Run(ts_mono_, z0, T, zT));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PeriodicFlow::IntegrateWithTangent(Vec z0, PetscReal T, PetscReal beta, Vec dz, PetscReal dbeta, Vec zT, Vec w)
+{
+  Vec c;
+  PetscFunctionBeginUser;
+  beta_ = beta;
+  // Column 0: the direction (dz, dbeta) combined: d/deps z(T; z0 + eps dz, beta + eps dbeta);
+  // the parameter Jacobian's last column (grad E) times dbeta enters through column 1.
+  PetscCall(MatZeroEntries(S_tlm_));
+  PetscCall(MatDenseGetColumnVecWrite(S_tlm_, 0, &c));
+  PetscCall(VecCopy(dz, c));
+  PetscCall(MatDenseRestoreColumnVecWrite(S_tlm_, 0, &c));
+  PetscCall(TSForwardSetSensitivities(ts_tlm_, 2, S_tlm_));
+  PetscCall(Run(ts_tlm_, z0, T, zT));
+  PetscCall(MatDenseGetColumnVecRead(S_tlm_, 0, &c));
+  PetscCall(VecCopy(c, w));
+  PetscCall(MatDenseRestoreColumnVecRead(S_tlm_, 0, &c));
+  if (dbeta != 0) {
+    PetscCall(MatDenseGetColumnVecRead(S_tlm_, 1, &c));
+    PetscCall(VecAXPY(w, dbeta, c));
+    PetscCall(MatDenseRestoreColumnVecRead(S_tlm_, 1, &c));
+  }
+  PetscFunctionReturn(0);
+}
+
+} // namespace nltopo

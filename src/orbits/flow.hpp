@@ -1,0 +1,62 @@
+#pragma once
+// The flow of the free lattice over one period, for periodic orbits (NNMs):
+//   z' = f(z) + beta grad E(z),   grad E = [K u + f_NL(u), v] = [-f_v, f_u],
+// where beta is the unfolding parameter of Munoz-Almaraz et al. (Physica D 181,
+// 2003): E is conserved by f, so dE/dt = beta |grad E|^2 and periodic orbits
+// exist only at beta = 0; as an unknown it makes the shooting system square and
+// regular along a family of orbits.
+//
+// Integration uses PETSc TS RK (prefix -nnm_ts_, default 5dp) with FIXED steps
+// dt = T / n: PETSc 3.18's forward sensitivities are wrong with adaptive RK
+// (guide section b), and fixed steps make the flow a smooth function of T.
+// The monodromy and the beta column come from TS forward sensitivities with
+// the assembled state Jacobian (the "dense" route), or one tangent direction at
+// a time (the "matrix-free" route).
+#include "effects/rhs.hpp"
+
+namespace nltopo {
+
+struct FlowOptions {
+  PetscInt steps = 256; // fixed RK steps per period
+};
+PetscErrorCode FlowOptionsFromOptions(MPI_Comm comm, FlowOptions *o);
+
+class PeriodicFlow {
+public:
+  ~PeriodicFlow();
+  PetscErrorCode Setup(const Lattice &lat, const FlowOptions &o);
+
+  // zT = z(T; z0, beta).
+  PetscErrorCode Integrate(Vec z0, PetscReal T, PetscReal beta, Vec zT);
+  // Also S = [dz(T)/dz0 | dz(T)/dbeta] (dense 2N x (2N+1), from CreateSensitivityMatrix).
+  PetscErrorCode IntegrateWithMonodromy(Vec z0, PetscReal T, PetscReal beta, Vec zT, Mat S);
+  // Also w = dz(T)/dz0 dz + dz(T)/dbeta dbeta (one tangent-linear direction).
+  PetscErrorCode IntegrateWithTangent(Vec z0, PetscReal T, PetscReal beta, Vec dz, PetscReal dbeta, Vec zT, Vec w);
+  PetscErrorCode CreateSensitivityMatrix(Mat *S) const;
+
+  // f(z) of the free lattice (beta = 0) and grad E(z).
+  PetscErrorCode Field(Vec z, Vec f);
+  PetscErrorCode GradEnergy(Vec z, Vec g);
+
+  const Lattice &Lat() const { return *lat_; }
+  PetscInt RhsEvaluations() const { return rhs_->Counters().rhs; }
+  PetscInt Steps() const { return opt_.steps; }
+
+  // TS callbacks (public for the C trampolines).
+  PetscErrorCode EvalRhs(PetscReal t, Vec z, Vec f);
+  PetscErrorCode EvalJacobian(Vec z, Mat A);
+  PetscErrorCode EvalJacobianP(Vec z, Mat Jp);
+  PetscReal beta_ = 0;
+
+private:
+  PetscErrorCode CreateTS(TS *ts, Mat jacp);
+  PetscErrorCode Run(TS ts, Vec z0, PetscReal T, Vec zT);
+
+  const Lattice *lat_ = nullptr;
+  FlowOptions opt_;
+  Rhs *rhs_ = nullptr;
+  OwnedTS ts_, ts_mono_, ts_tlm_;
+  OwnedMat J_, Jp_mono_, Jp_tlm_, S_tlm_;
+};
+
+} // namespace nltopo

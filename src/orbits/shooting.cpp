@@ -1,0 +1,360 @@
+#include "orbits/shooting.hpp"
+#include "core/log.hpp"
+
+namespace nltopo {
+
+static const char *const kJacobianNames[] = {"dense", "mf"};
+
+PetscErrorCode ShootingOptionsFromOptions(MPI_Comm comm, ShootingOptions *o)
+{
+  PetscInt j = static_cast<PetscInt>(o->jacobian);
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, "nnm_", "Shooting Newton (SNES options: -nnm_snes_*, -nnm_ksp_*, -nnm_pc_*)", NULL);
+  PetscCall(PetscOptionsEList("-jacobian", "Shooting Jacobian: dense (monodromy by forward sensitivities) or mf (one tangent-linear integration per product); -nnm_snes_mf for finite differences",
+                              NULL, kJacobianNames, 2, kJacobianNames[j], &j, NULL));
+  PetscOptionsEnd();
+  o->jacobian = static_cast<ShootingJacobian>(j);
+  PetscFunctionReturn(0);
+}
+
+namespace {
+PetscErrorCode ShootResidual(SNES snes, Vec X, Vec F, void *ctx)
+{
+  PetscFunctionBeginUser;
+  PetscCall(static_cast<Shooting *>(ctx)->Residual(X, F));
+  PetscFunctionReturn(0);
+}
+PetscErrorCode ShootJacobian(SNES snes, Vec X, Mat A, Mat P, void *ctx)
+{
+  PetscFunctionBeginUser;
+  PetscCall(static_cast<Shooting *>(ctx)->Jacobian(X, P));
+  if (A != P) {
+    PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+  }
+  PetscFunctionReturn(0);
+}
+PetscErrorCode ShootShellMult(Mat A, Vec x, Vec y)
+{
+  Shooting *s;
+  PetscFunctionBeginUser;
+  PetscCall(MatShellGetContext(A, &s));
+  PetscCall(s->ShellMult(x, y));
+  PetscFunctionReturn(0);
+}
+} // namespace
+
+PetscErrorCode Shooting::Setup(PeriodicFlow &flow, const ShootingOptions &o)
+{
+  MPI_Comm comm;
+  KSP ksp;
+  PC pc;
+  PetscFunctionBeginUser;
+  flow_ = &flow;
+  lat_ = &flow.Lat();
+  opt_ = o;
+  comm = lat_->Comm();
+  PetscCallMPI(MPI_Comm_rank(comm, &rank_));
+  PetscCallMPI(MPI_Comm_size(comm, &size_));
+  n_ = 2 * lat_->N();
+  nlocx_ = 2 * lat_->OwnedCount() + (rank_ == size_ - 1 ? 2 : 0);
+  PetscCall(lat_->CreateStateVector(z_.out()));
+  for (OwnedVec *v : {&zT_, &fref_, &zref_, &g_, &w_, &zlin_, &fT_}) PetscCall(VecDuplicate(z_, v->out()));
+  PetscCall(CreateUnknowns(tan_.out()));
+  PetscCall(VecDuplicate(tan_, Xpred_.out()));
+  PetscCall(VecDuplicate(tan_, work_.out()));
+  PetscCall(VecDuplicate(tan_, F_.out()));
+  PetscCall(SNESCreate(comm, snes_.out()));
+  PetscCall(SNESSetOptionsPrefix(snes_, "nnm_"));
+  PetscCall(SNESSetFunction(snes_, F_, ShootResidual, this));
+  PetscCall(SNESGetKSP(snes_, &ksp));
+  PetscCall(KSPGetPC(ksp, &pc));
+  if (o.jacobian == ShootingJacobian::Dense) {
+    PetscCall(flow.CreateSensitivityMatrix(S_.out()));
+    const PetscInt M = n_ + 2;
+    PetscCall(MatCreateAIJ(comm, nlocx_, nlocx_, M, M, nlocx_, NULL, M - nlocx_, NULL, J_.out())); // dense pattern
+    PetscCall(SNESSetJacobian(snes_, J_, J_, ShootJacobian, this));
+    PetscCall(KSPSetType(ksp, KSPPREONLY));
+    // Pseudo-inverse by SVD with tiny singular values dropped: at the linear
+    // limit of the insulated branch the left-end edge mode has the same period
+    // (model.md "Trap"), a near-null direction of the shooting Jacobian
+    // (singular value ~1e-11 against ~1e-2 for the others); a plain LU would
+    // send Newton along it. Dropping it keeps Newton quadratic and on the
+    // branch. Small N only (the dense route); -nnm_pc_type lu
+    // -nnm_pc_factor_mat_solver_type mumps is the pivoting alternative.
+    PetscCall(PCSetType(pc, PCSVD));
+    PetscBool has;
+    PetscCall(PetscOptionsHasName(NULL, NULL, "-nnm_pc_svd_zero_sing", &has));
+    if (!has) PetscCall(PetscOptionsSetValue(NULL, "-nnm_pc_svd_zero_sing", "1e-9")); // PCSVD has no setter in 3.18
+    
+  } else {
+    PetscCall(MatCreateShell(comm, nlocx_, nlocx_, n_ + 2, n_ + 2, this, J_.out()));
+    PetscCall(MatShellSetOperation(J_, MATOP_MULT, (void (*)(void))ShootShellMult));
+    PetscCall(SNESSetJacobian(snes_, J_, J_, ShootJacobian, this));
+    PetscCall(KSPSetType(ksp, KSPGMRES));
+    PetscCall(PCSetType(pc, PCNONE));
+    PetscCall(KSPSetTolerances(ksp, 1e-10, 1e-14, PETSC_DEFAULT, 400));
+  }
+  PetscCall(SNESSetTolerances(snes_, 1e-12, 1e-10, 1e-14, 12, PETSC_DEFAULT));
+  PetscCall(SNESSetFromOptions(snes_));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Shooting::CreateUnknowns(Vec *X) const
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecCreateMPI(lat_->Comm(), nlocx_, n_ + 2, X));
+  PetscFunctionReturn(0);
+}
+
+// X's state entries have the state vector's global indices; T and beta are 2N, 2N+1 (last rank).
+PetscErrorCode Shooting::Pack(Vec z, PetscReal T, PetscReal beta, Vec X) const
+{
+  const PetscScalar *a;
+  PetscScalar *x;
+  const PetscInt m = 2 * lat_->OwnedCount();
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(z, &a));
+  PetscCall(VecGetArray(X, &x));
+  PetscCall(PetscArraycpy(x, a, m));
+  if (rank_ == size_ - 1) {
+    x[m] = T;
+    x[m + 1] = beta;
+  }
+  PetscCall(VecRestoreArray(X, &x));
+  PetscCall(VecRestoreArrayRead(z, &a));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Shooting::Unpack(Vec X, Vec z, PetscReal *T, PetscReal *beta) const
+{
+  const PetscScalar *x;
+  PetscScalar *a;
+  PetscReal tb[2] = {0, 0};
+  const PetscInt m = 2 * lat_->OwnedCount();
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(X, &x));
+  PetscCall(VecGetArray(z, &a));
+  PetscCall(PetscArraycpy(a, x, m));
+  if (rank_ == size_ - 1) {
+    tb[0] = x[m];
+    tb[1] = x[m + 1];
+  }
+  PetscCall(VecRestoreArray(z, &a));
+  PetscCall(VecRestoreArrayRead(X, &x));
+  PetscCallMPI(MPI_Bcast(tb, 2, MPIU_REAL, size_ - 1, lat_->Comm()));
+  *T = tb[0];
+  *beta = tb[1];
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Shooting::SetEnergyConstraint(Vec zref, PetscReal energy)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(zref, zref_));
+  PetscCall(flow_->Field(zref_, fref_));
+  energy_mode_ = true;
+  energy_target_ = energy;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Shooting::SetArclengthConstraint(Vec zref, Vec tangent, Vec Xpred)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(zref, zref_));
+  PetscCall(flow_->Field(zref_, fref_));
+  PetscCall(VecCopy(tangent, tan_));
+  PetscCall(VecCopy(Xpred, Xpred_));
+  energy_mode_ = false;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Shooting::Residual(Vec X, Vec F)
+{
+  PetscReal T, beta, p, c;
+  PetscScalar *f;
+  const PetscScalar *a, *b;
+  const PetscInt m = 2 * lat_->OwnedCount();
+  PetscFunctionBeginUser;
+  nres_++;
+  PetscCall(Unpack(X, z_, &T, &beta));
+  PetscCall(flow_->Integrate(z_, T, beta, zT_));
+  // phase condition and constraint (collective)
+  PetscCall(VecWAXPY(w_, -1.0, zref_, z_));
+  PetscCall(VecDot(fref_, w_, &p));
+  if (energy_mode_) {
+    EnergyParts e;
+    PetscCall(lat_->Energy(z_, &e));
+    c = e.Total() - energy_target_;
+  } else {
+    PetscCall(VecWAXPY(work_, -1.0, Xpred_, X));
+    PetscCall(VecDot(tan_, work_, &c));
+  }
+  PetscCall(VecGetArray(F, &f));
+  PetscCall(VecGetArrayRead(zT_, &a));
+  PetscCall(VecGetArrayRead(z_, &b));
+  for (PetscInt k = 0; k < m; k++) f[k] = a[k] - b[k];
+  PetscCall(VecRestoreArrayRead(z_, &b));
+  PetscCall(VecRestoreArrayRead(zT_, &a));
+  if (rank_ == size_ - 1) {
+    f[m] = p;
+    f[m + 1] = c;
+  }
+  PetscCall(VecRestoreArray(F, &f));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Shooting::GatherToAll(Vec v, std::vector<PetscReal> *out) const
+{
+  VecScatter sc;
+  Vec s;
+  const PetscScalar *a;
+  PetscInt n;
+  PetscFunctionBeginUser;
+  PetscCall(VecScatterCreateToAll(v, &sc, &s));
+  PetscCall(VecScatterBegin(sc, v, s, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(sc, v, s, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGetSize(s, &n));
+  PetscCall(VecGetArrayRead(s, &a));
+  out->assign(a, a + n);
+  PetscCall(VecRestoreArrayRead(s, &a));
+  PetscCall(VecScatterDestroy(&sc));
+  PetscCall(VecDestroy(&s));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Shooting::Jacobian(Vec X, Mat J)
+{
+  PetscReal T, beta;
+  std::vector<PetscReal> fr, cr;
+  PetscFunctionBeginUser;
+  njac_++;
+  PetscCall(Unpack(X, z_, &T, &beta));
+  if (energy_mode_) PetscCall(flow_->GradEnergy(z_, g_));
+  PetscCall(GatherToAll(fref_, &fr));
+  if (energy_mode_) PetscCall(GatherToAll(g_, &cr));
+  else PetscCall(GatherToAll(tan_, &cr));
+  if (opt_.jacobian == ShootingJacobian::MatrixFree) { // remember the linearisation point
+    PetscCall(VecCopy(z_, zlin_));
+    Tlin_ = T;
+    blin_ = beta;
+    PetscCall(flow_->Integrate(z_, T, beta, zT_));
+    PetscCall(flow_->EvalRhs(T, zT_, fT_));
+    cr_ = cr;
+    fr_ = fr;
+    PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(flow_->IntegrateWithMonodromy(z_, T, beta, zT_, S_));
+  PetscCall(flow_->EvalRhs(T, zT_, fT_)); // dz(T)/dT = f_beta(z(T))
+  const PetscScalar *s, *ft;
+  PetscInt lda, rs;
+  const PetscInt m = 2 * lat_->OwnedCount(), M = n_ + 2;
+  std::vector<PetscInt> cols(M);
+  std::vector<PetscScalar> row(M);
+  for (PetscInt c = 0; c < M; c++) cols[c] = c;
+  PetscCall(MatZeroEntries(J));
+  PetscCall(VecGetOwnershipRange(z_, &rs, NULL));
+  PetscCall(MatDenseGetLDA(S_, &lda));
+  PetscCall(MatDenseGetArrayRead(S_, &s));
+  PetscCall(VecGetArrayRead(fT_, &ft));
+  for (PetscInt k = 0; k < m; k++) {
+    const PetscInt r = rs + k;
+    for (PetscInt c = 0; c < n_; c++) row[c] = s[k + c * lda] - (r == c ? 1.0 : 0.0);
+    row[n_] = ft[k];
+    row[n_ + 1] = s[k + n_ * lda];
+    PetscCall(MatSetValues(J, 1, &r, M, cols.data(), row.data(), INSERT_VALUES));
+  }
+  PetscCall(VecRestoreArrayRead(fT_, &ft));
+  PetscCall(MatDenseRestoreArrayRead(S_, &s));
+  if (rank_ == size_ - 1) {
+    PetscInt r = n_;
+    for (PetscInt c = 0; c < n_; c++) row[c] = fr[c];
+    row[n_] = row[n_ + 1] = 0;
+    PetscCall(MatSetValues(J, 1, &r, M, cols.data(), row.data(), INSERT_VALUES));
+    r = n_ + 1;
+    for (PetscInt c = 0; c < M; c++) row[c] = c < (PetscInt)cr.size() ? cr[c] : 0.0;
+    PetscCall(MatSetValues(J, 1, &r, M, cols.data(), row.data(), INSERT_VALUES));
+  }
+  PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Shooting::ShellMult(Vec x, Vec y)
+{
+  PetscReal dT, db, p = 0, c = 0;
+  PetscScalar *yv;
+  const PetscScalar *wv, *dv, *ft, *xv;
+  const PetscInt m = 2 * lat_->OwnedCount();
+  PetscInt rs;
+  PetscFunctionBeginUser;
+  nlin_++;
+  PetscCall(Unpack(x, g_, &dT, &db)); // g_ as scratch for dz
+  PetscCall(flow_->IntegrateWithTangent(zlin_, Tlin_, blin_, g_, db, zT_, w_));
+  // rows 2N, 2N+1: fref . dz and c_X . x, with the gathered rows
+  PetscCall(VecGetOwnershipRange(x, &rs, NULL));
+  PetscCall(VecGetArrayRead(x, &xv));
+  PetscInt nloc;
+  PetscCall(VecGetLocalSize(x, &nloc));
+  PetscReal loc[2] = {0, 0}, glob[2];
+  for (PetscInt k = 0; k < nloc; k++) {
+    const PetscInt gi = rs + k;
+    if (gi < n_) loc[0] += fr_[gi] * xv[k];
+    if (gi < (PetscInt)cr_.size()) loc[1] += cr_[gi] * xv[k];
+  }
+  PetscCall(VecRestoreArrayRead(x, &xv));
+  PetscCall(MPIU_Allreduce(loc, glob, 2, MPIU_REAL, MPIU_SUM, lat_->Comm()));
+  p = glob[0];
+  c = glob[1];
+  PetscCall(VecGetArray(y, &yv));
+  PetscCall(VecGetArrayRead(w_, &wv));
+  PetscCall(VecGetArrayRead(g_, &dv));
+  PetscCall(VecGetArrayRead(fT_, &ft));
+  for (PetscInt k = 0; k < m; k++) yv[k] = wv[k] - dv[k] + ft[k] * dT;
+  PetscCall(VecRestoreArrayRead(fT_, &ft));
+  PetscCall(VecRestoreArrayRead(g_, &dv));
+  PetscCall(VecRestoreArrayRead(w_, &wv));
+  if (rank_ == size_ - 1) {
+    yv[m] = p;
+    yv[m + 1] = c;
+  }
+  PetscCall(VecRestoreArray(y, &yv));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Shooting::Solve(Vec X, bool *converged, PetscInt *its)
+{
+  SNESConvergedReason reason;
+  PetscFunctionBeginUser;
+  PetscCall(SNESSolve(snes_, NULL, X));
+  PetscCall(SNESGetConvergedReason(snes_, &reason));
+  PetscCall(SNESGetIterationNumber(snes_, its));
+  *converged = reason > 0;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Shooting::Tangent(Vec X, Vec t_prev, Vec t)
+{
+  KSP ksp;
+  PetscReal nrm, d;
+  PetscFunctionBeginUser;
+  // Jacobian at the solution, then J t = e_last.
+  PetscCall(Jacobian(X, J_));
+  PetscCall(SNESGetKSP(snes_, &ksp));
+  PetscCall(KSPSetOperators(ksp, J_, J_));
+  PetscCall(VecZeroEntries(work_));
+  if (rank_ == size_ - 1) PetscCall(VecSetValue(work_, n_ + 1, 1.0, INSERT_VALUES));
+  PetscCall(VecAssemblyBegin(work_));
+  PetscCall(VecAssemblyEnd(work_));
+  PetscCall(KSPSolve(ksp, work_, t));
+  PetscCall(VecNormalize(t, &nrm));
+  if (t_prev) {
+    PetscCall(VecDot(t, t_prev, &d));
+    if (d < 0) PetscCall(VecScale(t, -1.0));
+  }
+  PetscFunctionReturn(0);
+}
+
+} // namespace nltopo

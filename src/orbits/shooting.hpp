@@ -1,0 +1,78 @@
+#pragma once
+// Periodic orbits by shooting on SNES (prefix -nnm_): unknowns X = (z0, T, beta)
+// (2N + 2 entries; the last rank also owns T and beta), residual
+//   H   = z(T; z0, beta) - z0                 (2N)
+//   p   = f(z_ref) . (z0 - z_ref)             (1)  Poincare phase condition:
+//         z0 lies on the section through z_ref orthogonal to the flow there,
+//         which removes the time-shift freedom of autonomous orbits
+//   c   = E(z0) - E_target                    (1)  on the first point, or
+//   c   = t_ref . (X - X_pred)                     pseudo-arclength afterwards.
+// beta is the unfolding parameter of flow.hpp (0 at every periodic orbit), so
+// the system is square and regular along an NNM family.
+//
+// Jacobian (-nnm_jacobian): "dense" assembles [[M - I, f(z(T)), dz/dbeta],
+// [f(z_ref)^T, 0, 0], [c_X^T]] from forward sensitivities (small N); "mf" is a
+// MATSHELL whose product integrates one tangent-linear direction (any N;
+// Krylov without preconditioner); -nnm_snes_mf gives finite differences.
+#include "orbits/flow.hpp"
+#include <string>
+#include <vector>
+
+namespace nltopo {
+
+enum class ShootingJacobian { Dense = 0, MatrixFree = 1 };
+
+struct ShootingOptions {
+  ShootingJacobian jacobian = ShootingJacobian::Dense;
+};
+PetscErrorCode ShootingOptionsFromOptions(MPI_Comm comm, ShootingOptions *o);
+
+class Shooting {
+public:
+  PetscErrorCode Setup(PeriodicFlow &flow, const ShootingOptions &o);
+
+  PetscErrorCode CreateUnknowns(Vec *X) const;
+  PetscErrorCode Pack(Vec z, PetscReal T, PetscReal beta, Vec X) const;
+  PetscErrorCode Unpack(Vec X, Vec z, PetscReal *T, PetscReal *beta) const;
+
+  // Constraint for the next solve.
+  PetscErrorCode SetEnergyConstraint(Vec zref, PetscReal energy);
+  PetscErrorCode SetArclengthConstraint(Vec zref, Vec tangent, Vec Xpred);
+
+  // Newton from X (in/out). converged false when SNES failed (X then holds the last iterate).
+  PetscErrorCode Solve(Vec X, bool *converged, PetscInt *its);
+  // Tangent of the family at the last solution: J t = e_last with the last
+  // Jacobian (dense route) or a fresh solve (mf route); normalised, t . t_prev > 0.
+  PetscErrorCode Tangent(Vec X, Vec t_prev, Vec t);
+
+  PeriodicFlow &Flow() { return *flow_; }
+  PetscInt JacobianEvaluations() const { return njac_; }
+  PetscInt ResidualEvaluations() const { return nres_; }
+  PetscInt LinearIterations() const { return nlin_; }
+
+  // SNES callbacks.
+  PetscErrorCode Residual(Vec X, Vec F);
+  PetscErrorCode Jacobian(Vec X, Mat J);
+  PetscErrorCode ShellMult(Vec x, Vec y);
+
+private:
+  PetscErrorCode GatherToAll(Vec v, std::vector<PetscReal> *out) const;
+
+  PeriodicFlow *flow_ = nullptr;
+  const Lattice *lat_ = nullptr;
+  ShootingOptions opt_;
+  PetscMPIInt rank_ = 0, size_ = 1;
+  PetscInt n_ = 0, nlocx_ = 0; // 2N, local size of X
+  OwnedSNES snes_;
+  OwnedMat J_, S_;
+  OwnedVec z_, zT_, fref_, zref_, g_, tan_, Xpred_, work_, w_, F_;
+  bool energy_mode_ = true;
+  PetscReal energy_target_ = 0;
+  // linearisation point of the matrix-free product
+  OwnedVec zlin_, fT_;
+  PetscReal Tlin_ = 0, blin_ = 0;
+  std::vector<PetscReal> fr_, cr_; // gathered phase and constraint rows
+  PetscInt njac_ = 0, nres_ = 0, nlin_ = 0;
+};
+
+} // namespace nltopo

@@ -1,0 +1,140 @@
+// -study continuation: NNM branches from linear modes by pseudo-arclength
+// continuation of periodic orbits (orbits/); /continuation/<branch> of outputs.md.
+#include "bands/linear_modes.hpp"
+#include "core/log.hpp"
+#include "io/output.hpp"
+#include "orbits/continuation.hpp"
+#include "studies/registry.hpp"
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+
+namespace nltopo {
+
+namespace {
+
+// Starting shape and linear frequency of a branch given by name or mode index.
+PetscErrorCode BranchStart(const Lattice &lat, const LinearModes &modes, const char *name, Vec u, PetscReal *omega, std::string *label)
+{
+  const NamedModes &nm = modes.Named();
+  MPI_Comm comm = lat.Comm();
+  PetscInt j = -1;
+  PetscFunctionBeginUser;
+  *label = name;
+  if (!std::strcmp(name, "insulated")) {
+    PetscCheck(modes.Insulated(), comm, PETSC_ERR_USER, "-cont_branch insulated: this layout has no insulated mode");
+    PetscCall(VecCopy(modes.Insulated(), u));
+    *omega = nm.insulated_omega;
+    PetscFunctionReturn(0);
+  }
+  if (!std::strcmp(name, "interface")) j = nm.interface;
+  else if (!std::strcmp(name, "acoustic_top")) j = nm.acoustic_top;
+  else if (!std::strcmp(name, "optical_bottom")) j = nm.optical_bottom;
+  else if (!std::strcmp(name, "optical_top")) j = nm.optical_top;
+  else {
+    const char *s = !std::strncmp(name, "mode", 4) ? name + 4 : name;
+    char *end;
+    const long k = std::strtol(s, &end, 10);
+    PetscCheck(*s && !*end, comm, PETSC_ERR_USER,
+               "-cont_branch %s: not one of insulated, interface, acoustic_top, optical_bottom, optical_top, mode<k> or an index", name);
+    j = (PetscInt)k;
+    *label = "mode" + std::to_string(k);
+  }
+  PetscCheck(j >= 0 && j < (PetscInt)modes.Omega().size(), comm, PETSC_ERR_USER, "-cont_branch %s: no such linear mode in this lattice", name);
+  PetscCall(modes.CopyMode(j, u));
+  *omega = modes.Omega()[j];
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode ContinuationStudy(MPI_Comm comm)
+{
+  LatticeParams lp;
+  LinearModesOptions mo;
+  FlowOptions fo;
+  ShootingOptions so;
+  ContinuationOptions co;
+  char *names[16];
+  PetscInt nb = 16;
+  PetscBool set;
+  std::string path;
+  OutputFile out;
+  Lattice lat;
+  LinearModes modes;
+  PeriodicFlow flow;
+  Shooting shoot;
+  PetscLogDouble t_start, t_end;
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t_start));
+  PetscCall(LogRegister());
+  PetscCall(PetscLogStagePush(Log().setup));
+  PetscCall(LatticeParamsFromOptions(comm, &lp));
+  PetscCall(LinearModesOptionsFromOptions(comm, &mo));
+  PetscCall(FlowOptionsFromOptions(comm, &fo));
+  PetscCall(ShootingOptionsFromOptions(comm, &so));
+  PetscCall(ContinuationOptionsFromOptions(comm, &co));
+  PetscOptionsBegin(comm, "cont_", "NNM branches", NULL);
+  PetscCall(PetscOptionsStringArray("-branch", "Comma-separated branches: insulated, interface, acoustic_top, optical_bottom, optical_top, mode<k> or k",
+                                    NULL, names, &nb, &set));
+  PetscOptionsEnd();
+  if (!set) {
+    PetscCall(PetscStrallocpy("insulated", &names[0]));
+    nb = 1;
+  }
+  PetscCall(OutputPathFromOptions(comm, "continuation", &path));
+  PetscCall(out.Open(comm, path));
+  PetscCall(lat.Setup(comm, lp));
+  PetscCall(modes.Compute(lat, mo));
+  PetscCall(flow.Setup(lat, fo));
+  PetscCall(shoot.Setup(flow, so));
+  PetscCall(PetscLogStagePop());
+
+  PetscCall(PetscPrintf(comm, "nltopo continuation: N = %" PetscInt_FMT ", %" PetscInt_FMT " branch(es), E %g .. %g, Jacobian %s\n", lat.N(), nb,
+                        (double)co.energy_min, (double)co.energy_max, so.jacobian == ShootingJacobian::Dense ? "dense" : "mf"));
+  OwnedVec u;
+  PetscCall(DMCreateGlobalVector(lat.SiteDM(), u.out()));
+  for (PetscInt k = 0; k < nb; k++) {
+    PetscReal omega;
+    std::string label;
+    Branch b;
+    PetscLogDouble b0, b1;
+    PetscCall(BranchStart(lat, modes, names[k], u, &omega, &label));
+    PetscCall(PetscTime(&b0));
+    PetscCall(PetscLogStagePush(Log().solve));
+    const PetscInt j0 = shoot.JacobianEvaluations(), r0 = shoot.ResidualEvaluations();
+    PetscCall(ContinueBranch(shoot, u, 2 * PETSC_PI / omega, co, label.c_str(), &b));
+    PetscCall(PetscLogStagePop());
+    PetscCall(PetscTime(&b1));
+    PetscCall(PetscLogStagePush(Log().write));
+    const std::string g = "/continuation/" + label;
+    PetscViewer v = out.Viewer();
+    std::vector<PetscReal> its(b.newton_its.begin(), b.newton_its.end());
+    PetscCall(WriteArray(v, g.c_str(), "energy", b.energy));
+    PetscCall(WriteArray(v, g.c_str(), "omega", b.omega));
+    PetscCall(WriteArray(v, g.c_str(), "period", b.period));
+    PetscCall(WriteArray(v, g.c_str(), "mcr", b.mcr));
+    PetscCall(WriteArray(v, g.c_str(), "newton_its", its));
+    PetscCall(WriteArray(v, g.c_str(), "shape_corr", b.shape_corr));
+    PetscCall(WriteArray(v, g.c_str(), "beta", b.beta));
+    PetscCall(WriteArray(v, g.c_str(), "z0", b.z0, 2 * lat.N()));
+    std::vector<PetscReal> inter(b.interactions.begin(), b.interactions.end());
+    PetscCall(WriteArray(v, g.c_str(), "interactions", inter));
+    PetscCall(WriteAttr(v, g.c_str(), "linear_omega", omega));
+    PetscCall(WriteAttr(v, g.c_str(), "stop_reason", b.stop_reason.c_str()));
+    PetscCall(WriteAttr(v, g.c_str(), "reached_energy_max", (PetscInt)b.reached_max));
+    PetscCall(WriteAttr(v, g.c_str(), "points", (PetscInt)b.energy.size()));
+    PetscCall(WriteAttr(v, g.c_str(), "jacobian_evaluations", shoot.JacobianEvaluations() - j0));
+    PetscCall(WriteAttr(v, g.c_str(), "residual_evaluations", shoot.ResidualEvaluations() - r0));
+    PetscCall(WriteAttr(v, g.c_str(), "seconds", (PetscReal)(b1 - b0)));
+    PetscCall(PetscLogStagePop());
+    PetscCall(PetscPrintf(comm, "  [%s] %.2f s, %.3f s per point\n", label.c_str(), (double)(b1 - b0), (double)(b1 - b0) / b.energy.size()));
+  }
+  for (PetscInt k = 0; k < nb; k++) PetscCall(PetscFree(names[k]));
+  PetscCall(PetscTime(&t_end));
+  PetscCall(out.Commit("continuation", t_end - t_start));
+  PetscCall(PetscPrintf(comm, "  wrote %s\n", path.c_str()));
+  PetscFunctionReturn(0);
+}
+
+} // namespace nltopo
