@@ -66,9 +66,11 @@ public:
   // field f + beta grad E used by the periodic-orbit solver (orbits/flow.hpp).
   PetscErrorCode AssembleStateJacobian(Vec z, Mat A, PetscReal beta = 0) const;
 
+  // Row i of K_T(u) (u ghosted, by global site; NULL: K): coefficients of u_{i-1}, u_i, u_{i+1}.
+  void TangentRow(PetscInt i, const PetscScalar *u, PetscScalar c[3]) const;
+
 private:
   PetscInt OwnerCount(PetscInt site) const; // sites owned by the owner of site
-  void TangentRow(PetscInt i, const PetscScalar *u, PetscScalar c[3]) const;
   PetscErrorCode FillStiffness(const PetscScalar *u, Mat M, bool state_form, PetscReal beta) const;
 
   MPI_Comm comm_ = MPI_COMM_NULL;

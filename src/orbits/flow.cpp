@@ -8,7 +8,12 @@ PetscErrorCode FlowOptionsFromOptions(MPI_Comm comm, FlowOptions *o)
 {
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "nnm_", "Periodic-orbit flow (TS options: -nnm_ts_*)", NULL);
+  static const char *const routes[] = {"variational", "tsforward"};
+  PetscInt r = static_cast<PetscInt>(o->route);
   PetscCall(PetscOptionsInt("-steps_per_period", "Fixed RK steps per period of the shooting integration", NULL, o->steps, &o->steps, NULL));
+  PetscCall(PetscOptionsEList("-monodromy", "Monodromy: variational (state and variational equations in one structured TS) or tsforward (TSForwardSetSensitivities)",
+                              NULL, routes, 2, routes[r], &r, NULL));
+  o->route = static_cast<MonodromyRoute>(r);
   PetscOptionsEnd();
   PetscCheck(o->steps >= 8, comm, PETSC_ERR_USER, "-nnm_steps_per_period must be >= 8, got %" PetscInt_FMT, o->steps);
   PetscFunctionReturn(0);
@@ -183,6 +188,14 @@ PetscErrorCode PeriodicFlow::IntegrateWithMonodromy(Vec z0, PetscReal T, PetscRe
 {
   PetscFunctionBeginUser;
   beta_ = beta;
+  if (opt_.route == MonodromyRoute::Variational) {
+    if (!var_dense_) {
+      var_dense_ = std::make_unique<VariationalFlow>();
+      PetscCall(var_dense_->Setup(*lat_, 2 * lat_->N() + 1, opt_.steps));
+    }
+    PetscCall(var_dense_->Integrate(z0, T, beta, NULL, zT, S, NULL, NULL));
+    PetscFunctionReturn(0);
+  }
   PetscCall(MatZeroEntries(S));
   PetscCall(MatShift(S, 1.0)); // [I | 0]: initial-condition columns, then the beta column
   PetscCall(TSForwardSetSensitivities(ts_mono_, 2 * lat_->N() + 1, S));
@@ -195,6 +208,16 @@ PetscErrorCode PeriodicFlow::IntegrateWithTangent(Vec z0, PetscReal T, PetscReal
   Vec c;
   PetscFunctionBeginUser;
   beta_ = beta;
+  if (opt_.route == MonodromyRoute::Variational) {
+    if (!var_tlm_) {
+      var_tlm_ = std::make_unique<VariationalFlow>();
+      PetscCall(var_tlm_->Setup(*lat_, 2, opt_.steps));
+      PetscCall(VecDuplicate(z0, wb_.out()));
+    }
+    PetscCall(var_tlm_->Integrate(z0, T, beta, dz, zT, NULL, w, wb_));
+    if (dbeta != 0) PetscCall(VecAXPY(w, dbeta, wb_));
+    PetscFunctionReturn(0);
+  }
   // Column 0: the direction (dz, dbeta) combined: d/deps z(T; z0 + eps dz, beta + eps dbeta);
   // the parameter Jacobian's last column (grad E) times dbeta enters through column 1.
   PetscCall(MatZeroEntries(S_tlm_));

@@ -13,11 +13,16 @@
 // the assembled state Jacobian (the "dense" route), or one tangent direction at
 // a time (the "matrix-free" route).
 #include "effects/rhs.hpp"
+#include "orbits/variational.hpp"
+#include <memory>
 
 namespace nltopo {
 
+enum class MonodromyRoute { Variational = 0, TSForward = 1 };
+
 struct FlowOptions {
-  PetscInt steps = 256; // fixed RK steps per period
+  PetscInt steps = 128; // fixed RK steps per period
+  MonodromyRoute route = MonodromyRoute::Variational;
 };
 PetscErrorCode FlowOptionsFromOptions(MPI_Comm comm, FlowOptions *o);
 
@@ -57,6 +62,8 @@ private:
   Rhs *rhs_ = nullptr;
   OwnedTS ts_, ts_mono_, ts_tlm_;
   OwnedMat J_, Jp_mono_, Jp_tlm_, S_tlm_;
+  std::unique_ptr<VariationalFlow> var_dense_, var_tlm_; // created on first use
+  OwnedVec wb_;
 };
 
 } // namespace nltopo

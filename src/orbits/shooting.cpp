@@ -226,22 +226,19 @@ PetscErrorCode Shooting::GatherToAll(Vec v, std::vector<PetscReal> *out) const
 PetscErrorCode Shooting::Jacobian(Vec X, Mat J)
 {
   PetscReal T, beta;
-  std::vector<PetscReal> fr, cr;
   PetscFunctionBeginUser;
   njac_++;
   PetscCall(Unpack(X, z_, &T, &beta));
   if (energy_mode_) PetscCall(flow_->GradEnergy(z_, g_));
-  PetscCall(GatherToAll(fref_, &fr));
-  if (energy_mode_) PetscCall(GatherToAll(g_, &cr));
-  else PetscCall(GatherToAll(tan_, &cr));
+  PetscCall(GatherToAll(fref_, &fr_));
+  if (energy_mode_) PetscCall(GatherToAll(g_, &cr_));
+  else PetscCall(GatherToAll(tan_, &cr_));
   if (opt_.jacobian == ShootingJacobian::MatrixFree) { // remember the linearisation point
     PetscCall(VecCopy(z_, zlin_));
     Tlin_ = T;
     blin_ = beta;
     PetscCall(flow_->Integrate(z_, T, beta, zT_));
     PetscCall(flow_->EvalRhs(T, zT_, fT_));
-    cr_ = cr;
-    fr_ = fr;
     PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
     PetscFunctionReturn(0);
@@ -268,17 +265,29 @@ PetscErrorCode Shooting::Jacobian(Vec X, Mat J)
   }
   PetscCall(VecRestoreArrayRead(fT_, &ft));
   PetscCall(MatDenseRestoreArrayRead(S_, &s));
-  if (rank_ == size_ - 1) {
-    PetscInt r = n_;
-    for (PetscInt c = 0; c < n_; c++) row[c] = fr[c];
-    row[n_] = row[n_ + 1] = 0;
-    PetscCall(MatSetValues(J, 1, &r, M, cols.data(), row.data(), INSERT_VALUES));
-    r = n_ + 1;
-    for (PetscInt c = 0; c < M; c++) row[c] = c < (PetscInt)cr.size() ? cr[c] : 0.0;
-    PetscCall(MatSetValues(J, 1, &r, M, cols.data(), row.data(), INSERT_VALUES));
-  }
+  PetscCall(SetBorderRows(J));
   PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
+// Rows 2N (phase: f(z_ref)^T) and 2N+1 (constraint: grad E(z)^T or the
+// tangent) of the dense Jacobian, from the gathered fr_ and cr_.
+PetscErrorCode Shooting::SetBorderRows(Mat J)
+{
+  const PetscInt M = n_ + 2;
+  PetscFunctionBeginUser;
+  if (rank_ == size_ - 1) {
+    std::vector<PetscInt> cols(M);
+    std::vector<PetscScalar> row(M, 0.0);
+    for (PetscInt c = 0; c < M; c++) cols[c] = c;
+    PetscInt r = n_;
+    for (PetscInt c = 0; c < n_; c++) row[c] = fr_[c];
+    PetscCall(MatSetValues(J, 1, &r, M, cols.data(), row.data(), INSERT_VALUES));
+    r = n_ + 1;
+    for (PetscInt c = 0; c < M; c++) row[c] = c < (PetscInt)cr_.size() ? cr_[c] : 0.0;
+    PetscCall(MatSetValues(J, 1, &r, M, cols.data(), row.data(), INSERT_VALUES));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -328,7 +337,9 @@ PetscErrorCode Shooting::Solve(Vec X, bool *converged, PetscInt *its)
 {
   SNESConvergedReason reason;
   PetscFunctionBeginUser;
+  const PetscInt j0 = njac_;
   PetscCall(SNESSolve(snes_, NULL, X));
+  fresh_ = njac_ > j0 && opt_.jacobian == ShootingJacobian::Dense;
   PetscCall(SNESGetConvergedReason(snes_, &reason));
   PetscCall(SNESGetIterationNumber(snes_, its));
   *converged = reason > 0;
@@ -340,10 +351,14 @@ PetscErrorCode Shooting::Tangent(Vec X, Vec t_prev, Vec t)
   KSP ksp;
   PetscReal nrm, d;
   PetscFunctionBeginUser;
-  // Jacobian at the solution, then J t = e_last.
-  PetscCall(Jacobian(X, J_));
+  // J t = e_last with the Jacobian of the last Newton iterate (already
+  // factored; one step from the solution), or a new one at the solution when
+  // Newton needed no iteration or the route is matrix-free.
   PetscCall(SNESGetKSP(snes_, &ksp));
-  PetscCall(KSPSetOperators(ksp, J_, J_));
+  if (!fresh_) {
+    PetscCall(Jacobian(X, J_));
+    PetscCall(KSPSetOperators(ksp, J_, J_));
+  }
   PetscCall(VecZeroEntries(work_));
   if (rank_ == size_ - 1) PetscCall(VecSetValue(work_, n_ + 1, 1.0, INSERT_VALUES));
   PetscCall(VecAssemblyBegin(work_));

@@ -66,7 +66,8 @@ private:
   OwnedSNES snes_;
   OwnedMat J_, S_;
   OwnedVec z_, zT_, fref_, zref_, g_, tan_, Xpred_, work_, w_, F_;
-  bool energy_mode_ = true;
+  PetscErrorCode SetBorderRows(Mat J);
+  bool energy_mode_ = true, fresh_ = false; // fresh_: the KSP holds this solve's last Jacobian
   PetscReal energy_target_ = 0;
   // linearisation point of the matrix-free product
   OwnedVec zlin_, fT_;

@@ -8,8 +8,9 @@
 using namespace nltopo;
 using namespace nltopo::test;
 
-TEST_CASE("monodromy by forward sensitivities equals central differences", "[orbits]")
+TEST_CASE("monodromy (variational TS and TSForward routes) equals central differences", "[orbits]")
 {
+  auto route = GENERATE(MonodromyRoute::Variational, MonodromyRoute::TSForward);
   LatticeParams p;
   p.cells = 2; // N = 10
   p.Gamma = 0.5;
@@ -19,6 +20,7 @@ TEST_CASE("monodromy by forward sensitivities equals central differences", "[orb
   PeriodicFlow flow;
   FlowOptions fo;
   fo.steps = 400;
+  fo.route = route;
   PCHK(flow.Setup(lat, fo));
   OwnedVec z0, zT, zp, zm, w;
   OwnedMat S;

@@ -1,0 +1,181 @@
+#include "orbits/variational.hpp"
+#include "core/log.hpp"
+#include <petscdmda.h>
+
+namespace nltopo {
+
+namespace {
+PetscErrorCode VarRhs(TS ts, PetscReal t, Vec Y, Vec F, void *ctx)
+{
+  PetscFunctionBeginUser;
+  PetscCall(static_cast<VariationalFlow *>(ctx)->Rhs(t, Y, F));
+  PetscFunctionReturn(0);
+}
+} // namespace
+
+PetscErrorCode VariationalFlow::Setup(const Lattice &lat, PetscInt ncol, PetscInt steps)
+{
+  const PetscInt *lx;
+  PetscMPIInt size;
+  TSAdapt adapt;
+  PetscFunctionBeginUser;
+  lat_ = &lat;
+  ncol_ = ncol;
+  dof_ = 2 + 2 * ncol;
+  steps_ = steps;
+  PetscCallMPI(MPI_Comm_size(lat.Comm(), &size));
+  PetscCall(DMDAGetOwnershipRanges(lat.SiteDM(), &lx, NULL, NULL));
+  std::vector<PetscInt> l(lx, lx + size);
+  PetscCall(DMDACreate1d(lat.Comm(), DM_BOUNDARY_NONE, lat.N(), dof_, 1, l.data(), da_.out()));
+  PetscCall(DMSetUp(da_));
+  PetscCall(DMCreateGlobalVector(da_, Y_.out()));
+  PetscCall(TSCreate(lat.Comm(), ts_.out()));
+  PetscCall(TSSetOptionsPrefix(ts_, "nnm_"));
+  PetscCall(TSSetProblemType(ts_, TS_NONLINEAR));
+  PetscCall(TSSetType(ts_, TSRK));
+  PetscCall(TSRKSetType(ts_, TSRK5DP));
+  PetscCall(TSGetAdapt(ts_, &adapt));
+  PetscCall(TSAdaptSetType(adapt, TSADAPTNONE));
+  PetscCall(TSSetRHSFunction(ts_, NULL, VarRhs, this));
+  PetscCall(TSSetExactFinalTime(ts_, TS_EXACTFINALTIME_MATCHSTEP));
+  PetscCall(TSSetFromOptions(ts_));
+  u_.assign(lat.N(), 0.0);
+  a_.assign(lat.N(), 0.0);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode VariationalFlow::Rhs(PetscReal t, Vec Y, Vec F)
+{
+  Vec Yl;
+  const PetscScalar *y;
+  PetscScalar *f;
+  PetscInt gxs, gxm;
+  const PetscInt xs = lat_->OwnedStart(), xm = lat_->OwnedCount(), N = lat_->N(), nc = ncol_, d = dof_;
+  const PetscReal b = beta_;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(Log().variational, 0, 0, 0, 0));
+  if (lat_->Serial()) { // one rank: the global array holds every neighbour (no ghost copy of Y)
+    Yl = Y;
+    gxs = 0;
+    gxm = N;
+  } else {
+    PetscCall(DMGetLocalVector(da_, &Yl));
+    PetscCall(DMGlobalToLocalBegin(da_, Y, INSERT_VALUES, Yl));
+    PetscCall(DMGlobalToLocalEnd(da_, Y, INSERT_VALUES, Yl));
+    PetscCall(DMDAGetGhostCorners(da_, &gxs, NULL, NULL, &gxm, NULL, NULL));
+  }
+  PetscCall(VecGetArrayRead(Yl, &y));
+  PetscCall(VecGetArray(F, &f));
+  const PetscScalar *yb = y - d * gxs; // block of site i at yb + d i
+  for (PetscInt i = gxs; i < gxs + gxm; i++) u_[i] = yb[d * i];
+  for (PetscInt i = xs; i < xs + xm; i++) a_[i] = 0;
+  lat_->LinearAcceleration(u_.data(), a_.data());
+  if (lat_->HasCubic()) lat_->AddCubicAcceleration(u_.data(), a_.data());
+  for (PetscInt i = xs; i < xs + xm; i++) {
+    const PetscScalar *yi = yb + d * i;
+    PetscScalar *fi = f + d * (i - xs);
+    const PetscScalar du = yi[1], dv = a_[i];
+    fi[0] = du - b * dv;
+    fi[1] = dv + b * du;
+    PetscScalar c[3];
+    lat_->TangentRow(i, u_.data(), c);
+    const PetscScalar *Wu = yi + 2, *Wv = yi + 2 + nc;
+    const PetscScalar *Wl = i > 0 ? yb + d * (i - 1) + 2 : Wu; // neighbours' Wu (unused at the ends: c = 0)
+    const PetscScalar *Wr = i < N - 1 ? yb + d * (i + 1) + 2 : Wu;
+    PetscScalar *Fu = fi + 2, *Fv = fi + 2 + nc;
+    for (PetscInt k = 0; k < nc; k++) {
+      const PetscScalar pu = Wv[k], pv = -(c[0] * Wl[k] + c[1] * Wu[k] + c[2] * Wr[k]);
+      Fu[k] = pu - b * pv;
+      Fv[k] = pv + b * pu;
+    }
+    Fu[nc - 1] += -dv; // d f_beta / d beta = grad E = [-a, v]
+    Fv[nc - 1] += du;
+  }
+  PetscCall(VecRestoreArray(F, &f));
+  PetscCall(VecRestoreArrayRead(Yl, &y));
+  if (Yl != Y) PetscCall(DMRestoreLocalVector(da_, &Yl));
+  PetscCall(PetscLogFlops(8.0 * nc * xm));
+  PetscCall(PetscLogEventEnd(Log().variational, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode VariationalFlow::Integrate(Vec z0, PetscReal T, PetscReal beta, Vec dz, Vec zT, Mat S, Vec w_dir, Vec w_beta)
+{
+  const PetscScalar *z, *dza = NULL;
+  PetscScalar *y;
+  const PetscInt xs = lat_->OwnedStart(), xm = lat_->OwnedCount(), nc = ncol_, d = dof_;
+  TSConvergedReason reason;
+  PetscFunctionBeginUser;
+  beta_ = beta;
+  PetscCall(VecGetArrayRead(z0, &z));
+  if (dz) PetscCall(VecGetArrayRead(dz, &dza));
+  PetscCall(VecGetArray(Y_, &y));
+  for (PetscInt k = 0; k < xm; k++) {
+    PetscScalar *yi = y + d * k;
+    const PetscInt i = xs + k;
+    yi[0] = z[k];
+    yi[1] = z[xm + k];
+    PetscCall(PetscArrayzero(yi + 2, 2 * nc));
+    if (dza) {
+      yi[2] = dza[k];
+      yi[2 + nc] = dza[xm + k];
+    } else { // identity on the state columns
+      yi[2 + lat_->StateIndexU(i)] = 1.0;
+      yi[2 + nc + lat_->StateIndexV(i)] = 1.0;
+    }
+  }
+  PetscCall(VecRestoreArray(Y_, &y));
+  if (dz) PetscCall(VecRestoreArrayRead(dz, &dza));
+  PetscCall(VecRestoreArrayRead(z0, &z));
+
+  PetscCall(TSSetTime(ts_, 0.0));
+  PetscCall(TSSetStepNumber(ts_, 0));
+  PetscCall(TSSetTimeStep(ts_, T / steps_));
+  PetscCall(TSSetMaxTime(ts_, T));
+  PetscCall(TSSetMaxSteps(ts_, steps_));
+  PetscCall(TSSolve(ts_, Y_));
+  PetscCall(TSGetConvergedReason(ts_, &reason));
+  PetscCheck(reason >= 0, lat_->Comm(), PETSC_ERR_NOT_CONVERGED, "variational integration failed: %s", TSConvergedReasons[reason]);
+
+  const PetscScalar *ya;
+  PetscScalar *zt;
+  PetscCall(VecGetArrayRead(Y_, &ya));
+  PetscCall(VecGetArray(zT, &zt));
+  for (PetscInt k = 0; k < xm; k++) {
+    zt[k] = ya[d * k];
+    zt[xm + k] = ya[d * k + 1];
+  }
+  PetscCall(VecRestoreArray(zT, &zt));
+  if (S) {
+    PetscScalar *s;
+    PetscInt lda;
+    PetscCall(MatDenseGetLDA(S, &lda));
+    PetscCall(MatDenseGetArrayWrite(S, &s));
+    for (PetscInt k = 0; k < xm; k++) {
+      const PetscScalar *yi = ya + d * k;
+      for (PetscInt c = 0; c < nc; c++) {
+        s[k + c * lda] = yi[2 + c];
+        s[xm + k + c * lda] = yi[2 + nc + c];
+      }
+    }
+    PetscCall(MatDenseRestoreArrayWrite(S, &s));
+  }
+  if (w_dir) { // tangent columns: 0 = direction, 1 = beta
+    PetscScalar *wd, *wb;
+    PetscCall(VecGetArray(w_dir, &wd));
+    PetscCall(VecGetArray(w_beta, &wb));
+    for (PetscInt k = 0; k < xm; k++) {
+      const PetscScalar *yi = ya + d * k;
+      wd[k] = yi[2];
+      wd[xm + k] = yi[2 + nc];
+      wb[k] = yi[3];
+      wb[xm + k] = yi[3 + nc];
+    }
+    PetscCall(VecRestoreArray(w_beta, &wb));
+    PetscCall(VecRestoreArray(w_dir, &wd));
+  }
+  PetscCall(VecRestoreArrayRead(Y_, &ya));
+  PetscFunctionReturn(0);
+}
+
+} // namespace nltopo
