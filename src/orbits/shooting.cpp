@@ -75,18 +75,9 @@ PetscErrorCode Shooting::Setup(PeriodicFlow &flow, const ShootingOptions &o)
     PetscCall(MatCreateAIJ(comm, nlocx_, nlocx_, M, M, nlocx_, NULL, M - nlocx_, NULL, J_.out())); // dense pattern
     PetscCall(SNESSetJacobian(snes_, J_, J_, ShootJacobian, this));
     PetscCall(KSPSetType(ksp, KSPPREONLY));
-    // Pseudo-inverse by SVD with tiny singular values dropped: at the linear
-    // limit of the insulated branch the left-end edge mode has the same period
-    // (model.md "Trap"), a near-null direction of the shooting Jacobian
-    // (singular value ~1e-11 against ~1e-2 for the others); a plain LU would
-    // send Newton along it. Dropping it keeps Newton quadratic and on the
-    // branch. Small N only (the dense route); -nnm_pc_type lu
-    // -nnm_pc_factor_mat_solver_type mumps is the pivoting alternative.
-    PetscCall(PCSetType(pc, PCSVD));
-    PetscBool has;
-    PetscCall(PetscOptionsHasName(NULL, NULL, "-nnm_pc_svd_zero_sing", &has));
-    if (!has) PetscCall(PetscOptionsSetValue(NULL, "-nnm_pc_svd_zero_sing", "1e-9")); // PCSVD has no setter in 3.18
-    
+    // A pivoting LU (the bordered Jacobian has zero diagonal entries): MUMPS.
+    PetscCall(PCSetType(pc, PCLU));
+    PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
   } else {
     PetscCall(MatCreateShell(comm, nlocx_, nlocx_, n_ + 2, n_ + 2, this, J_.out()));
     PetscCall(MatShellSetOperation(J_, MATOP_MULT, (void (*)(void))ShootShellMult));
@@ -97,6 +88,32 @@ PetscErrorCode Shooting::Setup(PeriodicFlow &flow, const ShootingOptions &o)
   }
   PetscCall(SNESSetTolerances(snes_, 1e-12, 1e-10, 1e-14, 12, PETSC_DEFAULT));
   PetscCall(SNESSetFromOptions(snes_));
+  PetscCall(PetscOptionsHasName(NULL, "nnm_", "-snes_mf", &snes_mf_));
+  if (o.jacobian == ShootingJacobian::Dense && !snes_mf_) {
+    // Start solver (prefix -nnm_start_) for the first orbit of a branch:
+    // pseudo-inverse by SVD with tiny singular values dropped. At the linear
+    // limit of the insulated branch the left-end edge mode has the same period
+    // (model.md "Trap"): a near-null direction of the shooting Jacobian
+    // (singular value ~1e-11 against >1e-3 for the others) that an LU would
+    // follow off the branch. Dropping it keeps Newton quadratic and on the
+    // insulated family; along the branch the hardening detunes the edge mode
+    // and the main solver's pivoting LU is used.
+    KSP kspS;
+    PC pcS;
+    PetscBool has;
+    PetscCall(PetscOptionsHasName(NULL, "nnm_start_", "-pc_svd_zero_sing", &has));
+    if (!has) PetscCall(PetscOptionsSetValue(NULL, "-nnm_start_pc_svd_zero_sing", "1e-9")); // PCSVD has no setter in 3.18
+    PetscCall(SNESCreate(comm, snes_start_.out()));
+    PetscCall(SNESSetOptionsPrefix(snes_start_, "nnm_start_"));
+    PetscCall(SNESSetFunction(snes_start_, F_, ShootResidual, this));
+    PetscCall(SNESSetJacobian(snes_start_, J_, J_, ShootJacobian, this));
+    PetscCall(SNESGetKSP(snes_start_, &kspS));
+    PetscCall(KSPSetType(kspS, KSPPREONLY));
+    PetscCall(KSPGetPC(kspS, &pcS));
+    PetscCall(PCSetType(pcS, PCSVD));
+    PetscCall(SNESSetTolerances(snes_start_, 1e-12, 1e-10, 1e-14, 20, PETSC_DEFAULT));
+    PetscCall(SNESSetFromOptions(snes_start_));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -336,13 +353,23 @@ PetscErrorCode Shooting::ShellMult(Vec x, Vec y)
 PetscErrorCode Shooting::Solve(Vec X, bool *converged, PetscInt *its)
 {
   SNESConvergedReason reason;
+  // The first orbit of a branch (energy constraint) uses the start solver.
+  SNES snes = energy_mode_ && snes_start_ ? snes_start_.get() : snes_.get();
   PetscFunctionBeginUser;
   const PetscInt j0 = njac_;
-  PetscCall(SNESSolve(snes_, NULL, X));
-  fresh_ = njac_ > j0 && opt_.jacobian == ShootingJacobian::Dense;
-  PetscCall(SNESGetConvergedReason(snes_, &reason));
-  PetscCall(SNESGetIterationNumber(snes_, its));
+  PetscCall(SNESSolve(snes, NULL, X));
+  fresh_ = njac_ > j0 && snes == snes_.get() && opt_.jacobian == ShootingJacobian::Dense;
+  PetscCall(SNESGetConvergedReason(snes, &reason));
+  PetscCall(SNESGetIterationNumber(snes, its));
   *converged = reason > 0;
+  if (!*converged) { // e.g. a zero pivot at a bifurcation: start the next factorisation afresh
+    KSP ksp;
+    PC pc;
+    PetscCall(SNESGetKSP(snes, &ksp));
+    PetscCall(KSPGetPC(ksp, &pc));
+    PetscCall(PCReset(pc));
+    fresh_ = false;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -355,7 +382,13 @@ PetscErrorCode Shooting::Tangent(Vec X, Vec t_prev, Vec t)
   // factored; one step from the solution), or a new one at the solution when
   // Newton needed no iteration or the route is matrix-free.
   PetscCall(SNESGetKSP(snes_, &ksp));
-  if (!fresh_) {
+  if (snes_mf_) { // -nnm_snes_mf: the finite-difference operator, based at the solution
+    Mat A;
+    PetscCall(SNESGetJacobian(snes_, &A, NULL, NULL, NULL));
+    PetscCall(SNESComputeFunction(snes_, X, F_));
+    PetscCall(MatMFFDSetBase(A, X, F_));
+    PetscCall(KSPSetOperators(ksp, A, A));
+  } else if (!fresh_) {
     PetscCall(Jacobian(X, J_));
     PetscCall(KSPSetOperators(ksp, J_, J_));
   }

@@ -63,10 +63,11 @@ private:
   ShootingOptions opt_;
   PetscMPIInt rank_ = 0, size_ = 1;
   PetscInt n_ = 0, nlocx_ = 0; // 2N, local size of X
-  OwnedSNES snes_;
+  OwnedSNES snes_, snes_start_;
   OwnedMat J_, S_;
   OwnedVec z_, zT_, fref_, zref_, g_, tan_, Xpred_, work_, w_, F_;
   PetscErrorCode SetBorderRows(Mat J);
+  PetscBool snes_mf_ = PETSC_FALSE;          // -nnm_snes_mf: finite-difference Jacobian
   bool energy_mode_ = true, fresh_ = false; // fresh_: the KSP holds this solve's last Jacobian
   PetscReal energy_target_ = 0;
   // linearisation point of the matrix-free product
