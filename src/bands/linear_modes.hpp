@@ -19,6 +19,7 @@ struct NamedModes {
   PetscInt interface = -1, acoustic_top = -1, optical_bottom = -1, optical_top = -1;
   PetscReal insulated_omega = NAN; // sqrt of the Rayleigh quotient of the projected insulated mode
   PetscInt insulated_cluster = 0;  // eigenpairs in the k_hat cluster it was projected from
+  PetscReal insulated_residual = NAN; // ||K x - omega^2 x|| of the projected mode
 };
 
 class LinearModes {

@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <cerrno>
 #include <cstring>
+#include <strings.h>
 #include <unistd.h>
 
 namespace nltopo {
@@ -26,8 +27,9 @@ PetscErrorCode OneLineErrorHandler(MPI_Comm comm, int line, const char *fun, con
 
 static bool CaseTrap(const char *token, const char *where)
 {
-  if (std::strcmp(token, "-lattice_Gamma")) return false;
-  std::fprintf(stderr, "nltopo: error: %s: -lattice_Gamma is the same option as -lattice_gamma (PETSc option names are case-insensitive); set the cubic coefficient with -lattice_cubic\n", where);
+  // Any spelling of -lattice_gamma with an upper-case letter (-lattice_Gamma, -LATTICE_GAMMA, ...)
+  if (strcasecmp(token, "-lattice_gamma") || !std::strcmp(token, "-lattice_gamma")) return false;
+  std::fprintf(stderr, "nltopo: error: %s: %s is the same option as -lattice_gamma (PETSc option names are case-insensitive); set the cubic coefficient with -lattice_cubic\n", where, token);
   return true;
 }
 

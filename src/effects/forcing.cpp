@@ -36,8 +36,8 @@ PetscErrorCode ToneBurstOptionsFromOptions(MPI_Comm comm, const LatticeParams &l
   PetscCheck(std::isfinite(o->energy) && o->energy > 0, comm, PETSC_ERR_USER, "-force_energy must be positive, got %g", (double)o->energy);
   PetscCheck(!set_amp || (std::isfinite(o->amplitude) && o->amplitude >= 0), comm, PETSC_ERR_USER, "-force_amplitude must be >= 0, got %g",
              (double)o->amplitude);
-  PetscCheck(o->safety > 0, comm, PETSC_ERR_USER, "-force_amplitude_safety must be positive, got %g", (double)o->safety);
-  PetscCheck(o->tau_periods > 0 && o->t0_taus >= 0, comm, PETSC_ERR_USER, "-force_tau_periods must be > 0 and -force_t0_taus >= 0, got %g and %g",
+  PetscCheck(std::isfinite(o->safety) && o->safety > 0, comm, PETSC_ERR_USER, "-force_amplitude_safety must be positive, got %g", (double)o->safety);
+  PetscCheck(std::isfinite(o->tau_periods) && std::isfinite(o->t0_taus) && o->tau_periods > 0 && o->t0_taus >= 0, comm, PETSC_ERR_USER, "-force_tau_periods must be > 0 and -force_t0_taus >= 0, got %g and %g",
              (double)o->tau_periods, (double)o->t0_taus);
   PetscCheck(o->profile != ForceProfile::Site || (o->site >= 0 && o->site < N), comm, PETSC_ERR_USER,
              "-force_site must lie in 1..%" PetscInt_FMT ", got %" PetscInt_FMT, N, o->site + 1);

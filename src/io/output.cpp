@@ -4,6 +4,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace nltopo {
@@ -23,7 +24,7 @@ PetscErrorCode OutputPathFromOptions(MPI_Comm comm, const char *study, std::stri
 
 OutputFile::~OutputFile()
 {
-  if (!viewer_ || committed_) return;
+  if (tmp_.empty() || committed_) return;
   viewer_.reset();
   PetscMPIInt rank = 0;
   MPI_Comm_rank(comm_, &rank);
@@ -41,7 +42,11 @@ PetscErrorCode OutputFile::Open(MPI_Comm comm, const std::string &path)
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Bcast(&pid, 1, MPI_INT, 0, comm));
   tmp_ = path + ".tmp." + std::to_string(pid);
-  if (!rank) { // probe: can we create a file next to the target?
+  struct stat st;
+  if (!rank && !stat(path.c_str(), &st) && S_ISDIR(st.st_mode)) {
+    err = EISDIR;
+    PetscCall(PetscStrncpy(msg, "is a directory", sizeof(msg)));
+  } else if (!rank) { // probe: can we create a file next to the target?
     FILE *f = std::fopen(tmp_.c_str(), "w");
     if (!f) {
       err = errno;
@@ -52,6 +57,7 @@ PetscErrorCode OutputFile::Open(MPI_Comm comm, const std::string &path)
   }
   PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm));
   PetscCallMPI(MPI_Bcast(msg, sizeof(msg), MPI_CHAR, 0, comm));
+  if (err) tmp_.clear(); // nothing of ours to remove
   PetscCheck(!err, comm, PETSC_ERR_FILE_OPEN, "cannot write -output %s: %s", path.c_str(), msg);
   PetscCall(PetscViewerHDF5Open(comm, tmp_.c_str(), FILE_MODE_WRITE, viewer_.out()));
   PetscFunctionReturn(0);
@@ -121,6 +127,7 @@ PetscErrorCode WriteColumnBlock(PetscViewer v, const char *group, const char *na
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(Log().output, 0, 0, 0, 0));
   PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)v), &size));
+  PetscCheck(rows > 0 && ncols > 0, PetscObjectComm((PetscObject)v), PETSC_ERR_ARG_OUTOFRANGE, "empty dataset %s/%s", group, name);
   PetscCall(PetscViewerHDF5WriteGroup(v, group));
   PetscCall(PetscViewerHDF5GetFileId(v, &file));
   const hsize_t dims[2] = {(hsize_t)rows, (hsize_t)ncols}, start[2] = {0, (hsize_t)col0}, count[2] = {(hsize_t)rows, (hsize_t)nloc};

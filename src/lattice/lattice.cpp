@@ -66,7 +66,7 @@ PetscErrorCode Lattice::CreateStateMatrix(Mat *A) const
   // Every row couples to u_{i-1}, u_i, u_{i+1} (one of them may be on a
   // neighbouring rank) and v_i: the pattern of L, of the state Jacobian, of the
   // unfolded Jacobian of the orbit solver, and of implicit TS shifts.
-  PetscCall(MatCreateAIJ(comm_, 2 * xm_, 2 * xm_, 2 * p_.N(), 2 * p_.N(), 4, NULL, 1, NULL, A));
+  PetscCall(MatCreateAIJ(comm_, 2 * xm_, 2 * xm_, 2 * p_.N(), 2 * p_.N(), 4, NULL, 2, NULL, A)); // a one-site rank has both neighbours off-rank
   PetscCall(MatSetOption(*A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
   PetscFunctionReturn(0);
 }

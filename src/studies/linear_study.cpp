@@ -78,6 +78,7 @@ PetscErrorCode LinearStudy(MPI_Comm comm)
   PetscCall(WriteAttr(v, "/linear", "optical_bottom_index", nm.optical_bottom));
   PetscCall(WriteAttr(v, "/linear", "optical_top_index", nm.optical_top));
   PetscCall(WriteAttr(v, "/linear", "insulated_cluster", nm.insulated_cluster));
+  PetscCall(WriteAttr(v, "/linear", "insulated_residual", nm.insulated_residual));
   PetscCall(WriteAttr(v, "/linear", "layout", LayoutName(lp.layout)));
   PetscCall(WriteAttr(v, "/linear", "N", lat.N()));
   PetscCall(WriteArray(v, "/linear/bloch", "q", bl.q));

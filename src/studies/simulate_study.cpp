@@ -92,7 +92,7 @@ PetscErrorCode SimulateStudy(MPI_Comm comm)
   const char *g = "/simulate";
   PetscCall(WriteArray(v, g, "t", sink.t_));
   PetscCall(WriteArray(v, g, "energy", sink.energy_));
-  if (store_u) PetscCall(WriteColumnBlock(v, g, "u", (PetscInt)sink.t_.size(), lat.N(), lat.OwnedStart(), lat.OwnedCount(), sink.u_));
+  if (store_u && !sink.t_.empty()) PetscCall(WriteColumnBlock(v, g, "u", (PetscInt)sink.t_.size(), lat.N(), lat.OwnedStart(), lat.OwnedCount(), sink.u_));
   PetscCall(WriteVec(v, g, "rms", r.rms));
   PetscCall(WriteAttr(v, g, "mcr", r.mcr));
   PetscCall(WriteAttr(v, g, "t_off", r.t_off));

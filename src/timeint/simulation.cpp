@@ -1,5 +1,5 @@
 #include "timeint/simulation.hpp"
-#include <petsc/private/petscimpl.h>
+#include <petsc/private/tsimpl.h> // ts->ops->rollback: can the type locate events?
 #include "core/log.hpp"
 #include "diagnostics/mcr.hpp"
 #include <cmath>
@@ -161,7 +161,7 @@ PetscErrorCode CutOffIndicator(TS ts, PetscReal t, Vec z, PetscScalar *fv, void 
   if (run->rhs.Forcing()) {
     EnergyParts e;
     PetscCall(run->EnergyAt(z, &e));
-    fv[0] = e.Total() - run->estar;
+    fv[0] = e.Total() / run->estar - 1; // relative, so the event tolerance means the same at any E*
   } else {
     fv[0] = 1.0; // after the cut-off the event can never fire again
   }
@@ -275,11 +275,15 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
     PetscCall(TSRHSSplitSetRHSFunction(ts, "position", NULL, PositionRate, &run));
     PetscCall(TSRHSSplitSetRHSFunction(ts, "momentum", NULL, MomentumRate, &run));
     run.interpolate = false;
-  } else if (run.rhs.Forcing()) {
-    // Locate the cut-off E(t) = E* exactly (registered after the step size is final: pitfall (a)).
+  } else if (run.rhs.Forcing() && ts.get()->ops->rollback) {
+    // Locate the cut-off E(t) = E* (relative tolerance 1e-10) with a TS event,
+    // registered after the step size is final (guide, pitfall a). Types that
+    // cannot roll back a step (euler, ssp, ...) check after every step instead.
     PetscInt dir = 1;
     PetscBool term = PETSC_FALSE;
+    PetscReal vtol = 1e-10;
     PetscCall(TSSetEventHandler(ts, 1, &dir, &term, CutOffIndicator, CutOffEvent, &run));
+    PetscCall(TSSetEventTolerances(ts, PETSC_DECIDE, &vtol));
     run.event_mode = true;
   }
 

@@ -17,6 +17,7 @@ TEST_CASE("insulated mode: omega = sqrt(3), even-site support, -k2/k1 decay", "[
   const NamedModes &nm = modes.Named();
   REQUIRE(std::abs(nm.insulated_omega - std::sqrt(3.0)) < 1e-10);
   REQUIRE(nm.insulated_cluster == 2); // the insulated mode and the left-end edge mode (model.md "Trap")
+  REQUIRE(nm.insulated_residual < 1e-8); // the projection is an eigenvector (its Rayleigh quotient is k_hat by construction)
   // It is an eigenvector of K to the accuracy of the finite lattice: ||K x - 3 x|| tiny.
   OwnedVec r;
   PCHK(VecDuplicate(modes.Insulated(), r.out()));
@@ -35,6 +36,24 @@ TEST_CASE("insulated mode: omega = sqrt(3), even-site support, -k2/k1 decay", "[
   REQUIRE(x[m1 + 3] / x[m1 + 1] == Approx(ratio).epsilon(1e-9));
   REQUIRE(x[m1 - 3] / x[m1 - 1] == Approx(ratio).epsilon(1e-9));
   REQUIRE(x[m1 + 5] / x[m1 + 3] == Approx(ratio).epsilon(1e-9));
+}
+
+TEST_CASE("small lattices still have an insulated mode (the pair splits by ~0.03 (3/7)^(Nc-4))", "[bands]")
+{
+  for (PetscInt Nc : {3, 6, 10, 14}) {
+    LatticeParams p;
+    p.cells = Nc;
+    Lattice lat;
+    PCHK(lat.Setup(PETSC_COMM_WORLD, p));
+    LinearModes modes;
+    PCHK(modes.Compute(lat, LinearModesOptions()));
+    const NamedModes &nm = modes.Named();
+    INFO("Nc = " << Nc << ", residual " << nm.insulated_residual);
+    REQUIRE(nm.insulated_cluster == 2);
+    REQUIRE(modes.Insulated() != nullptr);
+    // The even-site projection is exact up to the left-end coupling (3/7)^(Nc-1).
+    REQUIRE(nm.insulated_residual < 2 * std::pow(3.0 / 7.0, Nc - 1));
+  }
 }
 
 TEST_CASE("band edges: closed form and the finite lattice", "[bands]")
