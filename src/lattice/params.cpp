@@ -23,7 +23,8 @@ PetscErrorCode LatticeParamsFromOptions(MPI_Comm comm, LatticeParams *p)
   PetscOptionsEnd();
   p->layout = static_cast<Layout>(layout);
 
-  PetscCheck(p->cells >= 1, comm, PETSC_ERR_USER, "-lattice_cells must be >= 1, got %" PetscInt_FMT, p->cells);
+  PetscCheck(p->cells >= 1 && p->cells <= (PETSC_MAX_INT - 2) / 4, comm, PETSC_ERR_USER, "-lattice_cells must lie in 1..%d, got %" PetscInt_FMT,
+             (int)((PETSC_MAX_INT - 2) / 4), p->cells);
   PetscCheck(std::isfinite(p->k) && p->k > 0, comm, PETSC_ERR_USER, "-lattice_k must be a positive stiffness, got %g", (double)p->k);
   PetscCheck(std::isfinite(p->gamma) && p->gamma > -1 && p->gamma < 1, comm, PETSC_ERR_USER,
              "-lattice_gamma must lie in (-1, 1) so that k1 = k(1+gamma) and k2 = k(1-gamma) are positive stiffnesses, got %g", (double)p->gamma);

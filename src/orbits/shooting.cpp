@@ -10,6 +10,8 @@ PetscErrorCode ShootingOptionsFromOptions(MPI_Comm comm, ShootingOptions *o)
   PetscInt j = static_cast<PetscInt>(o->jacobian);
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "nnm_", "Shooting Newton (SNES options: -nnm_snes_*, -nnm_ksp_*, -nnm_pc_*)", NULL);
+  PetscCall(PetscOptionsInt("-start_dense_max", "Largest 2N for which the first orbit of a branch uses the dense SVD start solver (-nnm_start_*)", NULL,
+                            o->start_dense_max, &o->start_dense_max, NULL));
   PetscCall(PetscOptionsEList("-jacobian", "Shooting Jacobian: dense (monodromy by forward sensitivities) or mf (one tangent-linear integration per product); -nnm_snes_mf for finite differences",
                               NULL, kJacobianNames, 2, kJacobianNames[j], &j, NULL));
   PetscOptionsEnd();
@@ -69,19 +71,23 @@ PetscErrorCode Shooting::Setup(PeriodicFlow &flow, const ShootingOptions &o)
   PetscCall(SNESSetFunction(snes_, F_, ShootResidual, this));
   PetscCall(SNESGetKSP(snes_, &ksp));
   PetscCall(KSPGetPC(ksp, &pc));
-  if (o.jacobian == ShootingJacobian::Dense) {
+  // The assembled (dense-pattern) Jacobian: the dense route, and the start
+  // solver of every route while 2N is small enough to hold it.
+  const PetscInt M = n_ + 2;
+  if (o.jacobian == ShootingJacobian::Dense || n_ <= o.start_dense_max) {
     PetscCall(flow.CreateSensitivityMatrix(S_.out()));
-    const PetscInt M = n_ + 2;
-    PetscCall(MatCreateAIJ(comm, nlocx_, nlocx_, M, M, nlocx_, NULL, M - nlocx_, NULL, J_.out())); // dense pattern
-    PetscCall(SNESSetJacobian(snes_, J_, J_, ShootJacobian, this));
-    PetscCall(KSPSetType(ksp, KSPPREONLY));
+    PetscCall(MatCreateAIJ(comm, nlocx_, nlocx_, M, M, nlocx_, NULL, M - nlocx_, NULL, Jdense_.out())); // dense pattern
+  }
+  if (o.jacobian == ShootingJacobian::Dense) {
+    PetscCall(SNESSetJacobian(snes_, Jdense_, Jdense_, ShootJacobian, this));
     // A pivoting LU (the bordered Jacobian has zero diagonal entries): MUMPS.
+    PetscCall(KSPSetType(ksp, KSPPREONLY));
     PetscCall(PCSetType(pc, PCLU));
     PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
   } else {
-    PetscCall(MatCreateShell(comm, nlocx_, nlocx_, n_ + 2, n_ + 2, this, J_.out()));
-    PetscCall(MatShellSetOperation(J_, MATOP_MULT, (void (*)(void))ShootShellMult));
-    PetscCall(SNESSetJacobian(snes_, J_, J_, ShootJacobian, this));
+    PetscCall(MatCreateShell(comm, nlocx_, nlocx_, M, M, this, Jshell_.out()));
+    PetscCall(MatShellSetOperation(Jshell_, MATOP_MULT, (void (*)(void))ShootShellMult));
+    PetscCall(SNESSetJacobian(snes_, Jshell_, Jshell_, ShootJacobian, this));
     PetscCall(KSPSetType(ksp, KSPGMRES));
     PetscCall(PCSetType(pc, PCNONE));
     PetscCall(KSPSetTolerances(ksp, 1e-10, 1e-14, PETSC_DEFAULT, 400));
@@ -89,7 +95,7 @@ PetscErrorCode Shooting::Setup(PeriodicFlow &flow, const ShootingOptions &o)
   PetscCall(SNESSetTolerances(snes_, 1e-12, 1e-10, 1e-14, 12, PETSC_DEFAULT));
   PetscCall(SNESSetFromOptions(snes_));
   PetscCall(PetscOptionsHasName(NULL, "nnm_", "-snes_mf", &snes_mf_));
-  if (o.jacobian == ShootingJacobian::Dense && !snes_mf_) {
+  if (Jdense_) {
     // Start solver (prefix -nnm_start_) for the first orbit of a branch:
     // pseudo-inverse by SVD with tiny singular values dropped. At the linear
     // limit of the insulated branch the left-end edge mode has the same period
@@ -106,7 +112,7 @@ PetscErrorCode Shooting::Setup(PeriodicFlow &flow, const ShootingOptions &o)
     PetscCall(SNESCreate(comm, snes_start_.out()));
     PetscCall(SNESSetOptionsPrefix(snes_start_, "nnm_start_"));
     PetscCall(SNESSetFunction(snes_start_, F_, ShootResidual, this));
-    PetscCall(SNESSetJacobian(snes_start_, J_, J_, ShootJacobian, this));
+    PetscCall(SNESSetJacobian(snes_start_, Jdense_, Jdense_, ShootJacobian, this));
     PetscCall(SNESGetKSP(snes_start_, &kspS));
     PetscCall(KSPSetType(kspS, KSPPREONLY));
     PetscCall(KSPGetPC(kspS, &pcS));
@@ -250,7 +256,7 @@ PetscErrorCode Shooting::Jacobian(Vec X, Mat J)
   PetscCall(GatherToAll(fref_, &fr_));
   if (energy_mode_) PetscCall(GatherToAll(g_, &cr_));
   else PetscCall(GatherToAll(tan_, &cr_));
-  if (opt_.jacobian == ShootingJacobian::MatrixFree) { // remember the linearisation point
+  if (J == Jshell_.get()) { // matrix-free: remember the linearisation point
     PetscCall(VecCopy(z_, zlin_));
     Tlin_ = T;
     blin_ = beta;
@@ -358,7 +364,7 @@ PetscErrorCode Shooting::Solve(Vec X, bool *converged, PetscInt *its)
   PetscFunctionBeginUser;
   const PetscInt j0 = njac_;
   PetscCall(SNESSolve(snes, NULL, X));
-  fresh_ = njac_ > j0 && snes == snes_.get() && opt_.jacobian == ShootingJacobian::Dense;
+  fresh_ = njac_ > j0 && snes == snes_.get() && opt_.jacobian == ShootingJacobian::Dense && !snes_mf_;
   PetscCall(SNESGetConvergedReason(snes, &reason));
   PetscCall(SNESGetIterationNumber(snes, its));
   *converged = reason > 0;
@@ -389,8 +395,9 @@ PetscErrorCode Shooting::Tangent(Vec X, Vec t_prev, Vec t)
     PetscCall(MatMFFDSetBase(A, X, F_));
     PetscCall(KSPSetOperators(ksp, A, A));
   } else if (!fresh_) {
-    PetscCall(Jacobian(X, J_));
-    PetscCall(KSPSetOperators(ksp, J_, J_));
+    Mat J = opt_.jacobian == ShootingJacobian::Dense ? Jdense_.get() : Jshell_.get();
+    PetscCall(Jacobian(X, J));
+    PetscCall(KSPSetOperators(ksp, J, J));
   }
   PetscCall(VecZeroEntries(work_));
   if (rank_ == size_ - 1) PetscCall(VecSetValue(work_, n_ + 1, 1.0, INSERT_VALUES));

@@ -24,6 +24,7 @@ enum class ShootingJacobian { Dense = 0, MatrixFree = 1 };
 
 struct ShootingOptions {
   ShootingJacobian jacobian = ShootingJacobian::Dense;
+  PetscInt start_dense_max = 4000; // 2N up to which the first orbit uses the dense SVD start solver
 };
 PetscErrorCode ShootingOptionsFromOptions(MPI_Comm comm, ShootingOptions *o);
 
@@ -64,7 +65,7 @@ private:
   PetscMPIInt rank_ = 0, size_ = 1;
   PetscInt n_ = 0, nlocx_ = 0; // 2N, local size of X
   OwnedSNES snes_, snes_start_;
-  OwnedMat J_, S_;
+  OwnedMat Jdense_, Jshell_, S_;
   OwnedVec z_, zT_, fref_, zref_, g_, tan_, Xpred_, work_, w_, F_;
   PetscErrorCode SetBorderRows(Mat J);
   PetscBool snes_mf_ = PETSC_FALSE;          // -nnm_snes_mf: finite-difference Jacobian

@@ -14,11 +14,12 @@ out = sys.argv[2] if len(sys.argv) > 2 else sys.argv[1].replace(".h5", "") + "_l
 L, B = f["linear"], f["linear/bloch"]
 w, a = L["omega"][:], L.attrs
 fig, ax = plt.subplots(1, 3, figsize=(13, 4))
-ax[0].plot(np.arange(len(w)), w, ".", color="0.4", label="finite lattice")
+ax[0].plot(np.arange(len(w)), w, ".", color="0.4", label="finite lattice" + ("" if "modes" in L else " (computed subset)"))
 for name, c in (("insulated_omega", "C3"), ("interface_omega", "C0"), ("acoustic_top", "C2"), ("optical_bottom", "C1"), ("optical_top", "C4")):
     if np.isfinite(a[name]):
         ax[0].axhline(a[name], color=c, lw=0.8, label=f"{name} = {a[name]:.4f}")
-ax[0].set(xlabel="mode index", ylabel=r"$\omega$ (rad/s)", title=f"linear spectrum, N = {len(w)}")
+N = int(a["N"])
+ax[0].set(xlabel="mode index", ylabel=r"$\omega$ (rad/s)", title=f"linear spectrum, N = {N}")
 ax[0].legend(fontsize=7)
 q = B["q"][:]
 ax[1].plot(q, B["omega_acoustic"][:], "C2", label="acoustic")
@@ -26,12 +27,13 @@ ax[1].plot(q, B["omega_optical"][:], "C1", label="optical")
 za, zo = B.attrs["zak_left_optical"], B.attrs["zak_right_optical"]
 ax[1].set(xlabel=r"$\mu$", ylabel=r"$\omega$", title=f"Bloch bands; Zak (optical): left {za:.3f}, right {zo:.3f}")
 ax[1].legend(fontsize=8)
-sites = np.arange(1, len(w) + 1)
+sites = np.arange(1, N + 1)
+modes = L["modes"] if "modes" in L else L["modes_selected"]
 if "insulated_mode" in L:
     ax[2].plot(sites, L["insulated_mode"][:], "C3.-", ms=3, label=r"insulated ($\sqrt{3}$)")
 i = int(a["interface_index"])
 if i >= 0:
-    ax[2].plot(sites, L["modes"][i], "C0.-", ms=3, alpha=0.7, label=f"interface ({w[i]:.4f})")
+    ax[2].plot(sites, modes[i], "C0.-", ms=3, alpha=0.7, label=f"interface ({w[i]:.4f})")
 ax[2].set(xlabel="site", ylabel="amplitude", title="localised modes")
 ax[2].legend(fontsize=8)
 fig.tight_layout()

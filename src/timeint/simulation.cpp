@@ -296,7 +296,21 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
   }
   PetscCall(TSSetTime(ts, 0.0));
   PetscCall(TSSetStepNumber(ts, 0));
-  PetscCall(TSSolve(ts, z));
+  {
+    // Any failure inside the solve (a NaN caught by TSAdapt, a diverged
+    // implicit step, our own post-step check) is reported once, with the time.
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+    const PetscErrorCode ierr = TSSolve(ts, z);
+    PetscCall(PetscPopErrorHandler());
+    if (ierr) {
+      const char *text = NULL;
+      char *specific = NULL;
+      PetscReal t;
+      PetscCall(TSGetTime(ts, &t));
+      PetscCall(PetscErrorMessage(ierr, &text, &specific));
+      SETERRQ(comm, PETSC_ERR_NOT_CONVERGED, "time integration failed at t = %g: %s", (double)t, specific && specific[0] ? specific : (text ? text : "error"));
+    }
+  }
   PetscCall(TSGetConvergedReason(ts, &reason));
   {
     PetscReal t;

@@ -1,0 +1,44 @@
+#!/usr/bin/python3
+"""Paper-style frequency-energy plot of -study continuation: omega vs energy of
+every branch over the linear bands (shaded), the MCR of each orbit, and the
+flagged modal interactions.  usage: plot_fep.py fep.h5 [out.png]"""
+import re
+import sys
+import h5py
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+import numpy as np
+
+f = h5py.File(sys.argv[1], "r")
+out = sys.argv[2] if len(sys.argv) > 2 else sys.argv[1].replace(".h5", "") + "_fep.png"
+opts = f.attrs["options"]
+opts = opts.decode() if isinstance(opts, bytes) else str(opts)
+
+def opt(name, default):
+    m = re.search(r"-%s\s+(\S+)" % name, opts)
+    return float(m.group(1)) if m else default
+
+k, g, g0 = opt("lattice_k", 1.0), opt("lattice_gamma", 0.4), opt("lattice_gamma0", 1.0)
+k1, k2 = k * (1 + g), k * (1 - g)
+kh = k1 + k2 + g0
+bands = [(np.sqrt(max(kh - k1 - k2, 0)), np.sqrt(kh - abs(k1 - k2))), (np.sqrt(kh + abs(k1 - k2)), np.sqrt(kh + k1 + k2))]
+fig, ax = plt.subplots(1, 2, figsize=(13, 5))
+for lo, hi in bands:
+    ax[0].axhspan(lo, hi, color="0.9")
+for name, grp in f["continuation"].items():
+    E, w, mcr = grp["energy"][:], grp["omega"][:], grp["mcr"][:]
+    line, = ax[0].semilogx(E, w, ".-", ms=3, label=f"{name} ({grp.attrs['points']} pts)")
+    ax[1].semilogx(E, mcr, ".-", ms=3, color=line.get_color(), label=name)
+    inter = grp["interactions"][:].astype(int) if "interactions" in grp else []
+    if len(inter):
+        ax[0].plot(E[inter], w[inter], "x", color=line.get_color(), ms=8)
+ax[0].axvline(12, color="k", ls="--", lw=0.8)
+ax[0].set(xlabel="energy E", ylabel=r"$\omega$ (rad/s)", title="NNM branches (x: modal interaction; grey: linear bands)")
+ax[0].legend(fontsize=8)
+ax[1].axvline(12, color="k", ls="--", lw=0.8, label="E = 12 (paper)")
+ax[1].set(xlabel="energy E", ylabel="MCR of u0", title="localisation along the branches")
+ax[1].legend(fontsize=8)
+fig.tight_layout()
+fig.savefig(out, dpi=120)
+print("wrote", out)
