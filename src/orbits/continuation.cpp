@@ -1,4 +1,5 @@
 #include "orbits/continuation.hpp"
+#include "core/gather.hpp"
 #include "diagnostics/mcr.hpp"
 #include <cmath>
 
@@ -62,28 +63,18 @@ PetscErrorCode DisplacementMcr(const Lattice &lat, Vec z, PetscReal *mcr)
 // Appends z in natural [u, v] order to rank 0's row store.
 PetscErrorCode AppendRow(const Lattice &lat, Vec z, std::vector<PetscReal> *rows)
 {
-  VecScatter sc;
-  Vec s;
-  const PetscScalar *a;
-  PetscMPIInt rank;
+  std::vector<PetscReal> all;
   PetscFunctionBeginUser;
-  PetscCall(VecScatterCreateToZero(z, &sc, &s));
-  PetscCall(VecScatterBegin(sc, z, s, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(sc, z, s, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCallMPI(MPI_Comm_rank(lat.Comm(), &rank));
-  if (!rank) {
+  PetscCall(GatherVec(z, false, &all));
+  if (!all.empty()) {
     const PetscInt N = lat.N();
-    PetscCall(VecGetArrayRead(s, &a));
     const size_t off = rows->size();
     rows->resize(off + 2 * N);
     for (PetscInt i = 0; i < N; i++) {
-      (*rows)[off + i] = a[lat.StateIndexU(i)];
-      (*rows)[off + N + i] = a[lat.StateIndexV(i)];
+      (*rows)[off + i] = all[lat.StateIndexU(i)];
+      (*rows)[off + N + i] = all[lat.StateIndexV(i)];
     }
-    PetscCall(VecRestoreArrayRead(s, &a));
   }
-  PetscCall(VecScatterDestroy(&sc));
-  PetscCall(VecDestroy(&s));
   PetscFunctionReturn(0);
 }
 

@@ -1,4 +1,5 @@
 #include "orbits/shooting.hpp"
+#include "core/gather.hpp"
 #include "core/log.hpp"
 
 namespace nltopo {
@@ -227,25 +228,6 @@ PetscErrorCode Shooting::Residual(Vec X, Vec F)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Shooting::GatherToAll(Vec v, std::vector<PetscReal> *out) const
-{
-  VecScatter sc;
-  Vec s;
-  const PetscScalar *a;
-  PetscInt n;
-  PetscFunctionBeginUser;
-  PetscCall(VecScatterCreateToAll(v, &sc, &s));
-  PetscCall(VecScatterBegin(sc, v, s, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(sc, v, s, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGetSize(s, &n));
-  PetscCall(VecGetArrayRead(s, &a));
-  out->assign(a, a + n);
-  PetscCall(VecRestoreArrayRead(s, &a));
-  PetscCall(VecScatterDestroy(&sc));
-  PetscCall(VecDestroy(&s));
-  PetscFunctionReturn(0);
-}
-
 PetscErrorCode Shooting::Jacobian(Vec X, Mat J)
 {
   PetscReal T, beta;
@@ -253,9 +235,9 @@ PetscErrorCode Shooting::Jacobian(Vec X, Mat J)
   njac_++;
   PetscCall(Unpack(X, z_, &T, &beta));
   if (energy_mode_) PetscCall(flow_->GradEnergy(z_, g_));
-  PetscCall(GatherToAll(fref_, &fr_));
-  if (energy_mode_) PetscCall(GatherToAll(g_, &cr_));
-  else PetscCall(GatherToAll(tan_, &cr_));
+  PetscCall(GatherVec(fref_, true, &fr_));
+  if (energy_mode_) PetscCall(GatherVec(g_, true, &cr_));
+  else PetscCall(GatherVec(tan_, true, &cr_));
   if (J == Jshell_.get()) { // matrix-free: remember the linearisation point
     PetscCall(VecCopy(z_, zlin_));
     Tlin_ = T;

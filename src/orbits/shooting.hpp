@@ -57,7 +57,6 @@ public:
   PetscErrorCode ShellMult(Vec x, Vec y);
 
 private:
-  PetscErrorCode GatherToAll(Vec v, std::vector<PetscReal> *out) const;
 
   PeriodicFlow *flow_ = nullptr;
   const Lattice *lat_ = nullptr;
