@@ -33,11 +33,12 @@ static PetscErrorCode CreateEps(const Lattice &lat, EPSType type, EPS *eps)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode LinearModes::AppendPairs(const Lattice &lat, EPS eps)
+PetscErrorCode LinearModes::AppendPairs(const Lattice &lat, EPS eps, PetscInt nmax)
 {
   PetscInt nconv;
   PetscFunctionBeginUser;
   PetscCall(EPSGetConverged(eps, &nconv));
+  nconv = std::min(nconv, nmax); // the nmax nearest (EPS sorts them): the same set on any number of ranks
   for (PetscInt i = 0; i < nconv; i++) {
     PetscScalar lam;
     OwnedVec x;
@@ -68,7 +69,7 @@ PetscErrorCode LinearModes::SolveAll(const Lattice &lat)
   PetscCall(EPSSetDimensions(eps, N, PETSC_DEFAULT, PETSC_DEFAULT));
   PetscCall(EPSSetFromOptions(eps));
   PetscCall(EPSSolve(eps));
-  PetscCall(AppendPairs(lat, eps));
+  PetscCall(AppendPairs(lat, eps, N));
   complete_ = (PetscInt)omega_.size() == N;
   PetscCheck(complete_, lat.Comm(), PETSC_ERR_NOT_CONVERGED, "linear modes: only %zu of %" PetscInt_FMT " eigenpairs converged", omega_.size(), N);
   PetscFunctionReturn(0);
@@ -110,7 +111,7 @@ PetscErrorCode LinearModes::SolveNear(const Lattice &lat, const LinearModesOptio
     else PetscCall(PCFactorSetMatOrderingType(pc, MATORDERINGNATURAL)); // tridiagonal: no fill
     PetscCall(EPSSetFromOptions(eps));
     PetscCall(EPSSolve(eps));
-    PetscCall(AppendPairs(lat, eps));
+    PetscCall(AppendPairs(lat, eps, nevs[k]));
   }
   // The extreme ends (localised modes outside the bands) with plain Krylov-Schur.
   for (EPSWhich which : {EPS_LARGEST_REAL, EPS_SMALLEST_REAL}) {
@@ -120,7 +121,7 @@ PetscErrorCode LinearModes::SolveNear(const Lattice &lat, const LinearModesOptio
     PetscCall(EPSSetDimensions(eps, 1, PETSC_DEFAULT, PETSC_DEFAULT));
     PetscCall(EPSSetFromOptions(eps));
     PetscCall(EPSSolve(eps));
-    PetscCall(AppendPairs(lat, eps));
+    PetscCall(AppendPairs(lat, eps, 1));
   }
   complete_ = false;
   PetscFunctionReturn(0);

@@ -41,7 +41,7 @@ public:
 private:
   PetscErrorCode SolveAll(const Lattice &lat);
   PetscErrorCode SolveNear(const Lattice &lat, const LinearModesOptions &o);
-  PetscErrorCode AppendPairs(const Lattice &lat, EPS eps);
+  PetscErrorCode AppendPairs(const Lattice &lat, EPS eps, PetscInt nmax);
   PetscErrorCode SortAndNormalise();
   PetscErrorCode Identify(const Lattice &lat);
 

@@ -107,7 +107,9 @@ PetscErrorCode SimulateStudy(MPI_Comm comm)
   PetscCall(WriteAttr(v, g, "energy_star", burst.EnergyStar()));
   PetscCall(WriteAttr(v, g, "amplitude", burst.Amplitude()));
   PetscCall(WriteAttr(v, g, "amplitude_rule",
-                      burst.AmplitudeFromRule() ? "linear Gaussian-burst energy = amplitude_safety * E* (README.md, Amplitude rule)" : "user (-force_amplitude)"));
+                      !burst.Present() ? "none (no forcing)"
+                      : burst.AmplitudeFromRule() ? "linear Gaussian-burst energy = amplitude_safety * E* (README.md, Amplitude rule)"
+                                                  : "user (-force_amplitude)"));
   PetscCall(WriteAttr(v, g, "amplitude_safety", fo.safety));
   PetscCall(WriteAttr(v, g, "tau", burst.Tau()));
   PetscCall(WriteAttr(v, g, "t0", burst.T0()));
