@@ -44,8 +44,6 @@ public:
   PetscErrorCode GradEnergy(Vec z, Vec g);
 
   const Lattice &Lat() const { return *lat_; }
-  PetscInt RhsEvaluations() const { return rhs_->Counters().rhs; }
-  PetscInt Steps() const { return opt_.steps; }
 
   // TS callbacks (public for the C trampolines).
   PetscErrorCode EvalRhs(PetscReal t, Vec z, Vec f);

@@ -49,7 +49,7 @@ public:
   PeriodicFlow &Flow() { return *flow_; }
   PetscInt JacobianEvaluations() const { return njac_; }
   PetscInt ResidualEvaluations() const { return nres_; }
-  PetscInt LinearIterations() const { return nlin_; }
+  PetscInt TangentProducts() const { return nlin_; } // matrix-free Jacobian products
 
   // SNES callbacks.
   PetscErrorCode Residual(Vec X, Vec F);

@@ -102,7 +102,7 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
     PetscCall(BranchStart(lat, modes, names[k], u, &omega, &label));
     PetscCall(PetscTime(&b0));
     PetscCall(PetscLogStagePush(Log().solve));
-    const PetscInt j0 = shoot.JacobianEvaluations(), r0 = shoot.ResidualEvaluations();
+    const PetscInt j0 = shoot.JacobianEvaluations(), r0 = shoot.ResidualEvaluations(), p0 = shoot.TangentProducts();
     PetscCall(ContinueBranch(shoot, u, 2 * PETSC_PI / omega, co, label.c_str(), &b));
     PetscCall(PetscLogStagePop());
     PetscCall(PetscTime(&b1));
@@ -126,6 +126,7 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
     PetscCall(WriteAttr(v, g.c_str(), "points", (PetscInt)b.energy.size()));
     PetscCall(WriteAttr(v, g.c_str(), "jacobian_evaluations", shoot.JacobianEvaluations() - j0));
     PetscCall(WriteAttr(v, g.c_str(), "residual_evaluations", shoot.ResidualEvaluations() - r0));
+    PetscCall(WriteAttr(v, g.c_str(), "tangent_products", shoot.TangentProducts() - p0));
     PetscCall(WriteAttr(v, g.c_str(), "seconds", (PetscReal)(b1 - b0)));
     PetscCall(PetscLogStagePop());
     PetscCall(PetscPrintf(comm, "  [%s] %.2f s, %.3f s per point\n", label.c_str(), (double)(b1 - b0), (double)(b1 - b0) / b.energy.size()));
