@@ -67,6 +67,8 @@ PetscErrorCode SimulateStudy(MPI_Comm comm)
   PetscCall(lat.Setup(comm, lp));
   if (need_modes) PetscCall(modes.Compute(lat, mo));
   PetscCall(burst.Setup(lat, fo, need_modes ? &modes : NULL));
+  PetscInt doublings = 0;
+  if (burst.AmplitudeFromRule()) PetscCall(SearchAmplitude(lat, &burst, so, &doublings));
   PetscCall(PetscLogStagePop());
 
   Samples sink(lat, store_u);
@@ -78,7 +80,7 @@ PetscErrorCode SimulateStudy(MPI_Comm comm)
 
   PetscCall(PetscPrintf(comm, "nltopo simulate: N = %" PetscInt_FMT ", omega_ext = %.6f, E* = %g, S = %.6g (%s), t_final = %g\n", lat.N(),
                         (double)burst.Omega(), (double)burst.EnergyStar(), (double)burst.Amplitude(),
-                        burst.AmplitudeFromRule() ? "amplitude rule" : "-force_amplitude", (double)so.t_final));
+                        burst.AmplitudeFromRule() ? (doublings > 0 ? "amplitude rule, doubled" : "amplitude rule") : "-force_amplitude", (double)so.t_final));
   if (r.reached) PetscCall(PetscPrintf(comm, "  cut-off at t_off = %.6f, E_final = %.10g\n", (double)r.t_off, (double)r.energy_final));
   else if (burst.Present())
     PetscCall(PetscPrintf(comm, "  WARNING: E* = %g was NOT reached (E_final = %.6g); RMS window from t = %g\n", (double)burst.EnergyStar(),
@@ -108,9 +110,10 @@ PetscErrorCode SimulateStudy(MPI_Comm comm)
   PetscCall(WriteAttr(v, g, "amplitude", burst.Amplitude()));
   PetscCall(WriteAttr(v, g, "amplitude_rule",
                       !burst.Present() ? "none (no forcing)"
-                      : burst.AmplitudeFromRule() ? "linear Gaussian-burst energy = amplitude_safety * E* (README.md, Amplitude rule)"
+                      : burst.AmplitudeFromRule() ? "linear Gaussian-burst energy = amplitude_safety * E*, doubled until E* is reached in the burst (README.md, Amplitude rule)"
                                                   : "user (-force_amplitude)"));
   PetscCall(WriteAttr(v, g, "amplitude_safety", fo.safety));
+  PetscCall(WriteAttr(v, g, "amplitude_doublings", doublings)); // -1: E* missed after -force_amplitude_retries
   PetscCall(WriteAttr(v, g, "tau", burst.Tau()));
   PetscCall(WriteAttr(v, g, "t0", burst.T0()));
   PetscCall(WriteAttr(v, g, "solve_seconds", (PetscReal)(t_solve1 - t_solve0)));

@@ -213,6 +213,26 @@ PetscErrorCode PostStep(TS ts)
 
 } // namespace
 
+PetscErrorCode SearchAmplitude(const Lattice &lat, ToneBurst *burst, const SimulationOptions &o, PetscInt *doublings)
+{
+  SimulationOptions probe = o;
+  PetscFunctionBeginUser;
+  probe.t_final = std::min(o.t_final, burst->T0() + 3 * burst->Tau());
+  probe.sample_dt = 0;
+  probe.progress = 0;
+  *doublings = -1;
+  for (PetscInt k = 0; k <= burst->Options().retries; k++) {
+    SimulationResult r;
+    PetscCall(Simulate(lat, burst, probe, NULL, NULL, &r));
+    if (r.reached) {
+      *doublings = k;
+      PetscFunctionReturn(0);
+    }
+    if (k < burst->Options().retries) burst->ScaleAmplitude(2.0);
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const SimulationOptions &o, Vec z0, SampleSink *sink, SimulationResult *r)
 {
   MPI_Comm comm = lat.Comm();

@@ -35,6 +35,11 @@ struct SimulationResult {
   OwnedVec z_final;            // final state
 };
 
+// Amplitude rule, nonlinear part (README.md): from the linear rule's S, run the
+// burst alone (to t0 + 3 tau) and double S until E* is reached, at most
+// -force_amplitude_retries times. *doublings = -1 if E* was never reached.
+PetscErrorCode SearchAmplitude(const Lattice &lat, ToneBurst *burst, const SimulationOptions &o, PetscInt *doublings);
+
 // forcing may be NULL (free run). z0 NULL starts from rest.
 PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const SimulationOptions &o, Vec z0, SampleSink *sink,
                         SimulationResult *r);
