@@ -28,7 +28,7 @@ struct Run {
   const ToneBurst *forcing;
   Rhs rhs;
   SampleSink *sink;
-  bool event_mode = false, interpolate = true;
+  bool event_mode = false, interpolate = true, stop_at_cutoff = false;
   PetscReal estar = 0, t_final = 0, sample_dt = 0, window_default = 0, progress = 0;
   PetscLogDouble wall0 = 0, wall_last = 0;
   PetscInt next_sample = 0;
@@ -192,7 +192,10 @@ PetscErrorCode PostStep(TS ts)
   PetscCall(run->EnergyAt(z, &e));
   PetscCheck(std::isfinite(e.Total()), run->lat->Comm(), PETSC_ERR_FP,
              "non-finite state at t = %g: the integration diverged (reduce -sim_ts_dt or tighten -sim_ts_rtol)", (double)t);
-  if (!run->event_mode && run->rhs.Forcing() && e.Total() >= run->estar) run->CutOff(t);
+  if (!run->event_mode && run->rhs.Forcing() && e.Total() >= run->estar) {
+    run->CutOff(t);
+    if (run->stop_at_cutoff) PetscCall(TSSetConvergedReason(ts, TS_CONVERGED_USER));
+  }
   PetscCall(run->Window(t, z, e));
   PetscCall(run->Samples(ts, t, z, e));
   if (run->progress > 0) { // long runs say where they are (rank 0, one line per interval)
@@ -220,6 +223,7 @@ PetscErrorCode SearchAmplitude(const Lattice &lat, ToneBurst *burst, const Simul
   probe.t_final = std::min(o.t_final, burst->T0() + 3 * burst->Tau());
   probe.sample_dt = 0;
   probe.progress = 0;
+  probe.stop_at_cutoff = true;
   *doublings = -1;
   for (PetscInt k = 0; k <= burst->Options().retries; k++) {
     SimulationResult r;
@@ -248,6 +252,7 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
   run.t_final = o.t_final;
   run.sample_dt = o.sample_dt;
   run.progress = o.progress;
+  run.stop_at_cutoff = o.stop_at_cutoff;
   PetscCall(PetscTime(&run.wall0));
   run.wall_last = run.wall0;
   // RMS window when E* is never reached: after the burst (t0 + 3 tau), or the
@@ -300,7 +305,7 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
     // registered after the step size is final (guide, pitfall a). Types that
     // cannot roll back a step (euler, ssp, ...) check after every step instead.
     PetscInt dir = 1;
-    PetscBool term = PETSC_FALSE;
+    PetscBool term = o.stop_at_cutoff ? PETSC_TRUE : PETSC_FALSE;
     PetscReal vtol = 1e-10;
     PetscCall(TSSetEventHandler(ts, 1, &dir, &term, CutOffIndicator, CutOffEvent, &run));
     PetscCall(TSSetEventTolerances(ts, PETSC_DECIDE, &vtol));
@@ -337,7 +342,7 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
     PetscCall(TSGetTime(ts, &t));
     PetscCheck(reason >= 0, comm, PETSC_ERR_NOT_CONVERGED, "time integration failed at t = %g: %s (see -sim_ts_* options)", (double)t,
                TSConvergedReasons[reason]);
-    PetscCheck(t >= o.t_final * (1 - 1e-10), comm, PETSC_ERR_NOT_CONVERGED, "time integration stopped at t = %g before -sim_t_final %g", (double)t,
+    PetscCheck(t >= o.t_final * (1 - 1e-10) || (o.stop_at_cutoff && r->reached), comm, PETSC_ERR_NOT_CONVERGED, "time integration stopped at t = %g before -sim_t_final %g", (double)t,
                (double)o.t_final);
   }
   PetscCall(TSGetStepNumber(ts, &r->steps));

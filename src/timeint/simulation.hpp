@@ -13,6 +13,7 @@ struct SimulationOptions {
   PetscReal t_final = 1000;  // simulated time
   PetscReal sample_dt = 1.0; // spacing of the stored samples (0: store none)
   PetscReal progress = 10;   // wall seconds between progress lines (0: none)
+  bool stop_at_cutoff = false; // end the run at the cut-off (amplitude search probes)
 };
 PetscErrorCode SimulationOptionsFromOptions(MPI_Comm comm, SimulationOptions *o);
 
