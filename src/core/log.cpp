@@ -21,6 +21,7 @@ PetscErrorCode LogRegister()
   PetscCall(PetscLogEventRegister("OutputHDF5", cid, &g_log.output));
   PetscCall(PetscLogEventRegister("Diagnostics", cid, &g_log.diagnostics));
   PetscCall(PetscLogEventRegister("VariationalRhs", cid, &g_log.variational));
+  PetscCall(PetscLogEventRegister("Floquet", cid, &g_log.floquet));
   PetscCall(PetscLogStageRegister("Setup", &g_log.setup));
   PetscCall(PetscLogStageRegister("Solve", &g_log.solve));
   PetscCall(PetscLogStageRegister("Analysis", &g_log.analysis));

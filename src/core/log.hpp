@@ -6,7 +6,7 @@
 namespace nltopo {
 
 struct LogEvents {
-  PetscLogEvent rhs_linear, rhs_cubic, rhs_forcing, energy, jacobian, eigen, bloch, output, diagnostics, variational;
+  PetscLogEvent rhs_linear, rhs_cubic, rhs_forcing, energy, jacobian, eigen, bloch, output, diagnostics, variational, floquet;
   PetscLogStage setup, solve, analysis, write;
 };
 

@@ -154,6 +154,37 @@ PetscErrorCode WriteColumnBlock(PetscViewer v, const char *group, const char *na
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode WriteIntArray(PetscViewer v, const char *group, const char *name, const std::vector<PetscInt> &data, PetscInt bs)
+{
+  hid_t file, grp, space, dset, xfer;
+  PetscMPIInt rank, size;
+  MPI_Comm comm = PetscObjectComm((PetscObject)v);
+  PetscInt n = (PetscInt)data.size();
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCallMPI(MPI_Bcast(&n, 1, MPIU_INT, 0, comm));
+  PetscCheck(n > 0 && n % bs == 0, comm, PETSC_ERR_ARG_SIZ, "integer dataset %s/%s: %" PetscInt_FMT " values, block %" PetscInt_FMT, group, name, n, bs);
+  PetscCall(PetscViewerHDF5WriteGroup(v, group));
+  PetscCall(PetscViewerHDF5GetFileId(v, &file));
+  const hsize_t dims[2] = {(hsize_t)(n / bs), (hsize_t)bs};
+  H5CHK(grp = H5Gopen2(file, group, H5P_DEFAULT));
+  H5CHK(space = H5Screate_simple(bs == 1 ? 1 : 2, dims, NULL));
+  H5CHK(dset = H5Dcreate2(grp, name, H5T_NATIVE_INT, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  if (rank) H5CHK(H5Sselect_none(space));
+  H5CHK(xfer = H5Pcreate(H5P_DATASET_XFER));
+#if defined(H5_HAVE_PARALLEL)
+  if (size > 1) H5CHK(H5Pset_dxpl_mpio(xfer, H5FD_MPIO_COLLECTIVE));
+#endif
+  std::vector<int> buf(data.begin(), data.end());
+  H5CHK(H5Dwrite(dset, H5T_NATIVE_INT, rank ? space : H5S_ALL, space, xfer, buf.data()));
+  H5CHK(H5Pclose(xfer));
+  H5CHK(H5Dclose(dset));
+  H5CHK(H5Sclose(space));
+  H5CHK(H5Gclose(grp));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode WriteVec(PetscViewer v, const char *group, const char *name, Vec x)
 {
   PetscFunctionBeginUser;

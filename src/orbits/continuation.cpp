@@ -80,7 +80,7 @@ PetscErrorCode AppendRow(const Lattice &lat, Vec z, std::vector<PetscReal> *rows
 
 } // namespace
 
-PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, const ContinuationOptions &o, const char *name, Branch *b)
+PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, const ContinuationOptions &o, const char *name, Branch *b, PointHook *hook)
 {
   PeriodicFlow &flow = shoot.Flow();
   const Lattice &lat = flow.Lat();
@@ -139,6 +139,7 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
     b->beta.push_back(beta);
     b->newton_its.push_back(newton_its);
     PetscCall(AppendRow(lat, z, &b->z0));
+    if (hook) PetscCall(hook->Point(z, T, beta));
     const PetscInt k = (PetscInt)b->energy.size() - 1;
     if (corr < o.interaction_corr) {
       b->interactions.push_back(k);

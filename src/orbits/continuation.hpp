@@ -32,7 +32,15 @@ struct Branch {
   bool reached_max = false;
 };
 
+// Called at every accepted orbit (z0, T, beta), e.g. for its Floquet multipliers.
+class PointHook {
+public:
+  virtual ~PointHook() = default;
+  virtual PetscErrorCode Point(Vec z0, PetscReal T, PetscReal beta) = 0;
+};
+
 // Continues the family through the orbit guess (u_guess, v = 0) of period T_guess.
-PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, const ContinuationOptions &o, const char *name, Branch *b);
+PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, const ContinuationOptions &o, const char *name, Branch *b,
+                              PointHook *hook = nullptr);
 
 } // namespace nltopo

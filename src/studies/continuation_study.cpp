@@ -4,6 +4,7 @@
 #include "core/log.hpp"
 #include "io/output.hpp"
 #include "orbits/continuation.hpp"
+#include "stability/floquet.hpp"
 #include "studies/registry.hpp"
 #include <cmath>
 #include <cstdlib>
@@ -46,6 +47,39 @@ PetscErrorCode BranchStart(const Lattice &lat, const LinearModes &modes, const c
   PetscFunctionReturn(0);
 }
 
+// Floquet multipliers, Krein signatures and stability of every orbit of a branch.
+class FloquetHook : public PointHook {
+public:
+  FloquetHook(PeriodicFlow &flow, const FloquetOptions &o) : flow_(flow), opt_(o) {}
+  PetscErrorCode Point(Vec z0, PetscReal T, PetscReal beta) override
+  {
+    FloquetResult r;
+    PetscFunctionBeginUser;
+    if (!S_) {
+      PetscCall(flow_.CreateSensitivityMatrix(S_.out()));
+      PetscCall(VecDuplicate(z0, zT_.out()));
+    }
+    PetscCall(flow_.IntegrateWithMonodromy(z0, T, beta, zT_, S_)); // at the converged orbit
+    PetscCall(FloquetAnalysis(flow_.Lat(), S_, opt_, &r));
+    re.insert(re.end(), r.re.begin(), r.re.end());
+    im.insert(im.end(), r.im.begin(), r.im.end());
+    krein.insert(krein.end(), r.krein.begin(), r.krein.end());
+    max_modulus.push_back(r.max_modulus);
+    stable.push_back(r.stable);
+    instability.push_back(r.instability);
+    PetscFunctionReturn(0);
+  }
+  void Clear() { re.clear(), im.clear(), krein.clear(), max_modulus.clear(), stable.clear(), instability.clear(); }
+  std::vector<PetscReal> re, im, max_modulus;
+  std::vector<PetscInt> krein, stable, instability;
+
+private:
+  PeriodicFlow &flow_;
+  FloquetOptions opt_;
+  OwnedMat S_;
+  OwnedVec zT_;
+};
+
 } // namespace
 
 PetscErrorCode ContinuationStudy(MPI_Comm comm)
@@ -74,6 +108,13 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
   PetscCall(FlowOptionsFromOptions(comm, &fo));
   PetscCall(ShootingOptionsFromOptions(comm, &so));
   PetscCall(ContinuationOptionsFromOptions(comm, &co));
+  PetscBool floquet = PETSC_FALSE;
+  FloquetOptions flo;
+  PetscOptionsBegin(comm, NULL, "Floquet stability along the branches", NULL);
+  PetscCall(PetscOptionsBool("-floquet", "Add Floquet multipliers, Krein signatures and stability to every orbit (-floquet_* options)", NULL, floquet,
+                             &floquet, NULL));
+  PetscOptionsEnd();
+  if (floquet) PetscCall(FloquetOptionsFromOptions(comm, &flo));
   PetscOptionsBegin(comm, "cont_", "NNM branches", NULL);
   PetscCall(PetscOptionsStringArray("-branch", "Comma-separated branches: insulated, interface, acoustic_top, optical_bottom, optical_top, mode<k> or k",
                                     NULL, names, &nb, &set));
@@ -94,6 +135,7 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
                         (double)co.energy_min, (double)co.energy_max, so.jacobian == ShootingJacobian::Dense ? "dense" : "mf"));
   OwnedVec u;
   PetscCall(DMCreateGlobalVector(lat.SiteDM(), u.out()));
+  FloquetHook hook(flow, flo);
   for (PetscInt k = 0; k < nb; k++) {
     PetscReal omega;
     std::string label;
@@ -103,7 +145,8 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
     PetscCall(PetscTime(&b0));
     PetscCall(PetscLogStagePush(Log().solve));
     const PetscInt j0 = shoot.JacobianEvaluations(), r0 = shoot.ResidualEvaluations(), p0 = shoot.TangentProducts();
-    PetscCall(ContinueBranch(shoot, u, 2 * PETSC_PI / omega, co, label.c_str(), &b));
+    hook.Clear();
+    PetscCall(ContinueBranch(shoot, u, 2 * PETSC_PI / omega, co, label.c_str(), &b, floquet ? &hook : nullptr));
     PetscCall(PetscLogStagePop());
     PetscCall(PetscTime(&b1));
     PetscCall(PetscLogStagePush(Log().write));
@@ -121,6 +164,18 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
     std::vector<PetscReal> inter(b.interactions.begin(), b.interactions.end());
     PetscCall(WriteArray(v, g.c_str(), "interactions", inter));
     PetscCall(WriteAttr(v, g.c_str(), "linear_omega", omega));
+    if (floquet) {
+      const PetscInt n2 = 2 * lat.N();
+      PetscCall(WriteArray(v, g.c_str(), "multipliers_re", hook.re, n2));
+      PetscCall(WriteArray(v, g.c_str(), "multipliers_im", hook.im, n2));
+      PetscCall(WriteIntArray(v, g.c_str(), "krein", hook.krein, n2));
+      PetscCall(WriteArray(v, g.c_str(), "max_modulus", hook.max_modulus));
+      PetscCall(WriteIntArray(v, g.c_str(), "stable", hook.stable));
+      PetscCall(WriteIntArray(v, g.c_str(), "instability", hook.instability));
+      PetscInt ns = 0;
+      for (PetscInt s : hook.stable) ns += s;
+      PetscCall(PetscPrintf(comm, "  [%s] Floquet: %" PetscInt_FMT " of %zu orbits stable (|mu| <= 1 + %g)\n", label.c_str(), ns, hook.stable.size(), (double)flo.tol));
+    }
     PetscCall(WriteAttr(v, g.c_str(), "stop_reason", b.stop_reason.c_str()));
     PetscCall(WriteAttr(v, g.c_str(), "reached_energy_max", (PetscInt)b.reached_max));
     PetscCall(WriteAttr(v, g.c_str(), "points", (PetscInt)b.energy.size()));

@@ -1,0 +1,133 @@
+#include "stability/floquet.hpp"
+#include "core/log.hpp"
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <slepceps.h>
+
+namespace nltopo {
+
+PetscErrorCode FloquetOptionsFromOptions(MPI_Comm comm, FloquetOptions *o)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, "floquet_", "Floquet multipliers (eigensolver options: -floquet_eps_*)", NULL);
+  PetscCall(PetscOptionsReal("-tol", "A multiplier with |mu| > 1 + tol makes the orbit unstable", NULL, o->tol, &o->tol, NULL));
+  PetscCall(PetscOptionsReal("-krein_tol", "Krein signature 0 when |-i v^H J v| / |v|^2 is below this", NULL, o->krein_tol, &o->krein_tol, NULL));
+  PetscCall(PetscOptionsInt("-edge_sites", "Sites on each side of the interface cell that count as the edge region", NULL, o->edge_sites, &o->edge_sites, NULL));
+  PetscCall(PetscOptionsReal("-edge_weight", "Unstable eigenvector: edge (E-E) above this share of its displacement norm in the edge region, bulk (B-B) below 1 minus it, B-E between",
+                             NULL, o->edge_weight, &o->edge_weight, NULL));
+  PetscOptionsEnd();
+  PetscCheck(o->tol > 0 && o->krein_tol > 0, comm, PETSC_ERR_USER, "-floquet_tol and -floquet_krein_tol must be positive");
+  PetscCheck(o->edge_weight > 0.5 && o->edge_weight < 1, comm, PETSC_ERR_USER, "-floquet_edge_weight must lie in (0.5, 1), got %g", (double)o->edge_weight);
+  PetscFunctionReturn(0);
+}
+
+namespace {
+
+// Sums over the owned state entries of x (u part first, then v): -i v^H J v / |v|^2 for v = xr + i xi,
+// which is 2 (xr_u . xi_v - xr_v . xi_u) / |v|^2, and the edge share of the displacement norm.
+PetscErrorCode KreinAndEdge(const Lattice &lat, Vec xr, Vec xi, PetscInt e, PetscReal *kappa, PetscReal *edge)
+{
+  const PetscScalar *a, *b;
+  const PetscInt xm = lat.OwnedCount(), xs = lat.OwnedStart();
+  const bool iface = lat.Params().layout == Layout::Interface;
+  const PetscInt m = lat.Params().InterfaceSite();
+  PetscReal loc[4] = {0, 0, 0, 0}, g[4];
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(xr, &a));
+  PetscCall(VecGetArrayRead(xi, &b));
+  for (PetscInt k = 0; k < xm; k++) {
+    const PetscInt i = xs + k;
+    loc[0] += a[k] * b[xm + k] - a[xm + k] * b[k];
+    loc[1] += a[k] * a[k] + b[k] * b[k] + a[xm + k] * a[xm + k] + b[xm + k] * b[xm + k];
+    const PetscReal d = a[k] * a[k] + b[k] * b[k];
+    loc[2] += d;
+    if (iface && i >= m - e && i <= m + 1 + e) loc[3] += d;
+  }
+  PetscCall(VecRestoreArrayRead(xi, &b));
+  PetscCall(VecRestoreArrayRead(xr, &a));
+  PetscCall(MPIU_Allreduce(loc, g, 4, MPIU_REAL, MPIU_SUM, lat.Comm()));
+  *kappa = g[1] > 0 ? 2 * g[0] / g[1] : 0;
+  *edge = g[2] > 0 ? g[3] / g[2] : 0;
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode FloquetAnalysis(const Lattice &lat, Mat S, const FloquetOptions &o, FloquetResult *r)
+{
+  const PetscInt n = 2 * lat.N(), nl = 2 * lat.OwnedCount();
+  OwnedMat M;
+  OwnedEPS eps;
+  OwnedVec xr, xi;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(Log().floquet, 0, 0, 0, 0));
+  *r = FloquetResult();
+  // M = the first 2N columns of S.
+  PetscCall(MatCreateDense(lat.Comm(), nl, nl, n, n, NULL, M.out()));
+  {
+    const PetscScalar *s;
+    PetscScalar *mm;
+    PetscInt lds, ldm;
+    PetscCall(MatDenseGetLDA(S, &lds));
+    PetscCall(MatDenseGetLDA(M, &ldm));
+    PetscCall(MatDenseGetArrayRead(S, &s));
+    PetscCall(MatDenseGetArrayWrite(M, &mm));
+    for (PetscInt c = 0; c < n; c++)
+      for (PetscInt k = 0; k < nl; k++) mm[k + c * ldm] = s[k + c * lds];
+    PetscCall(MatDenseRestoreArrayWrite(M, &mm));
+    PetscCall(MatDenseRestoreArrayRead(S, &s));
+  }
+  PetscCall(MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY));
+  PetscCall(EPSCreate(lat.Comm(), eps.out()));
+  PetscCall(EPSSetOptionsPrefix(eps, "floquet_"));
+  PetscCall(EPSSetOperators(eps, M, NULL));
+  PetscCall(EPSSetProblemType(eps, EPS_NHEP));
+  PetscCall(EPSSetType(eps, EPSLAPACK));
+  PetscCall(EPSSetWhichEigenpairs(eps, EPS_LARGEST_MAGNITUDE));
+  PetscCall(EPSSetDimensions(eps, n, PETSC_DEFAULT, PETSC_DEFAULT));
+  PetscCall(EPSSetFromOptions(eps));
+  PetscCall(EPSSolve(eps));
+  PetscInt nconv;
+  PetscCall(EPSGetConverged(eps, &nconv));
+  PetscCheck(nconv >= n, lat.Comm(), PETSC_ERR_NOT_CONVERGED, "Floquet: only %" PetscInt_FMT " of %" PetscInt_FMT " multipliers converged", nconv, n);
+  PetscCall(MatCreateVecs(M, xr.out(), NULL));
+  PetscCall(VecDuplicate(xr, xi.out()));
+  std::vector<PetscReal> re(n), im(n), kap(n), edge(n);
+  for (PetscInt i = 0; i < n; i++) {
+    PetscScalar kr, ki;
+    PetscCall(EPSGetEigenpair(eps, i, &kr, &ki, xr, xi));
+    re[i] = kr;
+    im[i] = ki;
+    PetscCall(KreinAndEdge(lat, xr, xi, o.edge_sites, &kap[i], &edge[i]));
+  }
+  std::vector<PetscInt> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](PetscInt a, PetscInt b) {
+    const PetscReal ta = std::atan2(im[a], re[a]), tb = std::atan2(im[b], re[b]);
+    if (std::abs(ta - tb) > 1e-12) return ta < tb;
+    return std::hypot(re[a], im[a]) < std::hypot(re[b], im[b]);
+  });
+  PetscInt worst = -1;
+  for (PetscInt i : order) {
+    const PetscReal mod = std::hypot(re[i], im[i]);
+    r->re.push_back(re[i]);
+    r->im.push_back(im[i]);
+    r->krein.push_back(std::abs(kap[i]) < o.krein_tol ? 0 : (kap[i] > 0 ? 1 : -1));
+    if (std::hypot(re[i] - 1, im[i]) < 1e-4) r->trivial++;
+    if (mod > r->max_modulus) {
+      r->max_modulus = mod;
+      worst = i;
+    }
+  }
+  r->stable = r->max_modulus <= 1 + o.tol;
+  if (!r->stable) { // the kind, from the localisation of the most unstable eigenvector
+    const PetscReal w = edge[worst];
+    r->instability = w > o.edge_weight ? 3 : (w < 1 - o.edge_weight ? 1 : 2);
+  }
+  PetscCall(PetscLogEventEnd(Log().floquet, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+} // namespace nltopo

@@ -1,0 +1,33 @@
+#pragma once
+// Floquet multipliers of a periodic orbit: the eigenvalues of the monodromy
+// M = dz(T)/dz0 (SLEPc EPS, non-Hermitian, options -floquet_eps_*), their
+// Krein signatures K = sign(-i v^H J v), J = [[0, I], [-I, 0]] (model.md), and
+// the kind of instability (README.md "Floquet").
+#include "lattice/lattice.hpp"
+#include <vector>
+
+namespace nltopo {
+
+struct FloquetOptions {
+  PetscReal tol = 1e-6;        // |mu| > 1 + tol is unstable
+  PetscReal krein_tol = 1e-6;  // |-i v^H J v| / |v|^2 below this: signature 0 (real or on a collision)
+  PetscReal edge_weight = 0.75; // an eigenvector with more of its displacement norm than this
+                               // within +-edge_sites of the interface counts as an edge (localised) mode
+  PetscInt edge_sites = 10;
+};
+PetscErrorCode FloquetOptionsFromOptions(MPI_Comm comm, FloquetOptions *o);
+
+struct FloquetResult {
+  std::vector<PetscReal> re, im; // 2N multipliers, sorted by angle then modulus
+  std::vector<PetscInt> krein;   // -1, 0, 1
+  PetscReal max_modulus = 0;
+  bool stable = true;
+  PetscInt instability = 0;      // 0 none, 1 bulk-bulk, 2 bulk-edge, 3 edge-edge
+  PetscInt trivial = 0;          // multipliers within 1e-4 of 1 (2 for an isolated NNM)
+};
+
+// M: the 2N x 2N monodromy in the state layout (columns 0..2N-1 of the
+// sensitivity matrix S, whose last column is ignored).
+PetscErrorCode FloquetAnalysis(const Lattice &lat, Mat S, const FloquetOptions &o, FloquetResult *r);
+
+} // namespace nltopo
