@@ -12,6 +12,7 @@ PetscErrorCode ContinuationOptionsFromOptions(MPI_Comm comm, ContinuationOptions
   PetscCall(PetscOptionsReal("-energy_min", "Energy of the first orbit (near the linear mode)", NULL, o->energy_min, &o->energy_min, NULL));
   PetscCall(PetscOptionsReal("-energy_max", "Stop when the energy exceeds this", NULL, o->energy_max, &o->energy_max, NULL));
   PetscCall(PetscOptionsInt("-max_points", "Stop after this many orbits", NULL, o->max_points, &o->max_points, NULL));
+  PetscCall(PetscOptionsReal("-omega_max", "Stop once the frequency exceeds this (0: no limit)", NULL, o->omega_max, &o->omega_max, NULL));
   PetscCall(PetscOptionsReal("-max_change", "Largest relative change of the orbit z0 per step", NULL, o->max_change, &o->max_change, NULL));
   PetscCall(PetscOptionsReal("-ds_min", "Step collapse: stop when the step falls below this times ||z0||", NULL, o->ds_min, &o->ds_min, NULL));
   PetscCall(PetscOptionsInt("-newton_target", "Newton iterations per point that the step size aims at", NULL, o->newton_target, &o->newton_target, NULL));
@@ -152,6 +153,10 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
     if (e.Total() >= o.energy_max) {
       b->stop_reason = "reached -cont_energy_max";
       b->reached_max = true;
+      break;
+    }
+    if (o.omega_max > 0 && 2 * PETSC_PI / T >= o.omega_max) {
+      b->stop_reason = "reached -cont_omega_max";
       break;
     }
     if ((PetscInt)b->energy.size() >= o.max_points) {

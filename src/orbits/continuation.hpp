@@ -14,6 +14,7 @@ namespace nltopo {
 
 struct ContinuationOptions {
   PetscReal energy_min = 1e-5, energy_max = 1e3;
+  PetscReal omega_max = 0;          // stop once omega exceeds this (0: no limit)
   PetscInt max_points = 1000;
   PetscReal max_change = 0.2;       // max ||z0_new - z0_old|| / ||z0_old|| per step
   PetscReal ds_min = 1e-9;          // relative to ||z0||: below it the branch stops

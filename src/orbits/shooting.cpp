@@ -178,6 +178,7 @@ PetscErrorCode Shooting::SetEnergyConstraint(Vec zref, PetscReal energy)
   PetscCall(VecCopy(zref, zref_));
   PetscCall(flow_->Field(zref_, fref_));
   energy_mode_ = true;
+  kind_ = Constraint::Energy;
   energy_target_ = energy;
   PetscFunctionReturn(0);
 }
@@ -190,6 +191,18 @@ PetscErrorCode Shooting::SetArclengthConstraint(Vec zref, Vec tangent, Vec Xpred
   PetscCall(VecCopy(tangent, tan_));
   PetscCall(VecCopy(Xpred, Xpred_));
   energy_mode_ = false;
+  kind_ = Constraint::Arclength;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Shooting::SetPeriodConstraint(Vec zref, PetscReal period)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(zref, zref_));
+  PetscCall(flow_->Field(zref_, fref_));
+  energy_mode_ = false;
+  kind_ = Constraint::Period;
+  period_target_ = period;
   PetscFunctionReturn(0);
 }
 
@@ -210,6 +223,8 @@ PetscErrorCode Shooting::Residual(Vec X, Vec F)
     EnergyParts e;
     PetscCall(lat_->Energy(z_, &e));
     c = e.Total() - energy_target_;
+  } else if (kind_ == Constraint::Period) {
+    c = T - period_target_;
   } else {
     PetscCall(VecWAXPY(work_, -1.0, Xpred_, X));
     PetscCall(VecDot(tan_, work_, &c));
@@ -237,7 +252,10 @@ PetscErrorCode Shooting::Jacobian(Vec X, Mat J)
   if (energy_mode_) PetscCall(flow_->GradEnergy(z_, g_));
   PetscCall(GatherVec(fref_, true, &fr_));
   if (energy_mode_) PetscCall(GatherVec(g_, true, &cr_));
-  else PetscCall(GatherVec(tan_, true, &cr_));
+  else if (kind_ == Constraint::Period) {
+    cr_.assign(n_ + 2, 0.0);
+    cr_[n_] = 1.0; // d(T - T_target)/dX
+  } else PetscCall(GatherVec(tan_, true, &cr_));
   if (J == Jshell_.get()) { // matrix-free: remember the linearisation point
     PetscCall(VecCopy(z_, zlin_));
     Tlin_ = T;

@@ -39,6 +39,7 @@ public:
   // Constraint for the next solve.
   PetscErrorCode SetEnergyConstraint(Vec zref, PetscReal energy);
   PetscErrorCode SetArclengthConstraint(Vec zref, Vec tangent, Vec Xpred);
+  PetscErrorCode SetPeriodConstraint(Vec zref, PetscReal period); // the orbit of a given period
 
   // Newton from X (in/out). converged false when SNES failed (X then holds the last iterate).
   PetscErrorCode Solve(Vec X, bool *converged, PetscInt *its);
@@ -68,6 +69,8 @@ private:
   OwnedVec z_, zT_, fref_, zref_, g_, tan_, Xpred_, work_, w_, F_;
   PetscErrorCode SetBorderRows(Mat J);
   PetscBool snes_mf_ = PETSC_FALSE;          // -nnm_snes_mf: finite-difference Jacobian
+  enum class Constraint { Energy, Arclength, Period } kind_ = Constraint::Energy;
+  PetscReal period_target_ = 0;
   bool energy_mode_ = true, fresh_ = false; // fresh_: the KSP holds this solve's last Jacobian
   PetscReal energy_target_ = 0;
   // linearisation point of the matrix-free product
