@@ -24,6 +24,10 @@ for name, w_lin in expect.items():
     assert abs(b["energy"][0] - 1e-5) < 1e-11
     assert abs(b["omega"][0] - w_lin) < 1e-6 * w_lin, (name, b["omega"][0], w_lin)
     assert np.allclose(b["period"][:] * b["omega"][:], 2 * np.pi)
+    for d in ("multipliers_re", "multipliers_im", "krein"):
+        assert b[d].shape == (n, 2 * N), (name, d)
+    assert b["krein"].dtype.kind == "i" and b["stable"].dtype.kind == "i" and b["instability"].dtype.kind == "i"
+    assert b["stable"][0] == 1 and abs(b["max_modulus"][0] - 1) < 1e-6, name   # the linear limit is stable
     c = g["continuation/" + name]
     assert c["energy"].shape == (n,), name
     assert np.abs(c["omega"][:] - b["omega"][:]).max() < 1e-9, name
