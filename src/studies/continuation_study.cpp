@@ -1,6 +1,6 @@
 // -study continuation: NNM branches from linear modes by pseudo-arclength
 // continuation of periodic orbits (orbits/); /continuation/<branch> of outputs.md.
-#include "bands/linear_modes.hpp"
+#include "studies/nnm_setup.hpp"
 #include "core/log.hpp"
 #include "io/output.hpp"
 #include "orbits/continuation.hpp"
@@ -84,30 +84,18 @@ private:
 
 PetscErrorCode ContinuationStudy(MPI_Comm comm)
 {
-  LatticeParams lp;
-  LinearModesOptions mo;
-  FlowOptions fo;
-  ShootingOptions so;
-  ContinuationOptions co;
+  NnmSetup nnm;
   char *names[16];
   PetscInt nb = 16;
   PetscBool set;
   std::string path;
   OutputFile out;
-  Lattice lat;
-  LinearModes modes;
-  PeriodicFlow flow;
-  Shooting shoot;
   PetscLogDouble t_start, t_end;
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t_start));
   PetscCall(LogRegister());
   PetscCall(PetscLogStagePush(Log().setup));
-  PetscCall(LatticeParamsFromOptions(comm, &lp));
-  PetscCall(LinearModesOptionsFromOptions(comm, &mo));
-  PetscCall(FlowOptionsFromOptions(comm, &fo));
-  PetscCall(ShootingOptionsFromOptions(comm, &so));
-  PetscCall(ContinuationOptionsFromOptions(comm, &co));
+  PetscCall(nnm.ReadOptions(comm));
   PetscBool floquet = PETSC_FALSE;
   FloquetOptions flo;
   PetscOptionsBegin(comm, NULL, "Floquet stability along the branches", NULL);
@@ -125,10 +113,13 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
   }
   PetscCall(OutputPathFromOptions(comm, "continuation", &path));
   PetscCall(out.Open(comm, path));
-  PetscCall(lat.Setup(comm, lp));
-  PetscCall(modes.Compute(lat, mo));
-  PetscCall(flow.Setup(lat, fo));
-  PetscCall(shoot.Setup(flow, so));
+  PetscCall(nnm.Build(comm));
+  Lattice &lat = nnm.lat;
+  LinearModes &modes = nnm.modes;
+  PeriodicFlow &flow = nnm.flow;
+  Shooting &shoot = nnm.shoot;
+  const ShootingOptions &so = nnm.so;
+  ContinuationOptions &co = nnm.co;
   PetscCall(PetscLogStagePop());
 
   PetscCall(PetscPrintf(comm, "nltopo continuation: N = %" PetscInt_FMT ", %" PetscInt_FMT " branch(es), E %g .. %g, Jacobian %s\n", lat.N(), nb,
@@ -137,7 +128,7 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
   PetscCall(DMCreateGlobalVector(lat.SiteDM(), u.out()));
   FloquetHook hook(flow, flo);
   for (PetscInt k = 0; k < nb; k++) {
-    PetscReal omega;
+    PetscReal omega = 0;
     std::string label;
     Branch b;
     PetscLogDouble b0, b1;

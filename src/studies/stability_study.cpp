@@ -2,7 +2,7 @@
 // frequency (continuation to it, then Newton at fixed period), its Floquet
 // multipliers, then a long free run from the orbit plus a seeded perturbation,
 // recording the shape correlation with the orbit and the MCR every few periods.
-#include "bands/linear_modes.hpp"
+#include "studies/nnm_setup.hpp"
 #include "core/gather.hpp"
 #include "core/log.hpp"
 #include "io/output.hpp"
@@ -77,11 +77,7 @@ PetscErrorCode RowToState(const Lattice &lat, const std::vector<PetscReal> &rows
 
 PetscErrorCode StabilityStudy(MPI_Comm comm)
 {
-  LatticeParams lp;
-  LinearModesOptions mo;
-  FlowOptions fo;
-  ShootingOptions so;
-  ContinuationOptions co;
+  NnmSetup nnm;
   FloquetOptions flo;
   SimulationOptions sim;
   PetscReal omegas[16] = {std::sqrt(3.0), 1.8245, 2.1876, 2.2654}, eps = 0.01, corr_min = 0.9;
@@ -89,19 +85,11 @@ PetscErrorCode StabilityStudy(MPI_Comm comm)
   PetscBool set;
   std::string path;
   OutputFile out;
-  Lattice lat;
-  LinearModes modes;
-  PeriodicFlow flow;
-  Shooting shoot;
   PetscLogDouble t_start, t_end;
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t_start));
   PetscCall(LogRegister());
-  PetscCall(LatticeParamsFromOptions(comm, &lp));
-  PetscCall(LinearModesOptionsFromOptions(comm, &mo));
-  PetscCall(FlowOptionsFromOptions(comm, &fo));
-  PetscCall(ShootingOptionsFromOptions(comm, &so));
-  PetscCall(ContinuationOptionsFromOptions(comm, &co));
+  PetscCall(nnm.ReadOptions(comm));
   PetscCall(FloquetOptionsFromOptions(comm, &flo));
   PetscCall(SimulationOptionsFromOptions(comm, &sim));
   PetscOptionsBegin(comm, "stability_", "NNM persistence under perturbation (insulated branch)", NULL);
@@ -118,11 +106,13 @@ PetscErrorCode StabilityStudy(MPI_Comm comm)
   PetscCheck(eps >= 0 && std::isfinite(eps), comm, PETSC_ERR_USER, "-stability_perturbation must be >= 0, got %g", (double)eps);
   PetscCall(OutputPathFromOptions(comm, "stability", &path));
   PetscCall(out.Open(comm, path));
-  PetscCall(lat.Setup(comm, lp));
-  PetscCall(modes.Compute(lat, mo));
+  PetscCall(nnm.Build(comm));
+  Lattice &lat = nnm.lat;
+  LinearModes &modes = nnm.modes;
+  PeriodicFlow &flow = nnm.flow;
+  Shooting &shoot = nnm.shoot;
+  ContinuationOptions &co = nnm.co;
   PetscCheck(modes.Insulated(), comm, PETSC_ERR_USER, "-study stability follows the insulated branch: use -lattice_layout interface");
-  PetscCall(flow.Setup(lat, fo));
-  PetscCall(shoot.Setup(flow, so));
   co.verbose = PETSC_FALSE;
 
   OwnedVec z, zT, X;
