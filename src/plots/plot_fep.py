@@ -30,11 +30,14 @@ for name, grp in f["continuation"].items():
     E, w, mcr = grp["energy"][:], grp["omega"][:], grp["mcr"][:]
     line, = ax[0].semilogx(E, w, ".-", ms=3, label=f"{name} ({grp.attrs['points']} pts)")
     ax[1].semilogx(E, mcr, ".-", ms=3, color=line.get_color(), label=name)
+    if "stable" in grp:  # unstable orbits in red, as in the paper's figure
+        bad = grp["stable"][:] == 0
+        ax[0].plot(E[bad], w[bad], "o", mfc="none", mec="r", ms=5)
     inter = grp["interactions"][:].astype(int) if "interactions" in grp else []
     if len(inter):
         ax[0].plot(E[inter], w[inter], "x", color=line.get_color(), ms=8)
 ax[0].axvline(12, color="k", ls="--", lw=0.8)
-ax[0].set(xlabel="energy E", ylabel=r"$\omega$ (rad/s)", title="NNM branches (x: modal interaction; grey: linear bands)")
+ax[0].set(xlabel="energy E", ylabel=r"$\omega$ (rad/s)", title="NNM branches (red o: Floquet-unstable; x: modal interaction; grey: bands)")
 ax[0].legend(fontsize=8)
 ax[1].axvline(12, color="k", ls="--", lw=0.8, label="E = 12 (paper)")
 ax[1].set(xlabel="energy E", ylabel="MCR of u0", title="localisation along the branches")

@@ -50,13 +50,14 @@ public:
     }
     if (++n_ == per_window_ || t == 0) { // the initial state is its own window
       t_.push_back(t);
+      energy_.push_back(e.Total());
       corr_.push_back(best_);
       mcr_.push_back(best_mcr_);
       n_ = 0;
     }
     PetscFunctionReturn(0);
   }
-  std::vector<PetscReal> t_, corr_, mcr_;
+  std::vector<PetscReal> t_, corr_, mcr_, energy_;
 
 private:
   const Lattice &lat_;
@@ -209,6 +210,7 @@ PetscErrorCode StabilityStudy(MPI_Comm comm)
     PetscCall(WriteArray(v, g.c_str(), "t", sink.t_));
     PetscCall(WriteArray(v, g.c_str(), "corr", sink.corr_));
     PetscCall(WriteArray(v, g.c_str(), "mcr", sink.mcr_));
+    PetscCall(WriteArray(v, g.c_str(), "energy", sink.energy_));
     PetscCall(WriteAttr(v, g.c_str(), "omega_target", wt));
     PetscCall(WriteAttr(v, g.c_str(), "omega", (PetscReal)(2 * PETSC_PI / T)));
     PetscCall(WriteAttr(v, g.c_str(), "energy", e.Total()));

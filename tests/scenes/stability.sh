@@ -16,3 +16,5 @@ for c in (f["case0"], f["case1"]):
     assert c.attrs["persisted"] in (0, 1)
 print("stability scene OK", dict(max_mod0=a["max_modulus"], max_mod1=b["max_modulus"], persisted=(a["persisted"], b["persisted"])))
 PYEOF
+$PY "$SRC/src/plots/plot_stability.py" st.h5 st.png
+[ "$(stat -c %s st.png)" -gt 20000 ] || { echo "empty stability figure"; exit 1; }
