@@ -211,6 +211,8 @@ PetscErrorCode StabilityStudy(MPI_Comm comm)
     PetscCall(WriteArray(v, g.c_str(), "corr", sink.corr_));
     PetscCall(WriteArray(v, g.c_str(), "mcr", sink.mcr_));
     PetscCall(WriteArray(v, g.c_str(), "energy", sink.energy_));
+    PetscCall(WriteArray(v, g.c_str(), "multipliers_re", fr.re));
+    PetscCall(WriteArray(v, g.c_str(), "multipliers_im", fr.im));
     PetscCall(WriteAttr(v, g.c_str(), "omega_target", wt));
     PetscCall(WriteAttr(v, g.c_str(), "omega", (PetscReal)(2 * PETSC_PI / T)));
     PetscCall(WriteAttr(v, g.c_str(), "energy", e.Total()));
