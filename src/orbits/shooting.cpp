@@ -172,12 +172,19 @@ PetscErrorCode Shooting::Unpack(Vec X, Vec z, PetscReal *T, PetscReal *beta) con
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Shooting::SetEnergyConstraint(Vec zref, PetscReal energy)
+// Every constraint comes with the phase condition through z_ref.
+PetscErrorCode Shooting::SetPhaseReference(Vec zref)
 {
   PetscFunctionBeginUser;
   PetscCall(VecCopy(zref, zref_));
   PetscCall(flow_->Field(zref_, fref_));
-  energy_mode_ = true;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Shooting::SetEnergyConstraint(Vec zref, PetscReal energy)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SetPhaseReference(zref));
   kind_ = Constraint::Energy;
   energy_target_ = energy;
   PetscFunctionReturn(0);
@@ -186,11 +193,9 @@ PetscErrorCode Shooting::SetEnergyConstraint(Vec zref, PetscReal energy)
 PetscErrorCode Shooting::SetArclengthConstraint(Vec zref, Vec tangent, Vec Xpred)
 {
   PetscFunctionBeginUser;
-  PetscCall(VecCopy(zref, zref_));
-  PetscCall(flow_->Field(zref_, fref_));
+  PetscCall(SetPhaseReference(zref));
   PetscCall(VecCopy(tangent, tan_));
   PetscCall(VecCopy(Xpred, Xpred_));
-  energy_mode_ = false;
   kind_ = Constraint::Arclength;
   PetscFunctionReturn(0);
 }
@@ -198,9 +203,7 @@ PetscErrorCode Shooting::SetArclengthConstraint(Vec zref, Vec tangent, Vec Xpred
 PetscErrorCode Shooting::SetPeriodConstraint(Vec zref, PetscReal period)
 {
   PetscFunctionBeginUser;
-  PetscCall(VecCopy(zref, zref_));
-  PetscCall(flow_->Field(zref_, fref_));
-  energy_mode_ = false;
+  PetscCall(SetPhaseReference(zref));
   kind_ = Constraint::Period;
   period_target_ = period;
   PetscFunctionReturn(0);
@@ -219,7 +222,7 @@ PetscErrorCode Shooting::Residual(Vec X, Vec F)
   // phase condition and constraint (collective)
   PetscCall(VecWAXPY(w_, -1.0, zref_, z_));
   PetscCall(VecDot(fref_, w_, &p));
-  if (energy_mode_) {
+  if (kind_ == Constraint::Energy) {
     EnergyParts e;
     PetscCall(lat_->Energy(z_, &e));
     c = e.Total() - energy_target_;
@@ -249,9 +252,9 @@ PetscErrorCode Shooting::Jacobian(Vec X, Mat J)
   PetscFunctionBeginUser;
   njac_++;
   PetscCall(Unpack(X, z_, &T, &beta));
-  if (energy_mode_) PetscCall(flow_->GradEnergy(z_, g_));
+  if (kind_ == Constraint::Energy) PetscCall(flow_->GradEnergy(z_, g_));
   PetscCall(GatherVec(fref_, true, &fr_));
-  if (energy_mode_) PetscCall(GatherVec(g_, true, &cr_));
+  if (kind_ == Constraint::Energy) PetscCall(GatherVec(g_, true, &cr_));
   else if (kind_ == Constraint::Period) {
     cr_.assign(n_ + 2, 0.0);
     cr_[n_] = 1.0; // d(T - T_target)/dX
@@ -360,7 +363,7 @@ PetscErrorCode Shooting::Solve(Vec X, bool *converged, PetscInt *its)
 {
   SNESConvergedReason reason;
   // The first orbit of a branch (energy constraint) uses the start solver.
-  SNES snes = energy_mode_ && snes_start_ ? snes_start_.get() : snes_.get();
+  SNES snes = (kind_ == Constraint::Energy) && snes_start_ ? snes_start_.get() : snes_.get();
   PetscFunctionBeginUser;
   const PetscInt j0 = njac_;
   PetscCall(SNESSolve(snes, NULL, X));

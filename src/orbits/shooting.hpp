@@ -68,10 +68,11 @@ private:
   OwnedMat Jdense_, Jshell_, S_;
   OwnedVec z_, zT_, fref_, zref_, g_, tan_, Xpred_, work_, w_, F_;
   PetscErrorCode SetBorderRows(Mat J);
+  PetscErrorCode SetPhaseReference(Vec zref);
   PetscBool snes_mf_ = PETSC_FALSE;          // -nnm_snes_mf: finite-difference Jacobian
   enum class Constraint { Energy, Arclength, Period } kind_ = Constraint::Energy;
   PetscReal period_target_ = 0;
-  bool energy_mode_ = true, fresh_ = false; // fresh_: the KSP holds this solve's last Jacobian
+  bool fresh_ = false; // fresh_: the KSP holds this solve's last Jacobian
   PetscReal energy_target_ = 0;
   // linearisation point of the matrix-free product
   OwnedVec zlin_, fT_;
