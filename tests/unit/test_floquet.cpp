@@ -92,3 +92,99 @@ TEST_CASE("Floquet multipliers in the linear limit, symplectic pairs, det M = 1,
     }
   }
 }
+
+namespace {
+// Every accepted orbit of a branch: its frequency and Floquet result.
+struct CaptureAll : public PointHook {
+  PeriodicFlow &flow;
+  std::vector<PetscReal> omega;
+  std::vector<FloquetResult> res;
+  OwnedMat S;
+  OwnedVec zT;
+  explicit CaptureAll(PeriodicFlow &f) : flow(f) {}
+  PetscErrorCode Point(Vec z0, PetscReal T, PetscReal beta) override
+  {
+    PetscFunctionBeginUser;
+    if (!S) {
+      PetscCall(flow.CreateSensitivityMatrix(S.out()));
+      PetscCall(VecDuplicate(z0, zT.out()));
+    }
+    PetscCall(flow.IntegrateWithMonodromy(z0, T, beta, zT, S));
+    FloquetResult r;
+    PetscCall(FloquetAnalysis(flow.Lat(), S, FloquetOptions(), &r));
+    omega.push_back(2 * PETSC_PI / T);
+    res.push_back(r);
+    PetscFunctionReturn(0);
+  }
+};
+} // namespace
+
+// A known unstable orbit from theory. Layout `right` with Nc = 2 and gamma =
+// 0.9 is two stiff dimers (k1 = 1.9, cubic) joined by a weak soft bond (k2 =
+// 0.1): two weakly coupled identical hardening oscillators, mirror-symmetric.
+// Their optical NNMs are the mirror-odd and mirror-even combinations, linear
+// eigenvalues lambda_hi - lambda_lo = 2 kappa apart (kappa = k2/2 = 0.05). First-order
+// averaging of the pair x'' + w^2 x + a x^3 + kappa (x - y) = 0 (the Mathieu
+// equation of the symmetry-breaking perturbation, first tongue) says: the
+// lower NNM is stable at all amplitudes; the upper one is stable until its
+// frequency shift Omega^2 - lambda_hi reaches kappa, then a real pair of multipliers
+// leaves +1 (pitchfork to localised NNMs) with
+// mu = exp(pi sqrt(s^2 - (s - 2 kappa)^2) / Omega^2), s = Omega^2 - lambda_hi.
+TEST_CASE("Floquet flags the symmetry-breaking instability of two coupled dimers, as averaging predicts", "[floquet]")
+{
+  LatticeParams p;
+  p.layout = Layout::Right;
+  p.cells = 2;
+  p.gamma = 0.9;
+  Lattice lat;
+  PCHK(lat.Setup(PETSC_COMM_WORLD, p));
+  LinearModes modes;
+  PCHK(modes.Compute(lat, LinearModesOptions()));
+  const auto &w = modes.Omega();
+  const PetscReal lam_lo = w[2] * w[2], lam_hi = w[3] * w[3], kappa = (lam_hi - lam_lo) / 2;
+  REQUIRE(std::abs(kappa - 0.05) < 1e-12);
+  PeriodicFlow flow;
+  PCHK(flow.Setup(lat, FlowOptions()));
+  Shooting shoot;
+  PCHK(shoot.Setup(flow, ShootingOptions()));
+  ContinuationOptions co;
+  co.verbose = PETSC_FALSE;
+  co.max_change = 0.05; // resolve the onset
+  for (PetscInt j : {2, 3}) {
+    co.omega_max = std::sqrt(lam_hi + 5 * kappa);
+    CaptureAll cap(flow);
+    Branch b;
+    PCHK(ContinueBranch(shoot, modes.Mode(j), 2 * PETSC_PI / w[j], co, "dimers", &b, &cap));
+    REQUIRE(cap.omega.size() > 10);
+    REQUIRE(cap.omega.back() > std::sqrt(lam_hi + 4 * kappa));
+    PetscReal onset = -1;
+    for (size_t i = 0; i < cap.omega.size(); i++) {
+      const PetscReal s = cap.omega[i] * cap.omega[i] - lam_hi;
+      const FloquetResult &r = cap.res[i];
+      INFO("mode " << j << ", omega " << cap.omega[i] << ", s/kappa " << s / kappa << ", max |mu| " << r.max_modulus);
+      if (j == 2 || s < 0.8 * kappa) {
+        REQUIRE(r.stable);
+        continue;
+      }
+      if (onset < 0 && !r.stable) onset = s / kappa;
+      if (s > 1.5 * kappa) {
+        REQUIRE(!r.stable);
+        // The leading multiplier is real and positive (a pitchfork, not a period doubling) ...
+        size_t lead = 0;
+        for (size_t k = 1; k < r.re.size(); k++)
+          if (std::hypot(r.re[k], r.im[k]) > std::hypot(r.re[lead], r.im[lead])) lead = k;
+        REQUIRE(std::abs(r.im[lead]) < 1e-8);
+        REQUIRE(r.re[lead] > 1);
+        // ... and its size follows the Mathieu growth rate to first order in kappa / Omega^2.
+        const PetscReal W2 = cap.omega[i] * cap.omega[i];
+        const PetscReal mu = std::exp(PETSC_PI * std::sqrt(s * s - (s - 2 * kappa) * (s - 2 * kappa)) / W2);
+        REQUIRE(std::abs(std::log(r.re[lead]) / std::log(mu) - 1) < 0.15);
+      }
+    }
+    if (j == 3) {
+      INFO("onset at s/kappa = " << onset);
+      REQUIRE(onset > 0.8);
+      REQUIRE(onset < 1.5);
+    }
+  }
+}
