@@ -7,6 +7,7 @@ static const StudyEntry kStudies[] = {
   {"linear", "linear modes of K, named modes, Bloch bands and Zak phases", LinearStudy},
   {"simulate", "one forced tone-burst run with energy cut-off", SimulateStudy},
   {"continuation", "NNM branches by shooting and pseudo-arclength continuation", ContinuationStudy},
+  {"sweep", "a grid of forced runs (omega_ext x E*) scored by MCR, 0-1 test and energy ratio; parallel, resumable", SweepStudy},
   {"stability", "perturbed insulated-branch NNMs integrated for many periods: does the standing wave persist", StabilityStudy},
 };
 

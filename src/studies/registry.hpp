@@ -15,6 +15,7 @@ PetscErrorCode LinearStudy(MPI_Comm comm);
 PetscErrorCode SimulateStudy(MPI_Comm comm);
 PetscErrorCode ContinuationStudy(MPI_Comm comm);
 PetscErrorCode StabilityStudy(MPI_Comm comm);
+PetscErrorCode SweepStudy(MPI_Comm comm);
 
 // Reads -study (default linear) and runs it; an unknown name is an error listing the known ones.
 PetscErrorCode RunStudyFromOptions(MPI_Comm comm);

@@ -27,6 +27,12 @@ public:
     }
     PetscFunctionReturn(0);
   }
+  void Restart() override
+  {
+    t_.clear();
+    energy_.clear();
+    u_.clear();
+  }
   std::vector<PetscReal> t_, energy_, u_;
 
 private:
@@ -67,20 +73,19 @@ PetscErrorCode SimulateStudy(MPI_Comm comm)
   PetscCall(lat.Setup(comm, lp));
   if (need_modes) PetscCall(modes.Compute(lat, mo));
   PetscCall(burst.Setup(lat, fo, need_modes ? &modes : NULL));
-  PetscInt doublings = 0;
-  if (burst.AmplitudeFromRule()) PetscCall(SearchAmplitude(lat, &burst, so, &doublings));
   PetscCall(PetscLogStagePop());
+  PetscInt rescalings = 0;
 
   Samples sink(lat, store_u);
   PetscCall(PetscLogStagePush(Log().solve));
   PetscCall(PetscTime(&t_solve0));
-  PetscCall(Simulate(lat, &burst, so, NULL, &sink, &r));
+  PetscCall(SimulateForced(lat, &burst, so, &sink, &r, &rescalings));
   PetscCall(PetscTime(&t_solve1));
   PetscCall(PetscLogStagePop());
 
-  PetscCall(PetscPrintf(comm, "nltopo simulate: N = %" PetscInt_FMT ", omega_ext = %.6f, E* = %g, S = %.6g (%s), t_final = %g\n", lat.N(),
-                        (double)burst.Omega(), (double)burst.EnergyStar(), (double)burst.Amplitude(),
-                        burst.AmplitudeFromRule() ? (doublings > 0 ? "amplitude rule, doubled" : "amplitude rule") : "-force_amplitude", (double)so.t_final));
+  PetscCall(PetscPrintf(comm, "nltopo simulate: N = %" PetscInt_FMT ", omega_ext = %.6f, E* = %g, S = %.6g (%s, %" PetscInt_FMT " rescalings), t_final = %g\n",
+                        lat.N(), (double)burst.Omega(), (double)burst.EnergyStar(), (double)burst.Amplitude(),
+                        burst.AmplitudeFromRule() ? "amplitude rule" : "-force_amplitude", rescalings, (double)so.t_final));
   if (r.reached) PetscCall(PetscPrintf(comm, "  cut-off at t_off = %.6f, E_final = %.10g\n", (double)r.t_off, (double)r.energy_final));
   else if (burst.Present())
     PetscCall(PetscPrintf(comm, "  WARNING: E* = %g was NOT reached (E_final = %.6g); RMS window from t = %g\n", (double)burst.EnergyStar(),
@@ -101,6 +106,7 @@ PetscErrorCode SimulateStudy(MPI_Comm comm)
   PetscCall(WriteAttr(v, g, "energy_final", r.energy_final));
   PetscCall(WriteAttr(v, g, "nl_ratio", r.nl_ratio));
   PetscCall(WriteAttr(v, g, "rhs_evals", r.counters.rhs));
+  PetscCall(WriteAttr(v, g, "rhs_evals_all_attempts", r.rhs_all_attempts));
   PetscCall(WriteAttr(v, g, "steps", r.steps));
   PetscCall(WriteAttr(v, g, "rejected_steps", r.rejected));
   PetscCall(WriteAttr(v, g, "energy_reached", (PetscInt)r.reached));
@@ -110,10 +116,10 @@ PetscErrorCode SimulateStudy(MPI_Comm comm)
   PetscCall(WriteAttr(v, g, "amplitude", burst.Amplitude()));
   PetscCall(WriteAttr(v, g, "amplitude_rule",
                       !burst.Present() ? "none (no forcing)"
-                      : burst.AmplitudeFromRule() ? "linear Gaussian-burst energy = amplitude_safety * E*, doubled until E* is reached in the burst (README.md, Amplitude rule)"
+                      : burst.AmplitudeFromRule() ? "linear Gaussian-burst energy = amplitude_safety * E*; a run whose burst ends before E* is repeated with S x max(2, sqrt(E*/E_peak)) (README.md, Amplitude rule)"
                                                   : "user (-force_amplitude)"));
   PetscCall(WriteAttr(v, g, "amplitude_safety", fo.safety));
-  PetscCall(WriteAttr(v, g, "amplitude_doublings", doublings)); // -1: E* missed after -force_amplitude_retries
+  PetscCall(WriteAttr(v, g, "amplitude_rescalings", rescalings)); // -1: E* missed after -force_amplitude_retries
   PetscCall(WriteAttr(v, g, "tau", burst.Tau()));
   PetscCall(WriteAttr(v, g, "t0", burst.T0()));
   PetscCall(WriteAttr(v, g, "solve_seconds", (PetscReal)(t_solve1 - t_solve0)));

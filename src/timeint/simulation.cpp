@@ -29,6 +29,7 @@ struct Run {
   Rhs rhs;
   SampleSink *sink;
   bool event_mode = false, interpolate = true, stop_at_cutoff = false;
+  PetscReal burst_end = PETSC_MAX_REAL; // abort_if_missed: stop here if E* was missed
   PetscReal estar = 0, t_final = 0, sample_dt = 0, window_default = 0, progress = 0;
   PetscLogDouble wall0 = 0, wall_last = 0;
   PetscInt next_sample = 0;
@@ -108,6 +109,10 @@ struct Run {
     for (;;) {
       const PetscReal ts_k = next_sample * sample_dt;
       if (ts_k > t_final * (1 + 1e-12) || ts_k > t + 1e-9 * sample_dt) break;
+      if (!sink->Wants(ts_k, r->t_off)) {
+        next_sample++;
+        continue;
+      }
       if (interpolate && std::abs(ts_k - t) > 1e-12 * (1 + t)) {
         EnergyParts es;
         PetscCall(TSInterpolate(ts, ts_k, zs));
@@ -192,9 +197,14 @@ PetscErrorCode PostStep(TS ts)
   PetscCall(run->EnergyAt(z, &e));
   PetscCheck(std::isfinite(e.Total()), run->lat->Comm(), PETSC_ERR_FP,
              "non-finite state at t = %g: the integration diverged (reduce -sim_ts_dt or tighten -sim_ts_rtol)", (double)t);
+  if (run->rhs.Forcing()) run->r->energy_peak = std::max(run->r->energy_peak, e.Total());
   if (!run->event_mode && run->rhs.Forcing() && e.Total() >= run->estar) {
     run->CutOff(t);
     if (run->stop_at_cutoff) PetscCall(TSSetConvergedReason(ts, TS_CONVERGED_USER));
+  }
+  if (run->rhs.Forcing() && t >= run->burst_end) { // E* missed: the caller retries with a larger S
+    run->r->aborted = true;
+    PetscCall(TSSetConvergedReason(ts, TS_CONVERGED_USER));
   }
   PetscCall(run->Window(t, z, e));
   PetscCall(run->Samples(ts, t, z, e));
@@ -216,25 +226,26 @@ PetscErrorCode PostStep(TS ts)
 
 } // namespace
 
-PetscErrorCode SearchAmplitude(const Lattice &lat, ToneBurst *burst, const SimulationOptions &o, PetscInt *doublings)
+PetscErrorCode SimulateForced(const Lattice &lat, ToneBurst *burst, const SimulationOptions &o, SampleSink *sink, SimulationResult *r,
+                              PetscInt *rescalings)
 {
-  SimulationOptions probe = o;
   PetscFunctionBeginUser;
-  probe.t_final = std::min(o.t_final, burst->T0() + 3 * burst->Tau());
-  probe.sample_dt = 0;
-  probe.progress = 0;
-  probe.stop_at_cutoff = true;
-  *doublings = -1;
-  for (PetscInt k = 0; k <= burst->Options().retries; k++) {
-    SimulationResult r;
-    PetscCall(Simulate(lat, burst, probe, NULL, NULL, &r));
-    if (r.reached) {
-      *doublings = k;
+  const PetscInt retries = burst->AmplitudeFromRule() ? burst->Options().retries : 0;
+  SimulationOptions attempt = o;
+  PetscInt work = 0;
+  for (PetscInt k = 0;; k++) {
+    attempt.abort_if_missed = k < retries; // the last attempt is a complete run
+    if (sink) sink->Restart();
+    PetscCall(Simulate(lat, burst, attempt, NULL, sink, r));
+    work += r->counters.rhs;
+    r->rhs_all_attempts = work;
+    if (!r->aborted) {
+      *rescalings = r->reached || !burst->Present() ? k : -1;
       PetscFunctionReturn(0);
     }
-    if (k < burst->Options().retries) burst->ScaleAmplitude(2.0);
+    const PetscReal f = r->energy_peak > 0 ? std::sqrt(burst->EnergyStar() / r->energy_peak) : 2;
+    burst->ScaleAmplitude(std::max<PetscReal>(2, f));
   }
-  PetscFunctionReturn(0);
 }
 
 PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const SimulationOptions &o, Vec z0, SampleSink *sink, SimulationResult *r)
@@ -253,6 +264,7 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
   run.sample_dt = o.sample_dt;
   run.progress = o.progress;
   run.stop_at_cutoff = o.stop_at_cutoff;
+  if (o.abort_if_missed && forcing && forcing->Present()) run.burst_end = forcing->T0() + 3 * forcing->Tau();
   PetscCall(PetscTime(&run.wall0));
   run.wall_last = run.wall0;
   // RMS window when E* is never reached: after the burst (t0 + 3 tau), or the
@@ -342,7 +354,7 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
     PetscCall(TSGetTime(ts, &t));
     PetscCheck(reason >= 0, comm, PETSC_ERR_NOT_CONVERGED, "time integration failed at t = %g: %s (see -sim_ts_* options)", (double)t,
                TSConvergedReasons[reason]);
-    PetscCheck(t >= o.t_final * (1 - 1e-10) || (o.stop_at_cutoff && r->reached), comm, PETSC_ERR_NOT_CONVERGED, "time integration stopped at t = %g before -sim_t_final %g", (double)t,
+    PetscCheck(t >= o.t_final * (1 - 1e-10) || (o.stop_at_cutoff && r->reached) || r->aborted, comm, PETSC_ERR_NOT_CONVERGED, "time integration stopped at t = %g before -sim_t_final %g", (double)t,
                (double)o.t_final);
   }
   PetscCall(TSGetStepNumber(ts, &r->steps));

@@ -13,7 +13,8 @@ struct SimulationOptions {
   PetscReal t_final = 1000;  // simulated time
   PetscReal sample_dt = 1.0; // spacing of the stored samples (0: store none)
   PetscReal progress = 10;   // wall seconds between progress lines (0: none)
-  bool stop_at_cutoff = false; // end the run at the cut-off (amplitude search probes)
+  bool stop_at_cutoff = false; // end the run at the cut-off
+  bool abort_if_missed = false; // end the run at the end of the burst (t0 + 3 tau) if E* was not reached
 };
 PetscErrorCode SimulationOptionsFromOptions(MPI_Comm comm, SimulationOptions *o);
 
@@ -22,6 +23,11 @@ class SampleSink {
 public:
   virtual ~SampleSink() = default;
   virtual PetscErrorCode Sample(PetscReal t, Vec z, const EnergyParts &e) = 0;
+  // Whether the sample at time t is wanted (t_off < 0 while the forcing is on);
+  // unwanted samples are not interpolated at all.
+  virtual bool Wants(PetscReal t, PetscReal t_off) const { return true; }
+  // A new attempt of the same run starts (amplitude rule): forget what was sampled.
+  virtual void Restart() {}
 };
 
 struct SimulationResult {
@@ -31,15 +37,22 @@ struct SimulationResult {
   PetscReal mcr = 0, nl_ratio = 0;
   PetscInt steps = 0, rejected = 0;
   bool reached = false;        // E* reached while the forcing was on
-  EffectCounters counters;     // counters.rhs = RHS evaluations
+  bool aborted = false;        // stopped at the end of the burst, E* missed (abort_if_missed)
+  PetscReal energy_peak = 0;   // largest E at a step end while the forcing was on
+  EffectCounters counters;     // counters.rhs = RHS evaluations (of this run)
+  PetscInt rhs_all_attempts = 0; // RHS evaluations of every attempt of SimulateForced (the work done)
   OwnedVec rms;                // RMS displacement per site (SiteDM)
   OwnedVec z_final;            // final state
 };
 
-// Amplitude rule, nonlinear part (README.md): from the linear rule's S, run the
-// burst alone (to t0 + 3 tau) and double S until E* is reached, at most
-// -force_amplitude_retries times. *doublings = -1 if E* was never reached.
-PetscErrorCode SearchAmplitude(const Lattice &lat, ToneBurst *burst, const SimulationOptions &o, PetscInt *doublings);
+// A forced run under the amplitude rule (README.md "Amplitude rule"): with S
+// from the rule, a run whose burst ends (t0 + 3 tau) before E* is reached is
+// stopped there and repeated with S scaled by max(2, sqrt(E* / E_peak)), at most
+// -force_amplitude_retries times; the last attempt runs to t_final whatever
+// happens (and says reached = false). With a given -force_amplitude: one run.
+// *rescalings = attempts - 1, or -1 if E* was never reached.
+PetscErrorCode SimulateForced(const Lattice &lat, ToneBurst *burst, const SimulationOptions &o, SampleSink *sink, SimulationResult *r,
+                              PetscInt *rescalings);
 
 // forcing may be NULL (free run). z0 NULL starts from rest.
 PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const SimulationOptions &o, Vec z0, SampleSink *sink,

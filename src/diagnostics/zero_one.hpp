@@ -1,0 +1,31 @@
+#pragma once
+// The 0-1 test for chaos, correlation method (Gottwald & Melbourne, "On the
+// implementation of the 0-1 test for chaos", SIAM J. Appl. Dyn. Syst. 2009;
+// model.md "Diagnostics"). For a series phi_1..phi_n and a frequency c:
+//   p(j) = sum_{k<=j} phi_k cos(k c),  q(j) = sum_{k<=j} phi_k sin(k c),
+//   M(m) = mean_j [(p(j+m) - p(j))^2 + (q(j+m) - q(j))^2],   m = 1..n/10,
+//   D(m) = M(m) - mean(phi)^2 (1 - cos(m c)) / (1 - cos c)   (the oscillatory term),
+//   K_c  = corr(m, D(m));   K = median of K_c over c drawn uniformly in (pi/5, 4 pi/5).
+// K ~ 0 for regular (periodic, quasi-periodic) series, K ~ 1 for chaotic ones.
+// Continuous-time data must not be oversampled: the caller samples the
+// signal at about a quarter of its dominant period (README.md "0-1 test"), so
+// that its spectrum sits inside the c range rather than near c = 0.
+#include <petscsys.h>
+#include <vector>
+
+namespace nltopo {
+
+class ZeroOneTest {
+public:
+  // nc frequencies c, drawn once from a seeded generator: the same c for every
+  // series, so a score does not depend on which rank computes it.
+  ZeroOneTest(PetscInt nc, unsigned long seed);
+  // K of phi[0], phi[stride], ..., phi[(n-1) stride]. n must be >= 20.
+  PetscReal Score(const PetscReal *phi, PetscInt n, PetscInt stride = 1) const;
+  const std::vector<PetscReal> &Frequencies() const { return c_; }
+
+private:
+  std::vector<PetscReal> c_;
+};
+
+} // namespace nltopo

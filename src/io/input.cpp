@@ -1,0 +1,50 @@
+#include "io/input.hpp"
+#include <hdf5.h>
+
+namespace nltopo {
+
+namespace {
+template <typename T>
+PetscErrorCode ReadDataset(const std::string &file, const char *dataset, hid_t type, std::vector<T> *out)
+{
+  PetscFunctionBeginUser;
+  H5E_auto2_t func;
+  void *data;
+  H5Eget_auto2(H5E_DEFAULT, &func, &data);
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL); // our message instead of HDF5's stack dump
+  hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  hid_t d = f < 0 ? -1 : H5Dopen2(f, dataset, H5P_DEFAULT);
+  hid_t s = d < 0 ? -1 : H5Dget_space(d);
+  hssize_t n = s < 0 ? -1 : H5Sget_simple_extent_npoints(s);
+  herr_t st = -1;
+  if (n >= 0) {
+    out->resize((size_t)n);
+    st = n ? H5Dread(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out->data()) : 0;
+  }
+  if (s >= 0) H5Sclose(s);
+  if (d >= 0) H5Dclose(d);
+  if (f >= 0) H5Fclose(f);
+  H5Eset_auto2(H5E_DEFAULT, func, data);
+  PetscCheck(f >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot open HDF5 file %s", file.c_str());
+  PetscCheck(st >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_READ, "cannot read dataset %s from %s", dataset, file.c_str());
+  PetscFunctionReturn(0);
+}
+} // namespace
+
+PetscErrorCode ReadDoubles(const std::string &file, const char *dataset, std::vector<PetscReal> *out)
+{
+  PetscFunctionBeginUser;
+  PetscCall(ReadDataset(file, dataset, H5T_NATIVE_DOUBLE, out));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ReadInts(const std::string &file, const char *dataset, std::vector<PetscInt> *out)
+{
+  std::vector<int> buf;
+  PetscFunctionBeginUser;
+  PetscCall(ReadDataset(file, dataset, H5T_NATIVE_INT, &buf));
+  out->assign(buf.begin(), buf.end());
+  PetscFunctionReturn(0);
+}
+
+} // namespace nltopo

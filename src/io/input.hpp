@@ -1,0 +1,14 @@
+#pragma once
+// Reading back our own HDF5 files (e.g. a sweep to resume), serially, with the
+// HDF5 C API: one dataset at a time, flattened row-major.
+#include <petscsys.h>
+#include <string>
+#include <vector>
+
+namespace nltopo {
+
+// Not collective: call on the rank that needs the data. Errors name the file and dataset.
+PetscErrorCode ReadDoubles(const std::string &file, const char *dataset, std::vector<PetscReal> *out);
+PetscErrorCode ReadInts(const std::string &file, const char *dataset, std::vector<PetscInt> *out);
+
+} // namespace nltopo

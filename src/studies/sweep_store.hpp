@@ -1,0 +1,50 @@
+#pragma once
+// Where a sweep keeps its results so that a kill at any moment loses nothing:
+//  - every rank appends each finished point to its own journal file
+//    <output>.journal.<rank> (one line, doubles in hex: exact), flushed at once;
+//  - rank 0 merges all journals into the grid and rewrites <output> (temporary
+//    file + rename, so the HDF5 file is always complete) every few seconds and
+//    at the end, when the journals are removed;
+//  - -sweep_resume reads <output> and any journals left by a killed run.
+#include <petscsys.h>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+namespace nltopo {
+
+// What a sweep stores per grid point (outputs.md /sweep, plus additions).
+struct SweepPoint {
+  PetscReal mcr = 0, t_off = -1, kcorr = 0, nl_ratio = 0, amplitude = 0, energy_final = 0, seconds = 0;
+  PetscInt reached = 0, rescalings = 0, rhs = 0, steps = 0;
+};
+
+// Rank 0's picture of the grid: energy rows x omega columns, row-major.
+struct SweepGrid {
+  std::vector<PetscReal> omega, energy;
+  std::vector<SweepPoint> pts;
+  std::vector<PetscInt> done;
+  size_t Size() const { return omega.size() * energy.size(); }
+  PetscInt Done() const;
+  void Reset(const std::vector<PetscReal> &w, const std::vector<PetscReal> &e);
+  // Loads a sweep file written by Write (resume); the axes must equal this grid's.
+  PetscErrorCode Load(const std::string &path);
+  // Merges every <path>.journal.* into the grid; *lines = points read.
+  PetscErrorCode MergeJournals(const std::string &path, PetscInt *lines);
+};
+
+// Names of the journal files of an output path.
+std::vector<std::string> JournalFiles(const std::string &path);
+
+class Journal {
+public:
+  ~Journal() { Close(); }
+  PetscErrorCode Open(const std::string &path, PetscMPIInt rank);
+  PetscErrorCode Append(size_t index, const SweepPoint &p);
+  void Close();
+
+private:
+  FILE *f_ = nullptr;
+};
+
+} // namespace nltopo

@@ -1,0 +1,371 @@
+// -study sweep: a grid of forced tone-burst runs (omega_ext x E*), each the
+// simulate study's run (SimulateForced, same code path), scored by MCR, t_off,
+// the nonlinear/linear energy ratio and, with -sweep_kcorr, the 0-1 test.
+// Runs are spread over the ranks by a shared counter (each rank integrates
+// whole runs on PETSC_COMM_SELF, most expensive first), journaled as they
+// finish and resumable (-sweep_resume). Output: /sweep of outputs.md.
+#include "bands/linear_modes.hpp"
+#include "core/log.hpp"
+#include "core/work_queue.hpp"
+#include "diagnostics/zero_one.hpp"
+#include "io/output.hpp"
+#include "studies/registry.hpp"
+#include "studies/sweep_store.hpp"
+#include "timeint/simulation.hpp"
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <unistd.h>
+
+namespace nltopo {
+
+namespace {
+
+struct SweepOptions {
+  std::vector<PetscReal> omega, energy;
+  PetscBool resume = PETSC_FALSE, kcorr = PETSC_FALSE;
+  PetscReal checkpoint = 5, progress = 10;
+  // 0-1 test (-kcorr_*)
+  PetscInt kcorr_nc = 32, kcorr_site_stride = 1; // 32 c values: the median is stable to ~0.02 on the test series (README.md)
+  PetscReal kcorr_rms_fraction = 0.1;
+  PetscInt kcorr_seed = 1;
+  PetscReal kcorr_sample_dt = 0; // 0: a quarter of the insulated period, pi / (2 sqrt(k_hat))
+};
+
+// An axis from -<name>_min/_max/_n/_spacing, or an explicit -<name>_list.
+PetscErrorCode ReadAxis(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char *name, PetscReal lo, PetscReal hi, PetscInt n, bool log_default, std::vector<PetscReal> *axis)
+{
+  char opt[64], help[128];
+  PetscReal list[4096];
+  PetscInt nlist = 4096;
+  PetscBool set;
+  const char *spacings[] = {"linear", "log"};
+  PetscInt spacing = log_default ? 1 : 0;
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_min", name));
+  PetscCall(PetscSNPrintf(help, sizeof(help), "Lower end of the %s axis", name));
+  PetscCall(PetscOptionsReal(opt, help, NULL, lo, &lo, NULL));
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_max", name));
+  PetscCall(PetscSNPrintf(help, sizeof(help), "Upper end of the %s axis", name));
+  PetscCall(PetscOptionsReal(opt, help, NULL, hi, &hi, NULL));
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_n", name));
+  PetscCall(PetscSNPrintf(help, sizeof(help), "Number of %s values (ends included)", name));
+  PetscCall(PetscOptionsInt(opt, help, NULL, n, &n, NULL));
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_spacing", name));
+  PetscCall(PetscSNPrintf(help, sizeof(help), "Spacing of the %s axis", name));
+  PetscCall(PetscOptionsEList(opt, help, NULL, spacings, 2, spacings[spacing], &spacing, NULL));
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_list", name));
+  PetscCall(PetscSNPrintf(help, sizeof(help), "Explicit %s values (replaces min/max/n)", name));
+  PetscCall(PetscOptionsRealArray(opt, help, NULL, list, &nlist, &set));
+  axis->clear();
+  if (set) {
+    PetscCheck(nlist > 0, comm, PETSC_ERR_USER, "-sweep_%s_list is empty", name);
+    axis->assign(list, list + nlist);
+    for (PetscReal v : *axis) PetscCheck(std::isfinite(v) && v > 0, comm, PETSC_ERR_USER, "-sweep_%s_list: values must be positive, got %g", name, (double)v);
+    PetscFunctionReturn(0);
+  }
+  PetscCheck(n >= 1, comm, PETSC_ERR_USER, "-sweep_%s_n must be >= 1, got %" PetscInt_FMT, name, n);
+  PetscCheck(std::isfinite(lo) && std::isfinite(hi) && lo > 0 && hi >= lo, comm, PETSC_ERR_USER,
+             "-sweep_%s_min/-sweep_%s_max must satisfy 0 < min <= max, got %g, %g", name, name, (double)lo, (double)hi);
+  for (PetscInt i = 0; i < n; i++) {
+    const PetscReal s = n > 1 ? (PetscReal)i / (n - 1) : 0;
+    axis->push_back(spacing ? lo * std::pow(hi / lo, s) : lo + s * (hi - lo));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SweepOptionsFromOptions(MPI_Comm comm, SweepOptions *o)
+{
+  PetscFunctionBeginUser;
+  const PetscReal w0 = std::sqrt(3.0);
+  PetscOptionsBegin(comm, "sweep_", "Sweep: grid of forced runs (omega_ext x E*)", NULL);
+  PetscCall(ReadAxis(PetscOptionsObject, comm, "omega", w0 / 2, 1.5 * w0, 50, false, &o->omega));
+  PetscCall(ReadAxis(PetscOptionsObject, comm, "energy", 1e-3, 1e3, 50, true, &o->energy));
+  PetscCall(PetscOptionsBool("-resume", "Continue the sweep stored in -output: compute only the points not done", NULL, o->resume, &o->resume, NULL));
+  PetscCall(PetscOptionsBool("-kcorr", "Score every run with the 0-1 test for chaos (-kcorr_* options)", NULL, o->kcorr, &o->kcorr, NULL));
+  PetscCall(PetscOptionsReal("-checkpoint", "Rewrite -output with the points done so far every this many wall seconds", NULL, o->checkpoint, &o->checkpoint, NULL));
+  PetscCall(PetscOptionsReal("-progress", "Report progress every this many wall seconds (0: never)", NULL, o->progress, &o->progress, NULL));
+  PetscOptionsEnd();
+  PetscCheck(o->checkpoint > 0, comm, PETSC_ERR_USER, "-sweep_checkpoint must be positive, got %g", (double)o->checkpoint);
+  PetscCheck(o->progress >= 0, comm, PETSC_ERR_USER, "-sweep_progress must be >= 0, got %g", (double)o->progress);
+  PetscOptionsBegin(comm, "kcorr_", "0-1 test for chaos (with -sweep_kcorr)", NULL);
+  PetscCall(PetscOptionsInt("-nc", "Number of random frequencies c in (pi/5, 4 pi/5); K is the median over them", NULL, o->kcorr_nc, &o->kcorr_nc, NULL));
+  PetscCall(PetscOptionsInt("-seed", "Seed of the c draw (the same c for every run)", NULL, o->kcorr_seed, &o->kcorr_seed, NULL));
+  PetscCall(PetscOptionsReal("-sample_dt", "Sampling interval of u after t_off (0: pi / (2 sqrt(k_hat)), a quarter of the insulated period)", NULL,
+                             o->kcorr_sample_dt, &o->kcorr_sample_dt, NULL));
+  PetscCall(PetscOptionsReal("-rms_fraction", "Test only sites whose RMS after t_off is at least this fraction of the largest (README.md)", NULL,
+                             o->kcorr_rms_fraction, &o->kcorr_rms_fraction, NULL));
+  PetscCall(PetscOptionsInt("-site_stride", "Test every this many sites (1: all; the score is the max over tested sites)", NULL, o->kcorr_site_stride,
+                            &o->kcorr_site_stride, NULL));
+  PetscOptionsEnd();
+  PetscCheck(o->kcorr_nc >= 1, comm, PETSC_ERR_USER, "-kcorr_nc must be >= 1, got %" PetscInt_FMT, o->kcorr_nc);
+  PetscCheck(o->kcorr_sample_dt >= 0, comm, PETSC_ERR_USER, "-kcorr_sample_dt must be >= 0, got %g", (double)o->kcorr_sample_dt);
+  PetscCheck(o->kcorr_rms_fraction >= 0 && o->kcorr_rms_fraction <= 1, comm, PETSC_ERR_USER, "-kcorr_rms_fraction must lie in [0, 1], got %g",
+             (double)o->kcorr_rms_fraction);
+  PetscCheck(o->kcorr_site_stride >= 1, comm, PETSC_ERR_USER, "-kcorr_site_stride must be >= 1, got %" PetscInt_FMT, o->kcorr_site_stride);
+  for (const char *fixed : {"-force_omega", "-force_energy"}) {
+    PetscBool set;
+    PetscCall(PetscOptionsHasName(NULL, NULL, fixed, &set));
+    PetscCheck(!set, comm, PETSC_ERR_USER, "%s is set per point by the sweep axes (-sweep_omega_*, -sweep_energy_*); remove it", fixed);
+  }
+  PetscFunctionReturn(0);
+}
+
+// Displacements of every site after the cut-off, at the 0-1 test's sampling times.
+class AfterCutoff : public SampleSink {
+public:
+  explicit AfterCutoff(PetscInt n) : n_(n) {}
+  bool Wants(PetscReal t, PetscReal t_off) const override { return t_off >= 0 && t >= t_off; }
+  void Restart() override { u_.clear(); }
+  PetscErrorCode Sample(PetscReal t, Vec z, const EnergyParts &e) override
+  {
+    const PetscScalar *a;
+    PetscFunctionBeginUser;
+    PetscCall(VecGetArrayRead(z, &a));
+    u_.insert(u_.end(), a, a + n_);
+    PetscCall(VecRestoreArrayRead(z, &a));
+    PetscFunctionReturn(0);
+  }
+  PetscInt Samples() const { return (PetscInt)(u_.size() / n_); }
+  const PetscReal *Data() const { return u_.data(); }
+
+private:
+  PetscInt n_;
+  std::vector<PetscReal> u_;
+};
+
+PetscErrorCode WriteSweep(const std::string &path, const SweepGrid &g, const SweepOptions &so, PetscInt computed, PetscReal wall)
+{
+  OutputFile out;
+  const size_t n = g.Size();
+  std::vector<PetscReal> v(n);
+  std::vector<PetscInt> iv(n);
+  const PetscInt no = (PetscInt)g.omega.size();
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(Log().output, 0, 0, 0, 0));
+  PetscCall(out.Open(PETSC_COMM_SELF, path));
+  PetscViewer w = out.Viewer();
+  const char *grp = "/sweep";
+  PetscCall(WriteArray(w, grp, "omega", g.omega));
+  PetscCall(WriteArray(w, grp, "energy", g.energy));
+  auto doubles = [&](const char *name, PetscReal SweepPoint::*field) -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    for (size_t i = 0; i < n; i++) v[i] = g.pts[i].*field;
+    PetscCall(WriteArray(w, grp, name, v, no));
+    PetscFunctionReturn(0);
+  };
+  auto ints = [&](const char *name, PetscInt SweepPoint::*field) -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    for (size_t i = 0; i < n; i++) iv[i] = g.pts[i].*field;
+    PetscCall(WriteIntArray(w, grp, name, iv, no));
+    PetscFunctionReturn(0);
+  };
+  PetscCall(doubles("mcr", &SweepPoint::mcr));
+  PetscCall(doubles("t_off", &SweepPoint::t_off));
+  PetscCall(doubles("kcorr", &SweepPoint::kcorr));
+  PetscCall(doubles("nl_ratio", &SweepPoint::nl_ratio));
+  PetscCall(doubles("amplitude", &SweepPoint::amplitude));
+  PetscCall(doubles("energy_final", &SweepPoint::energy_final));
+  PetscCall(doubles("seconds", &SweepPoint::seconds));
+  PetscCall(ints("reached", &SweepPoint::reached));
+  PetscCall(ints("rescalings", &SweepPoint::rescalings));
+  PetscCall(ints("rhs_evals", &SweepPoint::rhs));
+  PetscCall(ints("steps", &SweepPoint::steps));
+  PetscCall(WriteIntArray(w, grp, "done", g.done, no));
+  PetscCall(WriteAttr(w, grp, "points_done", g.Done()));
+  PetscCall(WriteAttr(w, grp, "points_computed", computed)); // by this invocation (a resume computes only the missing ones)
+  PetscCall(WriteAttr(w, grp, "kcorr_computed", (PetscInt)so.kcorr));
+  PetscCall(WriteAttr(w, grp, "kcorr_nc", so.kcorr_nc));
+  PetscCall(WriteAttr(w, grp, "kcorr_sample_dt", so.kcorr_sample_dt));
+  PetscCall(WriteAttr(w, grp, "kcorr_rms_fraction", so.kcorr_rms_fraction));
+  PetscCall(WriteAttr(w, grp, "amplitude_rule",
+                      "linear Gaussian-burst energy = -force_amplitude_safety * E*; a run whose burst ends before E* is repeated with S x max(2, "
+                      "sqrt(E*/E_peak)) up to -force_amplitude_retries times (README.md, Amplitude rule); reached = 0 marks points that never reached E*"));
+  PetscCall(out.Commit("sweep", wall));
+  PetscCall(PetscLogEventEnd(Log().output, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode SweepStudy(MPI_Comm comm)
+{
+  LatticeParams lp;
+  ToneBurstOptions fo;
+  SimulationOptions sim;
+  LinearModesOptions mo;
+  SweepOptions so;
+  std::string path;
+  Lattice lat;
+  LinearModes modes;
+  SweepGrid grid;
+  Journal journal;
+  WorkQueue queue;
+  PetscMPIInt rank, size;
+  PetscLogDouble t_start, t_last_ck, t_last_pr, now;
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t_start));
+  PetscCall(LogRegister());
+  PetscCall(PetscLogStagePush(Log().setup));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(LatticeParamsFromOptions(comm, &lp));
+  PetscCall(SweepOptionsFromOptions(comm, &so));
+  PetscCall(ToneBurstOptionsFromOptions(comm, lp, &fo));
+  PetscCheck(fo.profile != ForceProfile::None, comm, PETSC_ERR_USER, "-force_profile none: a sweep needs a forcing");
+  PetscCall(SimulationOptionsFromOptions(comm, &sim));
+  PetscCall(LinearModesOptionsFromOptions(comm, &mo));
+  PetscCall(OutputPathFromOptions(comm, "sweep", &path));
+  // Every rank integrates whole runs on its own copy of the lattice.
+  PetscCall(lat.Setup(PETSC_COMM_SELF, lp));
+  PetscCall(modes.Compute(lat, mo));
+  // The lattice's frequencies (linear 1.0..2.24 at the defaults, higher when
+  // hardened) then map to c = omega dt inside the test's range (pi/5, 4 pi/5).
+  if (so.kcorr_sample_dt == 0) so.kcorr_sample_dt = PETSC_PI / (2 * std::sqrt(lp.KHat()));
+  const ZeroOneTest zero_one(so.kcorr_nc, (unsigned long)so.kcorr_seed);
+
+  // Rank 0 builds the starting grid (fresh, or the stored one plus journals).
+  grid.Reset(so.omega, so.energy);
+  int err = 0;
+  char msg[512] = "";
+  if (!rank) {
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+    PetscErrorCode ierr = 0;
+    PetscInt merged = 0;
+    if (so.resume) {
+      if (access(path.c_str(), F_OK)) ierr = PetscError(PETSC_COMM_SELF, __LINE__, PETSC_FUNCTION_NAME, __FILE__, PETSC_ERR_FILE_OPEN, PETSC_ERROR_INITIAL,
+                                                        "-sweep_resume: no sweep file %s to resume", path.c_str());
+      if (!ierr) ierr = grid.Load(path);
+      if (!ierr) ierr = grid.MergeJournals(path, &merged);
+    }
+    if (!ierr) ierr = WriteSweep(path, grid, so, 0, 0); // the file exists (and is valid) from the start
+    PetscCall(PetscPopErrorHandler());
+    if (ierr) {
+      const char *text;
+      char *specific = NULL;
+      PetscCall(PetscErrorMessage(ierr, &text, &specific));
+      err = 1;
+      PetscCall(PetscStrncpy(msg, specific ? specific : text, sizeof(msg)));
+    } else {
+      for (const std::string &f : JournalFiles(path)) std::remove(f.c_str()); // merged (resume) or stale (fresh start)
+      if (so.resume)
+        PetscCall(PetscPrintf(PETSC_COMM_SELF, "nltopo sweep: resuming %s: %" PetscInt_FMT " of %zu points done (%" PetscInt_FMT " from journals)\n", path.c_str(),
+                              grid.Done(), grid.Size(), merged));
+    }
+  }
+  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm));
+  PetscCallMPI(MPI_Bcast(msg, sizeof(msg), MPI_CHAR, 0, comm));
+  PetscCheck(!err, comm, PETSC_ERR_USER, "%s", msg);
+  PetscCallMPI(MPI_Bcast(grid.done.data(), (PetscMPIInt)grid.Size(), MPIU_INT, 0, comm));
+
+  // The missing points, most expensive (highest E*, then highest omega) first.
+  const size_t no = so.omega.size(), ne = so.energy.size();
+  std::vector<size_t> todo;
+  for (size_t i = 0; i < grid.Size(); i++)
+    if (!grid.done[i]) todo.push_back(i);
+  std::stable_sort(todo.begin(), todo.end(), [&](size_t a, size_t b) { return a / no != b / no ? a / no > b / no : a % no > b % no; });
+  PetscCall(PetscPrintf(comm, "nltopo sweep: %zu omega x %zu E* = %zu points, %zu to compute on %d rank(s)%s, N = %" PetscInt_FMT ", t_final = %g\n", no, ne,
+                        grid.Size(), todo.size(), size, so.kcorr ? ", with the 0-1 test" : "", lat.N(), (double)sim.t_final));
+  PetscCall(journal.Open(path, rank));
+  PetscCall(queue.Create(comm, (PetscInt)todo.size()));
+  PetscCall(PetscLogStagePop());
+
+  PetscCall(PetscLogStagePush(Log().solve));
+  sim.progress = 0;
+  sim.sample_dt = 0;
+  const bool tty = !rank && isatty(fileno(stdout));
+  PetscInt computed = 0, item;
+  t_last_ck = t_last_pr = t_start;
+  PetscLogDouble t_loop;
+  PetscCall(PetscTime(&t_loop));
+  for (;;) {
+    PetscCall(queue.Next(&item));
+    if (item < 0) break;
+    const size_t idx = todo[item];
+    ToneBurstOptions pf = fo;
+    pf.omega = so.omega[idx % no];
+    pf.energy = so.energy[idx / no];
+    ToneBurst burst;
+    PetscCall(burst.Setup(lat, pf, &modes));
+    SimulationOptions ps = sim;
+    AfterCutoff sink(lat.N());
+    if (so.kcorr) ps.sample_dt = so.kcorr_sample_dt;
+    SimulationResult r;
+    PetscInt rescalings;
+    PetscLogDouble p0, p1;
+    PetscCall(PetscTime(&p0));
+    PetscCall(SimulateForced(lat, &burst, ps, so.kcorr ? &sink : NULL, &r, &rescalings));
+    SweepPoint pt;
+    if (so.kcorr) {
+      PetscCall(PetscLogEventBegin(Log().diagnostics, 0, 0, 0, 0));
+      PetscReal K = std::numeric_limits<PetscReal>::quiet_NaN(); // too short a record after the cut-off
+      const PetscInt ns = sink.Samples(), N = lat.N();
+      if (ns >= 100) {
+        // Sites too quiet to matter carry the lattice's dense linear spectrum,
+        // which ~500 samples cannot resolve and the test reads as chaos.
+        std::vector<PetscReal> ms(N, 0.0);
+        for (PetscInt j = 0; j < ns; j++)
+          for (PetscInt s = 0; s < N; s++) ms[s] += sink.Data()[j * N + s] * sink.Data()[j * N + s];
+        const PetscReal floor = so.kcorr_rms_fraction * so.kcorr_rms_fraction * *std::max_element(ms.begin(), ms.end());
+        K = -1;
+        for (PetscInt s = 0; s < N; s += so.kcorr_site_stride)
+          if (ms[s] >= floor && ms[s] > 0) K = std::max(K, zero_one.Score(sink.Data() + s, ns, N));
+      }
+      pt.kcorr = K;
+      PetscCall(PetscLogEventEnd(Log().diagnostics, 0, 0, 0, 0));
+    } else {
+      pt.kcorr = std::numeric_limits<PetscReal>::quiet_NaN();
+    }
+    PetscCall(PetscTime(&p1));
+    pt.mcr = r.mcr, pt.t_off = r.t_off, pt.nl_ratio = r.nl_ratio, pt.amplitude = burst.Amplitude(), pt.energy_final = r.energy_final;
+    pt.seconds = p1 - p0, pt.reached = r.reached, pt.rescalings = rescalings, pt.rhs = r.rhs_all_attempts, pt.steps = r.steps;
+    PetscCall(journal.Append(idx, pt));
+    computed++;
+    if (!rank) { // rank 0 merges what every rank journaled: checkpoint file and progress
+      PetscCall(PetscTime(&now));
+      const bool ck = now - t_last_ck >= so.checkpoint, pr = so.progress > 0 && (tty || now - t_last_pr >= so.progress);
+      if (ck || pr) {
+        PetscInt lines;
+        PetscCall(grid.MergeJournals(path, &lines));
+        if (ck) {
+          PetscCall(WriteSweep(path, grid, so, computed, now - t_start));
+          t_last_ck = now;
+        }
+        if (pr && (tty ? now - t_last_pr >= 0.5 : true)) {
+          const PetscInt d = grid.Done();
+          const double rate = (d - (PetscInt)(grid.Size() - todo.size())) / (now - t_loop);
+          const double eta = rate > 0 ? (grid.Size() - d) / rate : 0;
+          PetscCall(PetscPrintf(PETSC_COMM_SELF, "%s  [sweep] %" PetscInt_FMT " / %zu points (%.1f %%), %.2f points/s, ETA %.0f s%s", tty ? "\r" : "", d,
+                                grid.Size(), 100.0 * d / grid.Size(), rate, eta, tty ? "   " : "\n"));
+          if (tty) fflush(stdout);
+          t_last_pr = now;
+        }
+      }
+    }
+  }
+  journal.Close();
+  PetscCallMPI(MPI_Barrier(comm)); // every journal is complete
+  PetscCall(PetscLogStagePop());
+
+  PetscCall(PetscLogStagePush(Log().write));
+  PetscInt total_computed = 0;
+  PetscCallMPI(MPI_Reduce(&computed, &total_computed, 1, MPIU_INT, MPI_SUM, 0, comm));
+  if (!rank) {
+    PetscInt lines;
+    PetscCall(grid.MergeJournals(path, &lines));
+    PetscCall(PetscTime(&now));
+    PetscCall(WriteSweep(path, grid, so, total_computed, now - t_start));
+    for (const std::string &f : JournalFiles(path)) std::remove(f.c_str());
+    PetscInt missed = 0;
+    for (size_t i = 0; i < grid.Size(); i++) missed += grid.done[i] && !grid.pts[i].reached;
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "%s  computed %" PetscInt_FMT " points in %.2f s (%.2f points/s on %d ranks); %" PetscInt_FMT
+                                           " point(s) never reached E* (reached = 0)\n  wrote %s\n",
+                          tty ? "\n" : "", total_computed, (double)(now - t_loop), total_computed / std::max(1e-9, (double)(now - t_loop)), size, missed,
+                          path.c_str()));
+  }
+  PetscCallMPI(MPI_Barrier(comm));
+  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(0);
+}
+
+} // namespace nltopo
