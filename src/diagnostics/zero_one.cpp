@@ -5,7 +5,7 @@
 
 namespace nltopo {
 
-ZeroOneTest::ZeroOneTest(PetscInt nc, unsigned long seed)
+ZeroOneTest::ZeroOneTest(PetscInt nc, unsigned long seed, PetscInt lags) : lags_(lags)
 {
   std::mt19937_64 gen(seed);
   std::uniform_real_distribution<double> dist(PETSC_PI / 5, 4 * PETSC_PI / 5);
@@ -13,16 +13,17 @@ ZeroOneTest::ZeroOneTest(PetscInt nc, unsigned long seed)
 }
 
 namespace {
-// Pearson correlation of (1, 2, ..., m) with d[0..m-1].
-PetscReal CorrelationWithIndex(const std::vector<PetscReal> &d)
+// Pearson correlation of the lags x[] with d[].
+PetscReal Correlation(const std::vector<PetscInt> &lag, const std::vector<PetscReal> &d)
 {
   const size_t m = d.size();
-  PetscReal xm = 0.5 * (m + 1), ym = 0;
-  for (PetscReal v : d) ym += v;
+  PetscReal xm = 0, ym = 0;
+  for (size_t i = 0; i < m; i++) xm += lag[i], ym += d[i];
+  xm /= m;
   ym /= m;
   PetscReal sxy = 0, sxx = 0, syy = 0;
   for (size_t i = 0; i < m; i++) {
-    const PetscReal x = (PetscReal)(i + 1) - xm, y = d[i] - ym;
+    const PetscReal x = lag[i] - xm, y = d[i] - ym;
     sxy += x * y;
     sxx += x * x;
     syy += y * y;
@@ -34,7 +35,13 @@ PetscReal CorrelationWithIndex(const std::vector<PetscReal> &d)
 PetscReal ZeroOneTest::Score(const PetscReal *phi, PetscInt n, PetscInt stride) const
 {
   const PetscInt ncut = n / 10;
-  std::vector<PetscReal> x(n), p(n), q(n), D(ncut), K;
+  std::vector<PetscInt> lag;
+  if (lags_ > 0 && lags_ < ncut) {
+    for (PetscInt i = 0; i < lags_; i++) lag.push_back(1 + (PetscInt)std::llround((double)i * (ncut - 1) / (lags_ - 1 > 0 ? lags_ - 1 : 1)));
+  } else {
+    for (PetscInt m = 1; m <= ncut; m++) lag.push_back(m);
+  }
+  std::vector<PetscReal> x(n), p(n), q(n), D(lag.size()), K;
   PetscReal mean = 0;
   for (PetscInt j = 0; j < n; j++) {
     x[j] = phi[j * stride];
@@ -58,7 +65,8 @@ PetscReal ZeroOneTest::Score(const PetscReal *phi, PetscInt n, PetscInt stride) 
       si = si * cc + cr * sc;
       cr = t;
     }
-    for (PetscInt m = 1; m <= ncut; m++) {
+    for (size_t li = 0; li < lag.size(); li++) {
+      const PetscInt m = lag[li];
       const PetscInt len = n - ncut; // the same number of increments for every m
       PetscReal a0 = 0, a1 = 0, a2 = 0, a3 = 0;
       PetscInt j = 0;
@@ -75,9 +83,9 @@ PetscReal ZeroOneTest::Score(const PetscReal *phi, PetscInt n, PetscInt stride) 
         a0 += dp * dp + dq * dq;
       }
       const PetscReal M = (a0 + a1 + a2 + a3) / len;
-      D[m - 1] = M - mean * mean * (1 - std::cos(m * c)) / (1 - std::cos(c));
+      D[li] = M - mean * mean * (1 - std::cos(m * c)) / (1 - std::cos(c));
     }
-    K.push_back(CorrelationWithIndex(D));
+    K.push_back(Correlation(lag, D));
   }
   std::sort(K.begin(), K.end());
   const size_t h = K.size() / 2;

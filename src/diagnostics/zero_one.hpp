@@ -19,13 +19,16 @@ class ZeroOneTest {
 public:
   // nc frequencies c, drawn once from a seeded generator: the same c for every
   // series, so a score does not depend on which rank computes it.
-  ZeroOneTest(PetscInt nc, unsigned long seed);
+  // lags > 0: D(m) at that many lags evenly spread over 1..n/10 instead of
+  // all of them (the correlation with m is the same statistic on a sub-grid).
+  ZeroOneTest(PetscInt nc, unsigned long seed, PetscInt lags = 0);
   // K of phi[0], phi[stride], ..., phi[(n-1) stride]. n must be >= 20.
   PetscReal Score(const PetscReal *phi, PetscInt n, PetscInt stride = 1) const;
   const std::vector<PetscReal> &Frequencies() const { return c_; }
 
 private:
   std::vector<PetscReal> c_;
+  PetscInt lags_;
 };
 
 } // namespace nltopo

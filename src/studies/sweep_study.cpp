@@ -28,6 +28,8 @@ struct SweepOptions {
   // 0-1 test (-kcorr_*)
   PetscInt kcorr_nc = 32, kcorr_site_stride = 1; // 32 c values: the median is stable to ~0.02 on the test series (README.md)
   PetscReal kcorr_rms_fraction = 0.1;
+  PetscReal kcorr_record = 1500; // free motion analysed after t_off (s)
+  PetscInt kcorr_lags = 20;
   PetscInt kcorr_seed = 1;
   PetscReal kcorr_sample_dt = 0; // 0: a quarter of the insulated period, pi / (2 sqrt(k_hat))
 };
@@ -95,6 +97,9 @@ PetscErrorCode SweepOptionsFromOptions(MPI_Comm comm, SweepOptions *o)
                              o->kcorr_sample_dt, &o->kcorr_sample_dt, NULL));
   PetscCall(PetscOptionsReal("-rms_fraction", "Test only sites whose RMS after t_off is at least this fraction of the largest (README.md)", NULL,
                              o->kcorr_rms_fraction, &o->kcorr_rms_fraction, NULL));
+  PetscCall(PetscOptionsReal("-record", "Length of the free motion after t_off that the test analyses; the run continues past -sim_t_final when needed", NULL,
+                             o->kcorr_record, &o->kcorr_record, NULL));
+  PetscCall(PetscOptionsInt("-lags", "Lags m at which D(m) is evaluated, evenly spread over 1..n/10 (0: all)", NULL, o->kcorr_lags, &o->kcorr_lags, NULL));
   PetscCall(PetscOptionsInt("-site_stride", "Test every this many sites (1: all; the score is the max over tested sites)", NULL, o->kcorr_site_stride,
                             &o->kcorr_site_stride, NULL));
   PetscOptionsEnd();
@@ -102,6 +107,8 @@ PetscErrorCode SweepOptionsFromOptions(MPI_Comm comm, SweepOptions *o)
   PetscCheck(o->kcorr_sample_dt >= 0, comm, PETSC_ERR_USER, "-kcorr_sample_dt must be >= 0, got %g", (double)o->kcorr_sample_dt);
   PetscCheck(o->kcorr_rms_fraction >= 0 && o->kcorr_rms_fraction <= 1, comm, PETSC_ERR_USER, "-kcorr_rms_fraction must lie in [0, 1], got %g",
              (double)o->kcorr_rms_fraction);
+  PetscCheck(o->kcorr_record > 0, comm, PETSC_ERR_USER, "-kcorr_record must be positive, got %g", (double)o->kcorr_record);
+  PetscCheck(o->kcorr_lags == 0 || o->kcorr_lags >= 3, comm, PETSC_ERR_USER, "-kcorr_lags must be 0 (all) or >= 3, got %" PetscInt_FMT, o->kcorr_lags);
   PetscCheck(o->kcorr_site_stride >= 1, comm, PETSC_ERR_USER, "-kcorr_site_stride must be >= 1, got %" PetscInt_FMT, o->kcorr_site_stride);
   for (const char *fixed : {"-force_omega", "-force_energy"}) {
     PetscBool set;
@@ -111,11 +118,17 @@ PetscErrorCode SweepOptionsFromOptions(MPI_Comm comm, SweepOptions *o)
   PetscFunctionReturn(0);
 }
 
-// Displacements of every site after the cut-off, at the 0-1 test's sampling times.
+// Displacements of every site after the cut-off, at the 0-1 test's sampling
+// times, through the forced run and its free continuation (t_off given then).
 class AfterCutoff : public SampleSink {
 public:
   explicit AfterCutoff(PetscInt n) : n_(n) {}
-  bool Wants(PetscReal t, PetscReal t_off) const override { return t_off >= 0 && t >= t_off; }
+  bool Wants(PetscReal t, PetscReal t_off) const override
+  {
+    const PetscReal off = continued_off_ >= 0 ? continued_off_ : t_off;
+    return off >= 0 && t >= off;
+  }
+  void Continue(PetscReal t_off) { continued_off_ = t_off; }
   void Restart() override { u_.clear(); }
   PetscErrorCode Sample(PetscReal t, Vec z, const EnergyParts &e) override
   {
@@ -132,6 +145,7 @@ public:
 private:
   PetscInt n_;
   std::vector<PetscReal> u_;
+  PetscReal continued_off_ = -1;
 };
 
 PetscErrorCode WriteSweep(const std::string &path, const SweepGrid &g, const SweepOptions &so, PetscInt computed, PetscReal wall)
@@ -178,6 +192,8 @@ PetscErrorCode WriteSweep(const std::string &path, const SweepGrid &g, const Swe
   PetscCall(WriteAttr(w, grp, "kcorr_nc", so.kcorr_nc));
   PetscCall(WriteAttr(w, grp, "kcorr_sample_dt", so.kcorr_sample_dt));
   PetscCall(WriteAttr(w, grp, "kcorr_rms_fraction", so.kcorr_rms_fraction));
+  PetscCall(WriteAttr(w, grp, "kcorr_record", so.kcorr_record));
+  PetscCall(WriteAttr(w, grp, "kcorr_lags", so.kcorr_lags));
   PetscCall(WriteAttr(w, grp, "amplitude_rule",
                       "linear Gaussian-burst energy = -force_amplitude_safety * E*; a run whose burst ends before E* is repeated with S x max(2, "
                       "sqrt(E*/E_peak)) up to -force_amplitude_retries times (README.md, Amplitude rule); reached = 0 marks points that never reached E*"));
@@ -222,7 +238,7 @@ PetscErrorCode SweepStudy(MPI_Comm comm)
   // The lattice's frequencies (linear 1.0..2.24 at the defaults, higher when
   // hardened) then map to c = omega dt inside the test's range (pi/5, 4 pi/5).
   if (so.kcorr_sample_dt == 0) so.kcorr_sample_dt = PETSC_PI / (2 * std::sqrt(lp.KHat()));
-  const ZeroOneTest zero_one(so.kcorr_nc, (unsigned long)so.kcorr_seed);
+  const ZeroOneTest zero_one(so.kcorr_nc, (unsigned long)so.kcorr_seed, so.kcorr_lags);
 
   // Rank 0 builds the starting grid (fresh, or the stored one plus journals).
   grid.Reset(so.omega, so.energy);
@@ -296,6 +312,19 @@ PetscErrorCode SweepStudy(MPI_Comm comm)
     PetscCall(PetscTime(&p0));
     PetscCall(SimulateForced(lat, &burst, ps, so.kcorr ? &sink : NULL, &r, &rescalings));
     SweepPoint pt;
+    pt.rhs = r.rhs_all_attempts;
+    if (so.kcorr && r.reached && r.t_off + so.kcorr_record > ps.t_final) {
+      // The test needs a longer free record than the run has after t_off: the
+      // linear lattice's ~N modes read as chaos in records much shorter than
+      // 2 pi / (their spacing) (README.md "0-1 test"). Continue the free motion.
+      SimulationOptions cont = ps;
+      SimulationResult rc;
+      cont.t_start = ps.t_final;
+      cont.t_final = r.t_off + so.kcorr_record;
+      sink.Continue(r.t_off);
+      PetscCall(Simulate(lat, NULL, cont, r.z_final, &sink, &rc));
+      pt.rhs += rc.counters.rhs;
+    }
     if (so.kcorr) {
       PetscCall(PetscLogEventBegin(Log().diagnostics, 0, 0, 0, 0));
       PetscReal K = std::numeric_limits<PetscReal>::quiet_NaN(); // too short a record after the cut-off
@@ -318,7 +347,7 @@ PetscErrorCode SweepStudy(MPI_Comm comm)
     }
     PetscCall(PetscTime(&p1));
     pt.mcr = r.mcr, pt.t_off = r.t_off, pt.nl_ratio = r.nl_ratio, pt.amplitude = burst.Amplitude(), pt.energy_final = r.energy_final;
-    pt.seconds = p1 - p0, pt.reached = r.reached, pt.rescalings = rescalings, pt.rhs = r.rhs_all_attempts, pt.steps = r.steps;
+    pt.seconds = p1 - p0, pt.reached = r.reached, pt.rescalings = rescalings, pt.steps = r.steps;
     PetscCall(journal.Append(idx, pt));
     computed++;
     if (!rank) { // rank 0 merges what every rank journaled: checkpoint file and progress

@@ -233,6 +233,7 @@ PetscErrorCode SimulateForced(const Lattice &lat, ToneBurst *burst, const Simula
   const PetscInt retries = burst->AmplitudeFromRule() ? burst->Options().retries : 0;
   SimulationOptions attempt = o;
   PetscInt work = 0;
+  PetscReal S_prev = 0, E_prev = 0;
   for (PetscInt k = 0;; k++) {
     attempt.abort_if_missed = k < retries; // the last attempt is a complete run
     if (sink) sink->Restart();
@@ -243,8 +244,19 @@ PetscErrorCode SimulateForced(const Lattice &lat, ToneBurst *burst, const Simula
       *rescalings = r->reached || !burst->Present() ? k : -1;
       PetscFunctionReturn(0);
     }
-    const PetscReal f = r->energy_peak > 0 ? std::sqrt(burst->EnergyStar() / r->energy_peak) : 2;
-    burst->ScaleAmplitude(std::max<PetscReal>(2, f));
+    // The peak energy grows like S^p: p = 2 in the linear lattice, nearer 1
+    // once the hardened lattice detunes from the burst. Take p = 1 after the
+    // first miss, then the log-log slope of the last two attempts (clamped to
+    // [0.3, 2]), aim 20 % above E*, and at least double S.
+    const PetscReal S = burst->Amplitude(), E = std::max(r->energy_peak, PETSC_SMALL * burst->EnergyStar());
+    PetscReal p = 1;
+    if (k > 0 && E > E_prev && S > S_prev) p = std::min<PetscReal>(2, std::max<PetscReal>(0.3, std::log(E / E_prev) / std::log(S / S_prev)));
+    const PetscReal f = std::min<PetscReal>(100, std::max<PetscReal>(2, std::pow(1.2 * burst->EnergyStar() / E, 1 / p)));
+    PetscCall(PetscInfo(NULL, "amplitude rule: S = %g reached E_peak = %g < E* = %g by the burst end; p = %g, S x %g\n", (double)S, (double)E,
+                        (double)burst->EnergyStar(), (double)p, (double)f));
+    S_prev = S;
+    E_prev = E;
+    burst->ScaleAmplitude(f);
   }
 }
 
@@ -303,9 +315,10 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
     // Fixed step dividing t_final (the type ignores MATCHSTEP), split RHS.
     PetscReal dt;
     PetscCall(TSGetTimeStep(ts, &dt));
-    PetscCheck(dt > 0 && dt <= o.t_final, comm, PETSC_ERR_USER, "-sim_ts_dt must lie in (0, -sim_t_final], got %g", (double)dt);
-    const PetscInt n = (PetscInt)std::ceil(o.t_final / dt - 1e-9);
-    PetscCall(TSSetTimeStep(ts, o.t_final / n));
+    const PetscReal span = o.t_final - o.t_start;
+    PetscCheck(dt > 0 && dt <= span, comm, PETSC_ERR_USER, "-sim_ts_dt must lie in (0, -sim_t_final], got %g", (double)dt);
+    const PetscInt n = (PetscInt)std::ceil(span / dt - 1e-9);
+    PetscCall(TSSetTimeStep(ts, span / n));
     PetscCall(TSSetMaxSteps(ts, n));
     PetscCall(TSRHSSplitSetIS(ts, "position", lat.PositionIS()));
     PetscCall(TSRHSSplitSetIS(ts, "momentum", lat.MomentumIS()));
@@ -328,10 +341,12 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
   {
     EnergyParts e0;
     PetscCall(lat.Energy(z, &e0));
-    PetscCall(run.Window(0.0, z, e0));
-    PetscCall(run.Samples(ts, 0.0, z, e0));
+    // A continued run's samples follow the earlier run's (which took t = t_start).
+    if (o.t_start > 0 && o.sample_dt > 0) run.next_sample = (PetscInt)std::floor(o.t_start / o.sample_dt + 1e-9) + 1;
+    PetscCall(run.Window(o.t_start, z, e0));
+    PetscCall(run.Samples(ts, o.t_start, z, e0));
   }
-  PetscCall(TSSetTime(ts, 0.0));
+  PetscCall(TSSetTime(ts, o.t_start));
   PetscCall(TSSetStepNumber(ts, 0));
   {
     // Any failure inside the solve (a NaN caught by TSAdapt, a diverged

@@ -10,7 +10,8 @@
 namespace nltopo {
 
 struct SimulationOptions {
-  PetscReal t_final = 1000;  // simulated time
+  PetscReal t_final = 1000;  // simulated time (the run ends here)
+  PetscReal t_start = 0;     // the run starts here (continuing an earlier run from its final state)
   PetscReal sample_dt = 1.0; // spacing of the stored samples (0: store none)
   PetscReal progress = 10;   // wall seconds between progress lines (0: none)
   bool stop_at_cutoff = false; // end the run at the cut-off

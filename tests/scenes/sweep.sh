@@ -78,4 +78,6 @@ cp full1.h5 keep.h5
 expect_fail "differs from the -sweep_\* axes" "${OPTS[@]}" -sweep_omega_n 5 -sweep_resume -output keep.h5
 cmp keep.h5 full1.h5
 ls bad1.h5 bad2.h5 nothere.h5 2> /dev/null && { echo "output left behind"; exit 1; }
+$PY "$SRC/src/plots/plot_sweep.py" full1.h5 map.png
+[ "$(stat -c %s map.png)" -gt 20000 ] || { echo "empty figure map.png"; exit 1; }
 echo "sweep scene OK"
