@@ -23,7 +23,7 @@ PetscErrorCode ToneBurstOptionsFromOptions(MPI_Comm comm, const LatticeParams &l
   PetscCall(PetscOptionsReal("-energy", "Cut-off energy E*: the forcing stops for good the first time E >= E*", NULL, o->energy, &o->energy, NULL));
   PetscCall(PetscOptionsReal("-amplitude", "Amplitude S; when not given the amplitude rule (README.md) picks it", NULL, o->amplitude, &o->amplitude, &set_amp));
   PetscCall(PetscOptionsReal("-amplitude_safety", "Amplitude rule: S makes the linear burst energy this multiple of E*", NULL, o->safety, &o->safety, NULL));
-  PetscCall(PetscOptionsInt("-amplitude_retries", "Amplitude rule: if E* is not reached within the burst, rescale S (x max(2, sqrt(E*/E_peak))) up to this many times", NULL,
+  PetscCall(PetscOptionsInt("-amplitude_retries", "Amplitude rule: if E* is not reached within the burst, rescale S (README.md) up to this many times", NULL,
                             o->retries, &o->retries, NULL));
   PetscCall(PetscOptionsReal("-tau_periods", "Burst width tau in excitation periods", NULL, o->tau_periods, &o->tau_periods, NULL));
   PetscCall(PetscOptionsReal("-t0_taus", "Burst centre t0 in units of tau", NULL, o->t0_taus, &o->t0_taus, NULL));

@@ -116,7 +116,7 @@ PetscErrorCode SimulateStudy(MPI_Comm comm)
   PetscCall(WriteAttr(v, g, "amplitude", burst.Amplitude()));
   PetscCall(WriteAttr(v, g, "amplitude_rule",
                       !burst.Present() ? "none (no forcing)"
-                      : burst.AmplitudeFromRule() ? "linear Gaussian-burst energy = amplitude_safety * E*; a run whose burst ends before E* is repeated with S x max(2, sqrt(E*/E_peak)) (README.md, Amplitude rule)"
+                      : burst.AmplitudeFromRule() ? "linear Gaussian-burst energy = amplitude_safety * E*; a run whose burst ends before E* is repeated with a larger S (x (1.2 E*/E_peak)^(1/p), p the log-log slope of the misses) (README.md, Amplitude rule)"
                                                   : "user (-force_amplitude)"));
   PetscCall(WriteAttr(v, g, "amplitude_safety", fo.safety));
   PetscCall(WriteAttr(v, g, "amplitude_rescalings", rescalings)); // -1: E* missed after -force_amplitude_retries

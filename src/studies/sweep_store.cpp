@@ -55,6 +55,7 @@ PetscErrorCode SweepGrid::Load(const std::string &path)
   PetscCall(ints("rescalings", &SweepPoint::rescalings));
   PetscCall(ints("rhs_evals", &SweepPoint::rhs));
   PetscCall(ints("steps", &SweepPoint::steps));
+  PetscCall(ints("failed", &SweepPoint::failed));
   PetscCall(ReadInts(path, "/sweep/done", &done));
   PetscCheck(done.size() == Size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-sweep_resume: /sweep/done in %s has the wrong size", path.c_str());
   PetscFunctionReturn(0);
@@ -74,7 +75,7 @@ std::vector<std::string> JournalFiles(const std::string &path)
   return files;
 }
 
-// Line format: index mcr t_off kcorr nl_ratio amplitude energy_final seconds reached rescalings rhs steps
+// Line format: index mcr t_off kcorr nl_ratio amplitude energy_final seconds reached rescalings rhs steps failed
 PetscErrorCode SweepGrid::MergeJournals(const std::string &path, PetscInt *lines)
 {
   PetscFunctionBeginUser;
@@ -85,14 +86,14 @@ PetscErrorCode SweepGrid::MergeJournals(const std::string &path, PetscInt *lines
     char buf[1024];
     while (std::fgets(buf, sizeof(buf), f)) {
       if (!std::strchr(buf, '\n')) break; // a line cut by a kill: ignored, the point is recomputed
-      long idx, reached, resc, rhs, steps;
+      long idx, reached, resc, rhs, steps, failed;
       SweepPoint p;
       double v[7];
-      if (std::sscanf(buf, "%ld %la %la %la %la %la %la %la %ld %ld %ld %ld", &idx, &v[0], &v[1], &v[2], &v[3], &v[4], &v[5], &v[6], &reached, &resc, &rhs,
-                      &steps) != 12 || idx < 0 || (size_t)idx >= Size())
+      if (std::sscanf(buf, "%ld %la %la %la %la %la %la %la %ld %ld %ld %ld %ld", &idx, &v[0], &v[1], &v[2], &v[3], &v[4], &v[5], &v[6], &reached, &resc, &rhs,
+                      &steps, &failed) != 13 || idx < 0 || (size_t)idx >= Size())
         continue;
       p.mcr = v[0], p.t_off = v[1], p.kcorr = v[2], p.nl_ratio = v[3], p.amplitude = v[4], p.energy_final = v[5], p.seconds = v[6];
-      p.reached = reached, p.rescalings = resc, p.rhs = rhs, p.steps = steps;
+      p.reached = reached, p.rescalings = resc, p.rhs = rhs, p.steps = steps, p.failed = failed;
       pts[idx] = p;
       done[idx] = 1;
       (*lines)++;
@@ -114,8 +115,8 @@ PetscErrorCode Journal::Open(const std::string &path, PetscMPIInt rank)
 PetscErrorCode Journal::Append(size_t index, const SweepPoint &p)
 {
   PetscFunctionBeginUser;
-  std::fprintf(f_, "%zu %a %a %a %a %a %a %a %ld %ld %ld %ld\n", index, (double)p.mcr, (double)p.t_off, (double)p.kcorr, (double)p.nl_ratio, (double)p.amplitude,
-               (double)p.energy_final, (double)p.seconds, (long)p.reached, (long)p.rescalings, (long)p.rhs, (long)p.steps);
+  std::fprintf(f_, "%zu %a %a %a %a %a %a %a %ld %ld %ld %ld %ld\n", index, (double)p.mcr, (double)p.t_off, (double)p.kcorr, (double)p.nl_ratio, (double)p.amplitude,
+               (double)p.energy_final, (double)p.seconds, (long)p.reached, (long)p.rescalings, (long)p.rhs, (long)p.steps, (long)p.failed);
   PetscCheck(std::fflush(f_) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "cannot write the sweep journal (disk full?)");
   PetscFunctionReturn(0);
 }

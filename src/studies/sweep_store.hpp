@@ -17,6 +17,7 @@ namespace nltopo {
 struct SweepPoint {
   PetscReal mcr = 0, t_off = -1, kcorr = 0, nl_ratio = 0, amplitude = 0, energy_final = 0, seconds = 0;
   PetscInt reached = 0, rescalings = 0, rhs = 0, steps = 0;
+  PetscInt failed = 0; // the run stopped with an error (e.g. diverged); its numbers are NaN
 };
 
 // Rank 0's picture of the grid: energy rows x omega columns, row-major.

@@ -13,6 +13,7 @@
 #include "studies/sweep_store.hpp"
 #include "timeint/simulation.hpp"
 #include <algorithm>
+#include <cstdlib>
 #include <cmath>
 #include <numeric>
 #include <unistd.h>
@@ -185,6 +186,7 @@ PetscErrorCode WriteSweep(const std::string &path, const SweepGrid &g, const Swe
   PetscCall(ints("rescalings", &SweepPoint::rescalings));
   PetscCall(ints("rhs_evals", &SweepPoint::rhs));
   PetscCall(ints("steps", &SweepPoint::steps));
+  PetscCall(ints("failed", &SweepPoint::failed));
   PetscCall(WriteIntArray(w, grp, "done", g.done, no));
   PetscCall(WriteAttr(w, grp, "points_done", g.Done()));
   PetscCall(WriteAttr(w, grp, "points_computed", computed)); // by this invocation (a resume computes only the missing ones)
@@ -195,10 +197,67 @@ PetscErrorCode WriteSweep(const std::string &path, const SweepGrid &g, const Swe
   PetscCall(WriteAttr(w, grp, "kcorr_record", so.kcorr_record));
   PetscCall(WriteAttr(w, grp, "kcorr_lags", so.kcorr_lags));
   PetscCall(WriteAttr(w, grp, "amplitude_rule",
-                      "linear Gaussian-burst energy = -force_amplitude_safety * E*; a run whose burst ends before E* is repeated with S x max(2, "
-                      "sqrt(E*/E_peak)) up to -force_amplitude_retries times (README.md, Amplitude rule); reached = 0 marks points that never reached E*"));
+                      "linear Gaussian-burst energy = -force_amplitude_safety * E*; a run whose burst ends before E* is repeated with a larger S (x "
+                      "(1.2 E*/E_peak)^(1/p), p the log-log slope of the misses) up to -force_amplitude_retries times (README.md, Amplitude rule); reached = 0 marks points that never reached E*"));
   PetscCall(out.Commit("sweep", wall));
   PetscCall(PetscLogEventEnd(Log().output, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+// One grid point: the simulate study's run, then (with -sweep_kcorr) the 0-1 test.
+PetscErrorCode ComputePoint(const Lattice &lat, const LinearModes &modes, const ToneBurstOptions &fo, const SimulationOptions &sim, const SweepOptions &so,
+                            const ZeroOneTest &zero_one, PetscReal omega, PetscReal energy, SweepPoint *pt)
+{
+  PetscFunctionBeginUser;
+  ToneBurstOptions pf = fo;
+  pf.omega = omega;
+  pf.energy = energy;
+  ToneBurst burst;
+  PetscCall(burst.Setup(lat, pf, &modes));
+  SimulationOptions ps = sim;
+  AfterCutoff sink(lat.N());
+  if (so.kcorr) ps.sample_dt = so.kcorr_sample_dt;
+  SimulationResult r;
+  PetscInt rescalings;
+  PetscLogDouble p0, p1;
+  PetscCall(PetscTime(&p0));
+  PetscCall(SimulateForced(lat, &burst, ps, so.kcorr ? &sink : NULL, &r, &rescalings));
+  pt->rhs = r.rhs_all_attempts;
+  if (so.kcorr && r.reached && r.t_off + so.kcorr_record > ps.t_final) {
+    // The test needs a longer free record than the run has after t_off: the
+    // linear lattice's ~N modes read as chaos in records much shorter than
+    // 2 pi / (their spacing) (README.md "0-1 test"). Continue the free motion.
+    SimulationOptions cont = ps;
+    SimulationResult rc;
+    cont.t_start = ps.t_final;
+    cont.t_final = r.t_off + so.kcorr_record;
+    sink.Continue(r.t_off);
+    PetscCall(Simulate(lat, NULL, cont, r.z_final, &sink, &rc));
+    pt->rhs += rc.counters.rhs;
+  }
+  if (so.kcorr) {
+    PetscCall(PetscLogEventBegin(Log().diagnostics, 0, 0, 0, 0));
+    PetscReal K = std::numeric_limits<PetscReal>::quiet_NaN(); // too short a record after the cut-off
+    const PetscInt ns = sink.Samples(), N = lat.N();
+    if (ns >= 100) {
+      // Sites too quiet to matter carry only the radiated bulk spectrum,
+      // which the test reads as chaos even in linear runs (README.md).
+      std::vector<PetscReal> ms(N, 0.0);
+      for (PetscInt j = 0; j < ns; j++)
+        for (PetscInt s = 0; s < N; s++) ms[s] += sink.Data()[j * N + s] * sink.Data()[j * N + s];
+      const PetscReal floor = so.kcorr_rms_fraction * so.kcorr_rms_fraction * *std::max_element(ms.begin(), ms.end());
+      K = -1;
+      for (PetscInt s = 0; s < N; s += so.kcorr_site_stride)
+        if (ms[s] >= floor && ms[s] > 0) K = std::max(K, zero_one.Score(sink.Data() + s, ns, N));
+    }
+    pt->kcorr = K;
+    PetscCall(PetscLogEventEnd(Log().diagnostics, 0, 0, 0, 0));
+  } else {
+    pt->kcorr = std::numeric_limits<PetscReal>::quiet_NaN();
+  }
+  PetscCall(PetscTime(&p1));
+  pt->mcr = r.mcr, pt->t_off = r.t_off, pt->nl_ratio = r.nl_ratio, pt->amplitude = burst.Amplitude(), pt->energy_final = r.energy_final;
+  pt->seconds = p1 - p0, pt->reached = r.reached, pt->rescalings = rescalings, pt->steps = r.steps;
   PetscFunctionReturn(0);
 }
 
@@ -289,75 +348,42 @@ PetscErrorCode SweepStudy(MPI_Comm comm)
   PetscCall(PetscLogStagePush(Log().solve));
   sim.progress = 0;
   sim.sample_dt = 0;
-  const bool tty = !rank && isatty(fileno(stdout));
+  // One updating line on a terminal; periodic lines otherwise. Under mpiexec
+  // (OpenMPI gives ranks a pty even when the output goes to a file) lines.
+  const bool tty = !rank && isatty(fileno(stdout)) && !getenv("OMPI_COMM_WORLD_SIZE") && !getenv("PMI_RANK");
   PetscInt computed = 0, item;
   t_last_ck = t_last_pr = t_start;
   PetscLogDouble t_loop;
   PetscCall(PetscTime(&t_loop));
   for (;;) {
-    PetscCall(queue.Next(&item));
+    PetscCallAbort(PETSC_COMM_WORLD, queue.Next(&item));
     if (item < 0) break;
     const size_t idx = todo[item];
-    ToneBurstOptions pf = fo;
-    pf.omega = so.omega[idx % no];
-    pf.energy = so.energy[idx / no];
-    ToneBurst burst;
-    PetscCall(burst.Setup(lat, pf, &modes));
-    SimulationOptions ps = sim;
-    AfterCutoff sink(lat.N());
-    if (so.kcorr) ps.sample_dt = so.kcorr_sample_dt;
-    SimulationResult r;
-    PetscInt rescalings;
-    PetscLogDouble p0, p1;
-    PetscCall(PetscTime(&p0));
-    PetscCall(SimulateForced(lat, &burst, ps, so.kcorr ? &sink : NULL, &r, &rescalings));
     SweepPoint pt;
-    pt.rhs = r.rhs_all_attempts;
-    if (so.kcorr && r.reached && r.t_off + so.kcorr_record > ps.t_final) {
-      // The test needs a longer free record than the run has after t_off: the
-      // linear lattice's ~N modes read as chaos in records much shorter than
-      // 2 pi / (their spacing) (README.md "0-1 test"). Continue the free motion.
-      SimulationOptions cont = ps;
-      SimulationResult rc;
-      cont.t_start = ps.t_final;
-      cont.t_final = r.t_off + so.kcorr_record;
-      sink.Continue(r.t_off);
-      PetscCall(Simulate(lat, NULL, cont, r.z_final, &sink, &rc));
-      pt.rhs += rc.counters.rhs;
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+    const PetscErrorCode ierr = ComputePoint(lat, modes, fo, sim, so, zero_one, so.omega[idx % no], so.energy[idx / no], &pt);
+    PetscCall(PetscPopErrorHandler());
+    if (ierr) { // one failed run (e.g. a diverging integration) is flagged; the sweep goes on
+      const char *text;
+      char *specific = NULL;
+      PetscCall(PetscErrorMessage(ierr, &text, &specific));
+      std::fprintf(stderr, "nltopo: warning: sweep point E* = %g, omega = %g failed (flagged failed = 1): %s\n", (double)so.energy[idx / no],
+                   (double)so.omega[idx % no], specific && specific[0] ? specific : text);
+      const PetscReal nan = std::numeric_limits<PetscReal>::quiet_NaN();
+      pt = SweepPoint();
+      pt.mcr = pt.t_off = pt.kcorr = pt.nl_ratio = pt.amplitude = pt.energy_final = nan;
+      pt.failed = 1;
     }
-    if (so.kcorr) {
-      PetscCall(PetscLogEventBegin(Log().diagnostics, 0, 0, 0, 0));
-      PetscReal K = std::numeric_limits<PetscReal>::quiet_NaN(); // too short a record after the cut-off
-      const PetscInt ns = sink.Samples(), N = lat.N();
-      if (ns >= 100) {
-        // Sites too quiet to matter carry the lattice's dense linear spectrum,
-        // which ~500 samples cannot resolve and the test reads as chaos.
-        std::vector<PetscReal> ms(N, 0.0);
-        for (PetscInt j = 0; j < ns; j++)
-          for (PetscInt s = 0; s < N; s++) ms[s] += sink.Data()[j * N + s] * sink.Data()[j * N + s];
-        const PetscReal floor = so.kcorr_rms_fraction * so.kcorr_rms_fraction * *std::max_element(ms.begin(), ms.end());
-        K = -1;
-        for (PetscInt s = 0; s < N; s += so.kcorr_site_stride)
-          if (ms[s] >= floor && ms[s] > 0) K = std::max(K, zero_one.Score(sink.Data() + s, ns, N));
-      }
-      pt.kcorr = K;
-      PetscCall(PetscLogEventEnd(Log().diagnostics, 0, 0, 0, 0));
-    } else {
-      pt.kcorr = std::numeric_limits<PetscReal>::quiet_NaN();
-    }
-    PetscCall(PetscTime(&p1));
-    pt.mcr = r.mcr, pt.t_off = r.t_off, pt.nl_ratio = r.nl_ratio, pt.amplitude = burst.Amplitude(), pt.energy_final = r.energy_final;
-    pt.seconds = p1 - p0, pt.reached = r.reached, pt.rescalings = rescalings, pt.steps = r.steps;
-    PetscCall(journal.Append(idx, pt));
+    PetscCallAbort(PETSC_COMM_WORLD, journal.Append(idx, pt)); // a rank that cannot journal stops every rank
     computed++;
     if (!rank) { // rank 0 merges what every rank journaled: checkpoint file and progress
       PetscCall(PetscTime(&now));
       const bool ck = now - t_last_ck >= so.checkpoint, pr = so.progress > 0 && (tty || now - t_last_pr >= so.progress);
       if (ck || pr) {
         PetscInt lines;
-        PetscCall(grid.MergeJournals(path, &lines));
+        PetscCallAbort(PETSC_COMM_WORLD, grid.MergeJournals(path, &lines));
         if (ck) {
-          PetscCall(WriteSweep(path, grid, so, computed, now - t_start));
+          PetscCallAbort(PETSC_COMM_WORLD, WriteSweep(path, grid, so, computed, now - t_start));
           t_last_ck = now;
         }
         if (pr && (tty ? now - t_last_pr >= 0.5 : true)) {
@@ -385,11 +411,14 @@ PetscErrorCode SweepStudy(MPI_Comm comm)
     PetscCall(PetscTime(&now));
     PetscCall(WriteSweep(path, grid, so, total_computed, now - t_start));
     for (const std::string &f : JournalFiles(path)) std::remove(f.c_str());
-    PetscInt missed = 0;
-    for (size_t i = 0; i < grid.Size(); i++) missed += grid.done[i] && !grid.pts[i].reached;
+    PetscInt missed = 0, failed = 0;
+    for (size_t i = 0; i < grid.Size(); i++) {
+      missed += grid.done[i] && !grid.pts[i].reached && !grid.pts[i].failed;
+      failed += grid.done[i] && grid.pts[i].failed;
+    }
     PetscCall(PetscPrintf(PETSC_COMM_SELF, "%s  computed %" PetscInt_FMT " points in %.2f s (%.2f points/s on %d ranks); %" PetscInt_FMT
-                                           " point(s) never reached E* (reached = 0)\n  wrote %s\n",
-                          tty ? "\n" : "", total_computed, (double)(now - t_loop), total_computed / std::max(1e-9, (double)(now - t_loop)), size, missed,
+                                           " point(s) never reached E* (reached = 0), %" PetscInt_FMT " failed (failed = 1)\n  wrote %s\n",
+                          tty ? "\n" : "", total_computed, (double)(now - t_loop), total_computed / std::max(1e-9, (double)(now - t_loop)), size, missed, failed,
                           path.c_str()));
   }
   PetscCallMPI(MPI_Barrier(comm));

@@ -62,6 +62,8 @@ print("sweep point (E* = %g, omega = %g) == simulate: MCR %.10f" % (f1["energy"]
 # the quartic share of the potential energy grows with E* at every frequency, and is tiny at E* = 1e-2
 nl = f1["nl_ratio"][:]
 assert (nl[0] < 1e-3).all() and (nl[-1] > 10 * nl[0]).all(), nl
+# the nearly linear E* = 1e-2 runs are not chaotic: kcorr below the paper's 0.7 threshold
+assert (f1["kcorr"][0] < 0.7).all(), f1["kcorr"][0]
 PYEOF
 
 # Bad sweep input: one line, non-zero exit; a stored sweep is never damaged.
@@ -78,6 +80,16 @@ cp full1.h5 keep.h5
 expect_fail "differs from the -sweep_\* axes" "${OPTS[@]}" -sweep_omega_n 5 -sweep_resume -output keep.h5
 cmp keep.h5 full1.h5
 ls bad1.h5 bad2.h5 nothere.h5 2> /dev/null && { echo "output left behind"; exit 1; }
+# A run that fails (a softening lattice diverges at E* = 50) is flagged and the sweep goes on.
+run2 -study sweep -sweep_omega_list 1.2,1.73 -sweep_energy_list 1e-3,50 -lattice_cubic -0.5 -output fail.h5 > fail.txt 2> fail.err
+[ "$(grep -c "warning: sweep point E\* = 50" fail.err)" -eq 2 ] || { cat fail.err; exit 1; }
+$PY - <<'PYEOF'
+import h5py, numpy as np
+s = h5py.File("fail.h5", "r")["sweep"]
+assert (s["failed"][:] == [[0, 0], [1, 1]]).all() and s["done"][:].all()
+assert np.isfinite(s["mcr"][0]).all() and np.isnan(s["mcr"][1]).all()
+print("failed points flagged:", s["failed"][:].tolist())
+PYEOF
 $PY "$SRC/src/plots/plot_sweep.py" full1.h5 map.png
 [ "$(stat -c %s map.png)" -gt 20000 ] || { echo "empty figure map.png"; exit 1; }
 echo "sweep scene OK"

@@ -37,3 +37,17 @@ TEST_CASE("0-1 test: regular series score near 0, chaotic ones near 1", "[diagno
   REQUIRE(ZeroOneTest(100, 7).Frequencies() == test.Frequencies());
   for (PetscReal c : test.Frequencies()) REQUIRE((c > PETSC_PI / 5 && c < 4 * PETSC_PI / 5));
 }
+
+TEST_CASE("0-1 test on a sub-grid of lags scores known series like the full test", "[diagnostics]")
+{
+  const ZeroOneTest test(32, 3, 20); // the sweep's defaults: 32 c values, 20 lags
+  const PetscReal g = 0.5 * (1 + std::sqrt(5.0));
+  std::vector<PetscReal> q(2000), l(2000);
+  l[0] = 0.3141592;
+  for (PetscInt j = 0; j < 2000; j++) q[j] = std::cos(j * 1.5) + 0.7 * std::sin(g * j * 1.5 + 0.3);
+  for (PetscInt j = 1; j < 2000; j++) l[j] = 4 * l[j - 1] * (1 - l[j - 1]);
+  const PetscReal kq = test.Score(q.data(), 2000), kl = test.Score(l.data(), 2000);
+  INFO("quasi-periodic " << kq << ", logistic " << kl);
+  REQUIRE(std::abs(kq) < 0.1);
+  REQUIRE(kl > 0.9);
+}
