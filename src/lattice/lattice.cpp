@@ -23,9 +23,14 @@ PetscErrorCode Lattice::Setup(MPI_Comm comm, const LatticeParams &p)
   PetscCall(DMDAGetOwnershipRanges(da_, &lx, NULL, NULL));
   starts_.assign(1, 0);
   for (PetscMPIInt r = 0; r < size_; r++) starts_.push_back(starts_.back() + lx[r]);
-  kb_.assign(xm_ + 1, 0.0);
-  for (PetscInt b = xs_ - 1; b < xs_ + xm_; b++)
-    if (b >= 0 && b < N - 1) kb_[b - xs_ + 1] = p.Bond(b);
+  {
+    std::vector<PetscReal> bonds, diag; // O(N) on every rank, so every rank has the same realisation
+    LatticeSprings(p, &bonds, &diag);
+    kb_.assign(xm_ + 1, 0.0);
+    for (PetscInt b = xs_ - 1; b < xs_ + xm_; b++)
+      if (b >= 0 && b < N - 1) kb_[b - xs_ + 1] = bonds[b];
+    kd_.assign(diag.begin() + xs_, diag.begin() + xs_ + xm_);
+  }
   stiff_.clear();
   for (PetscInt b = std::max<PetscInt>(xs_ - 1, 0); b < std::min(xs_ + xm_, N - 1); b++)
     if (p.Stiff(b)) stiff_.push_back(b);
@@ -110,12 +115,12 @@ PetscErrorCode Lattice::RestoreGhostedU(Vec x, Vec *ul, const PetscScalar **u) c
 
 void Lattice::LinearAcceleration(const PetscScalar *u, PetscScalar *a) const
 {
-  const PetscReal kh = p_.KHat();
   const PetscInt N = p_.N(), lo = std::max<PetscInt>(xs_, 1), hi = std::min(xs_ + xm_, N - 1);
   const PetscReal *kb = kb_.data() - xs_ + 1; // kb[b]: bond b
-  for (PetscInt i = lo; i < hi; i++) a[i] = kb[i - 1] * u[i - 1] - kh * u[i] + kb[i] * u[i + 1];
-  if (xs_ == 0) a[0] = -kh * u[0] + (N > 1 ? kb[0] * u[1] : 0.0);
-  if (xs_ + xm_ == N && N > 1) a[N - 1] = kb[N - 2] * u[N - 2] - kh * u[N - 1];
+  const PetscReal *kd = kd_.data() - xs_;     // kd[i]: K(i, i)
+  for (PetscInt i = lo; i < hi; i++) a[i] = kb[i - 1] * u[i - 1] - kd[i] * u[i] + kb[i] * u[i + 1];
+  if (xs_ == 0) a[0] = -kd[0] * u[0] + (N > 1 ? kb[0] * u[1] : 0.0);
+  if (xs_ + xm_ == N && N > 1) a[N - 1] = kb[N - 2] * u[N - 2] - kd[N - 1] * u[N - 1];
 }
 
 void Lattice::AddCubicAcceleration(const PetscScalar *u, PetscScalar *a) const
@@ -136,7 +141,7 @@ PetscErrorCode Lattice::Energy(Vec z, EnergyParts *e) const
   const PetscScalar *u, *zl;
   Vec ul;
   EnergyParts loc;
-  const PetscReal G = p_.Gamma, kh = p_.KHat();
+  const PetscReal G = p_.Gamma;
   const PetscInt N = p_.N();
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(Log().energy, 0, 0, 0, 0));
@@ -146,10 +151,10 @@ PetscErrorCode Lattice::Energy(Vec z, EnergyParts *e) const
   for (PetscInt i = xs_; i < xs_ + xm_; i++) {
     const PetscScalar ui = u[i], vi = v[i - xs_];
     loc.kinetic += 0.5 * vi * vi;
-    loc.linear += 0.5 * kh * ui * ui;
+    loc.linear += 0.5 * kd_[i - xs_] * ui * ui;
     if (i < N - 1) { // bond i is owned by the rank owning site i
       const PetscScalar un = u[i + 1];
-      loc.linear -= p_.Bond(i) * ui * un; // the two off-diagonal entries of bond i in 1/2 u.K u
+      loc.linear -= kb_[i - xs_ + 1] * ui * un; // the two off-diagonal entries of bond i in 1/2 u.K u
       if (p_.Stiff(i)) {
         const PetscScalar d = ui - un;
         loc.quartic += 0.25 * G * d * d * d * d;
@@ -174,9 +179,9 @@ void Lattice::TangentRow(PetscInt i, const PetscScalar *u, PetscScalar c[3]) con
 {
   const PetscInt N = p_.N();
   c[0] = c[2] = 0;
-  c[1] = p_.KHat();
+  c[1] = kd_[i - xs_];
   if (i > 0) {
-    c[0] = -p_.Bond(i - 1);
+    c[0] = -kb_[i - 1 - xs_ + 1];
     if (u && p_.Stiff(i - 1)) {
       const PetscScalar d = u[i - 1] - u[i], s = 3 * p_.Gamma * d * d;
       c[0] -= s;
@@ -184,7 +189,7 @@ void Lattice::TangentRow(PetscInt i, const PetscScalar *u, PetscScalar c[3]) con
     }
   }
   if (i < N - 1) {
-    c[2] = -p_.Bond(i);
+    c[2] = -kb_[i - xs_ + 1];
     if (u && p_.Stiff(i)) {
       const PetscScalar d = u[i] - u[i + 1], s = 3 * p_.Gamma * d * d;
       c[2] -= s;

@@ -3,10 +3,17 @@
 // Sites and bonds are 0-based here: bond b joins sites b and b+1 (model.md's
 // bond i = b+1 joins sites i and i+1, 1-based).
 #include <petscsys.h>
+#include <vector>
 
 namespace nltopo {
 
 enum class Layout { Interface = 0, Left = 1, Right = 2 };
+// Random stiffness perturbations (paper, "Robustness to perturbations"):
+// chiral: every bond k_b -> k_b + k delta_b with the grounding adjusted so that
+// the diagonal of K stays k_hat (K - k_hat I keeps its chiral, bipartite form);
+// achiral: every bond and every grounding spring g_i -> g_i + k delta_i, the
+// diagonal following. delta uniform in (-2 delta, 2 delta): mean |delta| = delta.
+enum class Perturbation { None = 0, Chiral = 1, Achiral = 2 };
 
 struct LatticeParams {
   PetscReal k = 1.0;      // base coupling
@@ -15,6 +22,9 @@ struct LatticeParams {
   PetscReal Gamma = 0.5;  // cubic coefficient on every stiff bond
   PetscInt cells = 25;    // Nc, unit cells per side
   Layout layout = Layout::Interface;
+  Perturbation perturbation = Perturbation::None;
+  PetscReal delta = 0;    // mean |relative perturbation| of the springs
+  PetscInt seed = 1;      // realisation of the perturbation (the same on any number of ranks)
 
   PetscReal K1() const { return k * (1 + gamma); }
   PetscReal K2() const { return k * (1 - gamma); }
@@ -40,6 +50,12 @@ struct LatticeParams {
 };
 
 const char *LayoutName(Layout l);
+const char *PerturbationName(Perturbation p);
+
+// The springs of the (possibly perturbed) lattice: bonds[b] for b = 0..N-2 and
+// the diagonal of K, diag[i] = sum of the bonds at i + grounding g_i, for
+// i = 0..N-1. Deterministic in (params, seed): every rank builds the same.
+void LatticeSprings(const LatticeParams &p, std::vector<PetscReal> *bonds, std::vector<PetscReal> *diag);
 
 // Reads the -lattice_* options block and validates it (errors name the option).
 PetscErrorCode LatticeParamsFromOptions(MPI_Comm comm, LatticeParams *p);
