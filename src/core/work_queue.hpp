@@ -3,6 +3,7 @@
 // rank 0 (an MPI-3 window, atomic fetch-and-add) hands out the next item to
 // whichever rank asks first, so a rank that drew cheap runs takes more of them.
 #include <petscsys.h>
+#include <vector>
 
 namespace nltopo {
 
@@ -19,5 +20,31 @@ private:
   long *counter_ = nullptr;
   PetscInt count_ = 0;
 };
+
+} // namespace nltopo
+
+namespace nltopo {
+
+// Runs item(i, out) for i = 0..count-1 spread over the ranks of comm by a
+// WorkQueue (each item on one rank), and gathers the count x width results
+// (out points at width values) on every rank. Items must be independent runs
+// on PETSC_COMM_SELF. An item's error aborts every rank (one line first).
+template <typename Item>
+PetscErrorCode RunDistributed(MPI_Comm comm, PetscInt count, PetscInt width, Item item, std::vector<PetscReal> *results)
+{
+  WorkQueue queue;
+  std::vector<PetscReal> mine((size_t)count * width, 0.0);
+  PetscInt i;
+  PetscFunctionBeginUser;
+  PetscCall(queue.Create(comm, count));
+  for (;;) {
+    PetscCallAbort(comm, queue.Next(&i));
+    if (i < 0) break;
+    PetscCallAbort(comm, item(i, mine.data() + (size_t)i * width));
+  }
+  results->assign(mine.size(), 0.0);
+  PetscCallMPI(MPI_Allreduce(mine.data(), results->data(), (PetscMPIInt)mine.size(), MPIU_REAL, MPIU_SUM, comm)); // each entry from one rank
+  PetscFunctionReturn(0);
+}
 
 } // namespace nltopo

@@ -1,11 +1,13 @@
 #include "effects/forcing.hpp"
 #include "bands/linear_modes.hpp"
+#include "core/gather.hpp"
+#include <algorithm>
 #include <cmath>
 #include <complex>
 
 namespace nltopo {
 
-static const char *const kProfileNames[] = {"site", "mode", "none"};
+static const char *const kProfileNames[] = {"site", "mode", "none", "exponential"};
 
 PetscErrorCode ToneBurstOptionsFromOptions(MPI_Comm comm, const LatticeParams &lp, ToneBurstOptions *o)
 {
@@ -17,8 +19,8 @@ PetscErrorCode ToneBurstOptionsFromOptions(MPI_Comm comm, const LatticeParams &l
   if (o->site < 0) o->site = 0;
   PetscInt site1 = o->site + 1;
   PetscOptionsBegin(comm, "force_", "Tone-burst forcing (model.md, Forcing)", NULL);
-  PetscCall(PetscOptionsEList("-profile", "Force profile eta: site (unit force on one site), mode (a linear eigenvector), none", NULL,
-                              kProfileNames, 3, kProfileNames[profile], &profile, NULL));
+  PetscCall(PetscOptionsEList("-profile", "Force profile eta: site (unit force on one site), mode (a linear eigenvector), none, exponential (the insulated mode's fitted envelope)", NULL,
+                              kProfileNames, 4, kProfileNames[profile], &profile, NULL));
   PetscCall(PetscOptionsReal("-omega", "Excitation frequency omega_ext (default sqrt(k_hat), the insulated frequency)", NULL, o->omega, &o->omega, NULL));
   PetscCall(PetscOptionsReal("-energy", "Cut-off energy E*: the forcing stops for good the first time E >= E*", NULL, o->energy, &o->energy, NULL));
   PetscCall(PetscOptionsReal("-amplitude", "Amplitude S; when not given the amplitude rule (README.md) picks it", NULL, o->amplitude, &o->amplitude, &set_amp));
@@ -43,6 +45,8 @@ PetscErrorCode ToneBurstOptionsFromOptions(MPI_Comm comm, const LatticeParams &l
              (double)o->tau_periods, (double)o->t0_taus);
   PetscCheck(o->profile != ForceProfile::Site || (o->site >= 0 && o->site < N), comm, PETSC_ERR_USER,
              "-force_site must lie in 1..%" PetscInt_FMT ", got %" PetscInt_FMT, N, o->site + 1);
+  PetscCheck(o->profile != ForceProfile::Exponential || lp.layout == Layout::Interface, comm, PETSC_ERR_USER,
+             "-force_profile exponential follows the insulated mode of the interface: it needs -lattice_layout interface");
   PetscCheck(o->profile != ForceProfile::Mode || (o->mode >= 0 && o->mode < N), comm, PETSC_ERR_USER,
              "-force_profile mode needs -force_mode_index in 0..%" PetscInt_FMT ", got %" PetscInt_FMT, N - 1, o->mode);
   PetscFunctionReturn(0);
@@ -62,6 +66,28 @@ PetscReal BurstUnitEnergy(const std::vector<PetscReal> &omega_j, const std::vect
     quasi += a2 * std::max(omega * omega, wj * wj) / (2 * (d * d + reg * reg));
   }
   return std::max(burst, quasi);
+}
+
+PetscErrorCode FitExponentialProfile(const Lattice &lat, Vec insulated, PetscReal *a, PetscReal *b)
+{
+  std::vector<PetscReal> phi;
+  PetscFunctionBeginUser;
+  PetscCall(GatherVec(insulated, true, &phi));
+  const PetscInt m = lat.Params().InterfaceSite();
+  PetscReal mx = 0;
+  for (PetscReal v : phi) mx = std::max(mx, std::abs(v));
+  PetscReal sx = 0, sy = 0, sxx = 0, sxy = 0;
+  PetscInt n = 0;
+  for (size_t i = 1; i < phi.size(); i += 2) // 0-based odd = 1-based even sites
+    if (std::abs(phi[i]) > 1e-6 * mx) { // below, the finite lattice and round-off bend the envelope
+      const PetscReal x = std::abs((PetscInt)i - m), y = std::log(std::abs(phi[i]));
+      sx += x, sy += y, sxx += x * x, sxy += x * y;
+      n++;
+    }
+  PetscCheck(n >= 2, lat.Comm(), PETSC_ERR_USER, "-force_profile exponential: the insulated mode has too few even sites to fit");
+  *b = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+  *a = std::exp((sy - *b * sx) / n);
+  PetscFunctionReturn(0);
 }
 
 PetscErrorCode ToneBurst::Setup(const Lattice &lat, const ToneBurstOptions &o, const LinearModes *modes)
@@ -85,6 +111,17 @@ PetscErrorCode ToneBurst::Setup(const Lattice &lat, const ToneBurstOptions &o, c
     PetscCheck(modes, comm, PETSC_ERR_USER, "-force_profile mode needs the linear modes of the lattice");
     PetscCall(modes->CopyMode(o.mode, eta));
     break;
+  case ForceProfile::Exponential: {
+    PetscCheck(modes && modes->Insulated(), comm, PETSC_ERR_USER, "-force_profile exponential needs the linear insulated mode of the lattice");
+    PetscCall(FitExponentialProfile(lat, modes->Insulated(), &exp_a_, &exp_b_));
+    const PetscInt m = lat.Params().InterfaceSite();
+    for (PetscInt i = xs; i < xe; i++)
+      if (i % 2 == 1) { // 1-based even site n = i + 1: (-1)^{n/2}
+        const PetscReal sign = ((i + 1) / 2) % 2 ? -1.0 : 1.0;
+        PetscCall(VecSetValue(eta, i, exp_a_ * std::exp(exp_b_ * std::abs(i - m)) * sign, INSERT_VALUES));
+      }
+    break;
+  }
   }
   PetscCall(VecAssemblyBegin(eta));
   PetscCall(VecAssemblyEnd(eta));

@@ -9,7 +9,10 @@ namespace nltopo {
 
 class LinearModes;
 
-enum class ForceProfile { Site = 0, Mode = 1, None = 2 };
+// exponential: eta_n = a e^{b |n - m|} (-1)^{n/2} on the even sites n (1-based)
+// around the interface site m, a and b fitted to the linear insulated mode
+// (paper, "exponential forcing"; README.md).
+enum class ForceProfile { Site = 0, Mode = 1, None = 2, Exponential = 3 };
 
 struct ToneBurstOptions {
   ForceProfile profile = ForceProfile::Site;
@@ -41,6 +44,9 @@ public:
   void ScaleAmplitude(PetscReal f) { S_ *= f; }
   PetscReal RuleUnitEnergy() const { return e1_; }
   const ToneBurstOptions &Options() const { return opt_; }
+  // Fit of the exponential profile (0 for the other profiles).
+  PetscReal ExponentialA() const { return exp_a_; }
+  PetscReal ExponentialB() const { return exp_b_; }
 
   // Scalar signal S cos(omega t) exp(-((t - t0)/tau)^2).
   PetscReal Signal(PetscReal t) const;
@@ -49,7 +55,7 @@ public:
 
 private:
   ToneBurstOptions opt_;
-  PetscReal S_ = 0, tau_ = 0, t0_ = 0, e1_ = 0;
+  PetscReal S_ = 0, tau_ = 0, t0_ = 0, e1_ = 0, exp_a_ = 0, exp_b_ = 0;
   bool from_rule_ = false;
   std::vector<PetscInt> idx_;     // owned sites with eta != 0 (global index)
   std::vector<PetscScalar> eta_;
@@ -59,6 +65,10 @@ private:
 // burst leaves in the LINEAR lattice, e1 = sum_j (phi_j . eta)^2 pi tau^2 / 8 *
 // |exp(-tau^2 (omega - omega_j)^2 / 4) + exp(-tau^2 (omega + omega_j)^2 / 4) e^{-2 i omega t0}|^2,
 // plus the peak energy of the quasi-static off-resonant response; S = sqrt(safety E* / e1).
+// Least-squares fit log|phi_n| = log a + b |n - m| over the even sites (1-based)
+// where the insulated mode phi is not negligible.
+PetscErrorCode FitExponentialProfile(const Lattice &lat, Vec insulated, PetscReal *a, PetscReal *b);
+
 PetscReal BurstUnitEnergy(const std::vector<PetscReal> &omega_j, const std::vector<PetscReal> &proj2, PetscReal omega, PetscReal tau,
                           PetscReal t0);
 

@@ -66,7 +66,7 @@ PetscErrorCode SimulateStudy(MPI_Comm comm)
   PetscOptionsBegin(comm, "sim_", "Simulate study output", NULL);
   PetscCall(PetscOptionsBool("-store_u", "Store the sub-sampled displacement u(t) (/simulate/u)", NULL, store_u, &store_u, NULL));
   PetscOptionsEnd();
-  const bool need_modes = fo.profile == ForceProfile::Mode || (fo.profile != ForceProfile::None && fo.amplitude < 0);
+  const bool need_modes = fo.profile == ForceProfile::Mode || fo.profile == ForceProfile::Exponential || (fo.profile != ForceProfile::None && fo.amplitude < 0);
   if (need_modes) PetscCall(LinearModesOptionsFromOptions(comm, &mo));
   PetscCall(OutputPathFromOptions(comm, "simulate", &path));
   PetscCall(out.Open(comm, path));

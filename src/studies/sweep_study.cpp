@@ -119,36 +119,6 @@ PetscErrorCode SweepOptionsFromOptions(MPI_Comm comm, SweepOptions *o)
   PetscFunctionReturn(0);
 }
 
-// Displacements of every site after the cut-off, at the 0-1 test's sampling
-// times, through the forced run and its free continuation (t_off given then).
-class AfterCutoff : public SampleSink {
-public:
-  explicit AfterCutoff(PetscInt n) : n_(n) {}
-  bool Wants(PetscReal t, PetscReal t_off) const override
-  {
-    const PetscReal off = continued_off_ >= 0 ? continued_off_ : t_off;
-    return off >= 0 && t >= off;
-  }
-  void Continue(PetscReal t_off) { continued_off_ = t_off; }
-  void Restart() override { u_.clear(); }
-  PetscErrorCode Sample(PetscReal t, Vec z, const EnergyParts &e) override
-  {
-    const PetscScalar *a;
-    PetscFunctionBeginUser;
-    PetscCall(VecGetArrayRead(z, &a));
-    u_.insert(u_.end(), a, a + n_);
-    PetscCall(VecRestoreArrayRead(z, &a));
-    PetscFunctionReturn(0);
-  }
-  PetscInt Samples() const { return (PetscInt)(u_.size() / n_); }
-  const PetscReal *Data() const { return u_.data(); }
-
-private:
-  PetscInt n_;
-  std::vector<PetscReal> u_;
-  PetscReal continued_off_ = -1;
-};
-
 PetscErrorCode WriteSweep(const std::string &path, const SweepGrid &g, const SweepOptions &so, PetscInt computed, PetscReal wall)
 {
   OutputFile out;
@@ -215,7 +185,7 @@ PetscErrorCode ComputePoint(const Lattice &lat, const LinearModes &modes, const 
   ToneBurst burst;
   PetscCall(burst.Setup(lat, pf, &modes));
   SimulationOptions ps = sim;
-  AfterCutoff sink(lat.N());
+  AfterCutoffSamples sink(lat.N());
   if (so.kcorr) ps.sample_dt = so.kcorr_sample_dt;
   SimulationResult r;
   PetscInt rescalings;

@@ -226,6 +226,17 @@ PetscErrorCode PostStep(TS ts)
 
 } // namespace
 
+PetscErrorCode AfterCutoffSamples::Sample(PetscReal t, Vec z, const EnergyParts &e)
+{
+  const PetscScalar *a;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(z, &a));
+  u_.insert(u_.end(), a, a + n_);
+  PetscCall(VecRestoreArrayRead(z, &a));
+  t_.push_back(t);
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SimulateForced(const Lattice &lat, ToneBurst *burst, const SimulationOptions &o, SampleSink *sink, SimulationResult *r,
                               PetscInt *rescalings)
 {

@@ -31,6 +31,30 @@ public:
   virtual void Restart() {}
 };
 
+// Displacements of every site (owned block, serial runs: all of them) at the
+// sample times from the cut-off on, through a forced run and, if asked, its
+// free continuation (Continue(t_off) before the continued Simulate).
+class AfterCutoffSamples : public SampleSink {
+public:
+  explicit AfterCutoffSamples(PetscInt n) : n_(n) {}
+  bool Wants(PetscReal t, PetscReal t_off) const override
+  {
+    const PetscReal off = continued_off_ >= 0 ? continued_off_ : t_off;
+    return off >= 0 && t >= off;
+  }
+  void Continue(PetscReal t_off) { continued_off_ = t_off; }
+  void Restart() override { u_.clear(), t_.clear(); }
+  PetscErrorCode Sample(PetscReal t, Vec z, const EnergyParts &e) override;
+  PetscInt Samples() const { return (PetscInt)t_.size(); }
+  const PetscReal *Data() const { return u_.data(); } // Samples() x n, row-major
+  const std::vector<PetscReal> &Times() const { return t_; }
+
+private:
+  PetscInt n_;
+  std::vector<PetscReal> u_, t_;
+  PetscReal continued_off_ = -1;
+};
+
 struct SimulationResult {
   PetscReal t_off = -1;        // time the forcing stopped (-1: never)
   PetscReal window_start = 0;  // start of the RMS window (t_off, else README.md's rule)

@@ -1,5 +1,7 @@
 // Linear modes and Bloch bands against closed forms (model.md "Standard values").
 #include "bands/linear_modes.hpp"
+#include "core/gather.hpp"
+#include "effects/forcing.hpp"
 #include "helpers.hpp"
 #include <cmath>
 
@@ -141,4 +143,28 @@ TEST_CASE("Zak phase: pi for the left cell, 0 for the right, gauge invariant", "
   REQUIRE(WrapPhase(-1e-3) == Approx(-1e-3));
   REQUIRE(WrapPhase(2 * PETSC_PI - 1e-3) == Approx(-1e-3));
   REQUIRE(WrapPhase(-PETSC_PI) == Approx(PETSC_PI));
+}
+
+TEST_CASE("exponential forcing profile: the fit of the insulated mode's envelope decays by k2/k1 per cell", "[bands][effects]")
+{
+  LatticeParams p;
+  Lattice lat;
+  PCHK(lat.Setup(PETSC_COMM_WORLD, p));
+  LinearModes modes;
+  PCHK(modes.Compute(lat, LinearModesOptions()));
+  PetscReal a, b;
+  PCHK(FitExponentialProfile(lat, modes.Insulated(), &a, &b));
+  // |u_{m+3} / u_{m+1}| = k2/k1 = 3/7 over two sites (model.md), so b = ln(3/7) / 2 per site.
+  REQUIRE(std::abs(b - 0.5 * std::log(3.0 / 7.0)) < 1e-8);
+  // and a is the mode's amplitude one site from m: |u_{m+1}| = a e^{b}
+  ToneBurstOptions o;
+  o.profile = ForceProfile::Exponential;
+  o.omega = 2.0;
+  ToneBurst burst;
+  PCHK(burst.Setup(lat, o, &modes));
+  REQUIRE(burst.ExponentialB() == b);
+  std::vector<PetscReal> phi;
+  PCHK(GatherVec(modes.Insulated(), true, &phi));
+  const PetscInt m = p.InterfaceSite();
+  REQUIRE(std::abs(a * std::exp(b) - std::abs(phi[m + 1])) < 1e-8);
 }
