@@ -9,6 +9,7 @@
 #include "core/work_queue.hpp"
 #include "diagnostics/zero_one.hpp"
 #include "io/output.hpp"
+#include "studies/grid_axis.hpp"
 #include "studies/registry.hpp"
 #include "studies/sweep_store.hpp"
 #include "timeint/simulation.hpp"
@@ -35,55 +36,13 @@ struct SweepOptions {
   PetscReal kcorr_sample_dt = 0; // 0: a quarter of the insulated period, pi / (2 sqrt(k_hat))
 };
 
-// An axis from -<name>_min/_max/_n/_spacing, or an explicit -<name>_list.
-PetscErrorCode ReadAxis(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char *name, PetscReal lo, PetscReal hi, PetscInt n, bool log_default, std::vector<PetscReal> *axis)
-{
-  char opt[64], help[128];
-  PetscReal list[4096];
-  PetscInt nlist = 4096;
-  PetscBool set;
-  const char *spacings[] = {"linear", "log"};
-  PetscInt spacing = log_default ? 1 : 0;
-  PetscFunctionBeginUser;
-  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_min", name));
-  PetscCall(PetscSNPrintf(help, sizeof(help), "Lower end of the %s axis", name));
-  PetscCall(PetscOptionsReal(opt, help, NULL, lo, &lo, NULL));
-  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_max", name));
-  PetscCall(PetscSNPrintf(help, sizeof(help), "Upper end of the %s axis", name));
-  PetscCall(PetscOptionsReal(opt, help, NULL, hi, &hi, NULL));
-  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_n", name));
-  PetscCall(PetscSNPrintf(help, sizeof(help), "Number of %s values (ends included)", name));
-  PetscCall(PetscOptionsInt(opt, help, NULL, n, &n, NULL));
-  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_spacing", name));
-  PetscCall(PetscSNPrintf(help, sizeof(help), "Spacing of the %s axis", name));
-  PetscCall(PetscOptionsEList(opt, help, NULL, spacings, 2, spacings[spacing], &spacing, NULL));
-  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_list", name));
-  PetscCall(PetscSNPrintf(help, sizeof(help), "Explicit %s values (replaces min/max/n)", name));
-  PetscCall(PetscOptionsRealArray(opt, help, NULL, list, &nlist, &set));
-  axis->clear();
-  if (set) {
-    PetscCheck(nlist > 0, comm, PETSC_ERR_USER, "-sweep_%s_list is empty", name);
-    axis->assign(list, list + nlist);
-    for (PetscReal v : *axis) PetscCheck(std::isfinite(v) && v > 0, comm, PETSC_ERR_USER, "-sweep_%s_list: values must be positive, got %g", name, (double)v);
-    PetscFunctionReturn(0);
-  }
-  PetscCheck(n >= 1, comm, PETSC_ERR_USER, "-sweep_%s_n must be >= 1, got %" PetscInt_FMT, name, n);
-  PetscCheck(std::isfinite(lo) && std::isfinite(hi) && lo > 0 && hi >= lo, comm, PETSC_ERR_USER,
-             "-sweep_%s_min/-sweep_%s_max must satisfy 0 < min <= max, got %g, %g", name, name, (double)lo, (double)hi);
-  for (PetscInt i = 0; i < n; i++) {
-    const PetscReal s = n > 1 ? (PetscReal)i / (n - 1) : 0;
-    axis->push_back(spacing ? lo * std::pow(hi / lo, s) : lo + s * (hi - lo));
-  }
-  PetscFunctionReturn(0);
-}
-
 PetscErrorCode SweepOptionsFromOptions(MPI_Comm comm, SweepOptions *o)
 {
   PetscFunctionBeginUser;
   const PetscReal w0 = std::sqrt(3.0);
   PetscOptionsBegin(comm, "sweep_", "Sweep: grid of forced runs (omega_ext x E*)", NULL);
-  PetscCall(ReadAxis(PetscOptionsObject, comm, "omega", w0 / 2, 1.5 * w0, 50, false, &o->omega));
-  PetscCall(ReadAxis(PetscOptionsObject, comm, "energy", 1e-3, 1e3, 50, true, &o->energy));
+  PetscCall(ReadAxis(PetscOptionsObject, comm, "sweep_", "omega", w0 / 2, 1.5 * w0, 50, false, &o->omega));
+  PetscCall(ReadAxis(PetscOptionsObject, comm, "sweep_", "energy", 1e-3, 1e3, 50, true, &o->energy));
   PetscCall(PetscOptionsBool("-resume", "Continue the sweep stored in -output: compute only the points not done", NULL, o->resume, &o->resume, NULL));
   PetscCall(PetscOptionsBool("-kcorr", "Score every run with the 0-1 test for chaos (-kcorr_* options)", NULL, o->kcorr, &o->kcorr, NULL));
   PetscCall(PetscOptionsReal("-checkpoint", "Rewrite -output with the points done so far every this many wall seconds", NULL, o->checkpoint, &o->checkpoint, NULL));

@@ -1,0 +1,217 @@
+// -study zak: the half-lattice phase experiment (paper, "Numerical realization
+// of Zak phase"). The left (nontrivial) half lattice is forced with the profile
+// of its optical band's mu = 0 edge (the band bottom) and mu = pi edge (the band
+// top), at their linear frequencies, over an energy grid. After the cut-off,
+// the phase of every site at omega_ext (Fourier coefficient over whole periods)
+// gives per unit cell (2j-1, 2j) (1-based; the cell of the left lattice, joined
+// by the soft intra-cell bond k2) phi = phase(even) - phase(odd), wrapped to
+// [-pi/2, 3 pi/2); mean and median over cells and windows; theta = phi_pi - phi_0.
+// Linear truth for model.md's left layout: at the band bottom the two sites of
+// a cell move in phase (phi_0 = 0, the stiff bonds between cells stretch), at
+// the top out of phase (phi_pi = pi): theta = pi.
+// Output: /zak of outputs.md.
+#include "bands/linear_modes.hpp"
+#include "core/log.hpp"
+#include "core/work_queue.hpp"
+#include "diagnostics/phase.hpp"
+#include "io/output.hpp"
+#include "studies/grid_axis.hpp"
+#include "studies/registry.hpp"
+#include "timeint/simulation.hpp"
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace nltopo {
+
+namespace {
+
+struct ZakOptions {
+  std::vector<PetscReal> energy;
+  PetscInt windows = 4;             // steady windows after t_off
+  PetscInt samples_per_period = 16;
+  PetscReal theta_tol = PETSC_PI / 4; // phases "distinct" while theta = phi_pi - phi_0 is within this of pi (mean and median)
+};
+
+PetscReal Median(std::vector<PetscReal> v)
+{
+  if (v.empty()) return std::numeric_limits<PetscReal>::quiet_NaN();
+  std::sort(v.begin(), v.end());
+  const size_t h = v.size() / 2;
+  return v.size() % 2 ? v[h] : 0.5 * (v[h - 1] + v[h]);
+}
+
+PetscReal Mean(const std::vector<PetscReal> &v)
+{
+  if (v.empty()) return std::numeric_limits<PetscReal>::quiet_NaN();
+  PetscReal s = 0;
+  for (PetscReal x : v) s += x;
+  return s / v.size();
+}
+
+// Row of one run: reached, t_off, mcr, mean, median, then the median of each window.
+PetscInt RowWidth(const ZakOptions &o) { return 5 + o.windows; }
+
+PetscErrorCode PhaseRun(const Lattice &lat, const LinearModes &modes, const ToneBurstOptions &fo, const SimulationOptions &sim, const ZakOptions &zo,
+                        PetscInt mode, PetscReal energy, PetscReal *row)
+{
+  const PetscReal nan = std::numeric_limits<PetscReal>::quiet_NaN();
+  PetscFunctionBeginUser;
+  ToneBurstOptions pf = fo;
+  pf.profile = ForceProfile::Mode;
+  pf.mode = mode;
+  pf.omega = modes.Omega()[mode];
+  pf.energy = energy;
+  ToneBurst burst;
+  PetscCall(burst.Setup(lat, pf, &modes));
+  const PetscReal w = pf.omega, T = 2 * PETSC_PI / w;
+  SimulationOptions ps = sim;
+  ps.sample_dt = T / zo.samples_per_period;
+  const PetscInt N = lat.N();
+  AfterCutoffSamples sink(N);
+  SimulationResult r;
+  PetscInt rescalings;
+  PetscCall(SimulateForced(lat, &burst, ps, &sink, &r, &rescalings));
+  for (PetscInt k = 0; k < RowWidth(zo); k++) row[k] = nan;
+  row[0] = r.reached;
+  row[1] = r.t_off;
+  row[2] = r.mcr;
+  if (!r.reached) PetscFunctionReturn(0);
+  PetscCall(PetscLogEventBegin(Log().diagnostics, 0, 0, 0, 0));
+  const PetscInt per_window = (sink.Samples() / zo.samples_per_period / zo.windows) * zo.samples_per_period;
+  PetscCheck(per_window > 0, PETSC_COMM_SELF, PETSC_ERR_USER, "-study zak: only %" PetscInt_FMT " samples after t_off = %g at E* = %g; lengthen -sim_t_final",
+             sink.Samples(), (double)r.t_off, (double)energy);
+  std::vector<PetscReal> all, phase(N);
+  for (PetscInt wdw = 0; wdw < zo.windows; wdw++) {
+    const PetscInt k0 = wdw * per_window;
+    const PetscReal t0 = sink.Times()[k0];
+    for (PetscInt i = 0; i < N; i++) phase[i] = FourierPhase(sink.Data() + k0 * N + i, per_window, N, t0, ps.sample_dt, w);
+    std::vector<PetscReal> win;
+    for (PetscInt o = 0; o + 1 < N; o += 2) // 0-based o, o+1 = 1-based odd 2j-1 and even 2j: one unit cell
+      win.push_back(WrapDimerPhase(phase[o + 1] - phase[o]));
+    row[5 + wdw] = Median(win);
+    all.insert(all.end(), win.begin(), win.end());
+  }
+  row[3] = Mean(all);
+  row[4] = Median(all);
+  PetscCall(PetscLogEventEnd(Log().diagnostics, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode ZakStudy(MPI_Comm comm)
+{
+  LatticeParams lp;
+  ToneBurstOptions fo;
+  SimulationOptions sim;
+  LinearModesOptions mo;
+  ZakOptions zo;
+  std::string path;
+  OutputFile out;
+  Lattice lat;
+  LinearModes modes;
+  PetscLogDouble t_start, t_end;
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t_start));
+  PetscCall(LogRegister());
+  PetscCall(PetscLogStagePush(Log().setup));
+  {
+    PetscBool set;
+    lp.layout = Layout::Left; // the nontrivial half lattice, 51 cells (N = 102) unless given
+    lp.cells = 51;
+    PetscCall(LatticeParamsFromOptions(comm, &lp));
+    PetscCheck(lp.layout == Layout::Left, comm, PETSC_ERR_USER, "-study zak works on the left (nontrivial) half lattice: -lattice_layout must be left, got %s",
+               LayoutName(lp.layout));
+    for (const char *fixed : {"-force_omega", "-force_energy", "-force_profile", "-force_mode_index"}) {
+      PetscCall(PetscOptionsHasName(NULL, NULL, fixed, &set));
+      PetscCheck(!set, comm, PETSC_ERR_USER, "%s is set by -study zak (the optical band-edge modes, -zak_energy_*); remove it", fixed);
+    }
+  }
+  PetscOptionsBegin(comm, "zak_", "Half-lattice phase (Zak) experiment", NULL);
+  PetscCall(ReadAxis(PetscOptionsObject, comm, "zak_", "energy", 1e-2, 1e3, 21, true, &zo.energy));
+  PetscCall(PetscOptionsInt("-windows", "Steady windows after t_off over which phases are taken", NULL, zo.windows, &zo.windows, NULL));
+  PetscCall(PetscOptionsInt("-samples_per_period", "Samples per forcing period for the Fourier coefficients", NULL, zo.samples_per_period,
+                            &zo.samples_per_period, NULL));
+  PetscCall(PetscOptionsReal("-theta_tol", "Threshold rule: phi_0 and phi_pi are distinct while theta = phi_pi - phi_0 (of the means and of the medians) is within this of pi",
+                             NULL, zo.theta_tol, &zo.theta_tol, NULL));
+  PetscOptionsEnd();
+  PetscCheck(zo.windows >= 1, comm, PETSC_ERR_USER, "-zak_windows must be >= 1, got %" PetscInt_FMT, zo.windows);
+  PetscCheck(zo.samples_per_period >= 4, comm, PETSC_ERR_USER, "-zak_samples_per_period must be >= 4, got %" PetscInt_FMT, zo.samples_per_period);
+  PetscCheck(zo.theta_tol > 0 && zo.theta_tol < PETSC_PI, comm, PETSC_ERR_USER, "-zak_theta_tol must lie in (0, pi), got %g", (double)zo.theta_tol);
+  PetscCall(ToneBurstOptionsFromOptions(comm, lp, &fo));
+  PetscCall(SimulationOptionsFromOptions(comm, &sim));
+  sim.progress = 0;
+  PetscCall(LinearModesOptionsFromOptions(comm, &mo));
+  PetscCall(OutputPathFromOptions(comm, "zak", &path));
+  PetscCall(out.Open(comm, path));
+  PetscCall(lat.Setup(PETSC_COMM_SELF, lp)); // every rank integrates whole runs
+  PetscCall(modes.Compute(lat, mo));
+  const NamedModes &nm = modes.Named();
+  PetscCheck(nm.optical_bottom >= 0 && nm.optical_top >= 0, comm, PETSC_ERR_USER, "-study zak: no optical band edges found for this lattice");
+  // Paper's labels: mu = 0 is the optical band's lower edge, mu = pi its upper edge.
+  const PetscInt edge_mode[2] = {nm.optical_bottom, nm.optical_top};
+  const PetscInt ne = (PetscInt)zo.energy.size(), width = RowWidth(zo);
+  PetscCall(PetscPrintf(comm, "nltopo zak: left lattice N = %" PetscInt_FMT ", mu = 0 edge omega = %.6f (mode %" PetscInt_FMT "), mu = pi edge omega = %.6f (mode %" PetscInt_FMT
+                              "), %" PetscInt_FMT " energies\n",
+                        lat.N(), (double)modes.Omega()[edge_mode[0]], edge_mode[0], (double)modes.Omega()[edge_mode[1]], edge_mode[1], ne));
+  PetscCall(PetscLogStagePop());
+
+  PetscCall(PetscLogStagePush(Log().solve));
+  std::vector<PetscReal> res; // run r = 2 e + edge
+  PetscCall(RunDistributed(comm, 2 * ne, width,
+                           [&](PetscInt r, PetscReal *row) { return PhaseRun(lat, modes, fo, sim, zo, edge_mode[r % 2], zo.energy[r / 2], row); }, &res));
+  PetscCall(PetscLogStagePop());
+
+  // Threshold: the lowest energy at which phi_0 and phi_pi are no longer distinct.
+  std::vector<PetscReal> p0m(ne), p0d(ne), ppm(ne), ppd(ne), thm(ne), thd(ne), w0(ne * zo.windows), wp(ne * zo.windows), mcr0(ne), mcrp(ne);
+  std::vector<PetscInt> reached(2 * ne);
+  PetscReal threshold = -1, last_distinct = -1;
+  PetscCall(PetscPrintf(comm, "       E*    phi_0 mean  median   phi_pi mean  median   theta mean  median\n"));
+  for (PetscInt e = 0; e < ne; e++) {
+    const PetscReal *a = &res[(2 * e) * width], *b = &res[(2 * e + 1) * width];
+    reached[2 * e] = (PetscInt)a[0], reached[2 * e + 1] = (PetscInt)b[0];
+    p0m[e] = a[3], p0d[e] = a[4], ppm[e] = b[3], ppd[e] = b[4], mcr0[e] = a[2], mcrp[e] = b[2];
+    thm[e] = ppm[e] - p0m[e], thd[e] = ppd[e] - p0d[e];
+    for (PetscInt k = 0; k < zo.windows; k++) w0[e * zo.windows + k] = a[5 + k], wp[e * zo.windows + k] = b[5 + k];
+    const bool ok = a[0] > 0 && b[0] > 0;
+    const bool distinct = ok && std::abs(thm[e] - PETSC_PI) <= zo.theta_tol && std::abs(thd[e] - PETSC_PI) <= zo.theta_tol;
+    if (ok && !distinct && threshold < 0) threshold = zo.energy[e];
+    if (distinct && threshold < 0) last_distinct = zo.energy[e];
+    PetscCall(PetscPrintf(comm, "  %9.4g   %8.4f  %8.4f    %8.4f  %8.4f    %8.4f %8.4f %s\n", (double)zo.energy[e], (double)p0m[e], (double)p0d[e], (double)ppm[e],
+                          (double)ppd[e], (double)thm[e], (double)thd[e], ok ? (distinct ? "" : " (not distinct)") : " (E* not reached)"));
+  }
+  if (threshold > 0)
+    PetscCall(PetscPrintf(comm, "  threshold: phi_0 and phi_pi stop being distinct at E = %g (last distinct: %g)\n", (double)threshold, (double)last_distinct));
+  else PetscCall(PetscPrintf(comm, "  threshold: phi_0 and phi_pi stay distinct over the whole energy range\n"));
+
+  PetscCall(PetscLogStagePush(Log().write));
+  PetscViewer v = out.Viewer();
+  const char *g = "/zak";
+  PetscCall(WriteArray(v, g, "energy", zo.energy));
+  PetscCall(WriteArray(v, g, "phi0_mean", p0m));
+  PetscCall(WriteArray(v, g, "phi0_median", p0d));
+  PetscCall(WriteArray(v, g, "phipi_mean", ppm));
+  PetscCall(WriteArray(v, g, "phipi_median", ppd));
+  PetscCall(WriteArray(v, g, "theta_mean", thm));
+  PetscCall(WriteArray(v, g, "theta_median", thd));
+  PetscCall(WriteArray(v, g, "phi0_window_median", w0, zo.windows));
+  PetscCall(WriteArray(v, g, "phipi_window_median", wp, zo.windows));
+  PetscCall(WriteArray(v, g, "mcr0", mcr0));
+  PetscCall(WriteArray(v, g, "mcrpi", mcrp));
+  PetscCall(WriteIntArray(v, g, "reached", reached, 2));
+  PetscCall(WriteAttr(v, g, "energy_threshold", threshold));
+  PetscCall(WriteAttr(v, g, "energy_last_distinct", last_distinct));
+  PetscCall(WriteAttr(v, g, "omega0", modes.Omega()[edge_mode[0]]));
+  PetscCall(WriteAttr(v, g, "omegapi", modes.Omega()[edge_mode[1]]));
+  PetscCall(WriteAttr(v, g, "theta_tol", zo.theta_tol));
+  PetscCall(WriteAttr(v, g, "threshold_rule",
+                      "lowest E at which theta = phi_pi - phi_0 of the means or of the medians over cells and windows is more than theta_tol from pi (-1: never in range)"));
+  PetscCall(PetscTime(&t_end));
+  PetscCall(out.Commit("zak", t_end - t_start));
+  PetscCall(PetscLogStagePop());
+  PetscCall(PetscPrintf(comm, "  wrote %s\n", path.c_str()));
+  PetscFunctionReturn(0);
+}
+
+} // namespace nltopo
