@@ -154,6 +154,36 @@ PetscErrorCode WriteColumnBlock(PetscViewer v, const char *group, const char *na
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode WriteArrayND(PetscViewer v, const char *group, const char *name, const std::vector<PetscReal> &data, const std::vector<PetscInt> &dims)
+{
+  hid_t file, grp, space, dset, xfer;
+  PetscMPIInt rank, size;
+  MPI_Comm comm = PetscObjectComm((PetscObject)v);
+  std::vector<hsize_t> hd(dims.begin(), dims.end());
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  size_t n = 1;
+  for (PetscInt d : dims) n *= (size_t)d;
+  PetscCheck(!dims.empty() && n > 0 && (rank || n == data.size()), comm, PETSC_ERR_ARG_SIZ, "dataset %s/%s: %zu values for its shape", group, name, data.size());
+  PetscCall(PetscViewerHDF5WriteGroup(v, group));
+  PetscCall(PetscViewerHDF5GetFileId(v, &file));
+  H5CHK(grp = H5Gopen2(file, group, H5P_DEFAULT));
+  H5CHK(space = H5Screate_simple((int)hd.size(), hd.data(), NULL));
+  H5CHK(dset = H5Dcreate2(grp, name, H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  if (rank) H5CHK(H5Sselect_none(space));
+  H5CHK(xfer = H5Pcreate(H5P_DATASET_XFER));
+#if defined(H5_HAVE_PARALLEL)
+  if (size > 1) H5CHK(H5Pset_dxpl_mpio(xfer, H5FD_MPIO_COLLECTIVE));
+#endif
+  H5CHK(H5Dwrite(dset, H5T_NATIVE_DOUBLE, rank ? space : H5S_ALL, space, xfer, data.data()));
+  H5CHK(H5Pclose(xfer));
+  H5CHK(H5Dclose(dset));
+  H5CHK(H5Sclose(space));
+  H5CHK(H5Gclose(grp));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode WriteIntArray(PetscViewer v, const char *group, const char *name, const std::vector<PetscInt> &data, PetscInt bs)
 {
   hid_t file, grp, space, dset, xfer;

@@ -36,6 +36,8 @@ PetscErrorCode WriteArray(PetscViewer v, const char *group, const char *name, co
 // time series of distributed fields (e.g. /simulate/u, nt x N) in one write.
 PetscErrorCode WriteColumnBlock(PetscViewer v, const char *group, const char *name, PetscInt rows, PetscInt ncols, PetscInt col0, PetscInt nloc,
                                 const std::vector<PetscReal> &local);
+// A float64 dataset of any rank (dims, row-major) whose values are given on rank 0.
+PetscErrorCode WriteArrayND(PetscViewer v, const char *group, const char *name, const std::vector<PetscReal> &data, const std::vector<PetscInt> &dims);
 // An integer dataset (bs = 1: 1-D; else n/bs x bs) whose values are given on rank 0.
 PetscErrorCode WriteIntArray(PetscViewer v, const char *group, const char *name, const std::vector<PetscInt> &data, PetscInt bs = 1);
 // A distributed vector (its object name is set to name).

@@ -9,6 +9,7 @@ static const StudyEntry kStudies[] = {
   {"continuation", "NNM branches by shooting and pseudo-arclength continuation", ContinuationStudy},
   {"sweep", "a grid of forced runs (omega_ext x E*) scored by MCR, 0-1 test and energy ratio; parallel, resumable", SweepStudy},
   {"zak", "the half-lattice phase experiment: phi_0, phi_pi and the energy where they stop being distinct", ZakStudy},
+  {"perturb", "chiral and achiral spring-perturbation ensembles: insulated frequency and MCR along the insulated NNM", PerturbStudy},
   {"stability", "perturbed insulated-branch NNMs integrated for many periods: does the standing wave persist", StabilityStudy},
 };
 

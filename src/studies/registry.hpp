@@ -17,6 +17,7 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm);
 PetscErrorCode StabilityStudy(MPI_Comm comm);
 PetscErrorCode SweepStudy(MPI_Comm comm);
 PetscErrorCode ZakStudy(MPI_Comm comm);
+PetscErrorCode PerturbStudy(MPI_Comm comm);
 
 // Reads -study (default linear) and runs it; an unknown name is an error listing the known ones.
 PetscErrorCode RunStudyFromOptions(MPI_Comm comm);

@@ -1,0 +1,238 @@
+// -study perturb: robustness of the insulated mode to random spring
+// perturbations (paper, "Robustness to perturbations"), as ensembles. For each
+// kind (chiral, achiral), level delta and realisation (seed), the lattice's
+// linear insulated frequency and the MCR of forced runs at the interface site
+// at the unperturbed insulated NNM's frequency omega(E*) for every E* of the
+// grid. Runs spread over the ranks (each realisation on one rank, all its
+// energies). Output: /perturb/<kind> of outputs.md.
+#include "bands/linear_modes.hpp"
+#include "core/log.hpp"
+#include "core/work_queue.hpp"
+#include "io/input.hpp"
+#include "io/output.hpp"
+#include "studies/grid_axis.hpp"
+#include "studies/nnm_setup.hpp"
+#include "studies/registry.hpp"
+#include "timeint/simulation.hpp"
+#include <algorithm>
+#include <cmath>
+
+namespace nltopo {
+
+namespace {
+
+struct PerturbOptions {
+  std::vector<PetscReal> delta{0, 0.01, 0.025, 0.05, 0.1, 0.25}, energy;
+  std::vector<Perturbation> kinds{Perturbation::Chiral, Perturbation::Achiral};
+  PetscInt ensemble = 16, seed0 = 1;
+  char fep[PETSC_MAX_PATH_LEN] = "";
+};
+
+// omega(E) on the insulated branch, linear in log E between stored orbits.
+PetscReal BranchOmega(const std::vector<PetscReal> &E, const std::vector<PetscReal> &w, PetscReal e)
+{
+  if (e <= E.front()) return w.front();
+  for (size_t k = 1; k < E.size(); k++)
+    if (E[k] >= e) {
+      const PetscReal s = std::log(e / E[k - 1]) / std::log(E[k] / E[k - 1]);
+      return w[k - 1] + s * (w[k] - w[k - 1]);
+    }
+  return w.back();
+}
+
+// The linear insulated frequency of a (perturbed) lattice: among the eigenpairs
+// in the middle 60 % of the gap (omega^2 within 0.3 (k_hat - |k1 - k2|..k_hat +
+// |k1 - k2|) of k_hat, away from band-edge modes that disorder may localise), the
+// one with the largest weight within 10 sites of the interface site.
+PetscErrorCode InsulatedOmega(const Lattice &lat, const LinearModes &modes, PetscReal *w)
+{
+  PetscFunctionBeginUser;
+  const PetscInt m = lat.Params().InterfaceSite(), N = lat.N();
+  const PetscReal kh = lat.Params().KHat(), gap = std::abs(lat.Params().K1() - lat.Params().K2());
+  const PetscReal lo = std::sqrt(kh - 0.6 * gap), hi = std::sqrt(kh + 0.6 * gap);
+  PetscReal best = -1;
+  *w = NAN;
+  for (size_t j = 0; j < modes.Omega().size(); j++) {
+    if (modes.Omega()[j] < lo || modes.Omega()[j] > hi) continue;
+    const PetscScalar *a;
+    PetscCall(VecGetArrayRead(modes.Mode((PetscInt)j), &a)); // serial lattice: all sites
+    PetscReal s = 0;
+    for (PetscInt i = std::max<PetscInt>(0, m - 10); i <= std::min(N - 1, m + 10); i++) s += a[i] * a[i];
+    PetscCall(VecRestoreArrayRead(modes.Mode((PetscInt)j), &a));
+    if (s > best) best = s, *w = modes.Omega()[j];
+  }
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode PerturbStudy(MPI_Comm comm)
+{
+  PerturbOptions po;
+  ToneBurstOptions fo;
+  SimulationOptions sim;
+  NnmSetup nnm;
+  std::string path;
+  OutputFile out;
+  PetscLogDouble t_start, t_end;
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t_start));
+  PetscCall(LogRegister());
+  PetscCall(PetscLogStagePush(Log().setup));
+  for (const char *fixed : {"-lattice_perturbation", "-lattice_delta", "-lattice_seed", "-force_omega", "-force_energy"}) {
+    PetscBool set;
+    PetscCall(PetscOptionsHasName(NULL, NULL, fixed, &set));
+    PetscCheck(!set, comm, PETSC_ERR_USER, "%s is set by -study perturb (-perturb_kinds, -perturb_delta_list, -perturb_ensemble, -perturb_energy_*); remove it", fixed);
+  }
+  PetscCall(nnm.ReadOptions(comm));
+  PetscCheck(nnm.lp.layout == Layout::Interface, comm, PETSC_ERR_USER, "-study perturb follows the insulated mode: -lattice_layout must be interface");
+  {
+    PetscReal dl[64];
+    PetscInt nd = 64, nk = 2;
+    PetscBool set;
+    char *kinds[2];
+    PetscOptionsBegin(comm, "perturb_", "Perturbation ensembles", NULL);
+    PetscCall(PetscOptionsRealArray("-delta_list", "Perturbation levels delta (mean |relative spring change|)", NULL, dl, &nd, &set));
+    if (set) po.delta.assign(dl, dl + nd);
+    PetscCall(PetscOptionsStringArray("-kinds", "Perturbation kinds: chiral, achiral", NULL, kinds, &nk, &set));
+    if (set) {
+      po.kinds.clear();
+      for (PetscInt k = 0; k < nk; k++) {
+        PetscBool c, a;
+        PetscCall(PetscStrcmp(kinds[k], "chiral", &c));
+        PetscCall(PetscStrcmp(kinds[k], "achiral", &a));
+        PetscCheck(c || a, comm, PETSC_ERR_USER, "-perturb_kinds: unknown kind %s (chiral, achiral)", kinds[k]);
+        po.kinds.push_back(c ? Perturbation::Chiral : Perturbation::Achiral);
+        PetscCall(PetscFree(kinds[k]));
+      }
+    }
+    PetscCall(PetscOptionsInt("-ensemble", "Realisations (seeds) per perturbation level", NULL, po.ensemble, &po.ensemble, NULL));
+    PetscCall(PetscOptionsInt("-seed", "Seed of the first realisation (realisation r uses seed + r)", NULL, po.seed0, &po.seed0, NULL));
+    PetscCall(ReadAxis(PetscOptionsObject, comm, "perturb_", "energy", 1e-2, 1e2, 9, true, &po.energy));
+    PetscCall(PetscOptionsString("-fep", "Continuation file with /continuation/insulated (omega(E) of the insulated NNM); default: computed here", NULL, po.fep,
+                                 po.fep, sizeof(po.fep), NULL));
+    PetscOptionsEnd();
+  }
+  PetscCheck(po.ensemble >= 1, comm, PETSC_ERR_USER, "-perturb_ensemble must be >= 1, got %" PetscInt_FMT, po.ensemble);
+  for (PetscReal d : po.delta) PetscCheck(d >= 0 && d < 0.5, comm, PETSC_ERR_USER, "-perturb_delta_list: values must lie in [0, 0.5), got %g", (double)d);
+  PetscCall(ToneBurstOptionsFromOptions(comm, nnm.lp, &fo));
+  PetscCall(SimulationOptionsFromOptions(comm, &sim));
+  sim.progress = 0;
+  sim.sample_dt = 0;
+  PetscCall(OutputPathFromOptions(comm, "perturb", &path));
+  PetscCall(out.Open(comm, path));
+
+  // omega(E) of the unperturbed insulated NNM: from -perturb_fep, or continued here.
+  std::vector<PetscReal> bE, bw;
+  const PetscReal Emax = *std::max_element(po.energy.begin(), po.energy.end());
+  if (po.fep[0]) {
+    PetscMPIInt rank;
+    PetscCallMPI(MPI_Comm_rank(comm, &rank));
+    PetscInt n = 0;
+    if (!rank) {
+      PetscCall(ReadDoubles(po.fep, "/continuation/insulated/energy", &bE));
+      PetscCall(ReadDoubles(po.fep, "/continuation/insulated/omega", &bw));
+      n = (PetscInt)bE.size();
+    }
+    PetscCallMPI(MPI_Bcast(&n, 1, MPIU_INT, 0, comm));
+    bE.resize(n), bw.resize(n);
+    PetscCallMPI(MPI_Bcast(bE.data(), n, MPIU_REAL, 0, comm));
+    PetscCallMPI(MPI_Bcast(bw.data(), n, MPIU_REAL, 0, comm));
+  } else {
+    PetscCall(nnm.Build(comm));
+    nnm.co.verbose = PETSC_FALSE;
+    nnm.co.energy_max = 1.2 * Emax;
+    Branch b;
+    PetscCall(ContinueBranch(nnm.shoot, nnm.modes.Insulated(), 2 * PETSC_PI / nnm.modes.Named().insulated_omega, nnm.co, "insulated", &b));
+    bE = b.energy, bw = b.omega;
+  }
+  PetscCheck(bE.size() >= 2 && bE.back() >= Emax * (1 - 1e-9), comm, PETSC_ERR_USER, "-study perturb: the insulated branch reaches E = %g only, below -perturb_energy_max %g",
+             bE.empty() ? 0.0 : (double)bE.back(), (double)Emax);
+  std::vector<PetscReal> wext;
+  for (PetscReal e : po.energy) wext.push_back(BranchOmega(bE, bw, e));
+  const PetscInt nd = (PetscInt)po.delta.size(), ne = (PetscInt)po.energy.size(), ns = po.ensemble, nk = (PetscInt)po.kinds.size();
+  PetscCall(PetscPrintf(comm, "nltopo perturb: %" PetscInt_FMT " kind(s) x %" PetscInt_FMT " levels x %" PetscInt_FMT " realisations x %" PetscInt_FMT
+                              " energies = %" PetscInt_FMT " forced runs, N = %" PetscInt_FMT "\n",
+                        nk, nd, ns, ne, nk * nd * ns * ne, nnm.lp.N()));
+  PetscCall(PetscLogStagePop());
+
+  // Item (kind, level, realisation): [insulated omega, MCR at every energy].
+  PetscCall(PetscLogStagePush(Log().solve));
+  std::vector<PetscReal> res;
+  LinearModesOptions mo = nnm.mo;
+  auto item = [&](PetscInt it, PetscReal *row) -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    const PetscInt k = it / (nd * ns), d = (it / ns) % nd, r = it % ns;
+    LatticeParams lp = nnm.lp;
+    lp.perturbation = po.kinds[k];
+    lp.delta = po.delta[d];
+    lp.seed = po.seed0 + r;
+    Lattice lat;
+    LinearModes modes;
+    PetscCall(lat.Setup(PETSC_COMM_SELF, lp));
+    PetscCall(modes.Compute(lat, mo));
+    PetscCall(InsulatedOmega(lat, modes, &row[0]));
+    for (PetscInt e = 0; e < ne; e++) {
+      ToneBurstOptions pf = fo;
+      pf.omega = wext[e];
+      pf.energy = po.energy[e];
+      ToneBurst burst;
+      PetscCall(burst.Setup(lat, pf, &modes));
+      SimulationResult sr;
+      PetscInt resc;
+      PetscCall(SimulateForced(lat, &burst, sim, NULL, &sr, &resc));
+      row[1 + e] = sr.reached ? sr.mcr : NAN; // a run that never reached E* is not scored
+    }
+    PetscFunctionReturn(0);
+  };
+  PetscCall(RunDistributed(comm, nk * nd * ns, 1 + ne, item, &res));
+  PetscCall(PetscLogStagePop());
+
+  PetscCall(PetscLogStagePush(Log().write));
+  PetscViewer v = out.Viewer();
+  for (PetscInt k = 0; k < nk; k++) {
+    const std::string g = std::string("/perturb/") + PerturbationName(po.kinds[k]);
+    std::vector<PetscReal> mcr((size_t)nd * ne * ns), win((size_t)nd * ns);
+    PetscCall(PetscPrintf(comm, "  %s: MCR mean +- std over %" PetscInt_FMT " realisations (rows delta, columns E*), and the linear insulated omega\n",
+                          PerturbationName(po.kinds[k]), ns));
+    PetscCall(PetscPrintf(comm, "    delta \\ E*"));
+    for (PetscInt e = 0; e < ne; e++) PetscCall(PetscPrintf(comm, " %13.3g", (double)po.energy[e]));
+    PetscCall(PetscPrintf(comm, "   omega_ins mean (max |dev from sqrt 3|)\n"));
+    for (PetscInt d = 0; d < nd; d++) {
+      PetscReal wsum = 0, wdev = 0;
+      for (PetscInt r = 0; r < ns; r++) {
+        const PetscReal *row = &res[(size_t)((k * nd + d) * ns + r) * (1 + ne)];
+        win[d * ns + r] = row[0];
+        wsum += row[0];
+        wdev = std::max(wdev, (PetscReal)std::abs(row[0] - std::sqrt(nnm.lp.KHat())));
+        for (PetscInt e = 0; e < ne; e++) mcr[((size_t)d * ne + e) * ns + r] = row[1 + e];
+      }
+      PetscCall(PetscPrintf(comm, "    %9.4g ", (double)po.delta[d]));
+      for (PetscInt e = 0; e < ne; e++) {
+        PetscReal s = 0, s2 = 0;
+        PetscInt c = 0;
+        for (PetscInt r = 0; r < ns; r++) {
+          const PetscReal x = mcr[((size_t)d * ne + e) * ns + r];
+          if (std::isfinite(x)) s += x, s2 += x * x, c++;
+        }
+        const PetscReal mean = c ? s / c : NAN, sd = c > 1 ? std::sqrt(std::max<PetscReal>(0, (s2 - c * mean * mean) / (c - 1))) : 0;
+        PetscCall(PetscPrintf(comm, " %6.3f+-%5.3f", (double)mean, (double)sd));
+      }
+      PetscCall(PetscPrintf(comm, "   %.10f (%.2e)\n", (double)(wsum / ns), (double)wdev));
+    }
+    PetscCall(WriteArray(v, g.c_str(), "delta", po.delta));
+    PetscCall(WriteArray(v, g.c_str(), "energy", po.energy));
+    PetscCall(WriteArray(v, g.c_str(), "omega_ext", wext));
+    PetscCall(WriteArrayND(v, g.c_str(), "mcr", mcr, {nd, ne, ns}));
+    PetscCall(WriteArrayND(v, g.c_str(), "insulated_omega", win, {nd, ns}));
+    PetscCall(WriteAttr(v, g.c_str(), "seed_first", po.seed0));
+    PetscCall(WriteAttr(v, g.c_str(), "rule", "springs change by k delta_b, delta_b uniform in (-2 delta, 2 delta) (README.md); realisation r uses seed seed_first + r"));
+  }
+  PetscCall(PetscTime(&t_end));
+  PetscCall(out.Commit("perturb", t_end - t_start));
+  PetscCall(PetscLogStagePop());
+  PetscCall(PetscPrintf(comm, "  wrote %s\n", path.c_str()));
+  PetscFunctionReturn(0);
+}
+
+} // namespace nltopo
