@@ -287,7 +287,8 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
   run.sample_dt = o.sample_dt;
   run.progress = o.progress;
   run.stop_at_cutoff = o.stop_at_cutoff;
-  if (o.abort_if_missed && forcing && forcing->Present()) run.burst_end = forcing->T0() + 3 * forcing->Tau();
+  // A burst that outlasts the run (low omega_ext: t0 + 3 tau > t_final) ends with it.
+  if (o.abort_if_missed && forcing && forcing->Present()) run.burst_end = std::min(forcing->T0() + 3 * forcing->Tau(), o.t_final * (1 - 1e-12));
   PetscCall(PetscTime(&run.wall0));
   run.wall_last = run.wall0;
   // RMS window when E* is never reached: after the burst (t0 + 3 tau), or the

@@ -10,4 +10,14 @@ done
 for opt in -linear_dense_max -linear_nev -linear_target_offset -linear_nq -linear_eps_type; do
   grep -qE -- "$opt[ :]" help_lin.txt || { echo "missing in -help: $opt"; exit 1; }
 done
+"$NLTOPO" -help -study sweep -sweep_omega_n 1 -sweep_energy_n 1 -sim_t_final 1 -output h3.h5 > help_sweep.txt
+for opt in -sweep_omega_min -sweep_omega_max -sweep_omega_n -sweep_omega_spacing -sweep_omega_list -sweep_energy_min -sweep_energy_max \
+           -sweep_energy_n -sweep_resume -sweep_kcorr -sweep_checkpoint -sweep_progress -kcorr_nc -kcorr_seed -kcorr_sample_dt -kcorr_record \
+           -kcorr_lags -kcorr_rms_fraction -kcorr_site_stride -lattice_perturbation -lattice_delta -lattice_seed; do
+  grep -qE -- "$opt[ :]" help_sweep.txt || { echo "missing in -help: $opt"; exit 1; }
+done
+"$NLTOPO" -help -study zak -zak_energy_list 0.01 -sim_t_final 300 -lattice_cells 4 -output h4.h5 > help_zak.txt
+for opt in -zak_energy_min -zak_windows -zak_samples_per_period -zak_theta_tol; do
+  grep -qE -- "$opt[ :]" help_zak.txt || { echo "missing in -help: $opt"; exit 1; }
+done
 echo "help OK"
