@@ -9,7 +9,8 @@ markdown table: wall time, runs per second, RHS evaluations, the per-run cost
 of nltopo against what the baseline would need for the same RHS evaluations,
 and the cost by energy decade. With a -log_view file, the share of the main
 events."""
-import re, statistics, subprocess, sys
+import re, signal, statistics, subprocess, sys
+signal.signal(signal.SIGPIPE, signal.SIG_DFL)
 import h5py
 import numpy as np
 

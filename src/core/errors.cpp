@@ -25,6 +25,17 @@ PetscErrorCode OneLineErrorHandler(MPI_Comm comm, int line, const char *fun, con
   return n;
 }
 
+PetscErrorCode RejectGivenOptions(MPI_Comm comm, std::initializer_list<const char *> names, const char *set_by)
+{
+  PetscFunctionBeginUser;
+  for (const char *name : names) {
+    PetscBool set;
+    PetscCall(PetscOptionsHasName(NULL, NULL, name, &set));
+    PetscCheck(!set, comm, PETSC_ERR_USER, "%s is set by %s; remove it", name, set_by);
+  }
+  PetscFunctionReturn(0);
+}
+
 static bool CaseTrap(const char *token, const char *where)
 {
   // Any spelling of -lattice_gamma with an upper-case letter (-lattice_Gamma, -LATTICE_GAMMA, ...)

@@ -1,4 +1,5 @@
 #pragma once
+#include <initializer_list>
 // One-line errors for users: the first PETSc error is printed as
 //   nltopo: error: <message>
 // (by rank 0 of the failing communicator), with no traceback block.
@@ -15,5 +16,9 @@ PetscErrorCode OneLineErrorHandler(MPI_Comm comm, int line, const char *fun, con
 // case-insensitive options database would silently read as -lattice_gamma.
 // Returns false (and prints) on the first problem.
 bool PreflightArguments(int argc, char **argv);
+
+// A study that sets some options itself refuses them from the user: one line
+// naming the first one given and what sets it instead.
+PetscErrorCode RejectGivenOptions(MPI_Comm comm, std::initializer_list<const char *> names, const char *set_by);
 
 } // namespace nltopo

@@ -2,27 +2,17 @@
 """Paper-style frequency-energy plot of -study continuation: omega vs energy of
 every branch over the linear bands (shaded), the MCR of each orbit, and the
 flagged modal interactions.  usage: plot_fep.py fep.h5 [out.png]"""
-import re
 import sys
 import h5py
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
+import nltopo_plot
 
 f = h5py.File(sys.argv[1], "r")
 out = sys.argv[2] if len(sys.argv) > 2 else sys.argv[1].replace(".h5", "") + "_fep.png"
-opts = f.attrs["options"]
-opts = opts.decode() if isinstance(opts, bytes) else str(opts)
-
-def opt(name, default):
-    m = re.search(r"-%s\s+(\S+)" % name, opts)
-    return float(m.group(1)) if m else default
-
-k, g, g0 = opt("lattice_k", 1.0), opt("lattice_gamma", 0.4), opt("lattice_gamma0", 1.0)
-k1, k2 = k * (1 + g), k * (1 - g)
-kh = k1 + k2 + g0
-bands = [(np.sqrt(max(kh - k1 - k2, 0)), np.sqrt(kh - abs(k1 - k2))), (np.sqrt(kh + abs(k1 - k2)), np.sqrt(kh + k1 + k2))]
+bands = nltopo_plot.bands(f)
 fig, ax = plt.subplots(1, 2, figsize=(13, 5))
 for lo, hi in bands:
     ax[0].axhspan(lo, hi, color="0.9")

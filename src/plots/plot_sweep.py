@@ -4,13 +4,13 @@ with the linear bands marked, the 0-1 test's kcorr = 0.7 contour (chaos), points
 that never reached E* crossed out, and, when a continuation file is given, its
 NNM branches (the frequency-energy plot) overlaid.
 usage: plot_sweep.py sweep.h5 [fep.h5] [out.png]"""
-import re
 import sys
 import h5py
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
+import nltopo_plot
 
 args = [a for a in sys.argv[1:] if a.endswith(".h5")]
 outs = [a for a in sys.argv[1:] if not a.endswith(".h5")]
@@ -22,17 +22,7 @@ w, E = s["omega"][:], s["energy"][:]
 done = s["done"][:].astype(bool)
 mcr = np.where(done, s["mcr"][:], np.nan)
 kc = np.where(done, s["kcorr"][:], np.nan)
-opts = f.attrs["options"]
-opts = opts.decode() if isinstance(opts, bytes) else str(opts)
-
-def opt(name, default):
-    m = re.search(r"-%s\s+(\S+)" % name, opts)
-    return float(m.group(1)) if m else default
-
-k, g, g0 = opt("lattice_k", 1.0), opt("lattice_gamma", 0.4), opt("lattice_gamma0", 1.0)
-k1, k2 = k * (1 + g), k * (1 - g)
-kh = k1 + k2 + g0
-bands = [(np.sqrt(max(kh - k1 - k2, 0)), np.sqrt(kh - abs(k1 - k2))), (np.sqrt(kh + abs(k1 - k2)), np.sqrt(kh + k1 + k2))]
+bands = nltopo_plot.bands(f)
 
 fig, ax = plt.subplots(1, 2, figsize=(13, 5.2))
 pc = ax[0].pcolormesh(E, w, mcr.T, shading="nearest", cmap="viridis", vmin=0, vmax=np.nanmax(mcr))

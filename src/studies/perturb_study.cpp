@@ -6,6 +6,7 @@
 // grid. Runs spread over the ranks (each realisation on one rank, all its
 // energies). Output: /perturb/<kind> of outputs.md.
 #include "bands/linear_modes.hpp"
+#include "core/errors.hpp"
 #include "core/log.hpp"
 #include "core/work_queue.hpp"
 #include "io/input.hpp"
@@ -79,11 +80,8 @@ PetscErrorCode PerturbStudy(MPI_Comm comm)
   PetscCall(PetscTime(&t_start));
   PetscCall(LogRegister());
   PetscCall(PetscLogStagePush(Log().setup));
-  for (const char *fixed : {"-lattice_perturbation", "-lattice_delta", "-lattice_seed", "-force_omega", "-force_energy"}) {
-    PetscBool set;
-    PetscCall(PetscOptionsHasName(NULL, NULL, fixed, &set));
-    PetscCheck(!set, comm, PETSC_ERR_USER, "%s is set by -study perturb (-perturb_kinds, -perturb_delta_list, -perturb_ensemble, -perturb_energy_*); remove it", fixed);
-  }
+  PetscCall(RejectGivenOptions(comm, {"-lattice_perturbation", "-lattice_delta", "-lattice_seed", "-force_omega", "-force_energy"},
+                               "-study perturb (-perturb_kinds, -perturb_delta_list, -perturb_ensemble, -perturb_energy_*)"));
   PetscCall(nnm.ReadOptions(comm));
   PetscCheck(nnm.lp.layout == Layout::Interface, comm, PETSC_ERR_USER, "-study perturb follows the insulated mode: -lattice_layout must be interface");
   {

@@ -5,6 +5,13 @@
 
 namespace nltopo {
 
+const SweepRealField kSweepRealFields[7] = {{"mcr", &SweepPoint::mcr},         {"t_off", &SweepPoint::t_off},
+                                            {"kcorr", &SweepPoint::kcorr},     {"nl_ratio", &SweepPoint::nl_ratio},
+                                            {"amplitude", &SweepPoint::amplitude}, {"energy_final", &SweepPoint::energy_final},
+                                            {"seconds", &SweepPoint::seconds}};
+const SweepIntField kSweepIntFields[5] = {{"reached", &SweepPoint::reached}, {"rescalings", &SweepPoint::rescalings}, {"rhs_evals", &SweepPoint::rhs},
+                                          {"steps", &SweepPoint::steps},     {"failed", &SweepPoint::failed}};
+
 PetscInt SweepGrid::Done() const
 {
   PetscInt n = 0;
@@ -44,18 +51,8 @@ PetscErrorCode SweepGrid::Load(const std::string &path)
     for (size_t i = 0; i < iv.size(); i++) pts[i].*field = iv[i];
     PetscFunctionReturn(0);
   };
-  PetscCall(doubles("mcr", &SweepPoint::mcr));
-  PetscCall(doubles("t_off", &SweepPoint::t_off));
-  PetscCall(doubles("kcorr", &SweepPoint::kcorr));
-  PetscCall(doubles("nl_ratio", &SweepPoint::nl_ratio));
-  PetscCall(doubles("amplitude", &SweepPoint::amplitude));
-  PetscCall(doubles("energy_final", &SweepPoint::energy_final));
-  PetscCall(doubles("seconds", &SweepPoint::seconds));
-  PetscCall(ints("reached", &SweepPoint::reached));
-  PetscCall(ints("rescalings", &SweepPoint::rescalings));
-  PetscCall(ints("rhs_evals", &SweepPoint::rhs));
-  PetscCall(ints("steps", &SweepPoint::steps));
-  PetscCall(ints("failed", &SweepPoint::failed));
+  for (const auto &f : kSweepRealFields) PetscCall(doubles(f.name, f.field));
+  for (const auto &f : kSweepIntFields) PetscCall(ints(f.name, f.field));
   PetscCall(ReadInts(path, "/sweep/done", &done));
   PetscCheck(done.size() == Size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-sweep_resume: /sweep/done in %s has the wrong size", path.c_str());
   PetscFunctionReturn(0);

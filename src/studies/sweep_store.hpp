@@ -20,6 +20,13 @@ struct SweepPoint {
   PetscInt failed = 0; // the run stopped with an error (e.g. diverged); its numbers are NaN
 };
 
+// The per-point datasets of /sweep and the SweepPoint fields behind them (read
+// back by SweepGrid::Load, written by the sweep study).
+struct SweepRealField { const char *name; PetscReal SweepPoint::*field; };
+struct SweepIntField { const char *name; PetscInt SweepPoint::*field; };
+extern const SweepRealField kSweepRealFields[7];
+extern const SweepIntField kSweepIntFields[5];
+
 // Rank 0's picture of the grid: energy rows x omega columns, row-major.
 struct SweepGrid {
   std::vector<PetscReal> omega, energy;

@@ -5,6 +5,7 @@
 // whole runs on PETSC_COMM_SELF, most expensive first), journaled as they
 // finish and resumable (-sweep_resume). Output: /sweep of outputs.md.
 #include "bands/linear_modes.hpp"
+#include "core/errors.hpp"
 #include "core/log.hpp"
 #include "core/work_queue.hpp"
 #include "diagnostics/zero_one.hpp"
@@ -70,11 +71,7 @@ PetscErrorCode SweepOptionsFromOptions(MPI_Comm comm, SweepOptions *o)
   PetscCheck(o->kcorr_record > 0, comm, PETSC_ERR_USER, "-kcorr_record must be positive, got %g", (double)o->kcorr_record);
   PetscCheck(o->kcorr_lags == 0 || o->kcorr_lags >= 3, comm, PETSC_ERR_USER, "-kcorr_lags must be 0 (all) or >= 3, got %" PetscInt_FMT, o->kcorr_lags);
   PetscCheck(o->kcorr_site_stride >= 1, comm, PETSC_ERR_USER, "-kcorr_site_stride must be >= 1, got %" PetscInt_FMT, o->kcorr_site_stride);
-  for (const char *fixed : {"-force_omega", "-force_energy"}) {
-    PetscBool set;
-    PetscCall(PetscOptionsHasName(NULL, NULL, fixed, &set));
-    PetscCheck(!set, comm, PETSC_ERR_USER, "%s is set per point by the sweep axes (-sweep_omega_*, -sweep_energy_*); remove it", fixed);
-  }
+  PetscCall(RejectGivenOptions(comm, {"-force_omega", "-force_energy"}, "the sweep axes (-sweep_omega_*, -sweep_energy_*) per point"));
   PetscFunctionReturn(0);
 }
 
@@ -104,18 +101,8 @@ PetscErrorCode WriteSweep(const std::string &path, const SweepGrid &g, const Swe
     PetscCall(WriteIntArray(w, grp, name, iv, no));
     PetscFunctionReturn(0);
   };
-  PetscCall(doubles("mcr", &SweepPoint::mcr));
-  PetscCall(doubles("t_off", &SweepPoint::t_off));
-  PetscCall(doubles("kcorr", &SweepPoint::kcorr));
-  PetscCall(doubles("nl_ratio", &SweepPoint::nl_ratio));
-  PetscCall(doubles("amplitude", &SweepPoint::amplitude));
-  PetscCall(doubles("energy_final", &SweepPoint::energy_final));
-  PetscCall(doubles("seconds", &SweepPoint::seconds));
-  PetscCall(ints("reached", &SweepPoint::reached));
-  PetscCall(ints("rescalings", &SweepPoint::rescalings));
-  PetscCall(ints("rhs_evals", &SweepPoint::rhs));
-  PetscCall(ints("steps", &SweepPoint::steps));
-  PetscCall(ints("failed", &SweepPoint::failed));
+  for (const auto &f : kSweepRealFields) PetscCall(doubles(f.name, f.field));
+  for (const auto &f : kSweepIntFields) PetscCall(ints(f.name, f.field));
   PetscCall(WriteIntArray(w, grp, "done", g.done, no));
   PetscCall(WriteAttr(w, grp, "points_done", g.Done()));
   PetscCall(WriteAttr(w, grp, "points_computed", computed)); // by this invocation (a resume computes only the missing ones)

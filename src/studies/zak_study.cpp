@@ -11,6 +11,7 @@
 // the top out of phase (phi_pi = pi): theta = pi.
 // Output: /zak of outputs.md.
 #include "bands/linear_modes.hpp"
+#include "core/errors.hpp"
 #include "core/log.hpp"
 #include "core/work_queue.hpp"
 #include "diagnostics/phase.hpp"
@@ -117,16 +118,13 @@ PetscErrorCode ZakStudy(MPI_Comm comm)
   PetscCall(LogRegister());
   PetscCall(PetscLogStagePush(Log().setup));
   {
-    PetscBool set;
     lp.layout = Layout::Left; // the nontrivial half lattice, 51 cells (N = 102) unless given
     lp.cells = 51;
     PetscCall(LatticeParamsFromOptions(comm, &lp));
     PetscCheck(lp.layout == Layout::Left, comm, PETSC_ERR_USER, "-study zak works on the left (nontrivial) half lattice: -lattice_layout must be left, got %s",
                LayoutName(lp.layout));
-    for (const char *fixed : {"-force_omega", "-force_energy", "-force_profile", "-force_mode_index"}) {
-      PetscCall(PetscOptionsHasName(NULL, NULL, fixed, &set));
-      PetscCheck(!set, comm, PETSC_ERR_USER, "%s is set by -study zak (the optical band-edge modes, -zak_energy_*); remove it", fixed);
-    }
+    PetscCall(RejectGivenOptions(comm, {"-force_omega", "-force_energy", "-force_profile", "-force_mode_index"},
+                                 "-study zak (the optical band-edge modes, -zak_energy_*)"));
   }
   PetscOptionsBegin(comm, "zak_", "Half-lattice phase (Zak) experiment", NULL);
   PetscCall(ReadAxis(PetscOptionsObject, comm, "zak_", "energy", 1e-2, 1e3, 21, true, &zo.energy));

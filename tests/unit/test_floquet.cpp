@@ -14,12 +14,14 @@ using namespace nltopo::test;
 using cplx = std::complex<PetscReal>;
 
 namespace {
-struct Capture : public PointHook {
+// Every accepted orbit of a branch: its frequency and Floquet result.
+struct CaptureAll : public PointHook {
   PeriodicFlow &flow;
-  FloquetResult last;
+  std::vector<PetscReal> omega;
+  std::vector<FloquetResult> res;
   OwnedMat S;
   OwnedVec zT;
-  explicit Capture(PeriodicFlow &f) : flow(f) {}
+  explicit CaptureAll(PeriodicFlow &f) : flow(f) {}
   PetscErrorCode Point(Vec z0, PetscReal T, PetscReal beta) override
   {
     PetscFunctionBeginUser;
@@ -28,11 +30,15 @@ struct Capture : public PointHook {
       PetscCall(VecDuplicate(z0, zT.out()));
     }
     PetscCall(flow.IntegrateWithMonodromy(z0, T, beta, zT, S));
-    PetscCall(FloquetAnalysis(flow.Lat(), S, FloquetOptions(), &last));
+    FloquetResult r;
+    PetscCall(FloquetAnalysis(flow.Lat(), S, FloquetOptions(), &r));
+    omega.push_back(2 * PETSC_PI / T);
+    res.push_back(r);
     PetscFunctionReturn(0);
   }
 };
 } // namespace
+
 
 TEST_CASE("Floquet multipliers in the linear limit, symplectic pairs, det M = 1, Krein signs", "[floquet]")
 {
@@ -54,10 +60,10 @@ TEST_CASE("Floquet multipliers in the linear limit, symplectic pairs, det M = 1,
   const PetscInt N = lat.N();
   const auto &w = modes.Omega();
   for (PetscInt j : {0, 3, 7}) {
-    Capture cap(flow);
+    CaptureAll cap(flow);
     Branch b;
     PCHK(ContinueBranch(shoot, modes.Mode(j), 2 * PETSC_PI / w[j], co, "floquet", &b, &cap));
-    const FloquetResult &r = cap.last;
+    const FloquetResult &r = cap.res.back();
     REQUIRE((PetscInt)r.re.size() == 2 * N);
     std::vector<cplx> mu;
     for (PetscInt i = 0; i < 2 * N; i++) mu.emplace_back(r.re[i], r.im[i]);
@@ -93,31 +99,6 @@ TEST_CASE("Floquet multipliers in the linear limit, symplectic pairs, det M = 1,
   }
 }
 
-namespace {
-// Every accepted orbit of a branch: its frequency and Floquet result.
-struct CaptureAll : public PointHook {
-  PeriodicFlow &flow;
-  std::vector<PetscReal> omega;
-  std::vector<FloquetResult> res;
-  OwnedMat S;
-  OwnedVec zT;
-  explicit CaptureAll(PeriodicFlow &f) : flow(f) {}
-  PetscErrorCode Point(Vec z0, PetscReal T, PetscReal beta) override
-  {
-    PetscFunctionBeginUser;
-    if (!S) {
-      PetscCall(flow.CreateSensitivityMatrix(S.out()));
-      PetscCall(VecDuplicate(z0, zT.out()));
-    }
-    PetscCall(flow.IntegrateWithMonodromy(z0, T, beta, zT, S));
-    FloquetResult r;
-    PetscCall(FloquetAnalysis(flow.Lat(), S, FloquetOptions(), &r));
-    omega.push_back(2 * PETSC_PI / T);
-    res.push_back(r);
-    PetscFunctionReturn(0);
-  }
-};
-} // namespace
 
 // A known unstable orbit from theory. Layout `right` with Nc = 2 and gamma =
 // 0.9 is two stiff dimers (k1 = 1.9, cubic) joined by a weak soft bond (k2 =
