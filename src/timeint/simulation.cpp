@@ -287,8 +287,14 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
   run.sample_dt = o.sample_dt;
   run.progress = o.progress;
   run.stop_at_cutoff = o.stop_at_cutoff;
-  // A burst that outlasts the run (low omega_ext: t0 + 3 tau > t_final) ends with it.
-  if (o.abort_if_missed && forcing && forcing->Present()) run.burst_end = std::min(forcing->T0() + 3 * forcing->Tau(), o.t_final * (1 - 1e-12));
+  // E* missed by the end of the burst (t0 + 3 tau), or by t_final when the
+  // burst outlasts the run but its peak t0 lies inside it (low omega_ext); a
+  // run that ends before the peak is too short to judge S and is not repeated.
+  if (o.abort_if_missed && forcing && forcing->Present()) {
+    const PetscReal tb = forcing->T0() + 3 * forcing->Tau();
+    if (tb <= o.t_final) run.burst_end = tb;
+    else if (forcing->T0() <= o.t_final) run.burst_end = o.t_final * (1 - 1e-12);
+  }
   PetscCall(PetscTime(&run.wall0));
   run.wall_last = run.wall0;
   // RMS window when E* is never reached: after the burst (t0 + 3 tau), or the
