@@ -9,11 +9,21 @@ namespace nltopo {
 
 namespace {
 
-// Keeps the sub-sampled displacement u(t) (the owned sites of every sample)
-// and E(t); written once at the end as /simulate/u (nt x N).
+// Keeps the sub-sampled displacement u(t) (every stride-th site, 0-based
+// index divisible by stride, of this rank's block, at every sample) and E(t);
+// written once at the end as /simulate/u (nt x ceil(N / stride)).
 class Samples : public SampleSink {
 public:
-  Samples(const Lattice &lat, bool store_u) : xm_(lat.OwnedCount()), store_u_(store_u) {}
+  Samples(const Lattice &lat, bool store_u, PetscInt stride) : store_u_(store_u)
+  {
+    for (PetscInt i = lat.OwnedStart(); i < lat.OwnedStart() + lat.OwnedCount(); i++)
+      if (i % stride == 0) local_.push_back(i - lat.OwnedStart());
+    col0_ = (lat.OwnedStart() + stride - 1) / stride; // strided sites before this block
+    ncols_ = (lat.N() + stride - 1) / stride;
+  }
+  PetscInt Col0() const { return col0_; }
+  PetscInt Cols() const { return ncols_; }
+  PetscInt LocalCols() const { return (PetscInt)local_.size(); }
   PetscErrorCode Sample(PetscReal t, Vec z, const EnergyParts &e) override
   {
     PetscFunctionBeginUser;
@@ -22,7 +32,7 @@ public:
     if (store_u_) {
       const PetscScalar *a;
       PetscCall(VecGetArrayRead(z, &a));
-      u_.insert(u_.end(), a, a + xm_); // the u half of this rank's block
+      for (PetscInt k : local_) u_.push_back(a[k]); // the u half of this rank's block
       PetscCall(VecRestoreArrayRead(z, &a));
     }
     PetscFunctionReturn(0);
@@ -36,8 +46,9 @@ public:
   std::vector<PetscReal> t_, energy_, u_;
 
 private:
-  PetscInt xm_;
   bool store_u_;
+  std::vector<PetscInt> local_; // owned positions of the stored sites
+  PetscInt col0_ = 0, ncols_ = 0;
 };
 
 } // namespace
@@ -49,6 +60,7 @@ PetscErrorCode SimulateStudy(MPI_Comm comm)
   SimulationOptions so;
   LinearModesOptions mo;
   PetscBool store_u = PETSC_TRUE;
+  PetscInt stride = 1;
   std::string path;
   OutputFile out;
   Lattice lat;
@@ -65,6 +77,7 @@ PetscErrorCode SimulateStudy(MPI_Comm comm)
   PetscCall(SimulationOptionsFromOptions(comm, &so));
   PetscOptionsBegin(comm, "sim_", "Simulate study output", NULL);
   PetscCall(PetscOptionsBool("-store_u", "Store the sub-sampled displacement u(t) (/simulate/u)", NULL, store_u, &store_u, NULL));
+  PetscCall(PetscOptionsInt("-store_u_stride", "Store u at every this many sites (0-based index divisible by it; long lattices)", NULL, stride, &stride, NULL));
   PetscOptionsEnd();
   const bool need_modes = fo.profile == ForceProfile::Mode || fo.profile == ForceProfile::Exponential || (fo.profile != ForceProfile::None && fo.amplitude < 0);
   if (need_modes) PetscCall(LinearModesOptionsFromOptions(comm, &mo));
@@ -76,7 +89,8 @@ PetscErrorCode SimulateStudy(MPI_Comm comm)
   PetscCall(PetscLogStagePop());
   PetscInt rescalings = 0;
 
-  Samples sink(lat, store_u);
+  PetscCheck(stride >= 1, comm, PETSC_ERR_USER, "-sim_store_u_stride must be >= 1, got %" PetscInt_FMT, stride);
+  Samples sink(lat, store_u, stride);
   PetscCall(PetscLogStagePush(Log().solve));
   PetscCall(PetscTime(&t_solve0));
   PetscCall(SimulateForced(lat, &burst, so, &sink, &r, &rescalings));
@@ -99,7 +113,10 @@ PetscErrorCode SimulateStudy(MPI_Comm comm)
   const char *g = "/simulate";
   PetscCall(WriteArray(v, g, "t", sink.t_));
   PetscCall(WriteArray(v, g, "energy", sink.energy_));
-  if (store_u && !sink.t_.empty()) PetscCall(WriteColumnBlock(v, g, "u", (PetscInt)sink.t_.size(), lat.N(), lat.OwnedStart(), lat.OwnedCount(), sink.u_));
+  if (store_u && !sink.t_.empty()) {
+    PetscCall(WriteColumnBlock(v, g, "u", (PetscInt)sink.t_.size(), sink.Cols(), sink.Col0(), sink.LocalCols(), sink.u_));
+    PetscCall(WriteAttr(v, g, "u_stride", stride));
+  }
   PetscCall(WriteVec(v, g, "rms", r.rms));
   PetscCall(WriteAttr(v, g, "mcr", r.mcr));
   PetscCall(WriteAttr(v, g, "t_off", r.t_off));
