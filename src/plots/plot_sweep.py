@@ -42,7 +42,7 @@ if fep is not None:
         ax[0].plot(grp["energy"][:], grp["omega"][:], "-", lw=1.4, label=name)
 ax[0].axvline(12, color="k", ls="--", lw=0.8)
 ax[0].set(xscale="log", xlabel="E*", ylabel=r"$\omega_{ext}$ (rad/s)", title="MCR of the forced response (white: kcorr = 0.7; dotted: bands)",
-          ylim=(w.min(), w.max()))
+          ylim=(w.min(), w.max()), xlim=(E.min(), E.max()))
 if fep is not None or missed.any():
     ax[0].legend(fontsize=7, loc="upper left")
 pk = ax[1].pcolormesh(E, w, kc.T, shading="nearest", cmap="magma", vmin=0, vmax=1)
