@@ -48,6 +48,8 @@ if fep is not None or missed.any():
 pk = ax[1].pcolormesh(E, w, kc.T, shading="nearest", cmap="magma", vmin=0, vmax=1)
 fig.colorbar(pk, ax=ax[1], label="kcorr (0-1 test, max over sites)")
 ax[1].set(xscale="log", xlabel="E*", ylabel=r"$\omega_{ext}$ (rad/s)", title="0-1 test for chaos")
+if not s.attrs.get("kcorr_computed", 0):
+    ax[1].text(0.5, 0.5, "not computed (run with -sweep_kcorr)", transform=ax[1].transAxes, ha="center")
 fig.tight_layout()
 fig.savefig(out, dpi=120)
 print("wrote", out)
