@@ -101,6 +101,29 @@ TEST_CASE("Floquet multipliers in the linear limit, symplectic pairs, det M = 1,
 }
 
 
+namespace {
+// Two stiff dimers joined by a weak soft bond: layout right, Nc = 2, gamma = 0.9.
+struct CoupledDimers {
+  Lattice lat;
+  LinearModes modes;
+  PeriodicFlow flow;
+  Shooting shoot;
+  PetscErrorCode Setup()
+  {
+    LatticeParams p;
+    PetscFunctionBeginUser;
+    p.layout = Layout::Right;
+    p.cells = 2;
+    p.gamma = 0.9;
+    PetscCall(lat.Setup(PETSC_COMM_WORLD, p));
+    PetscCall(modes.Compute(lat, LinearModesOptions()));
+    PetscCall(flow.Setup(lat, FlowOptions()));
+    PetscCall(shoot.Setup(flow, ShootingOptions()));
+    PetscFunctionReturn(0);
+  }
+};
+} // namespace
+
 // A known unstable orbit from theory. Layout `right` with Nc = 2 and gamma =
 // 0.9 is two stiff dimers (k1 = 1.9, cubic) joined by a weak soft bond (k2 =
 // 0.1): two weakly coupled identical hardening oscillators, mirror-symmetric.
@@ -114,21 +137,15 @@ TEST_CASE("Floquet multipliers in the linear limit, symplectic pairs, det M = 1,
 // mu = exp(pi sqrt(s^2 - (s - 2 kappa)^2) / Omega^2), s = Omega^2 - lambda_hi.
 TEST_CASE("Floquet flags the symmetry-breaking instability of two coupled dimers, as averaging predicts", "[floquet]")
 {
-  LatticeParams p;
-  p.layout = Layout::Right;
-  p.cells = 2;
-  p.gamma = 0.9;
-  Lattice lat;
-  PCHK(lat.Setup(PETSC_COMM_WORLD, p));
-  LinearModes modes;
-  PCHK(modes.Compute(lat, LinearModesOptions()));
+  CoupledDimers d;
+  PCHK(d.Setup());
+  Lattice &lat = d.lat;
+  LinearModes &modes = d.modes;
+  PeriodicFlow &flow = d.flow;
+  Shooting &shoot = d.shoot;
   const auto &w = modes.Omega();
   const PetscReal lam_lo = w[2] * w[2], lam_hi = w[3] * w[3], kappa = (lam_hi - lam_lo) / 2;
   REQUIRE(std::abs(kappa - 0.05) < 1e-12);
-  PeriodicFlow flow;
-  PCHK(flow.Setup(lat, FlowOptions()));
-  Shooting shoot;
-  PCHK(shoot.Setup(flow, ShootingOptions()));
   ContinuationOptions co;
   co.verbose = PETSC_FALSE;
   co.max_change = 0.05; // resolve the onset
@@ -176,19 +193,13 @@ TEST_CASE("Floquet flags the symmetry-breaking instability of two coupled dimers
 // multiplier of a known unstable orbit (the coupled dimers past their pitchfork).
 TEST_CASE("matrix-free monodromy action and leading multiplier equal the dense ones", "[floquet][mf]")
 {
-  LatticeParams p;
-  p.layout = Layout::Right;
-  p.cells = 2;
-  p.gamma = 0.9;
-  Lattice lat;
-  PCHK(lat.Setup(PETSC_COMM_WORLD, p));
-  LinearModes modes;
-  PCHK(modes.Compute(lat, LinearModesOptions()));
+  CoupledDimers d;
+  PCHK(d.Setup());
+  Lattice &lat = d.lat;
+  LinearModes &modes = d.modes;
+  PeriodicFlow &flow = d.flow;
+  Shooting &shoot = d.shoot;
   const auto &w = modes.Omega();
-  PeriodicFlow flow;
-  PCHK(flow.Setup(lat, FlowOptions()));
-  Shooting shoot;
-  PCHK(shoot.Setup(flow, ShootingOptions()));
   ContinuationOptions co;
   co.verbose = PETSC_FALSE;
   co.max_change = 0.05;
