@@ -127,15 +127,18 @@ PetscErrorCode WriteColumnBlock(PetscViewer v, const char *group, const char *na
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(Log().output, 0, 0, 0, 0));
   PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)v), &size));
-  PetscCheck(rows > 0 && ncols > 0, PetscObjectComm((PetscObject)v), PETSC_ERR_ARG_OUTOFRANGE, "empty dataset %s/%s", group, name);
+  PetscCheck(rows >= 0 && ncols > 0, PetscObjectComm((PetscObject)v), PETSC_ERR_ARG_OUTOFRANGE, "empty dataset %s/%s", group, name);
+  const int rank_nd = rows > 0 ? 2 : 1; // rows = 0: a 1-D dataset of ncols values
+  const PetscInt r = rows > 0 ? rows : 1;
   PetscCall(PetscViewerHDF5WriteGroup(v, group));
   PetscCall(PetscViewerHDF5GetFileId(v, &file));
-  const hsize_t dims[2] = {(hsize_t)rows, (hsize_t)ncols}, start[2] = {0, (hsize_t)col0}, count[2] = {(hsize_t)rows, (hsize_t)nloc};
+  const hsize_t dims2[2] = {(hsize_t)r, (hsize_t)ncols}, start2[2] = {0, (hsize_t)col0}, count2[2] = {(hsize_t)r, (hsize_t)nloc};
+  const hsize_t *dims = rank_nd == 2 ? dims2 : dims2 + 1, *start = rank_nd == 2 ? start2 : start2 + 1, *count = rank_nd == 2 ? count2 : count2 + 1;
   H5CHK(grp = H5Gopen2(file, group, H5P_DEFAULT));
-  H5CHK(space = H5Screate_simple(2, dims, NULL));
+  H5CHK(space = H5Screate_simple(rank_nd, dims, NULL));
   H5CHK(dset = H5Dcreate2(grp, name, H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
-  H5CHK(mem = H5Screate_simple(2, count, NULL));
-  if (rows * nloc > 0) H5CHK(H5Sselect_hyperslab(space, H5S_SELECT_SET, start, NULL, count, NULL));
+  H5CHK(mem = H5Screate_simple(rank_nd, count, NULL));
+  if (r * nloc > 0) H5CHK(H5Sselect_hyperslab(space, H5S_SELECT_SET, start, NULL, count, NULL));
   else {
     H5CHK(H5Sselect_none(space));
     H5CHK(H5Sselect_none(mem));
@@ -212,6 +215,20 @@ PetscErrorCode WriteIntArray(PetscViewer v, const char *group, const char *name,
   H5CHK(H5Dclose(dset));
   H5CHK(H5Sclose(space));
   H5CHK(H5Gclose(grp));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode WriteDistributed(PetscViewer v, const char *group, const char *name, Vec x)
+{
+  PetscInt N, lo, hi;
+  const PetscScalar *a;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetSize(x, &N));
+  PetscCall(VecGetOwnershipRange(x, &lo, &hi));
+  PetscCall(VecGetArrayRead(x, &a));
+  std::vector<PetscReal> local(a, a + (hi - lo));
+  PetscCall(VecRestoreArrayRead(x, &a));
+  PetscCall(WriteColumnBlock(v, group, name, 0, N, lo, hi - lo, local));
   PetscFunctionReturn(0);
 }
 

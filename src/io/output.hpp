@@ -40,6 +40,10 @@ PetscErrorCode WriteColumnBlock(PetscViewer v, const char *group, const char *na
 PetscErrorCode WriteArrayND(PetscViewer v, const char *group, const char *name, const std::vector<PetscReal> &data, const std::vector<PetscInt> &dims);
 // An integer dataset (bs = 1: 1-D; else n/bs x bs) whose values are given on rank 0.
 PetscErrorCode WriteIntArray(PetscViewer v, const char *group, const char *name, const std::vector<PetscInt> &data, PetscInt bs = 1);
+// A distributed 1-D vector as a contiguous float64 dataset (N), each rank
+// writing its block collectively with raw HDF5 (VecView's chunked parallel
+// write needed GBs per rank at N = 10^6).
+PetscErrorCode WriteDistributed(PetscViewer v, const char *group, const char *name, Vec x);
 // A distributed vector (its object name is set to name).
 PetscErrorCode WriteVec(PetscViewer v, const char *group, const char *name, Vec x);
 PetscErrorCode WriteAttr(PetscViewer v, const char *path, const char *name, PetscReal value);

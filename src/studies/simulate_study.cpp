@@ -117,7 +117,7 @@ PetscErrorCode SimulateStudy(MPI_Comm comm)
     PetscCall(WriteColumnBlock(v, g, "u", (PetscInt)sink.t_.size(), sink.Cols(), sink.Col0(), sink.LocalCols(), sink.u_));
     PetscCall(WriteAttr(v, g, "u_stride", stride));
   }
-  PetscCall(WriteVec(v, g, "rms", r.rms));
+  PetscCall(WriteDistributed(v, g, "rms", r.rms));
   PetscCall(WriteAttr(v, g, "mcr", r.mcr));
   PetscCall(WriteAttr(v, g, "t_off", r.t_off));
   PetscCall(WriteAttr(v, g, "energy_final", r.energy_final));
