@@ -20,7 +20,7 @@ struct ToneBurstOptions {
   PetscReal energy = 1.0;      // E*
   PetscReal amplitude = -1;    // S; < 0 means "use the amplitude rule"
   PetscReal safety = 2.0;      // amplitude rule: linear burst energy = safety * E*
-  PetscInt retries = 8;        // amplitude rule: doublings of S tried when E* is missed
+  PetscInt retries = 8;        // amplitude rule: repeats with a larger S when E* is missed
   PetscReal tau_periods = 25, t0_taus = 5;
   PetscInt site = -1;          // 0-based forced site for profile site (default m+1)
   PetscInt mode = -1;          // linear mode index for profile mode

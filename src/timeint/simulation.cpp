@@ -28,7 +28,7 @@ struct Run {
   const ToneBurst *forcing;
   Rhs rhs;
   SampleSink *sink;
-  bool event_mode = false, interpolate = true, stop_at_cutoff = false;
+  bool event_mode = false, interpolate = true;
   PetscReal burst_end = PETSC_MAX_REAL; // abort_if_missed: stop here if E* was missed
   PetscReal estar = 0, t_final = 0, sample_dt = 0, window_default = 0, progress = 0;
   PetscLogDouble wall0 = 0, wall_last = 0;
@@ -200,7 +200,6 @@ PetscErrorCode PostStep(TS ts)
   if (run->rhs.Forcing()) run->r->energy_peak = std::max(run->r->energy_peak, e.Total());
   if (!run->event_mode && run->rhs.Forcing() && e.Total() >= run->estar) {
     run->CutOff(t);
-    if (run->stop_at_cutoff) PetscCall(TSSetConvergedReason(ts, TS_CONVERGED_USER));
   }
   if (run->rhs.Forcing() && t >= run->burst_end) { // E* missed: the caller retries with a larger S
     run->r->aborted = true;
@@ -286,7 +285,6 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
   run.t_final = o.t_final;
   run.sample_dt = o.sample_dt;
   run.progress = o.progress;
-  run.stop_at_cutoff = o.stop_at_cutoff;
   // E* missed by the end of the burst (t0 + 3 tau), or by t_final when the
   // burst outlasts the run but its peak t0 lies inside it (low omega_ext); a
   // run that ends before the peak is too short to judge S and is not repeated.
@@ -348,7 +346,7 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
     // registered after the step size is final (guide, pitfall a). Types that
     // cannot roll back a step (euler, ssp, ...) check after every step instead.
     PetscInt dir = 1;
-    PetscBool term = o.stop_at_cutoff ? PETSC_TRUE : PETSC_FALSE;
+    PetscBool term = PETSC_FALSE;
     PetscReal vtol = 1e-10;
     PetscCall(TSSetEventHandler(ts, 1, &dir, &term, CutOffIndicator, CutOffEvent, &run));
     PetscCall(TSSetEventTolerances(ts, PETSC_DECIDE, &vtol));
@@ -387,7 +385,7 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
     PetscCall(TSGetTime(ts, &t));
     PetscCheck(reason >= 0, comm, PETSC_ERR_NOT_CONVERGED, "time integration failed at t = %g: %s (see -sim_ts_* options)", (double)t,
                TSConvergedReasons[reason]);
-    PetscCheck(t >= o.t_final * (1 - 1e-10) || (o.stop_at_cutoff && r->reached) || r->aborted, comm, PETSC_ERR_NOT_CONVERGED, "time integration stopped at t = %g before -sim_t_final %g", (double)t,
+    PetscCheck(t >= o.t_final * (1 - 1e-10) || r->aborted, comm, PETSC_ERR_NOT_CONVERGED, "time integration stopped at t = %g before -sim_t_final %g", (double)t,
                (double)o.t_final);
   }
   PetscCall(TSGetStepNumber(ts, &r->steps));
