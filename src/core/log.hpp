@@ -6,7 +6,7 @@
 namespace nltopo {
 
 struct LogEvents {
-  PetscLogEvent rhs_linear, rhs_cubic, rhs_forcing, energy, jacobian, eigen, bloch, output, diagnostics, variational, floquet;
+  PetscLogEvent rhs_linear, rhs_cubic, rhs_forcing, energy, jacobian, eigen, bloch, output, diagnostics, variational, floquet, mf_pc;
   PetscLogStage setup, solve, analysis, write;
 };
 

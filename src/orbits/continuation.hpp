@@ -26,7 +26,7 @@ PetscErrorCode ContinuationOptionsFromOptions(MPI_Comm comm, ContinuationOptions
 
 struct Branch {
   std::vector<PetscReal> energy, omega, period, mcr, shape_corr, beta;
-  std::vector<PetscInt> newton_its;
+  std::vector<PetscInt> newton_its, krylov_its; // per point (krylov: the mf route's GMRES iterations, 0 for dense LU)
   std::vector<PetscReal> z0;  // rank 0: npts x 2N rows [u_1..u_N, v_1..v_N]
   std::vector<PetscInt> interactions; // point indices flagged as modal interactions
   std::string stop_reason;

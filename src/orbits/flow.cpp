@@ -51,12 +51,11 @@ PetscErrorCode PeriodicFlow::Setup(const Lattice &lat, const FlowOptions &o)
   delete rhs_;
   rhs_ = new Rhs(lat, nullptr);
   PetscCall(lat.CreateStateMatrix(J_.out()));
-  PetscCall(MatCreateDense(lat.Comm(), nl, PETSC_DECIDE, n, n + 1, NULL, Jp_mono_.out()));
   PetscCall(MatCreateDense(lat.Comm(), nl, PETSC_DECIDE, n, 2, NULL, Jp_tlm_.out()));
   PetscCall(MatCreateDense(lat.Comm(), nl, PETSC_DECIDE, n, 2, NULL, S_tlm_.out()));
   PetscCall(CreateTS(ts_.out(), NULL));
-  PetscCall(CreateTS(ts_mono_.out(), Jp_mono_));
   PetscCall(CreateTS(ts_tlm_.out(), Jp_tlm_));
+  // the dense 2N x (2N + 1) TSForward set-up only when the dense monodromy is asked for (O(N^2) memory)
   PetscFunctionReturn(0);
 }
 
@@ -195,6 +194,11 @@ PetscErrorCode PeriodicFlow::IntegrateWithMonodromy(Vec z0, PetscReal T, PetscRe
     }
     PetscCall(var_dense_->Integrate(z0, T, beta, NULL, zT, S, NULL, NULL));
     PetscFunctionReturn(0);
+  }
+  if (!ts_mono_) {
+    const PetscInt n = 2 * lat_->N();
+    PetscCall(MatCreateDense(lat_->Comm(), 2 * lat_->OwnedCount(), PETSC_DECIDE, n, n + 1, NULL, Jp_mono_.out()));
+    PetscCall(CreateTS(ts_mono_.out(), Jp_mono_));
   }
   PetscCall(MatZeroEntries(S));
   PetscCall(MatShift(S, 1.0)); // [I | 0]: initial-condition columns, then the beta column

@@ -5,18 +5,28 @@
 namespace nltopo {
 
 static const char *const kJacobianNames[] = {"dense", "mf"};
+static const char *const kMfPcNames[] = {"none", "linear"};
 
 PetscErrorCode ShootingOptionsFromOptions(MPI_Comm comm, ShootingOptions *o)
 {
-  PetscInt j = static_cast<PetscInt>(o->jacobian);
+  PetscInt j = static_cast<PetscInt>(o->jacobian), pc = static_cast<PetscInt>(o->mf_pc);
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "nnm_", "Shooting Newton (SNES options: -nnm_snes_*, -nnm_ksp_*, -nnm_pc_*)", NULL);
-  PetscCall(PetscOptionsInt("-start_dense_max", "Largest 2N for which the first orbit of a branch uses the dense SVD start solver (-nnm_start_*)", NULL,
-                            o->start_dense_max, &o->start_dense_max, NULL));
+  PetscBool start_set;
   PetscCall(PetscOptionsEList("-jacobian", "Shooting Jacobian: dense (monodromy by forward sensitivities) or mf (one tangent-linear integration per product); -nnm_snes_mf for finite differences",
                               NULL, kJacobianNames, 2, kJacobianNames[j], &j, NULL));
+  PetscCall(PetscOptionsInt("-start_dense_max",
+                            "Largest 2N for which the first orbit of a branch uses the dense SVD start solver (-nnm_start_*); default 4000 for the "
+                            "dense Jacobian, 0 for mf (its preconditioner already treats the edge-mode direction exactly)",
+                            NULL, o->start_dense_max, &o->start_dense_max, &start_set));
+  if (!start_set && j == static_cast<PetscInt>(ShootingJacobian::MatrixFree)) o->start_dense_max = 0;
+  PetscCall(PetscOptionsEList("-mf_pc",
+                              "Preconditioner of the mf shooting Jacobian: linear (exact inverse of M_lin - I of the linear lattice, O(N) per "
+                              "application) or none (plain GMRES)",
+                              NULL, kMfPcNames, 2, kMfPcNames[pc], &pc, NULL));
   PetscOptionsEnd();
   o->jacobian = static_cast<ShootingJacobian>(j);
+  o->mf_pc = static_cast<MatrixFreePC>(pc);
   PetscFunctionReturn(0);
 }
 
@@ -35,6 +45,14 @@ PetscErrorCode ShootJacobian(SNES snes, Vec X, Mat A, Mat P, void *ctx)
     PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
   }
+  PetscFunctionReturn(0);
+}
+PetscErrorCode ShootPCApply(PC pc, Vec r, Vec x)
+{
+  void *s;
+  PetscFunctionBeginUser;
+  PetscCall(PCShellGetContext(pc, &s));
+  PetscCall(static_cast<Shooting *>(s)->PCApply(r, x));
   PetscFunctionReturn(0);
 }
 PetscErrorCode ShootShellMult(Mat A, Vec x, Vec y)
@@ -90,8 +108,16 @@ PetscErrorCode Shooting::Setup(PeriodicFlow &flow, const ShootingOptions &o)
     PetscCall(MatShellSetOperation(Jshell_, MATOP_MULT, (void (*)(void))ShootShellMult));
     PetscCall(SNESSetJacobian(snes_, Jshell_, Jshell_, ShootJacobian, this));
     PetscCall(KSPSetType(ksp, KSPGMRES));
-    PetscCall(PCSetType(pc, PCNONE));
+    if (o.mf_pc == MatrixFreePC::Linear) {
+      PetscCall(lin_pc_.Setup(*lat_));
+      PetscCall(PCSetType(pc, PCSHELL));
+      PetscCall(PCShellSetContext(pc, this));
+      PetscCall(PCShellSetApply(pc, ShootPCApply));
+      PetscCall(PCShellSetName(pc, "exact inverse of M_lin - I (linear lattice) on the state rows, identity on the border"));
+      PetscCall(KSPSetPCSide(ksp, PC_RIGHT)); // GMRES minimises the true residual
+    } else PetscCall(PCSetType(pc, PCNONE));
     PetscCall(KSPSetTolerances(ksp, 1e-10, 1e-14, PETSC_DEFAULT, 400));
+    PetscCall(KSPGMRESSetRestart(ksp, 100)); // no restarts within the iteration counts the preconditioner gives
   }
   PetscCall(SNESSetTolerances(snes_, 1e-12, 1e-10, 1e-14, 12, PETSC_DEFAULT));
   PetscCall(SNESSetFromOptions(snes_));
@@ -263,6 +289,7 @@ PetscErrorCode Shooting::Jacobian(Vec X, Mat J)
     PetscCall(VecCopy(z_, zlin_));
     Tlin_ = T;
     blin_ = beta;
+    if (opt_.mf_pc == MatrixFreePC::Linear) PetscCall(lin_pc_.SetPeriod(T));
     PetscCall(flow_->Integrate(z_, T, beta, zT_));
     PetscCall(flow_->EvalRhs(T, zT_, fT_));
     PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
@@ -359,6 +386,27 @@ PetscErrorCode Shooting::ShellMult(Vec x, Vec y)
   PetscFunctionReturn(0);
 }
 
+// State rows: (M_lin - I)^{-1}; the phase and constraint rows: identity.
+PetscErrorCode Shooting::PCApply(Vec r, Vec x)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(Log().mf_pc, 0, 0, 0, 0));
+  PetscCall(lin_pc_.Apply(r, x));
+  if (rank_ == size_ - 1) {
+    const PetscInt m = 2 * lat_->OwnedCount();
+    const PetscScalar *ra;
+    PetscScalar *xa;
+    PetscCall(VecGetArrayRead(r, &ra));
+    PetscCall(VecGetArray(x, &xa));
+    xa[m] = ra[m];
+    xa[m + 1] = ra[m + 1];
+    PetscCall(VecRestoreArray(x, &xa));
+    PetscCall(VecRestoreArrayRead(r, &ra));
+  }
+  PetscCall(PetscLogEventEnd(Log().mf_pc, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Shooting::Solve(Vec X, bool *converged, PetscInt *its)
 {
   SNESConvergedReason reason;
@@ -370,6 +418,11 @@ PetscErrorCode Shooting::Solve(Vec X, bool *converged, PetscInt *its)
   fresh_ = njac_ > j0 && snes == snes_.get() && opt_.jacobian == ShootingJacobian::Dense && !snes_mf_;
   PetscCall(SNESGetConvergedReason(snes, &reason));
   PetscCall(SNESGetIterationNumber(snes, its));
+  {
+    PetscInt lits;
+    PetscCall(SNESGetLinearSolveIterations(snes, &lits));
+    nkrylov_ += lits;
+  }
   *converged = reason > 0;
   if (!*converged) { // e.g. a zero pivot at a bifurcation: start the next factorisation afresh
     KSP ksp;

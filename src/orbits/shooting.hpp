@@ -13,18 +13,23 @@
 // Jacobian (-nnm_jacobian): "dense" assembles [[M - I, f(z(T)), dz/dbeta],
 // [f(z_ref)^T, 0, 0], [c_X^T]] from forward sensitivities (small N); "mf" is a
 // MATSHELL whose product integrates one tangent-linear direction (any N;
-// Krylov without preconditioner); -nnm_snes_mf gives finite differences.
+// GMRES, preconditioned by -nnm_mf_pc: "linear" applies the exact inverse of
+// M_lin - I of the linear lattice to the state rows, orbits/linear_monodromy_pc.hpp);
+// -nnm_snes_mf gives finite differences.
 #include "orbits/flow.hpp"
+#include "orbits/linear_monodromy_pc.hpp"
 #include <string>
 #include <vector>
 
 namespace nltopo {
 
 enum class ShootingJacobian { Dense = 0, MatrixFree = 1 };
+enum class MatrixFreePC { None = 0, Linear = 1 };
 
 struct ShootingOptions {
   ShootingJacobian jacobian = ShootingJacobian::Dense;
   PetscInt start_dense_max = 4000; // 2N up to which the first orbit uses the dense SVD start solver
+  MatrixFreePC mf_pc = MatrixFreePC::Linear;
 };
 PetscErrorCode ShootingOptionsFromOptions(MPI_Comm comm, ShootingOptions *o);
 
@@ -51,11 +56,14 @@ public:
   PetscInt JacobianEvaluations() const { return njac_; }
   PetscInt ResidualEvaluations() const { return nres_; }
   PetscInt TangentProducts() const { return nlin_; } // matrix-free Jacobian products
+  PetscInt KrylovIterations() const { return nkrylov_; } // linear iterations of all solves so far
+  Mat Operator() const { return Jshell_ ? Jshell_.get() : Jdense_.get(); } // the main solver's Jacobian
 
   // SNES callbacks.
   PetscErrorCode Residual(Vec X, Vec F);
   PetscErrorCode Jacobian(Vec X, Mat J);
   PetscErrorCode ShellMult(Vec x, Vec y);
+  PetscErrorCode PCApply(Vec r, Vec x);
 
 private:
 
@@ -78,7 +86,8 @@ private:
   OwnedVec zlin_, fT_;
   PetscReal Tlin_ = 0, blin_ = 0;
   std::vector<PetscReal> fr_, cr_; // gathered phase and constraint rows
-  PetscInt njac_ = 0, nres_ = 0, nlin_ = 0;
+  PetscInt njac_ = 0, nres_ = 0, nlin_ = 0, nkrylov_ = 0;
+  LinearMonodromyPC lin_pc_;
 };
 
 } // namespace nltopo

@@ -2,6 +2,7 @@
 #include "core/log.hpp"
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <numeric>
 #include <slepceps.h>
 
@@ -16,14 +17,53 @@ static PetscErrorCode ShellMult(Mat M, Vec x, Vec y)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MonodromyShell::Create(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta)
+static const char *const kWhichNames[] = {"largest", "critical"};
+
+PetscErrorCode FloquetMfOptionsFromOptions(MPI_Comm comm, FloquetMfOptions *o)
+{
+  PetscInt w = static_cast<PetscInt>(o->which);
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, "floquet_mf_", "Matrix-free Floquet multipliers (eigensolver options: -floquet_mf_eps_*)", NULL);
+  PetscCall(PetscOptionsInt("-nev", "Leading multipliers wanted per orbit", NULL, o->nev, &o->nev, NULL));
+  PetscCall(PetscOptionsEList("-which",
+                              "largest: largest modulus (Krylov-Schur on M); critical: nearest the critical points +-1 or off the unit circle "
+                              "(Krylov-Schur on (M + M^-1)/2)",
+                              NULL, kWhichNames, 2, kWhichNames[w], &w, NULL));
+  PetscCall(PetscOptionsReal("-circle_tol",
+                             "critical: b = (mu + 1/mu)/2 within this of [-1, 1] is on the unit circle (|mu| - 1 is resolved down to sqrt(2 circle_tol))",
+                             NULL, o->circle_tol, &o->circle_tol, NULL));
+  PetscOptionsEnd();
+  PetscCheck(o->circle_tol > 0, comm, PETSC_ERR_USER, "-floquet_mf_circle_tol must be positive, got %g", (double)o->circle_tol);
+  PetscCheck(o->nev >= 1, comm, PETSC_ERR_USER, "-floquet_mf_nev must be >= 1, got %" PetscInt_FMT, o->nev);
+  o->which = static_cast<FloquetMfWhich>(w);
+  PetscFunctionReturn(0);
+}
+
+// x -> R x = (u, -v): negate the owned v half of a state vector.
+static PetscErrorCode FlipMomentum(const Lattice &lat, Vec x)
+{
+  PetscScalar *a;
+  const PetscInt m = lat.OwnedCount();
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArray(x, &a));
+  for (PetscInt k = m; k < 2 * m; k++) a[k] = -a[k];
+  PetscCall(VecRestoreArray(x, &a));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MonodromyShell::Create(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, bool symmetrized)
 {
   PetscInt n, nloc;
   PetscFunctionBeginUser;
-  flow_ = &flow, z0_ = z0, T_ = T, beta_ = beta;
+  flow_ = &flow, z0_ = z0, T_ = T, beta_ = beta, symmetrized_ = symmetrized;
   PetscCall(VecGetSize(z0, &n));
   PetscCall(VecGetLocalSize(z0, &nloc));
   PetscCall(VecDuplicate(z0, zT_.out()));
+  if (symmetrized) {
+    for (OwnedVec *v : {&zr_, &xr_, &yr_}) PetscCall(VecDuplicate(z0, v->out()));
+    PetscCall(VecCopy(z0, zr_));
+    PetscCall(FlipMomentum(flow.Lat(), zr_));
+  }
   PetscCall(MatCreateShell(PetscObjectComm((PetscObject)z0), nloc, nloc, n, n, this, M_.out()));
   PetscCall(MatShellSetOperation(M_, MATOP_MULT, (void (*)(void))ShellMult));
   PetscFunctionReturn(0);
@@ -34,17 +74,27 @@ PetscErrorCode MonodromyShell::Mult(Vec x, Vec y)
   PetscFunctionBeginUser;
   PetscCall(flow_->IntegrateWithTangent(z0_, T_, beta_, x, 0.0, zT_, y));
   products_++;
+  if (symmetrized_) { // y = (M x + R M(R z0) R x) / 2; beta = 0 keeps the flow reversible
+    PetscCall(VecCopy(x, xr_));
+    PetscCall(FlipMomentum(flow_->Lat(), xr_));
+    PetscCall(flow_->IntegrateWithTangent(zr_, T_, 0.0, xr_, 0.0, zT_, yr_));
+    PetscCall(FlipMomentum(flow_->Lat(), yr_));
+    PetscCall(VecAXPBY(y, 0.5, 0.5, yr_));
+    products_++;
+  }
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, PetscInt nev, LeadingMultipliers *r)
+PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, const FloquetMfOptions &o, LeadingMultipliers *r)
 {
   MonodromyShell shell;
   OwnedEPS eps;
   PetscInt nconv;
+  const PetscInt nev = o.nev;
+  const bool critical = o.which == FloquetMfWhich::Critical;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(Log().floquet, 0, 0, 0, 0));
-  PetscCall(shell.Create(flow, z0, T, beta));
+  PetscCall(shell.Create(flow, z0, T, beta, critical));
   PetscCall(EPSCreate(PetscObjectComm((PetscObject)z0), eps.out()));
   PetscCall(EPSSetOptionsPrefix(eps, "floquet_mf_"));
   PetscCall(EPSSetOperators(eps, shell.Get(), NULL));
@@ -59,7 +109,23 @@ PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal
   PetscCheck(nconv >= nev, PetscObjectComm((PetscObject)z0), PETSC_ERR_NOT_CONVERGED,
              "matrix-free Floquet: %" PetscInt_FMT " of %" PetscInt_FMT " multipliers converged (-floquet_mf_eps_max_it, -floquet_mf_eps_ncv)", nconv, nev);
   r->re.resize(nev), r->im.resize(nev);
-  for (PetscInt i = 0; i < nev; i++) PetscCall(EPSGetEigenvalue(eps, i, &r->re[i], &r->im[i]));
+  r->max_modulus = 0;
+  for (PetscInt i = 0; i < nev; i++) {
+    PetscReal br, bi;
+    PetscCall(EPSGetEigenvalue(eps, i, &br, &bi));
+    std::complex<PetscReal> mu(br, bi);
+    if (critical) {
+      if (std::abs(bi) <= o.circle_tol && std::abs(br) <= 1 + o.circle_tol) { // on the unit circle: mu = b + i sqrt(1 - b^2)
+        const PetscReal c = std::max<PetscReal>(-1, std::min<PetscReal>(1, br));
+        mu = std::complex<PetscReal>(c, std::sqrt(1 - c * c));
+      } else { // mu = b + sqrt(b^2 - 1), the member with |mu| > 1
+        const std::complex<PetscReal> b(br, bi), s = std::sqrt(b * b - 1.0);
+        mu = std::abs(b + s) >= std::abs(b - s) ? b + s : b - s;
+      }
+    }
+    r->re[i] = mu.real(), r->im[i] = mu.imag();
+    r->max_modulus = std::max(r->max_modulus, std::abs(mu));
+  }
   r->products = shell.Products();
   PetscCall(PetscLogEventEnd(Log().floquet, 0, 0, 0, 0));
   PetscFunctionReturn(0);

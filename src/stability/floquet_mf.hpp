@@ -3,7 +3,19 @@
 // MATSHELL whose MatMult is the monodromy action M x = dz(T)/dz0 x, one
 // tangent-linear integration of the orbit per product (PeriodicFlow::
 // IntegrateWithTangent); the 2N x 2N monodromy is never formed. Options:
-// -floquet_mf_nev (leading multipliers wanted), -floquet_mf_eps_* (the solver).
+// -floquet_mf_nev (multipliers wanted), -floquet_mf_which, -floquet_mf_eps_*.
+//
+// -floquet_mf_which largest: the multipliers of largest modulus (Krylov-Schur
+// on M). Right for unstable orbits; on a stable orbit every multiplier has
+// modulus 1 (and 1 is a Jordan block), so "largest" does not separate them.
+// -floquet_mf_which critical (default): Krylov-Schur on B = (M + M^{-1}) / 2,
+// whose eigenvalue b = (mu + 1/mu) / 2 maps the unit circle onto [-1, 1] with
+// the critical points mu = +-1 at its ends, real unstable pairs outside it and
+// Krein-collision quartets off the real axis: the largest |b| are the
+// multipliers nearest +-1 or off the circle, the Jordan block at 1 becomes
+// semisimple, and mu = b + sqrt(b^2 - 1). M^{-1} costs one more tangent
+// integration by reversibility: with R(u, v) = (u, -v) the flow satisfies
+// R phi_t(R z) = phi_{-t}(z), so M(z0)^{-1} = R M(R z0) R on a periodic orbit.
 #include "orbits/flow.hpp"
 #include <vector>
 
@@ -13,7 +25,8 @@ namespace nltopo {
 // outlive its use; products() counts the integrations.
 class MonodromyShell {
 public:
-  PetscErrorCode Create(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta);
+  // symmetrized: the product is B x = (M x + R M(R z0) R x) / 2 (two integrations)
+  PetscErrorCode Create(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, bool symmetrized = false);
   Mat Get() const { return M_; }
   PetscInt Products() const { return products_; }
   PetscErrorCode Mult(Vec x, Vec y);
@@ -23,16 +36,30 @@ private:
   Vec z0_ = nullptr;
   PetscReal T_ = 0, beta_ = 0;
   PetscInt products_ = 0;
+  bool symmetrized_ = false;
   OwnedMat M_;
-  OwnedVec zT_;
+  OwnedVec zT_, zr_, xr_, yr_;
 };
+
+enum class FloquetMfWhich { Largest = 0, Critical = 1 };
+struct FloquetMfOptions {
+  PetscInt nev = 4;
+  FloquetMfWhich which = FloquetMfWhich::Critical;
+  // b within circle_tol of [-1, 1] counts as on the unit circle. Near b = +-1
+  // the map b -> mu is a square root (|mu| - 1 ~ sqrt(2 (|b| - 1))), so an
+  // eigenvalue error of 1e-10 would read as |mu| = 1 + 1.4e-5: the critical
+  // route resolves instabilities down to sqrt(2 circle_tol) ~ 4.5e-5, the
+  // dense route (all 2N multipliers) down to -floquet_tol.
+  PetscReal circle_tol = 1e-9;
+};
+PetscErrorCode FloquetMfOptionsFromOptions(MPI_Comm comm, FloquetMfOptions *o);
 
 struct LeadingMultipliers {
-  std::vector<PetscReal> re, im; // by decreasing modulus
-  PetscInt products = 0;         // monodromy actions used
+  std::vector<PetscReal> re, im; // the multipliers (|mu| >= 1 member of each pair for "critical")
+  PetscReal max_modulus = 0;
+  PetscInt products = 0; // monodromy actions used (two per product of B)
 };
 
-// The nev multipliers of largest modulus (EPS_LARGEST_MAGNITUDE, Krylov-Schur).
-PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, PetscInt nev, LeadingMultipliers *r);
+PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, const FloquetMfOptions &o, LeadingMultipliers *r);
 
 } // namespace nltopo

@@ -5,6 +5,7 @@
 #include "io/output.hpp"
 #include "orbits/continuation.hpp"
 #include "stability/floquet.hpp"
+#include "stability/floquet_mf.hpp"
 #include "studies/registry.hpp"
 #include <cmath>
 #include <cstdlib>
@@ -80,6 +81,34 @@ private:
   OwnedVec zT_;
 };
 
+// Long lattices: the -floquet_mf_nev leading multipliers of every orbit,
+// matrix-free (stability/floquet_mf.hpp); no Krein signatures or instability kind.
+class FloquetMfHook : public PointHook {
+public:
+  FloquetMfHook(PeriodicFlow &flow, const FloquetOptions &o, const FloquetMfOptions &mo) : flow_(flow), opt_(o), mopt_(mo) {}
+  PetscErrorCode Point(Vec z0, PetscReal T, PetscReal beta) override
+  {
+    LeadingMultipliers r;
+    PetscFunctionBeginUser;
+    PetscCall(FloquetLeading(flow_, z0, T, beta, mopt_, &r));
+    re.insert(re.end(), r.re.begin(), r.re.end());
+    im.insert(im.end(), r.im.begin(), r.im.end());
+    max_modulus.push_back(r.max_modulus);
+    stable.push_back(r.max_modulus <= 1 + opt_.tol);
+    products += r.products;
+    PetscFunctionReturn(0);
+  }
+  void Clear() { re.clear(), im.clear(), max_modulus.clear(), stable.clear(), products = 0; }
+  std::vector<PetscReal> re, im, max_modulus;
+  std::vector<PetscInt> stable;
+  PetscInt products = 0;
+
+private:
+  PeriodicFlow &flow_;
+  FloquetOptions opt_;
+  FloquetMfOptions mopt_;
+};
+
 } // namespace
 
 PetscErrorCode ContinuationStudy(MPI_Comm comm)
@@ -96,13 +125,18 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
   PetscCall(LogRegister());
   PetscCall(PetscLogStagePush(Log().setup));
   PetscCall(nnm.ReadOptions(comm));
-  PetscBool floquet = PETSC_FALSE;
+  PetscBool floquet = PETSC_FALSE, floquet_mf = PETSC_FALSE;
   FloquetOptions flo;
+  FloquetMfOptions fmo;
   PetscOptionsBegin(comm, NULL, "Floquet stability along the branches", NULL);
   PetscCall(PetscOptionsBool("-floquet", "Add Floquet multipliers, Krein signatures and stability to every orbit (-floquet_* options)", NULL, floquet,
                              &floquet, NULL));
+  PetscCall(PetscOptionsBool("-floquet_mf",
+                             "With -floquet: only the -floquet_mf_nev leading multipliers, matrix-free (long lattices; no Krein signatures)", NULL,
+                             floquet_mf, &floquet_mf, NULL));
   PetscOptionsEnd();
   if (floquet) PetscCall(FloquetOptionsFromOptions(comm, &flo));
+  if (floquet && floquet_mf) PetscCall(FloquetMfOptionsFromOptions(comm, &fmo));
   PetscOptionsBegin(comm, "cont_", "NNM branches", NULL);
   PetscCall(PetscOptionsStringArray("-branch", "Comma-separated branches: insulated, interface, acoustic_top, optical_bottom, optical_top, mode<k> or k",
                                     NULL, names, &nb, &set));
@@ -127,6 +161,8 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
   OwnedVec u;
   PetscCall(DMCreateGlobalVector(lat.SiteDM(), u.out()));
   FloquetHook hook(flow, flo);
+  FloquetMfHook mf_hook(flow, flo, fmo);
+  PointHook *point_hook = !floquet ? nullptr : floquet_mf ? static_cast<PointHook *>(&mf_hook) : &hook;
   for (PetscInt k = 0; k < nb; k++) {
     PetscReal omega = 0;
     std::string label;
@@ -135,9 +171,10 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
     PetscCall(BranchStart(lat, modes, names[k], u, &omega, &label));
     PetscCall(PetscTime(&b0));
     PetscCall(PetscLogStagePush(Log().solve));
-    const PetscInt j0 = shoot.JacobianEvaluations(), r0 = shoot.ResidualEvaluations(), p0 = shoot.TangentProducts();
+    const PetscInt j0 = shoot.JacobianEvaluations(), r0 = shoot.ResidualEvaluations(), p0 = shoot.TangentProducts(), k0 = shoot.KrylovIterations();
     hook.Clear();
-    PetscCall(ContinueBranch(shoot, u, 2 * PETSC_PI / omega, co, label.c_str(), &b, floquet ? &hook : nullptr));
+    mf_hook.Clear();
+    PetscCall(ContinueBranch(shoot, u, 2 * PETSC_PI / omega, co, label.c_str(), &b, point_hook));
     PetscCall(PetscLogStagePop());
     PetscCall(PetscTime(&b1));
     PetscCall(PetscLogStagePush(Log().write));
@@ -149,13 +186,25 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
     PetscCall(WriteArray(v, g.c_str(), "period", b.period));
     PetscCall(WriteArray(v, g.c_str(), "mcr", b.mcr));
     PetscCall(WriteArray(v, g.c_str(), "newton_its", its));
+    std::vector<PetscReal> kits(b.krylov_its.begin(), b.krylov_its.end());
+    PetscCall(WriteArray(v, g.c_str(), "krylov_its", kits));
     PetscCall(WriteArray(v, g.c_str(), "shape_corr", b.shape_corr));
     PetscCall(WriteArray(v, g.c_str(), "beta", b.beta));
     PetscCall(WriteArray(v, g.c_str(), "z0", b.z0, 2 * lat.N()));
     std::vector<PetscReal> inter(b.interactions.begin(), b.interactions.end());
     PetscCall(WriteArray(v, g.c_str(), "interactions", inter));
     PetscCall(WriteAttr(v, g.c_str(), "linear_omega", omega));
-    if (floquet) {
+    if (floquet && floquet_mf) {
+      PetscCall(WriteArray(v, g.c_str(), "multipliers_re", mf_hook.re, fmo.nev));
+      PetscCall(WriteArray(v, g.c_str(), "multipliers_im", mf_hook.im, fmo.nev));
+      PetscCall(WriteArray(v, g.c_str(), "max_modulus", mf_hook.max_modulus));
+      PetscCall(WriteIntArray(v, g.c_str(), "stable", mf_hook.stable));
+      PetscCall(WriteAttr(v, g.c_str(), "floquet_products", mf_hook.products));
+      PetscInt ns = 0;
+      for (PetscInt s : mf_hook.stable) ns += s;
+      PetscCall(PetscPrintf(comm, "  [%s] Floquet (matrix-free, %" PetscInt_FMT " leading): %" PetscInt_FMT " of %zu orbits stable (|mu| <= 1 + %g), %" PetscInt_FMT " monodromy products\n",
+                            label.c_str(), fmo.nev, ns, mf_hook.stable.size(), (double)flo.tol, mf_hook.products));
+    } else if (floquet) {
       const PetscInt n2 = 2 * lat.N();
       PetscCall(WriteArray(v, g.c_str(), "multipliers_re", hook.re, n2));
       PetscCall(WriteArray(v, g.c_str(), "multipliers_im", hook.im, n2));
@@ -173,6 +222,7 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
     PetscCall(WriteAttr(v, g.c_str(), "jacobian_evaluations", shoot.JacobianEvaluations() - j0));
     PetscCall(WriteAttr(v, g.c_str(), "residual_evaluations", shoot.ResidualEvaluations() - r0));
     PetscCall(WriteAttr(v, g.c_str(), "tangent_products", shoot.TangentProducts() - p0));
+    PetscCall(WriteAttr(v, g.c_str(), "krylov_iterations", shoot.KrylovIterations() - k0));
     PetscCall(WriteAttr(v, g.c_str(), "seconds", (PetscReal)(b1 - b0)));
     PetscCall(PetscLogStagePop());
     PetscCall(PetscPrintf(comm, "  [%s] %.2f s, %.3f s per point\n", label.c_str(), (double)(b1 - b0), (double)(b1 - b0) / b.energy.size()));

@@ -250,9 +250,68 @@ TEST_CASE("matrix-free monodromy action and leading multiplier equal the dense o
   }
   // Leading multiplier: real, > 1, equal to the dense one.
   LeadingMultipliers lead;
-  PCHK(FloquetLeading(flow, last.z, last.T, last.beta, 1, &lead));
+  FloquetMfOptions mo;
+  mo.nev = 1;
+  mo.which = FloquetMfWhich::Largest;
+  PCHK(FloquetLeading(flow, last.z, last.T, last.beta, mo, &lead));
   REQUIRE(dense.max_modulus > 1.05);
   INFO("matrix-free " << lead.re[0] << " + " << lead.im[0] << " i, dense max modulus " << dense.max_modulus << ", " << lead.products << " products");
   REQUIRE(std::abs(lead.im[0]) < 1e-8);
   REQUIRE(std::abs(lead.re[0] - dense.max_modulus) < 1e-8);
+
+  // The "critical" route ((M + M^-1)/2, M^-1 by reversibility) finds the same multiplier.
+  LeadingMultipliers crit;
+  mo.which = FloquetMfWhich::Critical;
+  PCHK(FloquetLeading(flow, last.z, last.T, last.beta, mo, &crit));
+  INFO("critical route: " << crit.re[0] << " + " << crit.im[0] << " i, " << crit.products << " products");
+  REQUIRE(std::abs(crit.max_modulus - dense.max_modulus) < 1e-7);
+}
+
+// On a stable orbit every multiplier lies on the unit circle, where "largest
+// modulus" cannot choose; the critical route must return multipliers of the
+// dense spectrum, on the circle, nearest +-1.
+TEST_CASE("matrix-free critical multipliers of a stable orbit equal dense ones", "[floquet][mf]")
+{
+  CoupledDimers d;
+  PCHK(d.Setup());
+  const auto &w = d.modes.Omega();
+  ContinuationOptions co;
+  co.verbose = PETSC_FALSE;
+  co.max_change = 0.05;
+  co.omega_max = std::sqrt(w[2] * w[2] + 0.5 * 0.05); // the lower optical NNM: stable at every amplitude
+  CaptureAll cap(d.flow);
+  struct Both : public PointHook {
+    CaptureAll &c;
+    OwnedVec z;
+    PetscReal T = 0, beta = 0;
+    explicit Both(CaptureAll &cc) : c(cc) {}
+    PetscErrorCode Point(Vec z0, PetscReal TT, PetscReal b) override
+    {
+      PetscFunctionBeginUser;
+      PetscCall(c.Point(z0, TT, b));
+      if (!z) PetscCall(VecDuplicate(z0, z.out()));
+      PetscCall(VecCopy(z0, z));
+      T = TT, beta = b;
+      PetscFunctionReturn(0);
+    }
+  } both(cap);
+  Branch b;
+  PCHK(ContinueBranch(d.shoot, d.modes.Mode(2), 2 * PETSC_PI / w[2], co, "lower", &b, &both));
+  const FloquetResult &dense = cap.res.back();
+  REQUIRE(dense.stable);
+  FloquetMfOptions mo;
+  mo.nev = 4;
+  LeadingMultipliers lead;
+  PCHK(FloquetLeading(d.flow, both.z, both.T, both.beta, mo, &lead));
+  REQUIRE(std::abs(lead.max_modulus - 1) < 1e-8);
+  // Compared through b = (mu + 1/mu)/2, which is well conditioned: mu itself is
+  // not near the Jordan block at 1 (a b error of 1e-10 moves mu by 1e-5 there,
+  // in the dense route as much as in this one).
+  auto bval = [](cplx mu) { return 0.5 * (mu + 1.0 / mu); };
+  for (size_t i = 0; i < lead.re.size(); i++) {
+    PetscReal best = 1e300;
+    for (size_t j = 0; j < dense.re.size(); j++) best = std::min(best, std::abs(bval(cplx(lead.re[i], lead.im[i])) - bval(cplx(dense.re[j], dense.im[j]))));
+    INFO("mf multiplier " << lead.re[i] << " + " << lead.im[i] << " i: nearest dense (mu + 1/mu)/2 at " << best);
+    REQUIRE(best < 1e-8);
+  }
 }

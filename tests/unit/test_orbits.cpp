@@ -3,6 +3,8 @@
 // tangent-linear action against the dense monodromy.
 #include "helpers.hpp"
 #include "orbits/flow.hpp"
+#include "orbits/linear_monodromy_pc.hpp"
+#include "orbits/shooting.hpp"
 #include <cmath>
 
 using namespace nltopo;
@@ -88,4 +90,83 @@ TEST_CASE("monodromy (variational TS and TSForward routes) equals central differ
   PCHK(VecNorm(Sdz, NORM_INFINITY, &e));
   PCHK(VecNorm(w, NORM_INFINITY, &nw));
   REQUIRE(e < 1e-10 * nw);
+}
+
+// The preconditioner of the matrix-free shooting is the exact inverse of
+// M_lin - I: applied to (M_lin - I) x, with M_lin from the integrated flow of
+// the linear lattice, it returns x.
+TEST_CASE("linear monodromy preconditioner inverts M_lin - I of the linear lattice", "[orbits][mf]")
+{
+  auto layout = GENERATE(Layout::Interface, Layout::Right);
+  LatticeParams p;
+  p.layout = layout;
+  p.cells = 5;
+  p.Gamma = 0; // the linear lattice
+  Lattice lat;
+  PCHK(lat.Setup(PETSC_COMM_WORLD, p));
+  PeriodicFlow flow;
+  FlowOptions fo;
+  fo.steps = 2000;
+  PCHK(flow.Setup(lat, fo));
+  LinearMonodromyPC pc;
+  PCHK(pc.Setup(lat));
+  const PetscReal T = 3.3; // 2 pi / T = 1.904, in the gap: M_lin - I is regular
+  PCHK(pc.SetPeriod(T));
+  OwnedVec z0, x, zT, w, y;
+  PCHK(lat.CreateStateVector(z0.out()));
+  for (OwnedVec *v : {&x, &zT, &w, &y}) PCHK(VecDuplicate(z0, v->out()));
+  PCHK(VecZeroEntries(z0));
+  SetState(lat, Pseudo(lat.N(), 21), Pseudo(lat.N(), 22), x);
+  PCHK(flow.IntegrateWithTangent(z0, T, 0.0, x, 0.0, zT, w)); // w = M_lin x
+  PCHK(VecAXPY(w, -1.0, x));                                   // (M_lin - I) x
+  PCHK(pc.Apply(w, y));
+  PetscReal e, nx;
+  PCHK(VecAXPY(y, -1.0, x));
+  PCHK(VecNorm(y, NORM_INFINITY, &e));
+  PCHK(VecNorm(x, NORM_INFINITY, &nx));
+  INFO("shifted solves: " << pc.Shifts() << ", |P^-1 (M_lin - I) x - x| / |x| = " << e / nx);
+  REQUIRE(e < 1e-8 * nx);
+}
+
+// The matrix-free shooting Jacobian (one tangent-linear integration per
+// product, bordered by the phase and constraint rows) equals the assembled
+// dense one times a vector, for each constraint the continuation uses.
+TEST_CASE("matrix-free shooting Jacobian action equals the dense Jacobian", "[orbits][mf]")
+{
+  LatticeParams p;
+  p.cells = 3; // N = 14
+  p.Gamma = 0.5;
+  Lattice lat;
+  PCHK(lat.Setup(PETSC_COMM_WORLD, p));
+  const PetscInt N = lat.N();
+  PeriodicFlow flow;
+  PCHK(flow.Setup(lat, FlowOptions()));
+  Shooting dense, mf;
+  ShootingOptions so;
+  PCHK(dense.Setup(flow, so));
+  so.jacobian = ShootingJacobian::MatrixFree;
+  PCHK(mf.Setup(flow, so));
+  OwnedVec z, X, t, x, yd, ym;
+  PCHK(lat.CreateStateVector(z.out()));
+  SetState(lat, Pseudo(N, 31), Pseudo(N, 32), z); // amplitude ~1: strongly nonlinear
+  PCHK(dense.CreateUnknowns(X.out()));
+  for (OwnedVec *v : {&t, &x, &yd, &ym}) PCHK(VecDuplicate(X, v->out()));
+  PCHK(dense.Pack(z, 3.4, 1e-3, X));
+  Scatter(Pseudo(2 * N + 2, 33), t);
+  Scatter(Pseudo(2 * N + 2, 34), x);
+  for (int c = 0; c < 2; c++) {
+    for (Shooting *s : {&dense, &mf}) {
+      if (c == 0) PCHK(s->SetEnergyConstraint(z, 2.0));
+      else PCHK(s->SetArclengthConstraint(z, t, X));
+      PCHK(s->Jacobian(X, s->Operator()));
+    }
+    PCHK(MatMult(dense.Operator(), x, yd));
+    PCHK(MatMult(mf.Operator(), x, ym));
+    PetscReal e, n;
+    PCHK(VecNorm(yd, NORM_INFINITY, &n));
+    PCHK(VecAXPY(ym, -1.0, yd));
+    PCHK(VecNorm(ym, NORM_INFINITY, &e));
+    INFO((c ? "arclength" : "energy") << " constraint: |J_mf x - J_dense x| / |J_dense x| = " << e / n);
+    REQUIRE(e < 1e-8 * n);
+  }
 }

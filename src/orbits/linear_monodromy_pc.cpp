@@ -1,0 +1,191 @@
+#include "orbits/linear_monodromy_pc.hpp"
+#include <cmath>
+
+namespace nltopo {
+
+PetscErrorCode LinearMonodromyPC::Setup(const Lattice &lat)
+{
+  MPI_Comm comm = lat.Comm();
+  PetscMPIInt size;
+  PetscFunctionBeginUser;
+  lat_ = &lat;
+  N_ = lat.N();
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  counts_.resize(size);
+  displs_.resize(size);
+  const PetscMPIInt mine = (PetscMPIInt)lat.OwnedCount(), start = (PetscMPIInt)lat.OwnedStart();
+  PetscCallMPI(MPI_Allgather(&mine, 1, MPI_INT, counts_.data(), 1, MPI_INT, comm));
+  PetscCallMPI(MPI_Allgather(&start, 1, MPI_INT, displs_.data(), 1, MPI_INT, comm));
+  // The chain's diagonals from the assembled K (rows i-1, i, i+1 only: model.md's nearest-neighbour bonds).
+  std::vector<PetscReal> d(mine), e(mine, 0.0);
+  for (PetscInt i = start; i < start + mine; i++) {
+    PetscInt nc;
+    const PetscInt *cols;
+    const PetscScalar *vals;
+    PetscCall(MatGetRow(lat.K(), i, &nc, &cols, &vals));
+    for (PetscInt k = 0; k < nc; k++) {
+      PetscCheck(std::abs(cols[k] - i) <= 1, comm, PETSC_ERR_ARG_WRONG, "-nnm_mf_pc linear needs a tridiagonal K (nearest-neighbour chain)");
+      if (cols[k] == i) d[i - start] = vals[k];
+      if (cols[k] == i + 1) e[i - start] = vals[k];
+    }
+    PetscCall(MatRestoreRow(lat.K(), i, &nc, &cols, &vals));
+  }
+  diag_.resize(N_);
+  off_.resize(N_);
+  PetscCallMPI(MPI_Allgatherv(d.data(), mine, MPIU_REAL, diag_.data(), counts_.data(), displs_.data(), MPIU_REAL, comm));
+  PetscCallMPI(MPI_Allgatherv(e.data(), mine, MPIU_REAL, off_.data(), counts_.data(), displs_.data(), MPIU_REAL, comm));
+  lambda_max_ = 0; // Gershgorin bound of K's spectrum
+  for (PetscInt i = 0; i < N_; i++)
+    lambda_max_ = std::max(lambda_max_, std::abs(diag_[i]) + std::abs(off_[i]) + (i > 0 ? std::abs(off_[i - 1]) : 0.0));
+  for (auto *v : {&ru_, &rv_, &gu_, &gv_, &t1_, &t2_}) v->resize(N_);
+  PetscFunctionReturn(0);
+}
+
+// Gaussian elimination with partial pivoting of the tridiagonal K - shift I
+// (the algorithm of LAPACK's dgttrf): row i+1 may be swapped into row i, which
+// fills a second superdiagonal du2.
+void LinearMonodromyPC::TridiagonalLU::Factor(const std::vector<PetscReal> &diag, const std::vector<PetscReal> &off, PetscReal shift)
+{
+  const size_t n = diag.size();
+  d.resize(n);
+  for (size_t i = 0; i < n; i++) d[i] = diag[i] - shift;
+  dl.assign(off.begin(), off.end() - 1);
+  du.assign(off.begin(), off.end() - 1);
+  du2.assign(n, 0.0);
+  swapped.assign(n, 0);
+  for (size_t i = 0; i + 1 < n; i++) {
+    if (std::abs(d[i]) >= std::abs(dl[i])) {
+      const PetscReal f = d[i] != 0 ? dl[i] / d[i] : 0;
+      dl[i] = f;
+      d[i + 1] -= f * du[i];
+    } else {
+      const PetscReal f = d[i] / dl[i];
+      d[i] = dl[i];
+      dl[i] = f;
+      const PetscReal t = du[i];
+      du[i] = d[i + 1];
+      d[i + 1] = t - f * d[i + 1];
+      if (i + 2 < n) {
+        du2[i] = du[i + 1];
+        du[i + 1] = -f * du[i + 1];
+      }
+      swapped[i] = 1;
+    }
+  }
+}
+
+// Smallest |pivot| over largest: ~ the distance of the shift to K's nearest eigenvalue, relative.
+PetscReal LinearMonodromyPC::TridiagonalLU::PivotRatio() const
+{
+  PetscReal lo = PETSC_MAX_REAL, hi = 0;
+  for (PetscReal p : d) lo = std::min(lo, std::abs(p)), hi = std::max(hi, std::abs(p));
+  return hi > 0 ? lo / hi : 0;
+}
+
+void LinearMonodromyPC::TridiagonalLU::Solve(PetscReal *b) const
+{
+  const size_t n = d.size();
+  for (size_t i = 0; i + 1 < n; i++) {
+    if (!swapped[i]) b[i + 1] -= dl[i] * b[i];
+    else {
+      const PetscReal t = b[i];
+      b[i] = b[i + 1];
+      b[i + 1] = t - dl[i] * b[i];
+    }
+  }
+  b[n - 1] /= d[n - 1];
+  if (n > 1) b[n - 2] = (b[n - 2] - du[n - 2] * b[n - 1]) / d[n - 2];
+  for (size_t i = n - 2; i-- > 0;) b[i] = (b[i] - du[i] * b[i + 1] - du2[i] * b[i + 2]) / d[i];
+}
+
+PetscErrorCode LinearMonodromyPC::SetPeriod(PetscReal T)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(T > 0, lat_->Comm(), PETSC_ERR_ARG_OUTOFRANGE, "linear monodromy preconditioner: period %g must be positive", (double)T);
+  if (T == T_) PetscFunctionReturn(0);
+  T_ = T;
+  const PetscReal w1 = 2 * PETSC_PI / T;
+  // w_nmax^2 >= 64 lambda_max: the dropped tail terms are below (1/64)^4 of the tail.
+  const PetscInt nmax = std::max<PetscInt>(4, (PetscInt)std::ceil(8 * std::sqrt(lambda_max_) / w1));
+  lu_.resize(nmax + 1);
+  lu_[0].Factor(diag_, off_, 0.0);
+  for (PetscInt n = 1; n <= nmax; n++) {
+    // A shift on an eigenvalue of K to rounding (the linear period itself, where
+    // the branch starts: M_lin - I is singular there) is moved off it by 1e-9
+    // relative: the exact inverse does not exist, and Newton moves T off the
+    // resonance by the nonlinear frequency shift anyway.
+    PetscReal shift = (n * w1) * (n * w1);
+    lu_[n].Factor(diag_, off_, shift);
+    for (int k = 0; k < 8 && lu_[n].PivotRatio() < 1e-12; k++) {
+      shift *= 1 - 1e-9;
+      lu_[n].Factor(diag_, off_, shift);
+    }
+  }
+  // s_j = w1^{-2j} (zeta(2j) - sum_{n<=nmax} n^{-2j}), j = 1..4
+  const PetscReal zeta[4] = {std::pow(PETSC_PI, 2) / 6, std::pow(PETSC_PI, 4) / 90, std::pow(PETSC_PI, 6) / 945, std::pow(PETSC_PI, 8) / 9450};
+  for (int j = 0; j < 4; j++) {
+    PetscReal partial = 0;
+    for (PetscInt n = nmax; n >= 1; n--) partial += std::pow((PetscReal)n, -2.0 * (j + 1));
+    tail_[j] = (zeta[j] - partial) * std::pow(w1, -2.0 * (j + 1));
+  }
+  PetscFunctionReturn(0);
+}
+
+void LinearMonodromyPC::MultK(const PetscReal *x, PetscReal *y) const
+{
+  for (PetscInt i = 0; i < N_; i++) {
+    PetscReal s = diag_[i] * x[i];
+    if (i > 0) s += off_[i - 1] * x[i - 1];
+    if (i + 1 < N_) s += off_[i] * x[i + 1];
+    y[i] = s;
+  }
+}
+
+// y = g(K) r = (2/T) K^{-1} r + (4/T) [sum_{n=1}^{nmax} (K - w_n^2)^{-1} r - (s1 + K (s2 + K (s3 + K s4))) r]
+void LinearMonodromyPC::ApplyG(const PetscReal *r, PetscReal *y)
+{
+  PetscReal *t = t1_.data(), *h = t2_.data();
+  const PetscInt n = N_;
+  // tail, by Horner
+  for (PetscInt i = 0; i < n; i++) t[i] = tail_[3] * r[i];
+  for (int j = 2; j >= 0; j--) {
+    MultK(t, h);
+    for (PetscInt i = 0; i < n; i++) t[i] = h[i] + tail_[j] * r[i];
+  }
+  for (PetscInt i = 0; i < n; i++) y[i] = -t[i];
+  for (size_t k = 1; k < lu_.size(); k++) {
+    std::copy(r, r + n, t);
+    lu_[k].Solve(t);
+    for (PetscInt i = 0; i < n; i++) y[i] += t[i];
+  }
+  std::copy(r, r + n, t);
+  lu_[0].Solve(t);
+  for (PetscInt i = 0; i < n; i++) y[i] = (4 / T_) * y[i] + (2 / T_) * t[i];
+}
+
+PetscErrorCode LinearMonodromyPC::Apply(Vec r, Vec x)
+{
+  const PetscScalar *ra;
+  PetscScalar *xa;
+  MPI_Comm comm = lat_->Comm();
+  const PetscInt m = lat_->OwnedCount(), s = lat_->OwnedStart();
+  PetscFunctionBeginUser;
+  PetscCheck(T_ > 0, comm, PETSC_ERR_ORDER, "linear monodromy preconditioner: SetPeriod before Apply");
+  PetscCall(VecGetArrayRead(r, &ra)); // owned [u | v]
+  PetscCallMPI(MPI_Allgatherv(ra, (PetscMPIInt)m, MPIU_REAL, ru_.data(), counts_.data(), displs_.data(), MPIU_REAL, comm));
+  PetscCallMPI(MPI_Allgatherv(ra + m, (PetscMPIInt)m, MPIU_REAL, rv_.data(), counts_.data(), displs_.data(), MPIU_REAL, comm));
+  PetscCall(VecRestoreArrayRead(r, &ra));
+  ApplyG(ru_.data(), gu_.data());
+  ApplyG(rv_.data(), gv_.data());
+  MultK(gu_.data(), t1_.data()); // K G r_u
+  PetscCall(VecGetArray(x, &xa));
+  for (PetscInt i = 0; i < m; i++) {
+    xa[i] = -0.5 * ru_[s + i] - 0.5 * gv_[s + i];
+    xa[m + i] = 0.5 * t1_[s + i] - 0.5 * rv_[s + i];
+  }
+  PetscCall(VecRestoreArray(x, &xa));
+  PetscCall(PetscLogFlops(2.0 * (lu_.size() * 8.0 + 12) * N_));
+  PetscFunctionReturn(0);
+}
+
+} // namespace nltopo
