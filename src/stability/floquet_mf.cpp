@@ -85,7 +85,8 @@ PetscErrorCode MonodromyShell::Mult(Vec x, Vec y)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, const FloquetMfOptions &o, LeadingMultipliers *r)
+PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, const FloquetMfOptions &o, LeadingMultipliers *r,
+                              std::vector<OwnedVec> *warm)
 {
   MonodromyShell shell;
   OwnedEPS eps;
@@ -104,6 +105,11 @@ PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal
   PetscCall(EPSSetDimensions(eps, nev, PETSC_DEFAULT, PETSC_DEFAULT));
   PetscCall(EPSSetTolerances(eps, 1e-10, PETSC_DEFAULT));
   PetscCall(EPSSetFromOptions(eps));
+  if (warm && !warm->empty()) {
+    std::vector<Vec> v;
+    for (auto &w : *warm) v.push_back(w.get());
+    PetscCall(EPSSetInitialSpace(eps, (PetscInt)v.size(), v.data()));
+  }
   PetscCall(EPSSolve(eps));
   PetscCall(EPSGetConverged(eps, &nconv));
   PetscCheck(nconv >= nev, PetscObjectComm((PetscObject)z0), PETSC_ERR_NOT_CONVERGED,
@@ -127,6 +133,19 @@ PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal
     r->max_modulus = std::max(r->max_modulus, std::abs(mu));
   }
   r->products = shell.Products();
+  if (warm) { // this orbit's eigenvectors (real and imaginary parts) start the next solve
+    warm->clear();
+    for (PetscInt i = 0; i < nev; i++) {
+      OwnedVec xr, xi;
+      PetscCall(VecDuplicate(z0, xr.out()));
+      PetscCall(VecDuplicate(z0, xi.out()));
+      PetscCall(EPSGetEigenvector(eps, i, xr, xi));
+      warm->push_back(std::move(xr));
+      PetscReal ni;
+      PetscCall(VecNorm(xi, NORM_2, &ni));
+      if (ni > 0) warm->push_back(std::move(xi));
+    }
+  }
   PetscCall(PetscLogEventEnd(Log().floquet, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

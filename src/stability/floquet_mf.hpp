@@ -60,6 +60,9 @@ struct LeadingMultipliers {
   PetscInt products = 0; // monodromy actions used (two per product of B)
 };
 
-PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, const FloquetMfOptions &o, LeadingMultipliers *r);
+// warm (optional, in/out): eigenvectors of the previous orbit of a branch as
+// the initial Krylov space; replaced by this orbit's.
+PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, const FloquetMfOptions &o, LeadingMultipliers *r,
+                              std::vector<OwnedVec> *warm = nullptr);
 
 } // namespace nltopo

@@ -90,7 +90,7 @@ public:
   {
     LeadingMultipliers r;
     PetscFunctionBeginUser;
-    PetscCall(FloquetLeading(flow_, z0, T, beta, mopt_, &r));
+    PetscCall(FloquetLeading(flow_, z0, T, beta, mopt_, &r, &warm_));
     re.insert(re.end(), r.re.begin(), r.re.end());
     im.insert(im.end(), r.im.begin(), r.im.end());
     max_modulus.push_back(r.max_modulus);
@@ -98,7 +98,7 @@ public:
     products += r.products;
     PetscFunctionReturn(0);
   }
-  void Clear() { re.clear(), im.clear(), max_modulus.clear(), stable.clear(), products = 0; }
+  void Clear() { re.clear(), im.clear(), max_modulus.clear(), stable.clear(), products = 0, warm_.clear(); }
   std::vector<PetscReal> re, im, max_modulus;
   std::vector<PetscInt> stable;
   PetscInt products = 0;
@@ -107,6 +107,7 @@ private:
   PeriodicFlow &flow_;
   FloquetOptions opt_;
   FloquetMfOptions mopt_;
+  std::vector<OwnedVec> warm_; // the previous orbit's eigenvectors: the next solve's initial space
 };
 
 } // namespace
