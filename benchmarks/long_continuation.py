@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Matrix-free continuation of the insulated branch against lattice length:
-options/fep_long.opts with N = 102, 1002, 10002 (-lattice_cells 25, 250,
+options/fep_long.opts to E = 10 (default) with N = 102, 1002, 10002 (-lattice_cells 25, 250,
 2500), with the linear-lattice preconditioner and without it. Prints a
 markdown table: points, energy reached, Newton iterations per point, GMRES
 iterations per Newton step, seconds per point (Floquet off, so that the
@@ -11,7 +11,7 @@ import os, subprocess, sys, tempfile
 import h5py
 
 build = sys.argv[1] if len(sys.argv) > 1 else "build"
-emax = sys.argv[2] if len(sys.argv) > 2 else "100"
+emax = sys.argv[2] if len(sys.argv) > 2 else "10"
 cells = [int(c) for c in sys.argv[3:]] or [25, 250, 2500]
 root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 tmp = tempfile.mkdtemp()
@@ -25,7 +25,8 @@ for c in cells:
             cmd += ["-cont_max_points", "8"]
         p = subprocess.run(cmd, capture_output=True, text=True)
         if p.returncode != 0 or not os.path.exists(out):
-            print(f"| {4 * c + 2} | {pc} | failed: {p.stdout.strip().splitlines()[-1] if p.stdout.strip() else p.stderr[-200:]} |")
+            err = (p.stderr.strip().splitlines() or p.stdout.strip().splitlines() or ["?"])[-1]
+            print(f"| {4 * c + 2} | {pc} | failed | | | | | {err} |")
             continue
         g = h5py.File(out, "r")["continuation/insulated"]
         n = int(g.attrs["points"])

@@ -112,11 +112,12 @@ PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal
   }
   PetscCall(EPSSolve(eps));
   PetscCall(EPSGetConverged(eps, &nconv));
-  PetscCheck(nconv >= nev, PetscObjectComm((PetscObject)z0), PETSC_ERR_NOT_CONVERGED,
-             "matrix-free Floquet: %" PetscInt_FMT " of %" PetscInt_FMT " multipliers converged (-floquet_mf_eps_max_it, -floquet_mf_eps_ncv)", nconv, nev);
-  r->re.resize(nev), r->im.resize(nev);
-  r->max_modulus = 0;
-  for (PetscInt i = 0; i < nev; i++) {
+  // Not converged within -floquet_mf_eps_max_it: NaN for the missing ones (a
+  // continuation goes on; the caller reports it), never a silent number.
+  r->converged = std::min(nconv, nev);
+  r->re.assign(nev, NAN), r->im.assign(nev, NAN);
+  r->max_modulus = r->converged ? 0 : NAN;
+  for (PetscInt i = 0; i < r->converged; i++) {
     PetscReal br, bi;
     PetscCall(EPSGetEigenvalue(eps, i, &br, &bi));
     std::complex<PetscReal> mu(br, bi);
@@ -135,7 +136,7 @@ PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal
   r->products = shell.Products();
   if (warm) { // this orbit's eigenvectors (real and imaginary parts) start the next solve
     warm->clear();
-    for (PetscInt i = 0; i < nev; i++) {
+    for (PetscInt i = 0; i < r->converged; i++) {
       OwnedVec xr, xi;
       PetscCall(VecDuplicate(z0, xr.out()));
       PetscCall(VecDuplicate(z0, xi.out()));

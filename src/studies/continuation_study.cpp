@@ -94,14 +94,19 @@ public:
     re.insert(re.end(), r.re.begin(), r.re.end());
     im.insert(im.end(), r.im.begin(), r.im.end());
     max_modulus.push_back(r.max_modulus);
-    stable.push_back(r.max_modulus <= 1 + opt_.tol);
+    stable.push_back(r.max_modulus <= 1 + opt_.tol); // NaN (nothing converged) counts as not stable
     products += r.products;
+    if (r.converged < mopt_.nev) {
+      unconverged++;
+      PetscCall(PetscPrintf(flow_.Lat().Comm(), "  matrix-free Floquet: %" PetscInt_FMT " of %" PetscInt_FMT " multipliers converged at omega %.6f (written as NaN; raise -floquet_mf_eps_max_it)\n",
+                            r.converged, mopt_.nev, (double)(2 * PETSC_PI / T)));
+    }
     PetscFunctionReturn(0);
   }
-  void Clear() { re.clear(), im.clear(), max_modulus.clear(), stable.clear(), products = 0, warm_.clear(); }
+  void Clear() { re.clear(), im.clear(), max_modulus.clear(), stable.clear(), products = 0, unconverged = 0, warm_.clear(); }
   std::vector<PetscReal> re, im, max_modulus;
   std::vector<PetscInt> stable;
-  PetscInt products = 0;
+  PetscInt products = 0, unconverged = 0;
 
 private:
   PeriodicFlow &flow_;
@@ -201,6 +206,7 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
       PetscCall(WriteArray(v, g.c_str(), "max_modulus", mf_hook.max_modulus));
       PetscCall(WriteIntArray(v, g.c_str(), "stable", mf_hook.stable));
       PetscCall(WriteAttr(v, g.c_str(), "floquet_products", mf_hook.products));
+      PetscCall(WriteAttr(v, g.c_str(), "floquet_unconverged", mf_hook.unconverged));
       PetscInt ns = 0;
       for (PetscInt s : mf_hook.stable) ns += s;
       PetscCall(PetscPrintf(comm, "  [%s] Floquet (matrix-free, %" PetscInt_FMT " leading): %" PetscInt_FMT " of %zu orbits stable (|mu| <= 1 + %g), %" PetscInt_FMT " monodromy products\n",

@@ -5,7 +5,7 @@
 # with N; the matrix-free Floquet multipliers of the N = 102 branch are on the
 # unit circle where the dense route calls the orbits stable.
 source "$(dirname "$0")/common.bash"
-common=(-cont_energy_max 3 -cont_verbose 0)
+common=(-cont_energy_max 3 -cont_verbose 0 -cont_max_change 0.2)
 run1 -options_file "$SRC/options/fep.opts" -cont_branch insulated -floquet 0 "${common[@]}" -output dense.h5 > dense.txt
 run1 -options_file "$SRC/options/fep_long.opts" -lattice_cells 25 -floquet 0 "${common[@]}" -output mf102.h5 > mf102.txt
 run2 -options_file "$SRC/options/fep_long.opts" -lattice_cells 250 -floquet 0 "${common[@]}" -output mf1002.h5 > mf1002.txt
@@ -35,3 +35,5 @@ assert F["multipliers_re"].shape == (len(mm), 2)
 assert np.all(np.abs(mm - 1) < 1e-4) and np.all(F["stable"][:] == 1), mm
 print("matrix-free Floquet, E <= 0.01: max |mu| - 1 =", np.abs(mm - 1).max())
 PYEOF
+$PY "$SRC/src/plots/plot_fep.py" floquet.h5 floquet.png > /dev/null
+test -s floquet.png
