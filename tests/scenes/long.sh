@@ -3,7 +3,8 @@
 # first 1000 s barely feel the ends); u is stored at every 10th site.
 source "$(dirname "$0")/common.bash"
 run2 -options_file "$SRC/options/simulate_long.opts" -lattice_cells 250 -sim_store_u_stride 10 -sim_progress 0 -output long.h5 > long.txt
-run1 -options_file "$SRC/options/simulate.opts" -sim_store_u 0 -sim_progress 0 -output short.h5 > short.txt
+# the reference: the same options on the paper's N = 102 (only the lattice length differs)
+run1 -options_file "$SRC/options/simulate_long.opts" -lattice_cells 25 -sim_store_u 0 -sim_progress 0 -output short.h5 > short.txt
 $PY - <<'PYEOF'
 import h5py, numpy as np
 L, S = h5py.File("long.h5", "r")["simulate"], h5py.File("short.h5", "r")["simulate"]
