@@ -15,25 +15,30 @@ using namespace nltopo::test;
 using cplx = std::complex<PetscReal>;
 
 namespace {
-// Every accepted orbit of a branch: its frequency and Floquet result.
+// Every accepted orbit of a branch: its frequency and Floquet result, and the
+// last orbit itself (z, T, beta).
 struct CaptureAll : public PointHook {
   PeriodicFlow &flow;
   std::vector<PetscReal> omega;
   std::vector<FloquetResult> res;
   OwnedMat S;
-  OwnedVec zT;
+  OwnedVec zT, z;
+  PetscReal T = 0, beta = 0;
   explicit CaptureAll(PeriodicFlow &f) : flow(f) {}
-  PetscErrorCode Point(Vec z0, PetscReal T, PetscReal beta) override
+  PetscErrorCode Point(Vec z0, PetscReal TT, PetscReal b) override
   {
     PetscFunctionBeginUser;
+    if (!z) PetscCall(VecDuplicate(z0, z.out()));
+    PetscCall(VecCopy(z0, z));
+    T = TT, beta = b;
     if (!S) {
       PetscCall(flow.CreateSensitivityMatrix(S.out()));
       PetscCall(VecDuplicate(z0, zT.out()));
     }
-    PetscCall(flow.IntegrateWithMonodromy(z0, T, beta, zT, S));
+    PetscCall(flow.IntegrateWithMonodromy(z0, TT, b, zT, S));
     FloquetResult r;
     PetscCall(FloquetAnalysis(flow.Lat(), S, FloquetOptions(), &r));
-    omega.push_back(2 * PETSC_PI / T);
+    omega.push_back(2 * PETSC_PI / TT);
     res.push_back(r);
     PetscFunctionReturn(0);
   }
@@ -121,6 +126,18 @@ struct CoupledDimers {
     PetscCall(shoot.Setup(flow, ShootingOptions()));
     PetscFunctionReturn(0);
   }
+  // The NNM family of linear mode j up to omega_max, in small steps (to resolve the onset).
+  PetscErrorCode Continue(PetscInt j, PetscReal omega_max, PointHook *hook)
+  {
+    ContinuationOptions co;
+    Branch b;
+    PetscFunctionBeginUser;
+    co.verbose = PETSC_FALSE;
+    co.max_change = 0.05;
+    co.omega_max = omega_max;
+    PetscCall(ContinueBranch(shoot, modes.Mode(j), 2 * PETSC_PI / modes.Omega()[j], co, "dimers", &b, hook));
+    PetscFunctionReturn(0);
+  }
 };
 } // namespace
 
@@ -139,21 +156,13 @@ TEST_CASE("Floquet flags the symmetry-breaking instability of two coupled dimers
 {
   CoupledDimers d;
   PCHK(d.Setup());
-  Lattice &lat = d.lat;
-  LinearModes &modes = d.modes;
   PeriodicFlow &flow = d.flow;
-  Shooting &shoot = d.shoot;
-  const auto &w = modes.Omega();
+  const auto &w = d.modes.Omega();
   const PetscReal lam_lo = w[2] * w[2], lam_hi = w[3] * w[3], kappa = (lam_hi - lam_lo) / 2;
   REQUIRE(std::abs(kappa - 0.05) < 1e-12);
-  ContinuationOptions co;
-  co.verbose = PETSC_FALSE;
-  co.max_change = 0.05; // resolve the onset
   for (PetscInt j : {2, 3}) {
-    co.omega_max = std::sqrt(lam_hi + 5 * kappa);
     CaptureAll cap(flow);
-    Branch b;
-    PCHK(ContinueBranch(shoot, modes.Mode(j), 2 * PETSC_PI / w[j], co, "dimers", &b, &cap));
+    PCHK(d.Continue(j, std::sqrt(lam_hi + 5 * kappa), &cap));
     REQUIRE(cap.omega.size() > 10);
     REQUIRE(cap.omega.back() > std::sqrt(lam_hi + 4 * kappa));
     PetscReal onset = -1;
@@ -196,36 +205,13 @@ TEST_CASE("matrix-free monodromy action and leading multiplier equal the dense o
   CoupledDimers d;
   PCHK(d.Setup());
   Lattice &lat = d.lat;
-  LinearModes &modes = d.modes;
   PeriodicFlow &flow = d.flow;
-  Shooting &shoot = d.shoot;
-  const auto &w = modes.Omega();
-  ContinuationOptions co;
-  co.verbose = PETSC_FALSE;
-  co.max_change = 0.05;
-  co.omega_max = std::sqrt(w[3] * w[3] + 3 * 0.05); // s = 3 kappa: unstable, mu ~ 1.09
-  struct Last : public PointHook {
-    OwnedVec z;
-    PetscReal T = 0, beta = 0;
-    PetscErrorCode Point(Vec z0, PetscReal TT, PetscReal b) override
-    {
-      PetscFunctionBeginUser;
-      if (!z) PetscCall(VecDuplicate(z0, z.out()));
-      PetscCall(VecCopy(z0, z));
-      T = TT, beta = b;
-      PetscFunctionReturn(0);
-    }
-  } last;
-  Branch b;
-  PCHK(ContinueBranch(shoot, modes.Mode(3), 2 * PETSC_PI / w[3], co, "dimers", &b, &last));
-  // Dense monodromy and its multipliers.
-  OwnedMat S;
-  OwnedVec zT, x, y, yd;
-  PCHK(flow.CreateSensitivityMatrix(S.out()));
-  PCHK(VecDuplicate(last.z, zT.out()));
-  PCHK(flow.IntegrateWithMonodromy(last.z, last.T, last.beta, zT, S));
-  FloquetResult dense;
-  PCHK(FloquetAnalysis(lat, S, FloquetOptions(), &dense));
+  const auto &w = d.modes.Omega();
+  CaptureAll last(flow); // also the dense monodromy S and multipliers of the last orbit
+  PCHK(d.Continue(3, std::sqrt(w[3] * w[3] + 3 * 0.05), &last)); // s = 3 kappa: unstable, mu ~ 1.09
+  const FloquetResult &dense = last.res.back();
+  Mat S = last.S;
+  OwnedVec x, y, yd;
   // Action on a pseudo-random vector against S x (the first 2N columns of S).
   PCHK(VecDuplicate(last.z, x.out()));
   PCHK(VecDuplicate(last.z, y.out()));
@@ -275,34 +261,14 @@ TEST_CASE("matrix-free critical multipliers of a stable orbit equal dense ones",
   CoupledDimers d;
   PCHK(d.Setup());
   const auto &w = d.modes.Omega();
-  ContinuationOptions co;
-  co.verbose = PETSC_FALSE;
-  co.max_change = 0.05;
-  co.omega_max = std::sqrt(w[2] * w[2] + 0.5 * 0.05); // the lower optical NNM: stable at every amplitude
   CaptureAll cap(d.flow);
-  struct Both : public PointHook {
-    CaptureAll &c;
-    OwnedVec z;
-    PetscReal T = 0, beta = 0;
-    explicit Both(CaptureAll &cc) : c(cc) {}
-    PetscErrorCode Point(Vec z0, PetscReal TT, PetscReal b) override
-    {
-      PetscFunctionBeginUser;
-      PetscCall(c.Point(z0, TT, b));
-      if (!z) PetscCall(VecDuplicate(z0, z.out()));
-      PetscCall(VecCopy(z0, z));
-      T = TT, beta = b;
-      PetscFunctionReturn(0);
-    }
-  } both(cap);
-  Branch b;
-  PCHK(ContinueBranch(d.shoot, d.modes.Mode(2), 2 * PETSC_PI / w[2], co, "lower", &b, &both));
+  PCHK(d.Continue(2, std::sqrt(w[2] * w[2] + 0.5 * 0.05), &cap)); // the lower optical NNM: stable at every amplitude
   const FloquetResult &dense = cap.res.back();
   REQUIRE(dense.stable);
   FloquetMfOptions mo;
   mo.nev = 4;
   LeadingMultipliers lead;
-  PCHK(FloquetLeading(d.flow, both.z, both.T, both.beta, mo, &lead));
+  PCHK(FloquetLeading(d.flow, cap.z, cap.T, cap.beta, mo, &lead));
   REQUIRE(std::abs(lead.max_modulus - 1) < 1e-8);
   // Compared through b = (mu + 1/mu)/2, which is well conditioned: mu itself is
   // not near the Jordan block at 1 (a b error of 1e-10 moves mu by 1e-5 there,
