@@ -38,6 +38,12 @@ PetscErrorCode FlowJacobianP(TS ts, PetscReal t, Vec z, Mat Jp, void *ctx)
   PetscCall(static_cast<PeriodicFlow *>(ctx)->EvalJacobianP(z, Jp));
   PetscFunctionReturn(0);
 }
+PetscErrorCode FlowAverageMonitor(TS ts, PetscInt step, PetscReal t, Vec z, void *ctx)
+{
+  PetscFunctionBeginUser;
+  PetscCall(static_cast<PeriodicFlow *>(ctx)->AccumulateStiffness(step, z));
+  PetscFunctionReturn(0);
+}
 } // namespace
 
 PeriodicFlow::~PeriodicFlow() { delete rhs_; }
@@ -54,6 +60,7 @@ PetscErrorCode PeriodicFlow::Setup(const Lattice &lat, const FlowOptions &o)
   PetscCall(MatCreateDense(lat.Comm(), nl, PETSC_DECIDE, n, 2, NULL, Jp_tlm_.out()));
   PetscCall(MatCreateDense(lat.Comm(), nl, PETSC_DECIDE, n, 2, NULL, S_tlm_.out()));
   PetscCall(CreateTS(ts_.out(), NULL));
+  PetscCall(TSMonitorSet(ts_, FlowAverageMonitor, this, NULL)); // acts only inside IntegrateAveragingStiffness
   PetscCall(CreateTS(ts_tlm_.out(), Jp_tlm_));
   // the dense 2N x (2N + 1) TSForward set-up only when the dense monodromy is asked for (O(N^2) memory)
   PetscFunctionReturn(0);
@@ -173,6 +180,40 @@ PetscErrorCode PeriodicFlow::Integrate(Vec z0, PetscReal T, PetscReal beta, Vec 
   PetscFunctionBeginUser;
   beta_ = beta;
   PetscCall(Run(ts_, z0, T, zT));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PeriodicFlow::IntegrateAveragingStiffness(Vec z0, PetscReal T, PetscReal beta, Vec zT, std::vector<PetscReal> *diag, std::vector<PetscReal> *off)
+{
+  PetscFunctionBeginUser;
+  diag->assign(lat_->OwnedCount(), 0.0);
+  off->assign(lat_->OwnedCount(), 0.0);
+  avg_diag_ = diag;
+  avg_off_ = off;
+  beta_ = beta;
+  const PetscErrorCode ierr = Run(ts_, z0, T, zT);
+  avg_diag_ = avg_off_ = nullptr;
+  PetscCall(ierr);
+  PetscFunctionReturn(0);
+}
+
+// Trapezoidal weights over the samples at steps 0..n (the monitor sees every one).
+PetscErrorCode PeriodicFlow::AccumulateStiffness(PetscInt step, Vec z)
+{
+  const PetscScalar *u;
+  Vec ul;
+  PetscFunctionBeginUser;
+  if (!avg_diag_) PetscFunctionReturn(0);
+  const PetscReal w = (step == 0 || step == opt_.steps ? 0.5 : 1.0) / opt_.steps;
+  const PetscInt xs = lat_->OwnedStart(), xm = lat_->OwnedCount();
+  PetscCall(lat_->GetGhostedU(z, &ul, &u));
+  for (PetscInt i = xs; i < xs + xm; i++) {
+    PetscScalar c[3];
+    lat_->TangentRow(i, u, c);
+    (*avg_diag_)[i - xs] += w * c[1];
+    (*avg_off_)[i - xs] += w * c[2];
+  }
+  PetscCall(lat_->RestoreGhostedU(z, &ul, &u));
   PetscFunctionReturn(0);
 }
 

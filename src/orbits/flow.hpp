@@ -15,6 +15,7 @@
 #include "effects/rhs.hpp"
 #include "orbits/variational.hpp"
 #include <memory>
+#include <vector>
 
 namespace nltopo {
 
@@ -37,6 +38,11 @@ public:
   PetscErrorCode IntegrateWithMonodromy(Vec z0, PetscReal T, PetscReal beta, Vec zT, Mat S);
   // Also w = dz(T)/dz0 dz + dz(T)/dbeta dbeta (one tangent-linear direction).
   PetscErrorCode IntegrateWithTangent(Vec z0, PetscReal T, PetscReal beta, Vec dz, PetscReal dbeta, Vec zT, Vec w);
+  // Integrate, and also the time average over [0, T] of the tangent stiffness
+  // K_T(u(t)) along the orbit: its diagonal and superdiagonal at the owned sites
+  // (diag[i - xs] = <K_T>_{i,i}, off[i - xs] = <K_T>_{i,i+1}). The trapezoidal rule
+  // on the fixed steps is spectrally accurate for a periodic orbit.
+  PetscErrorCode IntegrateAveragingStiffness(Vec z0, PetscReal T, PetscReal beta, Vec zT, std::vector<PetscReal> *diag, std::vector<PetscReal> *off);
   PetscErrorCode CreateSensitivityMatrix(Mat *S) const;
 
   // f(z) of the free lattice (beta = 0) and grad E(z).
@@ -49,6 +55,7 @@ public:
   PetscErrorCode EvalRhs(PetscReal t, Vec z, Vec f);
   PetscErrorCode EvalJacobian(Vec z, Mat A);
   PetscErrorCode EvalJacobianP(Vec z, Mat Jp);
+  PetscErrorCode AccumulateStiffness(PetscInt step, Vec z);
   PetscReal beta_ = 0;
 
 private:
@@ -62,6 +69,7 @@ private:
   OwnedMat J_, Jp_mono_, Jp_tlm_, S_tlm_;
   std::unique_ptr<VariationalFlow> var_dense_, var_tlm_; // created on first use
   OwnedVec wb_;
+  std::vector<PetscReal> *avg_diag_ = nullptr, *avg_off_ = nullptr; // set while averaging K_T
 };
 
 } // namespace nltopo

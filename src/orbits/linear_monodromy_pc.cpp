@@ -30,14 +30,26 @@ PetscErrorCode LinearMonodromyPC::Setup(const Lattice &lat)
     }
     PetscCall(MatRestoreRow(lat.K(), i, &nc, &cols, &vals));
   }
+  for (auto *v : {&ru_, &rv_, &gu_, &gv_, &t1_, &t2_}) v->resize(N_);
+  PetscCall(SetStiffness(d, e));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LinearMonodromyPC::SetStiffness(const std::vector<PetscReal> &diag, const std::vector<PetscReal> &off)
+{
+  MPI_Comm comm = lat_->Comm();
+  PetscFunctionBeginUser;
+  const PetscMPIInt mine = (PetscMPIInt)lat_->OwnedCount();
+  PetscCheck((PetscMPIInt)diag.size() == mine && (PetscMPIInt)off.size() == mine, comm, PETSC_ERR_ARG_SIZ, "stiffness diagonals must have the owned length");
   diag_.resize(N_);
   off_.resize(N_);
-  PetscCallMPI(MPI_Allgatherv(d.data(), mine, MPIU_REAL, diag_.data(), counts_.data(), displs_.data(), MPIU_REAL, comm));
-  PetscCallMPI(MPI_Allgatherv(e.data(), mine, MPIU_REAL, off_.data(), counts_.data(), displs_.data(), MPIU_REAL, comm));
-  lambda_max_ = 0; // Gershgorin bound of K's spectrum
+  PetscCallMPI(MPI_Allgatherv(diag.data(), mine, MPIU_REAL, diag_.data(), counts_.data(), displs_.data(), MPIU_REAL, comm));
+  PetscCallMPI(MPI_Allgatherv(off.data(), mine, MPIU_REAL, off_.data(), counts_.data(), displs_.data(), MPIU_REAL, comm));
+  off_[N_ - 1] = 0; // no bond past the last site
+  lambda_max_ = 0; // Gershgorin bound of the spectrum
   for (PetscInt i = 0; i < N_; i++)
     lambda_max_ = std::max(lambda_max_, std::abs(diag_[i]) + std::abs(off_[i]) + (i > 0 ? std::abs(off_[i - 1]) : 0.0));
-  for (auto *v : {&ru_, &rv_, &gu_, &gv_, &t1_, &t2_}) v->resize(N_);
+  T_ = 0; // refactor at the next SetPeriod
   PetscFunctionReturn(0);
 }
 

@@ -25,7 +25,11 @@ namespace nltopo {
 
 class LinearMonodromyPC {
 public:
-  PetscErrorCode Setup(const Lattice &lat);
+  PetscErrorCode Setup(const Lattice &lat); // stiffness K of the lattice
+  // Replace the stiffness by another symmetric tridiagonal one, e.g. the orbit's
+  // time-averaged tangent stiffness <K_T(u(t))> (-nnm_mf_pc averaged); owned rows:
+  // diag[i - xs] = K(i,i), off[i - xs] = K(i,i+1). Collective.
+  PetscErrorCode SetStiffness(const std::vector<PetscReal> &diag, const std::vector<PetscReal> &off);
   // Factor the shifted chains for the period T (called at every Jacobian evaluation).
   PetscErrorCode SetPeriod(PetscReal T);
   // x = (M_lin - I)^{-1} r on state vectors (x may not alias r).

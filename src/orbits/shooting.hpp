@@ -24,7 +24,7 @@
 namespace nltopo {
 
 enum class ShootingJacobian { Dense = 0, MatrixFree = 1 };
-enum class MatrixFreePC { None = 0, Linear = 1 };
+enum class MatrixFreePC { None = 0, Linear = 1, Averaged = 2 };
 
 struct ShootingOptions {
   ShootingJacobian jacobian = ShootingJacobian::Dense;
@@ -87,7 +87,9 @@ private:
   PetscReal Tlin_ = 0, blin_ = 0;
   std::vector<PetscReal> fr_, cr_; // gathered phase and constraint rows
   PetscInt njac_ = 0, nres_ = 0, nlin_ = 0, nkrylov_ = 0;
+  PetscReal tangent_rtol_ = 1e-10; // GMRES tolerance of the tangent solve (the configured -nnm_ksp_rtol)
   LinearMonodromyPC lin_pc_;
+  std::vector<PetscReal> kavg_diag_, kavg_off_; // <K_T(u(t))> over the orbit (-nnm_mf_pc averaged)
 };
 
 } // namespace nltopo

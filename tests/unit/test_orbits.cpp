@@ -2,6 +2,7 @@
 // sensitivities against central finite differences of the flow; the
 // tangent-linear action against the dense monodromy.
 #include "helpers.hpp"
+#include "bands/linear_modes.hpp"
 #include "orbits/flow.hpp"
 #include "orbits/linear_monodromy_pc.hpp"
 #include "orbits/shooting.hpp"
@@ -126,6 +127,103 @@ TEST_CASE("linear monodromy preconditioner inverts M_lin - I of the linear latti
   PCHK(VecNorm(x, NORM_INFINITY, &nx));
   INFO("shifted solves: " << pc.Shifts() << ", |P^-1 (M_lin - I) x - x| / |x| = " << e / nx);
   REQUIRE(e < 1e-8 * nx);
+}
+
+// With another stiffness (SetStiffness, the route of -nnm_mf_pc averaged) the
+// preconditioner is the exact inverse of M - I of the linear lattice with that
+// stiffness: here the K of a lattice with other couplings, integrated as its own flow.
+TEST_CASE("preconditioner with a replaced stiffness inverts that lattice's M - I", "[orbits][mf]")
+{
+  LatticeParams pa, pb;
+  pa.cells = pb.cells = 5;
+  pa.Gamma = pb.Gamma = 0;
+  pb.gamma = 0.5; // other couplings, same chain; 2 pi / T = 1.904 stays in its gap (1.414 .. 2)
+  Lattice a, b;
+  PCHK(a.Setup(PETSC_COMM_WORLD, pa));
+  PCHK(b.Setup(PETSC_COMM_WORLD, pb));
+  std::vector<PetscReal> diag, off;
+  for (PetscInt i = b.OwnedStart(); i < b.OwnedStart() + b.OwnedCount(); i++) {
+    PetscScalar c[3];
+    b.TangentRow(i, NULL, c);
+    diag.push_back(c[1]);
+    off.push_back(c[2]);
+  }
+  LinearMonodromyPC pc;
+  PCHK(pc.Setup(a));
+  PCHK(pc.SetStiffness(diag, off));
+  const PetscReal T = 3.3;
+  PCHK(pc.SetPeriod(T));
+  PeriodicFlow flow;
+  FlowOptions fo;
+  fo.steps = 2000;
+  PCHK(flow.Setup(b, fo));
+  OwnedVec z0, x, zT, w, y;
+  PCHK(b.CreateStateVector(z0.out()));
+  for (OwnedVec *v : {&x, &zT, &w, &y}) PCHK(VecDuplicate(z0, v->out()));
+  PCHK(VecZeroEntries(z0));
+  SetState(b, Pseudo(b.N(), 23), Pseudo(b.N(), 24), x);
+  PCHK(flow.IntegrateWithTangent(z0, T, 0.0, x, 0.0, zT, w));
+  PCHK(VecAXPY(w, -1.0, x));
+  PCHK(pc.Apply(w, y));
+  PetscReal e, nx;
+  PCHK(VecAXPY(y, -1.0, x));
+  PCHK(VecNorm(y, NORM_INFINITY, &e));
+  PCHK(VecNorm(x, NORM_INFINITY, &nx));
+  INFO("|P^-1 (M_b - I) x - x| / |x| = " << e / nx);
+  REQUIRE(e < 1e-8 * nx);
+}
+
+// The orbit-averaged tangent stiffness against its small-amplitude limit: on
+// u(t) = a phi cos(w t) (a linear mode, a -> 0) every stiff bond b = (i, i+1)
+// adds 3 Gamma <d_b^2> = 3 Gamma a^2 (phi_i - phi_{i+1})^2 / 2 to K (model.md
+// tangent stiffness); corrections are O(Gamma a^2) relative.
+TEST_CASE("orbit-averaged tangent stiffness equals its small-amplitude limit", "[orbits][mf]")
+{
+  LatticeParams p;
+  p.cells = 3; // N = 14
+  p.Gamma = 0.5;
+  Lattice lat;
+  PCHK(lat.Setup(PETSC_COMM_WORLD, p));
+  const PetscInt N = lat.N();
+  LinearModes modes;
+  PCHK(modes.Compute(lat, LinearModesOptions()));
+  REQUIRE(modes.Complete());
+  const PetscInt j = N - 1; // the top optical mode: non-degenerate
+  const PetscReal a = 1e-3, omega = modes.Omega()[j];
+  OwnedVec phi, z0, zT;
+  PCHK(VecDuplicate(modes.Mode(j), phi.out()));
+  PCHK(modes.CopyMode(j, phi));
+  const std::vector<PetscReal> ph = Gather(phi);
+  std::vector<PetscReal> u0(N), v0(N, 0.0);
+  for (PetscInt i = 0; i < N; i++) u0[i] = a * ph[i];
+  PCHK(lat.CreateStateVector(z0.out()));
+  PCHK(VecDuplicate(z0, zT.out()));
+  SetState(lat, u0, v0, z0);
+  PeriodicFlow flow;
+  PCHK(flow.Setup(lat, FlowOptions()));
+  std::vector<PetscReal> diag, off;
+  PCHK(flow.IntegrateAveragingStiffness(z0, 2 * PETSC_PI / omega, 0.0, zT, &diag, &off));
+  PetscReal err = 0, dmax = 0;
+  for (PetscInt i = lat.OwnedStart(); i < lat.OwnedStart() + lat.OwnedCount(); i++) {
+    PetscScalar c[3];
+    lat.TangentRow(i, NULL, c); // K
+    PetscReal dd = 0, de = 0;   // predicted additions to K(i,i) and K(i,i+1)
+    for (PetscInt b : {i - 1, i}) {
+      if (b < 0 || b + 1 >= N || !p.Stiff(b)) continue;
+      const PetscReal s = 1.5 * p.Gamma * a * a * (ph[b] - ph[b + 1]) * (ph[b] - ph[b + 1]);
+      dd += s;
+      if (b == i) de = -s;
+    }
+    const PetscInt k = i - lat.OwnedStart();
+    err = std::max({err, std::abs(diag[k] - c[1] - dd), std::abs(off[k] - c[2] - de)});
+    dmax = std::max(dmax, std::abs(dd));
+  }
+  PetscReal gerr, gmax;
+  MPI_Allreduce(&err, &gerr, 1, MPIU_REAL, MPI_MAX, PETSC_COMM_WORLD);
+  MPI_Allreduce(&dmax, &gmax, 1, MPIU_REAL, MPI_MAX, PETSC_COMM_WORLD);
+  INFO("largest addition " << gmax << ", error " << gerr);
+  REQUIRE(gmax > 1e-8);
+  REQUIRE(gerr < 1e-4 * gmax);
 }
 
 // The matrix-free shooting Jacobian (one tangent-linear integration per
