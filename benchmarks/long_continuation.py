@@ -1,13 +1,14 @@
 #!/usr/bin/python3
 """Matrix-free continuation of the insulated branch against lattice length:
 options/fep_long.opts to E = 10 (default) with N = 102, 1002, 10002 (-lattice_cells 25, 250,
-2500), with the linear-lattice preconditioner and without it. Prints a
+2500), with each preconditioner of -nnm_mf_pc (PCS=averaged,linear,none by default;
+"linear" and "none" rows are limited to 40 and 8 points: inside the band they crawl). Prints a
 markdown table: points, energy reached, Newton iterations per point, GMRES
 iterations per Newton step (median and max over the points, and overall,
 failed attempts included), seconds per point (Floquet off, so that the
 column is the shooting alone; -floquet adds its own products).
 
-usage: benchmarks/long_continuation.py <build dir> [energy_max] [cells ...]"""
+usage: [PCS=averaged,linear] benchmarks/long_continuation.py <build dir> [energy_max] [cells ...]"""
 import os, subprocess, sys, tempfile
 import h5py
 
@@ -18,12 +19,14 @@ root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 tmp = tempfile.mkdtemp()
 print("| N | preconditioner | points | E reached | Newton per point | GMRES per Newton step: median / max over points / overall | s per point | stop |\n|---|---|---|---|---|---|---|---|")
 for c in cells:
-    for pc in ("linear", "none"):
+    for pc in os.environ.get("PCS", "averaged,linear,none").split(","):
         out = os.path.join(tmp, f"c{c}{pc}.h5")
         cmd = [os.path.join(build, "nltopo"), "-options_file", os.path.join(root, "options", "fep_long.opts"), "-lattice_cells", str(c),
                "-nnm_mf_pc", pc, "-cont_energy_max", emax, "-cont_verbose", "0", "-floquet", "0", "-output", out]
         if pc == "none":  # unpreconditioned GMRES: a short branch only (it stalls, README.md)
             cmd += ["-cont_max_points", "8"]
+        if pc == "linear":  # crawls inside the optical band (README.md, Long lattices)
+            cmd += ["-cont_max_points", "40"]
         p = subprocess.run(cmd, capture_output=True, text=True)
         if p.returncode != 0 or not os.path.exists(out):
             err = (p.stderr.strip().splitlines() or p.stdout.strip().splitlines() or ["?"])[-1]

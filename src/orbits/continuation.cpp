@@ -92,6 +92,8 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
   bool ok;
   PetscFunctionBeginUser;
   *b = Branch();
+  PetscLogDouble t_begin;
+  PetscCall(PetscTime(&t_begin)); // the verbose lines print the elapsed time
   PetscCall(lat.CreateStateVector(z.out()));
   PetscCall(VecDuplicate(z, zprev.out()));
   PetscCall(shoot.CreateUnknowns(X.out()));
@@ -155,9 +157,12 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
       PetscCall(PetscPrintf(comm, "  [%s] modal interaction at point %" PetscInt_FMT ": shape correlation %.3f, MCR %.3f -> %.3f, omega %.6f, E %.4g\n", name,
                             k, (double)corr, (double)b->mcr[k - 1], (double)mcr, (double)b->omega[k], (double)e.Total()));
     }
-    if (o.verbose)
-      PetscCall(PetscPrintf(comm, "  [%s] %4" PetscInt_FMT "  E = %-11.5g omega = %.8f  MCR = %.4f  Newton %" PetscInt_FMT "  Krylov %" PetscInt_FMT "  |beta| = %.1e\n",
-                            name, k, (double)e.Total(), (double)(2 * PETSC_PI / T), (double)mcr, newton_its, b->krylov_its.back(), (double)std::abs(beta)));
+    if (o.verbose) {
+      PetscLogDouble now;
+      PetscCall(PetscTime(&now));
+      PetscCall(PetscPrintf(comm, "  [%s] %4" PetscInt_FMT "  E = %-11.5g omega = %.8f  MCR = %.4f  Newton %" PetscInt_FMT "  Krylov %" PetscInt_FMT "  |beta| = %.1e  %.0f s\n",
+                            name, k, (double)e.Total(), (double)(2 * PETSC_PI / T), (double)mcr, newton_its, b->krylov_its.back(), (double)std::abs(beta), now - t_begin));
+    }
     if (e.Total() >= o.energy_max) {
       b->stop_reason = "reached -cont_energy_max";
       b->reached_max = true;

@@ -29,7 +29,7 @@ enum class MatrixFreePC { None = 0, Linear = 1, Averaged = 2 };
 struct ShootingOptions {
   ShootingJacobian jacobian = ShootingJacobian::Dense;
   PetscInt start_dense_max = 4000; // 2N up to which the first orbit uses the dense SVD start solver
-  MatrixFreePC mf_pc = MatrixFreePC::Linear;
+  MatrixFreePC mf_pc = MatrixFreePC::Averaged;
 };
 PetscErrorCode ShootingOptionsFromOptions(MPI_Comm comm, ShootingOptions *o);
 
