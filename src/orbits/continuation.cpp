@@ -192,6 +192,7 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
       PetscCall(VecCopy(Xpred, X));
       PetscCall(shoot.SetArclengthConstraint(zprev, tprev, Xpred));
       PetscCall(shoot.Solve(X, &ok, &its));
+      const bool converged = ok;
       if (ok) {
         PetscReal dz;
         PetscCall(shoot.Unpack(X, z, &T, &beta));
@@ -200,6 +201,9 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
         ok = dz <= o.max_change * znorm * 1.5;
       }
       if (!ok) {
+        if (o.verbose)
+          PetscCall(PetscPrintf(comm, "  [%s]       step rejected (%s after %" PetscInt_FMT " Newton iterations): ds %.3g -> %.3g\n", name,
+                                converged ? "orbit changed by more than -cont_max_change" : "Newton failed", its, (double)ds, (double)(0.5 * ds)));
         ds *= 0.5;
         continue;
       }
