@@ -93,6 +93,18 @@ TEST_CASE("monodromy (variational TS and TSForward routes) equals central differ
   REQUIRE(e < 1e-10 * nw);
 }
 
+// The N = 14 interface chain with the paper's cubic coefficient (Gamma = 0.5).
+struct NonlinearChain14 {
+  LatticeParams p;
+  Lattice lat;
+  NonlinearChain14()
+  {
+    p.cells = 3;
+    p.Gamma = 0.5;
+    PCHK(lat.Setup(PETSC_COMM_WORLD, p));
+  }
+};
+
 // |P^-1 (M - I) x - x| / |x| for a pseudo-random x, with M the monodromy over T
 // of the linear lattice lat (Gamma = 0) from its integrated tangent-linear flow.
 static PetscReal PreconditionerError(const Lattice &lat, LinearMonodromyPC &pc, PetscReal T, unsigned seed)
@@ -167,13 +179,8 @@ TEST_CASE("preconditioner with a replaced stiffness inverts that lattice's M - I
 // u(t) = a phi cos(w t) (a linear mode, a -> 0) every stiff bond b = (i, i+1)
 // adds 3 Gamma <d_b^2> = 3 Gamma a^2 (phi_i - phi_{i+1})^2 / 2 to K (model.md
 // tangent stiffness); corrections are O(Gamma a^2) relative.
-TEST_CASE("orbit-averaged tangent stiffness equals its small-amplitude limit", "[orbits][mf]")
+TEST_CASE_METHOD(NonlinearChain14, "orbit-averaged tangent stiffness equals its small-amplitude limit", "[orbits][mf]")
 {
-  LatticeParams p;
-  p.cells = 3; // N = 14
-  p.Gamma = 0.5;
-  Lattice lat;
-  PCHK(lat.Setup(PETSC_COMM_WORLD, p));
   const PetscInt N = lat.N();
   LinearModes modes;
   PCHK(modes.Compute(lat, LinearModesOptions()));
@@ -219,13 +226,8 @@ TEST_CASE("orbit-averaged tangent stiffness equals its small-amplitude limit", "
 // The matrix-free shooting Jacobian (one tangent-linear integration per
 // product, bordered by the phase and constraint rows) equals the assembled
 // dense one times a vector, for each constraint the continuation uses.
-TEST_CASE("matrix-free shooting Jacobian action equals the dense Jacobian", "[orbits][mf]")
+TEST_CASE_METHOD(NonlinearChain14, "matrix-free shooting Jacobian action equals the dense Jacobian", "[orbits][mf]")
 {
-  LatticeParams p;
-  p.cells = 3; // N = 14
-  p.Gamma = 0.5;
-  Lattice lat;
-  PCHK(lat.Setup(PETSC_COMM_WORLD, p));
   const PetscInt N = lat.N();
   PeriodicFlow flow;
   PCHK(flow.Setup(lat, FlowOptions()));
