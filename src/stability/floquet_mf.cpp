@@ -116,7 +116,7 @@ PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal
   // continuation goes on; the caller reports it), never a silent number.
   r->converged = std::min(nconv, nev);
   r->re.assign(nev, NAN), r->im.assign(nev, NAN);
-  r->max_modulus = r->converged ? 0 : NAN;
+  r->max_modulus = 0;
   for (PetscInt i = 0; i < r->converged; i++) {
     PetscReal br, bi;
     PetscCall(EPSGetEigenvalue(eps, i, &br, &bi));
@@ -133,6 +133,8 @@ PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal
     r->re[i] = mu.real(), r->im[i] = mu.imag();
     r->max_modulus = std::max(r->max_modulus, std::abs(mu));
   }
+  // A partial answer bounds nothing: the missing multiplier may be the largest.
+  if (r->converged < nev) r->max_modulus = NAN;
   r->products = shell.Products();
   if (warm) { // this orbit's eigenvectors (real and imaginary parts) start the next solve
     warm->clear();

@@ -56,7 +56,7 @@ PetscErrorCode FloquetMfOptionsFromOptions(MPI_Comm comm, FloquetMfOptions *o);
 
 struct LeadingMultipliers {
   std::vector<PetscReal> re, im; // the multipliers (|mu| >= 1 member of each pair for "critical")
-  PetscReal max_modulus = 0; // over the converged ones (NaN if none)
+  PetscReal max_modulus = 0; // NaN unless all nev converged
   PetscInt converged = 0;    // < nev: the rest are NaN (-floquet_mf_eps_max_it reached)
   PetscInt products = 0;     // monodromy actions used (two per product of B)
 };

@@ -94,7 +94,7 @@ public:
     re.insert(re.end(), r.re.begin(), r.re.end());
     im.insert(im.end(), r.im.begin(), r.im.end());
     max_modulus.push_back(r.max_modulus);
-    stable.push_back(r.max_modulus <= 1 + opt_.tol); // NaN (nothing converged) counts as not stable
+    stable.push_back(r.max_modulus <= 1 + opt_.tol); // NaN (a multiplier did not converge): not shown stable, 0
     products += r.products;
     if (r.converged < mopt_.nev) {
       unconverged++;

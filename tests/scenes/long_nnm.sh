@@ -10,7 +10,8 @@ common=(-cont_energy_max 3 -cont_verbose 0 -cont_max_change 0.2)
 run1 -options_file "$SRC/options/fep.opts" -cont_branch insulated -floquet 0 -cont_energy_max 3.5 -cont_verbose 0 -cont_max_change 0.04 -output dense.h5 > dense.txt
 run1 -options_file "$SRC/options/fep_long.opts" -lattice_cells 25 -floquet 0 "${common[@]}" -output mf102.h5 > mf102.txt
 run2 -options_file "$SRC/options/fep_long.opts" -lattice_cells 250 -floquet 0 "${common[@]}" -output mf1002.h5 > mf1002.txt
-run1 -options_file "$SRC/options/fep_long.opts" -lattice_cells 25 -cont_energy_max 0.01 -cont_verbose 0 -output floquet.h5 > floquet.txt
+# enough eigensolver restarts that every multiplier converges (an unconverged one makes the orbit "not shown stable")
+run1 -options_file "$SRC/options/fep_long.opts" -lattice_cells 25 -cont_energy_max 0.01 -cont_verbose 0 -floquet_mf_eps_max_it 40 -output floquet.h5 > floquet.txt
 $PY - <<'PYEOF'
 import h5py, numpy as np
 g = lambda f: h5py.File(f, "r")["continuation/insulated"]
