@@ -86,7 +86,7 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
   PeriodicFlow &flow = shoot.Flow();
   const Lattice &lat = flow.Lat();
   MPI_Comm comm = lat.Comm();
-  OwnedVec z, zprev, X, Xprev, Xpred, t, tprev;
+  OwnedVec z, zprev, tz, X, Xprev, Xpred, t, tprev;
   PetscReal T, beta, ds;
   PetscInt its;
   bool ok;
@@ -96,6 +96,7 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
   PetscCall(PetscTime(&t_begin)); // the verbose lines print the elapsed time
   PetscCall(lat.CreateStateVector(z.out()));
   PetscCall(VecDuplicate(z, zprev.out()));
+  PetscCall(VecDuplicate(z, tz.out()));
   PetscCall(shoot.CreateUnknowns(X.out()));
   for (OwnedVec *v : {&Xprev, &Xpred, &t, &tprev}) PetscCall(VecDuplicate(X, v->out()));
 
@@ -150,7 +151,11 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
     b->krylov_its.push_back(shoot.KrylovIterations() - kry0);
     kry0 = shoot.KrylovIterations();
     PetscCall(AppendRow(lat, z, &b->z0));
-    if (hook) PetscCall(hook->Point(z, T, beta));
+    if (hook) {
+      PetscReal dT, dbeta;
+      PetscCall(shoot.Unpack(t, tz, &dT, &dbeta));
+      PetscCall(hook->Point(z, T, beta, tz));
+    }
     const PetscInt k = (PetscInt)b->energy.size() - 1;
     if (corr < o.interaction_corr) {
       b->interactions.push_back(k);

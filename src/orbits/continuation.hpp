@@ -33,11 +33,13 @@ struct Branch {
   bool reached_max = false;
 };
 
-// Called at every accepted orbit (z0, T, beta), e.g. for its Floquet multipliers.
+// Called at every accepted orbit (z0, T, beta), e.g. for its Floquet
+// multipliers. dz0 is the state part of the family tangent there (the
+// generalized eigenvector of the trivial Floquet pair: (M - I) dz0 = -dT f(z0)).
 class PointHook {
 public:
   virtual ~PointHook() = default;
-  virtual PetscErrorCode Point(Vec z0, PetscReal T, PetscReal beta) = 0;
+  virtual PetscErrorCode Point(Vec z0, PetscReal T, PetscReal beta, Vec dz0) = 0;
 };
 
 // Continues the family through the orbit guess (u_guess, v = 0) of period T_guess.

@@ -32,6 +32,8 @@ PetscErrorCode FloquetMfOptionsFromOptions(MPI_Comm comm, FloquetMfOptions *o)
   PetscCall(PetscOptionsReal("-circle_tol",
                              "critical: b = (mu + 1/mu)/2 within this of [-1, 1] is on the unit circle (|mu| - 1 is resolved down to sqrt(2 circle_tol))",
                              NULL, o->circle_tol, &o->circle_tol, NULL));
+  PetscCall(PetscOptionsBool("-deflate", "Deflate the trivial pair mu = 1 (span of f(z0) and the family tangent) so that the nev multipliers are nontrivial",
+                             NULL, o->deflate, &o->deflate, NULL));
   PetscOptionsEnd();
   PetscCheck(o->circle_tol > 0, comm, PETSC_ERR_USER, "-floquet_mf_circle_tol must be positive, got %g", (double)o->circle_tol);
   PetscCheck(o->nev >= 1, comm, PETSC_ERR_USER, "-floquet_mf_nev must be >= 1, got %" PetscInt_FMT, o->nev);
@@ -86,7 +88,7 @@ PetscErrorCode MonodromyShell::Mult(Vec x, Vec y)
 }
 
 PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, const FloquetMfOptions &o, LeadingMultipliers *r,
-                              std::vector<OwnedVec> *warm)
+                              std::vector<OwnedVec> *warm, Vec dz0)
 {
   MonodromyShell shell;
   OwnedEPS eps;
@@ -105,6 +107,13 @@ PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal
   PetscCall(EPSSetDimensions(eps, nev, PETSC_DEFAULT, PETSC_DEFAULT));
   PetscCall(EPSSetTolerances(eps, 1e-10, PETSC_DEFAULT));
   PetscCall(EPSSetFromOptions(eps));
+  OwnedVec fz0;
+  if (o.deflate && dz0) { // the trivial pair's invariant subspace span{f(z0), dz0} (header)
+    PetscCall(VecDuplicate(z0, fz0.out()));
+    PetscCall(flow.Field(z0, fz0));
+    Vec V[2] = {fz0.get(), dz0};
+    PetscCall(EPSSetDeflationSpace(eps, 2, V));
+  }
   if (warm && !warm->empty()) {
     std::vector<Vec> v;
     for (auto &w : *warm) v.push_back(w.get());

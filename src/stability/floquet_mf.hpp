@@ -12,10 +12,24 @@
 // whose eigenvalue b = (mu + 1/mu) / 2 maps the unit circle onto [-1, 1] with
 // the critical points mu = +-1 at its ends, real unstable pairs outside it and
 // Krein-collision quartets off the real axis: the largest |b| are the
-// multipliers nearest +-1 or off the circle, the Jordan block at 1 becomes
-// semisimple, and mu = b + sqrt(b^2 - 1). M^{-1} costs one more tangent
+// multipliers nearest +-1 and the real unstable pairs (saddle-node and
+// period-doubling instabilities), the Jordan block at 1 becomes semisimple,
+// and mu = b + sqrt(b^2 - 1). NOT found: an oscillatory (Krein-collision)
+// instability away from +-1, whose b is complex with |b| < 1 (measured at
+// N = 102, E = 0.94: |mu| = 1.0042 at b = -0.591 -+ 0.0034 i is missed); the dense route
+// (-floquet_mf 0) finds it. M^{-1} costs one more tangent
 // integration by reversibility: with R(u, v) = (u, -v) the flow satisfies
 // R phi_t(R z) = phi_{-t}(z), so M(z0)^{-1} = R M(R z0) R on a periodic orbit.
+//
+// Deflation (-floquet_mf_deflate, default on when the family tangent is given):
+// every NNM has the trivial pair mu = 1 with the exactly known invariant
+// subspace span{f(z0), dz0}: M f = f (time shift) and M dz0 = dz0 - dT f
+// (dz0, dT: the family tangent). In B it is the double eigenvalue 1 which,
+// because the discrete M^{-1} is reversible only to the integration error, is
+// nearly defective and converges slowly; it also takes two of the nev places
+// from the multipliers that decide stability. SLEPc's deflation space removes
+// it (the eigensolve runs on the orthogonal complement), so the nev returned
+// multipliers are nontrivial ones.
 #include "orbits/flow.hpp"
 #include <vector>
 
@@ -51,6 +65,7 @@ struct FloquetMfOptions {
   // route resolves instabilities down to sqrt(2 circle_tol) ~ 4.5e-5, the
   // dense route (all 2N multipliers) down to -floquet_tol.
   PetscReal circle_tol = 1e-9;
+  PetscBool deflate = PETSC_TRUE; // deflate the trivial pair when the family tangent is known
 };
 PetscErrorCode FloquetMfOptionsFromOptions(MPI_Comm comm, FloquetMfOptions *o);
 
@@ -62,8 +77,10 @@ struct LeadingMultipliers {
 };
 
 // warm (optional, in/out): eigenvectors of the previous orbit of a branch as
-// the initial Krylov space; replaced by this orbit's.
+// the initial Krylov space; replaced by this orbit's. dz0 (optional): the
+// state part of the family tangent at this orbit; with -floquet_mf_deflate the
+// trivial pair is deflated and the nev multipliers returned are nontrivial.
 PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, const FloquetMfOptions &o, LeadingMultipliers *r,
-                              std::vector<OwnedVec> *warm = nullptr);
+                              std::vector<OwnedVec> *warm = nullptr, Vec dz0 = nullptr);
 
 } // namespace nltopo

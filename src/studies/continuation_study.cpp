@@ -52,7 +52,7 @@ PetscErrorCode BranchStart(const Lattice &lat, const LinearModes &modes, const c
 class FloquetHook : public PointHook {
 public:
   FloquetHook(PeriodicFlow &flow, const FloquetOptions &o) : flow_(flow), opt_(o) {}
-  PetscErrorCode Point(Vec z0, PetscReal T, PetscReal beta) override
+  PetscErrorCode Point(Vec z0, PetscReal T, PetscReal beta, Vec dz0) override
   {
     FloquetResult r;
     PetscFunctionBeginUser;
@@ -86,11 +86,11 @@ private:
 class FloquetMfHook : public PointHook {
 public:
   FloquetMfHook(PeriodicFlow &flow, const FloquetOptions &o, const FloquetMfOptions &mo) : flow_(flow), opt_(o), mopt_(mo) {}
-  PetscErrorCode Point(Vec z0, PetscReal T, PetscReal beta) override
+  PetscErrorCode Point(Vec z0, PetscReal T, PetscReal beta, Vec dz0) override
   {
     LeadingMultipliers r;
     PetscFunctionBeginUser;
-    PetscCall(FloquetLeading(flow_, z0, T, beta, mopt_, &r, &warm_));
+    PetscCall(FloquetLeading(flow_, z0, T, beta, mopt_, &r, &warm_, dz0));
     re.insert(re.end(), r.re.begin(), r.re.end());
     im.insert(im.end(), r.im.begin(), r.im.end());
     max_modulus.push_back(r.max_modulus);

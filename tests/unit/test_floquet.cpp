@@ -7,6 +7,7 @@
 #include "orbits/continuation.hpp"
 #include "stability/floquet.hpp"
 #include "stability/floquet_mf.hpp"
+#include <algorithm>
 #include <cmath>
 #include <complex>
 
@@ -16,20 +17,22 @@ using cplx = std::complex<PetscReal>;
 
 namespace {
 // Every accepted orbit of a branch: its frequency and Floquet result, and the
-// last orbit itself (z, T, beta).
+// last orbit itself (z, T, beta) with the state part dz of the family tangent.
 struct CaptureAll : public PointHook {
   PeriodicFlow &flow;
   std::vector<PetscReal> omega;
   std::vector<FloquetResult> res;
   OwnedMat S;
-  OwnedVec zT, z;
+  OwnedVec zT, z, dz;
   PetscReal T = 0, beta = 0;
   explicit CaptureAll(PeriodicFlow &f) : flow(f) {}
-  PetscErrorCode Point(Vec z0, PetscReal TT, PetscReal b) override
+  PetscErrorCode Point(Vec z0, PetscReal TT, PetscReal b, Vec dz0) override
   {
     PetscFunctionBeginUser;
     if (!z) PetscCall(VecDuplicate(z0, z.out()));
+    if (!dz) PetscCall(VecDuplicate(z0, dz.out()));
     PetscCall(VecCopy(z0, z));
+    PetscCall(VecCopy(dz0, dz));
     T = TT, beta = b;
     if (!S) {
       PetscCall(flow.CreateSensitivityMatrix(S.out()));
@@ -279,5 +282,44 @@ TEST_CASE("matrix-free critical multipliers of a stable orbit equal dense ones",
     for (size_t j = 0; j < dense.re.size(); j++) best = std::min(best, std::abs(bval(cplx(lead.re[i], lead.im[i])) - bval(cplx(dense.re[j], dense.im[j]))));
     INFO("mf multiplier " << lead.re[i] << " + " << lead.im[i] << " i: nearest dense (mu + 1/mu)/2 at " << best);
     REQUIRE(best < 1e-8);
+  }
+}
+
+// The trivial pair mu = 1 of every NNM is a double eigenvalue b = 1 of
+// (M + M^-1)/2; without deflation it takes two of the nev places (and, nearly
+// defective in the discrete flow, converges slowly). Deflated through f(z0)
+// and the family tangent, the route must return the leading NONTRIVIAL dense
+// multipliers: the dense b values by decreasing |b| after the two nearest 1.
+TEST_CASE("deflating the trivial pair, the critical route returns the leading nontrivial dense multipliers", "[floquet][mf]")
+{
+  CoupledDimers d;
+  PCHK(d.Setup());
+  const auto &w = d.modes.Omega();
+  CaptureAll cap(d.flow);
+  PCHK(d.Continue(2, std::sqrt(w[2] * w[2] + 0.5 * 0.05), &cap)); // stable lower optical NNM
+  const FloquetResult &dense = cap.res.back();
+  auto bval = [](cplx mu) { return 0.5 * (mu + 1.0 / mu); };
+  std::vector<cplx> bd;
+  for (size_t j = 0; j < dense.re.size(); j++) bd.push_back(bval(cplx(dense.re[j], dense.im[j])));
+  // drop the trivial pair (the two b nearest 1), then order by |b|
+  for (int k = 0; k < 2; k++) {
+    auto it = std::min_element(bd.begin(), bd.end(), [](cplx a, cplx b) { return std::abs(a - 1.0) < std::abs(b - 1.0); });
+    bd.erase(it);
+  }
+  std::sort(bd.begin(), bd.end(), [](cplx a, cplx b) { return std::abs(a) > std::abs(b); });
+  REQUIRE(std::abs(bd[0] - 1.0) > 1e-3); // the nontrivial ones are well away from the trivial pair here
+  FloquetMfOptions mo;
+  mo.nev = 2; // one nontrivial pair mu, conj(mu): the double eigenvalue bd[0] = bd[1] of B
+  for (PetscBool deflate : {PETSC_TRUE, PETSC_FALSE}) {
+    mo.deflate = deflate;
+    LeadingMultipliers lead;
+    PCHK(FloquetLeading(d.flow, cap.z, cap.T, cap.beta, mo, &lead, nullptr, cap.dz));
+    REQUIRE(lead.converged == 2);
+    for (size_t i = 0; i < 2; i++) {
+      const cplx b = bval(cplx(lead.re[i], lead.im[i]));
+      INFO("deflate " << deflate << ": mf b = " << b << ", leading nontrivial dense b = " << bd[0] << ", " << lead.products << " products");
+      if (deflate) REQUIRE(std::abs(b - bd[0]) < 1e-8);
+      else REQUIRE(std::abs(b - 1.0) < 1e-6); // the control: undeflated, the trivial pair is what comes back
+    }
   }
 }
