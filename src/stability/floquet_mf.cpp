@@ -104,7 +104,11 @@ PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal
   PetscCall(EPSSetProblemType(eps, EPS_NHEP));
   PetscCall(EPSSetType(eps, EPSKRYLOVSCHUR));
   PetscCall(EPSSetWhichEigenpairs(eps, EPS_LARGEST_MAGNITUDE));
-  PetscCall(EPSSetDimensions(eps, nev, PETSC_DEFAULT, PETSC_DEFAULT));
+  // Critical route: every eigenvalue b of B is double (mu and 1/mu, which is
+  // conj(mu) on the circle, give the same b), and a Krylov space holds one or
+  // both copies depending on its start vectors; ask for 2 nev and keep the
+  // first nev DISTINCT values, one per multiplier pair.
+  PetscCall(EPSSetDimensions(eps, critical ? 2 * nev : nev, PETSC_DEFAULT, PETSC_DEFAULT));
   PetscCall(EPSSetTolerances(eps, 1e-10, PETSC_DEFAULT));
   PetscCall(EPSSetFromOptions(eps));
   OwnedVec fz0;
@@ -121,14 +125,26 @@ PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal
   }
   PetscCall(EPSSolve(eps));
   PetscCall(EPSGetConverged(eps, &nconv));
-  // Not converged within -floquet_mf_eps_max_it: NaN for the missing ones (a
-  // continuation goes on; the caller reports it), never a silent number.
-  r->converged = std::min(nconv, nev);
-  r->re.assign(nev, NAN), r->im.assign(nev, NAN);
-  r->max_modulus = 0;
-  for (PetscInt i = 0; i < r->converged; i++) {
+  PetscReal tol;
+  PetscCall(EPSGetTolerances(eps, &tol, NULL));
+  // The converged eigenvalues in the solver's order (largest |b| first), copies
+  // of a pair's b (equal to the eigensolver tolerance) dropped.
+  std::vector<std::complex<PetscReal>> seen;
+  for (PetscInt i = 0; i < nconv && (PetscInt)seen.size() < nev; i++) {
     PetscReal br, bi;
     PetscCall(EPSGetEigenvalue(eps, i, &br, &bi));
+    const std::complex<PetscReal> b(br, bi);
+    bool copy = false;
+    for (const auto &c : seen) copy = copy || (critical && std::abs(b - c) <= 10 * tol * std::max<PetscReal>(1, std::abs(c)));
+    if (!copy) seen.push_back(b);
+  }
+  // Not converged within -floquet_mf_eps_max_it: NaN for the missing ones (a
+  // continuation goes on; the caller reports it), never a silent number.
+  r->converged = (PetscInt)seen.size();
+  r->re.assign(nev, NAN), r->im.assign(nev, NAN);
+  r->max_modulus = 0;
+  for (PetscInt k = 0; k < r->converged; k++) {
+    const PetscReal br = seen[k].real(), bi = seen[k].imag();
     std::complex<PetscReal> mu(br, bi);
     if (critical) {
       if (std::abs(bi) <= o.circle_tol && std::abs(br) <= 1 + o.circle_tol) { // on the unit circle: mu = b + i sqrt(1 - b^2)
@@ -139,7 +155,7 @@ PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal
         mu = std::abs(b + s) >= std::abs(b - s) ? b + s : b - s;
       }
     }
-    r->re[i] = mu.real(), r->im[i] = mu.imag();
+    r->re[k] = mu.real(), r->im[k] = mu.imag();
     r->max_modulus = std::max(r->max_modulus, std::abs(mu));
   }
   // A partial answer bounds nothing: the missing multiplier may be the largest.
@@ -147,7 +163,7 @@ PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal
   r->products = shell.Products();
   if (warm) { // this orbit's eigenvectors (real and imaginary parts) start the next solve
     warm->clear();
-    for (PetscInt i = 0; i < r->converged; i++) {
+    for (PetscInt i = 0; i < nconv; i++) { // all converged, copies included: both directions of a pair's plane
       OwnedVec xr, xi;
       PetscCall(VecDuplicate(z0, xr.out()));
       PetscCall(VecDuplicate(z0, xi.out()));
