@@ -104,11 +104,7 @@ PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal
   PetscCall(EPSSetProblemType(eps, EPS_NHEP));
   PetscCall(EPSSetType(eps, EPSKRYLOVSCHUR));
   PetscCall(EPSSetWhichEigenpairs(eps, EPS_LARGEST_MAGNITUDE));
-  // Critical route: every eigenvalue b of B is double (mu and 1/mu, which is
-  // conj(mu) on the circle, give the same b), and a Krylov space holds one or
-  // both copies depending on its start vectors; ask for 2 nev and keep the
-  // first nev DISTINCT values, one per multiplier pair.
-  PetscCall(EPSSetDimensions(eps, critical ? 2 * nev : nev, PETSC_DEFAULT, PETSC_DEFAULT));
+  PetscCall(EPSSetDimensions(eps, nev, PETSC_DEFAULT, PETSC_DEFAULT));
   PetscCall(EPSSetTolerances(eps, 1e-10, PETSC_DEFAULT));
   PetscCall(EPSSetFromOptions(eps));
   OwnedVec fz0;
@@ -123,20 +119,40 @@ PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal
     for (auto &w : *warm) v.push_back(w.get());
     PetscCall(EPSSetInitialSpace(eps, (PetscInt)v.size(), v.data()));
   }
-  PetscCall(EPSSolve(eps));
-  PetscCall(EPSGetConverged(eps, &nconv));
+  // Critical route: every eigenvalue b of B is double (mu and 1/mu, which is
+  // conj(mu) on the circle, give the same b), and a converged set may hold both
+  // copies of a pair. The multipliers are the first nev DISTINCT values, one
+  // per pair; when copies leave fewer than nev, the solve is repeated for as
+  // many more eigenvalues, from the converged eigenvectors (at most twice).
   PetscReal tol;
-  PetscCall(EPSGetTolerances(eps, &tol, NULL));
-  // The converged eigenvalues in the solver's order (largest |b| first), copies
-  // of a pair's b (equal to the eigensolver tolerance) dropped.
-  std::vector<std::complex<PetscReal>> seen;
-  for (PetscInt i = 0; i < nconv && (PetscInt)seen.size() < nev; i++) {
-    PetscReal br, bi;
-    PetscCall(EPSGetEigenvalue(eps, i, &br, &bi));
-    const std::complex<PetscReal> b(br, bi);
-    bool copy = false;
-    for (const auto &c : seen) copy = copy || (critical && std::abs(b - c) <= 10 * tol * std::max<PetscReal>(1, std::abs(c)));
-    if (!copy) seen.push_back(b);
+  std::vector<std::complex<PetscReal>> seen; // distinct values, largest |b| first
+  std::vector<PetscInt> first;                // the index of each one's first copy
+  for (PetscInt round = 0, nev_eps = nev;; round++) {
+    PetscCall(EPSSolve(eps));
+    PetscCall(EPSGetConverged(eps, &nconv));
+    PetscCall(EPSGetTolerances(eps, &tol, NULL));
+    seen.clear(), first.clear();
+    for (PetscInt i = 0; i < nconv && (PetscInt)seen.size() < nev; i++) {
+      PetscReal br, bi;
+      PetscCall(EPSGetEigenvalue(eps, i, &br, &bi));
+      const std::complex<PetscReal> b(br, bi);
+      bool copy = false;
+      for (const auto &c : seen) copy = copy || (critical && std::abs(b - c) <= 10 * tol * std::max<PetscReal>(1, std::abs(c)));
+      if (!copy) seen.push_back(b), first.push_back(i);
+    }
+    if ((PetscInt)seen.size() >= nev || nconv < nev_eps || round == 2) break;
+    std::vector<OwnedVec> x(nconv);
+    std::vector<Vec> xv;
+    for (PetscInt i = 0; i < nconv; i++) {
+      PetscCall(VecDuplicate(z0, x[i].out()));
+      PetscCall(EPSGetEigenvector(eps, i, x[i], NULL));
+      xv.push_back(x[i]);
+    }
+    PetscInt ncv, mpd;
+    PetscCall(EPSGetDimensions(eps, NULL, &ncv, &mpd));
+    nev_eps += nev - (PetscInt)seen.size();
+    PetscCall(EPSSetDimensions(eps, nev_eps, PetscMax(ncv, 2 * nev_eps + 1), mpd));
+    PetscCall(EPSSetInitialSpace(eps, nconv, xv.data()));
   }
   // Not converged within -floquet_mf_eps_max_it: NaN for the missing ones (a
   // continuation goes on; the caller reports it), never a silent number.
@@ -161,9 +177,9 @@ PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal
   // A partial answer bounds nothing: the missing multiplier may be the largest.
   if (r->converged < nev) r->max_modulus = NAN;
   r->products = shell.Products();
-  if (warm) { // this orbit's eigenvectors (real and imaginary parts) start the next solve
+  if (warm) { // this orbit's eigenvectors (real and imaginary parts, one copy per pair) start the next solve
     warm->clear();
-    for (PetscInt i = 0; i < nconv; i++) { // all converged, copies included: both directions of a pair's plane
+    for (PetscInt i : first) {
       OwnedVec xr, xi;
       PetscCall(VecDuplicate(z0, xr.out()));
       PetscCall(VecDuplicate(z0, xi.out()));

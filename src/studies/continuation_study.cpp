@@ -201,8 +201,9 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
     PetscCall(WriteArray(v, g.c_str(), "interactions", inter));
     PetscCall(WriteAttr(v, g.c_str(), "linear_omega", omega));
     if (floquet && floquet_mf) {
-      PetscCall(WriteArray(v, g.c_str(), "multipliers_re", mf_hook.re, fmo.nev));
-      PetscCall(WriteArray(v, g.c_str(), "multipliers_im", mf_hook.im, fmo.nev));
+      const std::vector<PetscInt> dims = {(PetscInt)b.energy.size(), fmo.nev}; // npts x nev, also for nev = 1
+      PetscCall(WriteArrayND(v, g.c_str(), "multipliers_re", mf_hook.re, dims));
+      PetscCall(WriteArrayND(v, g.c_str(), "multipliers_im", mf_hook.im, dims));
       PetscCall(WriteArray(v, g.c_str(), "max_modulus", mf_hook.max_modulus));
       PetscCall(WriteIntArray(v, g.c_str(), "stable", mf_hook.stable));
       PetscCall(WriteAttr(v, g.c_str(), "floquet_products", mf_hook.products));
