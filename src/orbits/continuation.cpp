@@ -13,6 +13,9 @@ PetscErrorCode ContinuationOptionsFromOptions(MPI_Comm comm, ContinuationOptions
   PetscCall(PetscOptionsReal("-energy_max", "Stop when the energy exceeds this", NULL, o->energy_max, &o->energy_max, NULL));
   PetscCall(PetscOptionsInt("-max_points", "Stop after this many orbits", NULL, o->max_points, &o->max_points, NULL));
   PetscCall(PetscOptionsReal("-omega_max", "Stop once the frequency exceeds this (0: no limit)", NULL, o->omega_max, &o->omega_max, NULL));
+  PetscCall(PetscOptionsReal("-mcr_min",
+                             "Stop once the orbit's mode concentration ratio falls below this: the mode has spread into the lattice (0: no limit)",
+                             NULL, o->mcr_min, &o->mcr_min, NULL));
   PetscCall(PetscOptionsReal("-max_change", "Largest relative change of the orbit z0 per step", NULL, o->max_change, &o->max_change, NULL));
   PetscCall(PetscOptionsReal("-ds_min", "Step collapse: stop when the step falls below this times ||z0||", NULL, o->ds_min, &o->ds_min, NULL));
   PetscCall(PetscOptionsInt("-newton_target", "Newton iterations per point that the step size aims at", NULL, o->newton_target, &o->newton_target, NULL));
@@ -24,6 +27,7 @@ PetscErrorCode ContinuationOptionsFromOptions(MPI_Comm comm, ContinuationOptions
              "-cont_energy_min must be positive and below -cont_energy_max, got %g and %g", (double)o->energy_min, (double)o->energy_max);
   PetscCheck(o->max_points >= 1, comm, PETSC_ERR_USER, "-cont_max_points must be >= 1, got %" PetscInt_FMT, o->max_points);
   PetscCheck(o->max_change > 0 && o->max_change < 1, comm, PETSC_ERR_USER, "-cont_max_change must lie in (0, 1), got %g", (double)o->max_change);
+  PetscCheck(o->mcr_min >= 0 && o->mcr_min < 1, comm, PETSC_ERR_USER, "-cont_mcr_min must lie in [0, 1), got %g", (double)o->mcr_min);
   PetscFunctionReturn(0);
 }
 
@@ -175,6 +179,10 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
     }
     if (o.omega_max > 0 && 2 * PETSC_PI / T >= o.omega_max) {
       b->stop_reason = "reached -cont_omega_max";
+      break;
+    }
+    if (mcr < o.mcr_min) {
+      b->stop_reason = "the MCR fell below -cont_mcr_min (the mode has delocalized)";
       break;
     }
     if ((PetscInt)b->energy.size() >= o.max_points) {

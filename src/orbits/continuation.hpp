@@ -5,8 +5,8 @@
 // orbit, tangent of the family from J t = e_last (oriented along the previous
 // tangent, so folds in T or E are passed, not reversed), adaptive ds from the
 // Newton iteration count and a maximum relative change of the orbit per step.
-// Stops at -cont_energy_max, after -cont_max_points, or when ds collapses
-// (reported, never silent). A drop of the shape correlation between
+// Stops at -cont_energy_max, -cont_omega_max or -cont_mcr_min, after
+// -cont_max_points, or when ds collapses (reported, never silent). A drop of the shape correlation between
 // consecutive orbits flags a modal interaction.
 #include "orbits/shooting.hpp"
 
@@ -15,6 +15,7 @@ namespace nltopo {
 struct ContinuationOptions {
   PetscReal energy_min = 1e-5, energy_max = 1e3;
   PetscReal omega_max = 0;          // stop once omega exceeds this (0: no limit)
+  PetscReal mcr_min = 0;            // stop once the MCR falls below this: the mode has delocalized (0: no limit)
   PetscInt max_points = 1000;
   PetscReal max_change = 0.2;       // max ||z0_new - z0_old|| / ||z0_old|| per step
   PetscReal ds_min = 1e-9;          // relative to ||z0||: below it the branch stops

@@ -34,3 +34,18 @@ for name, w_lin in expect.items():
     print(name, "starts at", b["omega"][0], "linear", w_lin)
 print("continuation scene OK")
 PYEOF
+# -cont_mcr_min stops the insulated branch where it delocalizes: at N = 102 its
+# MCR (0.345 for the linear mode) falls below 0.3 only as omega nears the
+# optical band bottom (sqrt(3.8) = 1.94936), the paper's E ~ 12 threshold.
+run1 -options_file "$SRC/options/fep.opts" -cont_branch insulated -floquet 0 -cont_energy_max 100 -cont_mcr_min 0.3 -cont_verbose 0 -output mcr.h5 > mcr.txt
+$PY - <<'PYEOF'
+import h5py, numpy as np
+b = h5py.File("mcr.h5", "r")["continuation/insulated"]
+m, w, e = b["mcr"][:], b["omega"][:], b["energy"][:]
+reason = b.attrs["stop_reason"]
+reason = reason.decode() if isinstance(reason, bytes) else reason
+assert "-cont_mcr_min" in reason and b.attrs["reached_energy_max"] == 0, reason
+assert m[-1] < 0.3 and np.all(m[:-1] >= 0.3), m
+assert 1.93 < w[-1] < np.sqrt(3.8) + 0.01 and 8 < e[-1] < 13, (w[-1], e[-1])
+print("-cont_mcr_min: stopped at E = %.3g, omega %.5f, MCR %.3f" % (e[-1], w[-1], m[-1]))
+PYEOF
