@@ -215,8 +215,9 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
       }
       if (!ok) {
         if (o.verbose)
-          PetscCall(PetscPrintf(comm, "  [%s]       step rejected (%s after %" PetscInt_FMT " Newton iterations): ds %.3g -> %.3g\n", name,
-                                converged ? "orbit changed by more than -cont_max_change" : "Newton failed", its, (double)ds, (double)(0.5 * ds)));
+          PetscCall(PetscPrintf(comm, "  [%s]       step rejected (%s%s after %" PetscInt_FMT " Newton iterations): ds %.3g -> %.3g\n", name,
+                                converged ? "orbit changed by more than -cont_max_change" : "Newton failed: ", converged ? "" : shoot.LastReason(), its,
+                                (double)ds, (double)(0.5 * ds)));
         ds *= 0.5;
         continue;
       }

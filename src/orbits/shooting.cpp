@@ -433,6 +433,7 @@ PetscErrorCode Shooting::Solve(Vec X, bool *converged, PetscInt *its)
     nkrylov_ += lits;
   }
   *converged = reason > 0;
+  reason_ = reason;
   if (!*converged) { // e.g. a zero pivot at a bifurcation: start the next factorisation afresh
     KSP ksp;
     PC pc;

@@ -48,6 +48,9 @@ public:
 
   // Newton from X (in/out). converged false when SNES failed (X then holds the last iterate).
   PetscErrorCode Solve(Vec X, bool *converged, PetscInt *its);
+  // Why the last Solve stopped: SNES's reason name, e.g. DIVERGED_LINEAR_SOLVE
+  // (GMRES hit -nnm_ksp_max_it) or DIVERGED_MAX_IT (-nnm_snes_max_it).
+  const char *LastReason() const { return SNESConvergedReasons[reason_]; }
   // Tangent of the family at the last solution: J t = e_last with the last
   // Jacobian (dense route) or a fresh solve (mf route); normalised, t . t_prev > 0.
   PetscErrorCode Tangent(Vec X, Vec t_prev, Vec t);
@@ -87,6 +90,7 @@ private:
   PetscReal Tlin_ = 0, blin_ = 0;
   std::vector<PetscReal> fr_, cr_; // gathered phase and constraint rows
   PetscInt njac_ = 0, nres_ = 0, nlin_ = 0, nkrylov_ = 0;
+  SNESConvergedReason reason_ = SNES_CONVERGED_ITERATING;
   PetscReal tangent_rtol_ = 1e-10; // GMRES tolerance of the tangent solve (the configured -nnm_ksp_rtol)
   LinearMonodromyPC lin_pc_;
   std::vector<PetscReal> kavg_diag_, kavg_off_; // <K_T(u(t))> over the orbit (-nnm_mf_pc averaged)
