@@ -87,6 +87,30 @@ PetscErrorCode MonodromyShell::Mult(Vec x, Vec y)
   PetscFunctionReturn(0);
 }
 
+// One Krylov-Schur solve for nev_eps eigenvalues of the shell's operator, the
+// trivial pair deflated when defl is given, started from init (may be empty).
+static PetscErrorCode SolveOnce(MonodromyShell &shell, MPI_Comm comm, PetscInt nev_eps, const std::vector<Vec> &defl, const std::vector<Vec> &init,
+                                OwnedEPS *eps)
+{
+  PetscFunctionBeginUser;
+  PetscCall(EPSCreate(comm, eps->out()));
+  PetscCall(EPSSetOptionsPrefix(*eps, "floquet_mf_"));
+  PetscCall(EPSSetOperators(*eps, shell.Get(), NULL));
+  PetscCall(EPSSetProblemType(*eps, EPS_NHEP));
+  PetscCall(EPSSetType(*eps, EPSKRYLOVSCHUR));
+  PetscCall(EPSSetWhichEigenpairs(*eps, EPS_LARGEST_MAGNITUDE));
+  PetscCall(EPSSetDimensions(*eps, nev_eps, PETSC_DEFAULT, PETSC_DEFAULT));
+  PetscCall(EPSSetTolerances(*eps, 1e-10, PETSC_DEFAULT));
+  PetscCall(EPSSetFromOptions(*eps));
+  PetscInt nev_set, ncv, mpd;
+  PetscCall(EPSGetDimensions(*eps, &nev_set, &ncv, &mpd));
+  if (nev_set < nev_eps) PetscCall(EPSSetDimensions(*eps, nev_eps, ncv == PETSC_DEFAULT || ncv >= 2 * nev_eps + 1 ? ncv : 2 * nev_eps + 1, mpd));
+  if (!defl.empty()) PetscCall(EPSSetDeflationSpace(*eps, (PetscInt)defl.size(), const_cast<Vec *>(defl.data())));
+  if (!init.empty()) PetscCall(EPSSetInitialSpace(*eps, (PetscInt)init.size(), const_cast<Vec *>(init.data())));
+  PetscCall(EPSSolve(*eps));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, const FloquetMfOptions &o, LeadingMultipliers *r,
                               std::vector<OwnedVec> *warm, Vec dz0)
 {
@@ -95,40 +119,30 @@ PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal
   PetscInt nconv;
   const PetscInt nev = o.nev;
   const bool critical = o.which == FloquetMfWhich::Critical;
+  const MPI_Comm comm = PetscObjectComm((PetscObject)z0);
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(Log().floquet, 0, 0, 0, 0));
   PetscCall(shell.Create(flow, z0, T, beta, critical));
-  PetscCall(EPSCreate(PetscObjectComm((PetscObject)z0), eps.out()));
-  PetscCall(EPSSetOptionsPrefix(eps, "floquet_mf_"));
-  PetscCall(EPSSetOperators(eps, shell.Get(), NULL));
-  PetscCall(EPSSetProblemType(eps, EPS_NHEP));
-  PetscCall(EPSSetType(eps, EPSKRYLOVSCHUR));
-  PetscCall(EPSSetWhichEigenpairs(eps, EPS_LARGEST_MAGNITUDE));
-  PetscCall(EPSSetDimensions(eps, nev, PETSC_DEFAULT, PETSC_DEFAULT));
-  PetscCall(EPSSetTolerances(eps, 1e-10, PETSC_DEFAULT));
-  PetscCall(EPSSetFromOptions(eps));
   OwnedVec fz0;
+  std::vector<Vec> defl, init;
   if (o.deflate && dz0) { // the trivial pair's invariant subspace span{f(z0), dz0} (header)
     PetscCall(VecDuplicate(z0, fz0.out()));
     PetscCall(flow.Field(z0, fz0));
-    Vec V[2] = {fz0.get(), dz0};
-    PetscCall(EPSSetDeflationSpace(eps, 2, V));
+    defl = {fz0.get(), dz0};
   }
-  if (warm && !warm->empty()) {
-    std::vector<Vec> v;
-    for (auto &w : *warm) v.push_back(w.get());
-    PetscCall(EPSSetInitialSpace(eps, (PetscInt)v.size(), v.data()));
-  }
+  if (warm)
+    for (auto &w : *warm) init.push_back(w.get());
   // Critical route: every eigenvalue b of B is double (mu and 1/mu, which is
   // conj(mu) on the circle, give the same b), and a converged set may hold both
   // copies of a pair. The multipliers are the first nev DISTINCT values, one
-  // per pair; when copies leave fewer than nev, the solve is repeated for as
-  // many more eigenvalues, from the converged eigenvectors (at most twice).
+  // per pair; when copies leave fewer than nev, a new solve asks for as many
+  // more eigenvalues, from the converged eigenvectors (at most twice).
   PetscReal tol;
   std::vector<std::complex<PetscReal>> seen; // distinct values, largest |b| first
   std::vector<PetscInt> first;                // the index of each one's first copy
+  std::vector<OwnedVec> converged;            // the previous round's eigenvectors: the next one's start
   for (PetscInt round = 0, nev_eps = nev;; round++) {
-    PetscCall(EPSSolve(eps));
+    PetscCall(SolveOnce(shell, comm, nev_eps, defl, init, &eps));
     PetscCall(EPSGetConverged(eps, &nconv));
     PetscCall(EPSGetTolerances(eps, &tol, NULL));
     seen.clear(), first.clear();
@@ -142,17 +156,14 @@ PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal
     }
     if ((PetscInt)seen.size() >= nev || nconv < nev_eps || round == 2) break;
     std::vector<OwnedVec> x(nconv);
-    std::vector<Vec> xv;
+    init.clear();
     for (PetscInt i = 0; i < nconv; i++) {
       PetscCall(VecDuplicate(z0, x[i].out()));
       PetscCall(EPSGetEigenvector(eps, i, x[i], NULL));
-      xv.push_back(x[i]);
+      init.push_back(x[i]);
     }
-    PetscInt ncv, mpd;
-    PetscCall(EPSGetDimensions(eps, NULL, &ncv, &mpd));
+    converged = std::move(x);
     nev_eps += nev - (PetscInt)seen.size();
-    PetscCall(EPSSetDimensions(eps, nev_eps, PetscMax(ncv, 2 * nev_eps + 1), mpd));
-    PetscCall(EPSSetInitialSpace(eps, nconv, xv.data()));
   }
   // Not converged within -floquet_mf_eps_max_it: NaN for the missing ones (a
   // continuation goes on; the caller reports it), never a silent number.
