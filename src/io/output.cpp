@@ -31,7 +31,7 @@ OutputFile::~OutputFile()
   if (!rank) std::remove(tmp_.c_str()); // never leave a partial file behind
 }
 
-PetscErrorCode OutputFile::Open(MPI_Comm comm, const std::string &path)
+PetscErrorCode OutputFile::Open(MPI_Comm comm, const std::string &path, const std::string &tag)
 {
   PetscMPIInt rank;
   int pid = (int)getpid(), err = 0;
@@ -41,7 +41,7 @@ PetscErrorCode OutputFile::Open(MPI_Comm comm, const std::string &path)
   path_ = path;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Bcast(&pid, 1, MPI_INT, 0, comm));
-  tmp_ = path + ".tmp." + std::to_string(pid);
+  tmp_ = path + ".tmp." + tag + std::to_string(pid);
   struct stat st;
   if (!rank && !stat(path.c_str(), &st) && S_ISDIR(st.st_mode)) {
     err = EISDIR;
@@ -63,7 +63,7 @@ PetscErrorCode OutputFile::Open(MPI_Comm comm, const std::string &path)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode OutputFile::Commit(const char *study, PetscReal wall_seconds)
+PetscErrorCode OutputFile::Commit(const char *study, PetscReal wall_seconds, bool complete)
 {
   char *opts;
   PetscMPIInt rank;
@@ -74,6 +74,7 @@ PetscErrorCode OutputFile::Commit(const char *study, PetscReal wall_seconds)
   PetscCall(WriteAttr(viewer_, "/", "version", NLTOPO_VERSION));
   PetscCall(WriteAttr(viewer_, "/", "options", opts));
   PetscCall(WriteAttr(viewer_, "/", "wall_seconds", wall_seconds));
+  PetscCall(WriteAttr(viewer_, "/", "complete", (PetscInt)complete));
   PetscCall(PetscFree(opts));
   viewer_.reset(); // flush and close
   PetscCallMPI(MPI_Comm_rank(comm_, &rank));

@@ -1,7 +1,9 @@
 #pragma once
 // HDF5 output per shared/spec/outputs.md. The file is written under a
 // temporary name and renamed at Commit(), so a failed or killed run never
-// leaves a partial file at the -output path.
+// leaves a partial file at the -output path. The one exception is asked for:
+// a continuation with -cont_checkpoint_seconds commits whole, readable files
+// of the points so far, marked by the root attribute complete = 0.
 #include "core/handle.hpp"
 #include <string>
 #include <vector>
@@ -14,11 +16,14 @@ PetscErrorCode OutputPathFromOptions(MPI_Comm comm, const char *study, std::stri
 class OutputFile {
 public:
   ~OutputFile();
-  // Checks that the path is writable (error names -output) and opens the temporary file.
-  PetscErrorCode Open(MPI_Comm comm, const std::string &path);
+  // Checks that the path is writable (error names -output) and opens the
+  // temporary file <path>.tmp.<tag><pid> (tag: e.g. "checkpoint.", so that a
+  // checkpoint and the final file can be open at once).
+  PetscErrorCode Open(MPI_Comm comm, const std::string &path, const std::string &tag = "");
   PetscViewer Viewer() const { return viewer_; }
-  // Writes the root attributes (study, version, options, wall_seconds), closes, renames.
-  PetscErrorCode Commit(const char *study, PetscReal wall_seconds);
+  // Writes the root attributes (study, version, options, wall_seconds,
+  // complete: 0 for a checkpoint of a run still going), closes, renames.
+  PetscErrorCode Commit(const char *study, PetscReal wall_seconds, bool complete = true);
   const std::string &Path() const { return path_; }
 
 private:

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
 
 namespace nltopo {
 
@@ -115,6 +116,95 @@ private:
   std::vector<OwnedVec> warm_; // the previous orbit's eigenvectors: the next solve's initial space
 };
 
+// Everything /continuation/<label> holds: the branch, its Floquet data (dense
+// or matrix-free hook) and its cost.
+struct BranchRecord {
+  std::string label, stop_reason;
+  PetscReal omega = 0, seconds = 0;
+  Branch b;
+  std::vector<PetscReal> re, im, max_modulus;
+  std::vector<PetscInt> krein, stable, instability;
+  PetscInt products = 0, unconverged = 0, jac = 0, res = 0, tan = 0, kry = 0;
+};
+
+enum class FloquetKind { None, Dense, MatrixFree };
+
+PetscErrorCode WriteRecord(PetscViewer v, const BranchRecord &r, FloquetKind fk, PetscInt n2, PetscInt nev)
+{
+  const Branch &b = r.b;
+  const std::string g = "/continuation/" + r.label;
+  PetscFunctionBeginUser;
+  std::vector<PetscReal> its(b.newton_its.begin(), b.newton_its.end());
+  PetscCall(WriteArray(v, g.c_str(), "energy", b.energy));
+  PetscCall(WriteArray(v, g.c_str(), "omega", b.omega));
+  PetscCall(WriteArray(v, g.c_str(), "period", b.period));
+  PetscCall(WriteArray(v, g.c_str(), "mcr", b.mcr));
+  PetscCall(WriteArray(v, g.c_str(), "newton_its", its));
+  std::vector<PetscReal> kits(b.krylov_its.begin(), b.krylov_its.end());
+  PetscCall(WriteArray(v, g.c_str(), "krylov_its", kits));
+  PetscCall(WriteArray(v, g.c_str(), "shape_corr", b.shape_corr));
+  PetscCall(WriteArray(v, g.c_str(), "beta", b.beta));
+  PetscCall(WriteArray(v, g.c_str(), "z0", b.z0, n2));
+  std::vector<PetscReal> inter(b.interactions.begin(), b.interactions.end());
+  PetscCall(WriteArray(v, g.c_str(), "interactions", inter));
+  PetscCall(WriteAttr(v, g.c_str(), "linear_omega", r.omega));
+  if (fk == FloquetKind::MatrixFree) {
+    const std::vector<PetscInt> dims = {(PetscInt)b.energy.size(), nev}; // npts x nev, also for nev = 1
+    PetscCall(WriteArrayND(v, g.c_str(), "multipliers_re", r.re, dims));
+    PetscCall(WriteArrayND(v, g.c_str(), "multipliers_im", r.im, dims));
+    PetscCall(WriteArray(v, g.c_str(), "max_modulus", r.max_modulus));
+    PetscCall(WriteIntArray(v, g.c_str(), "stable", r.stable));
+    PetscCall(WriteAttr(v, g.c_str(), "floquet_products", r.products));
+    PetscCall(WriteAttr(v, g.c_str(), "floquet_unconverged", r.unconverged));
+  } else if (fk == FloquetKind::Dense) {
+    PetscCall(WriteArray(v, g.c_str(), "multipliers_re", r.re, n2));
+    PetscCall(WriteArray(v, g.c_str(), "multipliers_im", r.im, n2));
+    PetscCall(WriteIntArray(v, g.c_str(), "krein", r.krein, n2));
+    PetscCall(WriteArray(v, g.c_str(), "max_modulus", r.max_modulus));
+    PetscCall(WriteIntArray(v, g.c_str(), "stable", r.stable));
+    PetscCall(WriteIntArray(v, g.c_str(), "instability", r.instability));
+  }
+  PetscCall(WriteAttr(v, g.c_str(), "stop_reason", r.stop_reason.c_str()));
+  PetscCall(WriteAttr(v, g.c_str(), "reached_energy_max", (PetscInt)b.reached_max));
+  PetscCall(WriteAttr(v, g.c_str(), "points", (PetscInt)b.energy.size()));
+  PetscCall(WriteAttr(v, g.c_str(), "jacobian_evaluations", r.jac));
+  PetscCall(WriteAttr(v, g.c_str(), "residual_evaluations", r.res));
+  PetscCall(WriteAttr(v, g.c_str(), "tangent_products", r.tan));
+  PetscCall(WriteAttr(v, g.c_str(), "krylov_iterations", r.kry));
+  PetscCall(WriteAttr(v, g.c_str(), "seconds", r.seconds));
+  PetscFunctionReturn(0);
+}
+
+// Forwards every orbit to the Floquet hook (if any), then, every
+// -cont_checkpoint_seconds, writes the -output file with what is done so far
+// (complete = 0), so that a long run that is killed keeps its points.
+class CheckpointHook : public PointHook {
+public:
+  CheckpointHook(MPI_Comm comm, PointHook *inner, PetscReal every, std::function<PetscErrorCode()> write)
+    : comm_(comm), inner_(inner), every_(every), write_(std::move(write)) { PetscTime(&last_); }
+  PetscErrorCode Point(Vec z0, PetscReal T, PetscReal beta, Vec dz0) override
+  {
+    PetscFunctionBeginUser;
+    if (inner_) PetscCall(inner_->Point(z0, T, beta, dz0));
+    if (every_ <= 0) PetscFunctionReturn(0);
+    PetscLogDouble now;
+    PetscCall(PetscTime(&now));
+    int due = now - last_ >= every_;
+    PetscCallMPI(MPI_Bcast(&due, 1, MPI_INT, 0, comm_)); // rank 0's clock decides for all
+    if (!due) PetscFunctionReturn(0);
+    PetscCall(write_());
+    PetscCall(PetscTime(&last_));
+    PetscFunctionReturn(0);
+  }
+
+private:
+  MPI_Comm comm_;
+  PointHook *inner_;
+  PetscReal every_;
+  std::function<PetscErrorCode()> write_;
+  PetscLogDouble last_ = 0;
+};
+
 } // namespace
 
 PetscErrorCode ContinuationStudy(MPI_Comm comm)
@@ -126,6 +216,7 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
   std::string path;
   OutputFile out;
   PetscLogDouble t_start, t_end;
+  PetscReal checkpoint_seconds = 0;
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t_start));
   PetscCall(LogRegister());
@@ -146,7 +237,12 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
   PetscOptionsBegin(comm, "cont_", "NNM branches", NULL);
   PetscCall(PetscOptionsStringArray("-branch", "Comma-separated branches: insulated, interface, acoustic_top, optical_bottom, optical_top, mode<k> or k",
                                     NULL, names, &nb, &set));
+  PetscCall(PetscOptionsReal("-checkpoint_seconds",
+                             "Write -output with the points so far (root attribute complete = 0) at most this often, so that a killed run keeps them "
+                             "(0: only at the end)",
+                             NULL, checkpoint_seconds, &checkpoint_seconds, NULL));
   PetscOptionsEnd();
+  PetscCheck(checkpoint_seconds >= 0, comm, PETSC_ERR_USER, "-cont_checkpoint_seconds must be >= 0, got %g", (double)checkpoint_seconds);
   if (!set) {
     PetscCall(PetscStrallocpy("insulated", &names[0]));
     nb = 1;
@@ -168,7 +264,25 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
   PetscCall(DMCreateGlobalVector(lat.SiteDM(), u.out()));
   FloquetHook hook(flow, flo);
   FloquetMfHook mf_hook(flow, flo, fmo);
-  PointHook *point_hook = !floquet ? nullptr : floquet_mf ? static_cast<PointHook *>(&mf_hook) : &hook;
+  const FloquetKind fk = !floquet ? FloquetKind::None : floquet_mf ? FloquetKind::MatrixFree : FloquetKind::Dense;
+  PointHook *floquet_hook = fk == FloquetKind::None ? nullptr : fk == FloquetKind::MatrixFree ? static_cast<PointHook *>(&mf_hook) : &hook;
+  const PetscInt n2 = 2 * lat.N();
+  std::vector<BranchRecord> done;
+  // The record of a branch from its live data (also mid-branch, for a checkpoint).
+  auto snapshot = [&](const std::string &label, PetscReal omega, const Branch &b, PetscInt j0, PetscInt r0, PetscInt p0, PetscInt k0, PetscLogDouble b0) {
+    BranchRecord r;
+    PetscLogDouble now;
+    PetscTime(&now);
+    r.label = label, r.omega = omega, r.b = b, r.stop_reason = b.stop_reason, r.seconds = now - b0;
+    r.jac = shoot.JacobianEvaluations() - j0, r.res = shoot.ResidualEvaluations() - r0, r.tan = shoot.TangentProducts() - p0,
+    r.kry = shoot.KrylovIterations() - k0;
+    if (fk == FloquetKind::MatrixFree)
+      r.re = mf_hook.re, r.im = mf_hook.im, r.max_modulus = mf_hook.max_modulus, r.stable = mf_hook.stable, r.products = mf_hook.products,
+      r.unconverged = mf_hook.unconverged;
+    if (fk == FloquetKind::Dense)
+      r.re = hook.re, r.im = hook.im, r.max_modulus = hook.max_modulus, r.stable = hook.stable, r.krein = hook.krein, r.instability = hook.instability;
+    return r;
+  };
   for (PetscInt k = 0; k < nb; k++) {
     PetscReal omega = 0;
     std::string label;
@@ -180,61 +294,42 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
     const PetscInt j0 = shoot.JacobianEvaluations(), r0 = shoot.ResidualEvaluations(), p0 = shoot.TangentProducts(), k0 = shoot.KrylovIterations();
     hook.Clear();
     mf_hook.Clear();
-    PetscCall(ContinueBranch(shoot, u, 2 * PETSC_PI / omega, co, label.c_str(), &b, point_hook));
+    CheckpointHook ck(comm, floquet_hook, checkpoint_seconds, [&]() -> PetscErrorCode {
+      OutputFile f;
+      PetscLogDouble now;
+      PetscFunctionBeginUser;
+      PetscCall(PetscLogStagePush(Log().write));
+      PetscCall(f.Open(comm, path, "checkpoint."));
+      for (const BranchRecord &r : done) PetscCall(WriteRecord(f.Viewer(), r, fk, n2, fmo.nev));
+      BranchRecord cur = snapshot(label, omega, b, j0, r0, p0, k0, b0);
+      cur.stop_reason = "checkpoint: the run was still going";
+      PetscCall(WriteRecord(f.Viewer(), cur, fk, n2, fmo.nev));
+      PetscCall(PetscTime(&now));
+      PetscCall(f.Commit("continuation", now - t_start, false));
+      PetscCall(PetscLogStagePop());
+      PetscCall(PetscPrintf(comm, "  [%s] checkpoint: %zu points written to %s\n", label.c_str(), b.energy.size(), path.c_str()));
+      PetscFunctionReturn(0);
+    });
+    PetscCall(ContinueBranch(shoot, u, 2 * PETSC_PI / omega, co, label.c_str(), &b, &ck));
     PetscCall(PetscLogStagePop());
     PetscCall(PetscTime(&b1));
-    PetscCall(PetscLogStagePush(Log().write));
-    const std::string g = "/continuation/" + label;
-    PetscViewer v = out.Viewer();
-    std::vector<PetscReal> its(b.newton_its.begin(), b.newton_its.end());
-    PetscCall(WriteArray(v, g.c_str(), "energy", b.energy));
-    PetscCall(WriteArray(v, g.c_str(), "omega", b.omega));
-    PetscCall(WriteArray(v, g.c_str(), "period", b.period));
-    PetscCall(WriteArray(v, g.c_str(), "mcr", b.mcr));
-    PetscCall(WriteArray(v, g.c_str(), "newton_its", its));
-    std::vector<PetscReal> kits(b.krylov_its.begin(), b.krylov_its.end());
-    PetscCall(WriteArray(v, g.c_str(), "krylov_its", kits));
-    PetscCall(WriteArray(v, g.c_str(), "shape_corr", b.shape_corr));
-    PetscCall(WriteArray(v, g.c_str(), "beta", b.beta));
-    PetscCall(WriteArray(v, g.c_str(), "z0", b.z0, 2 * lat.N()));
-    std::vector<PetscReal> inter(b.interactions.begin(), b.interactions.end());
-    PetscCall(WriteArray(v, g.c_str(), "interactions", inter));
-    PetscCall(WriteAttr(v, g.c_str(), "linear_omega", omega));
-    if (floquet && floquet_mf) {
-      const std::vector<PetscInt> dims = {(PetscInt)b.energy.size(), fmo.nev}; // npts x nev, also for nev = 1
-      PetscCall(WriteArrayND(v, g.c_str(), "multipliers_re", mf_hook.re, dims));
-      PetscCall(WriteArrayND(v, g.c_str(), "multipliers_im", mf_hook.im, dims));
-      PetscCall(WriteArray(v, g.c_str(), "max_modulus", mf_hook.max_modulus));
-      PetscCall(WriteIntArray(v, g.c_str(), "stable", mf_hook.stable));
-      PetscCall(WriteAttr(v, g.c_str(), "floquet_products", mf_hook.products));
-      PetscCall(WriteAttr(v, g.c_str(), "floquet_unconverged", mf_hook.unconverged));
+    done.push_back(snapshot(label, omega, b, j0, r0, p0, k0, b0));
+    done.back().seconds = b1 - b0;
+    if (fk == FloquetKind::MatrixFree) {
       PetscInt ns = 0;
       for (PetscInt s : mf_hook.stable) ns += s;
       PetscCall(PetscPrintf(comm, "  [%s] Floquet (matrix-free, %" PetscInt_FMT " leading): %" PetscInt_FMT " of %zu orbits stable (|mu| <= 1 + %g), %" PetscInt_FMT " monodromy products\n",
                             label.c_str(), fmo.nev, ns, mf_hook.stable.size(), (double)flo.tol, mf_hook.products));
-    } else if (floquet) {
-      const PetscInt n2 = 2 * lat.N();
-      PetscCall(WriteArray(v, g.c_str(), "multipliers_re", hook.re, n2));
-      PetscCall(WriteArray(v, g.c_str(), "multipliers_im", hook.im, n2));
-      PetscCall(WriteIntArray(v, g.c_str(), "krein", hook.krein, n2));
-      PetscCall(WriteArray(v, g.c_str(), "max_modulus", hook.max_modulus));
-      PetscCall(WriteIntArray(v, g.c_str(), "stable", hook.stable));
-      PetscCall(WriteIntArray(v, g.c_str(), "instability", hook.instability));
+    } else if (fk == FloquetKind::Dense) {
       PetscInt ns = 0;
       for (PetscInt s : hook.stable) ns += s;
       PetscCall(PetscPrintf(comm, "  [%s] Floquet: %" PetscInt_FMT " of %zu orbits stable (|mu| <= 1 + %g)\n", label.c_str(), ns, hook.stable.size(), (double)flo.tol));
     }
-    PetscCall(WriteAttr(v, g.c_str(), "stop_reason", b.stop_reason.c_str()));
-    PetscCall(WriteAttr(v, g.c_str(), "reached_energy_max", (PetscInt)b.reached_max));
-    PetscCall(WriteAttr(v, g.c_str(), "points", (PetscInt)b.energy.size()));
-    PetscCall(WriteAttr(v, g.c_str(), "jacobian_evaluations", shoot.JacobianEvaluations() - j0));
-    PetscCall(WriteAttr(v, g.c_str(), "residual_evaluations", shoot.ResidualEvaluations() - r0));
-    PetscCall(WriteAttr(v, g.c_str(), "tangent_products", shoot.TangentProducts() - p0));
-    PetscCall(WriteAttr(v, g.c_str(), "krylov_iterations", shoot.KrylovIterations() - k0));
-    PetscCall(WriteAttr(v, g.c_str(), "seconds", (PetscReal)(b1 - b0)));
-    PetscCall(PetscLogStagePop());
     PetscCall(PetscPrintf(comm, "  [%s] %.2f s, %.3f s per point\n", label.c_str(), (double)(b1 - b0), (double)(b1 - b0) / b.energy.size()));
   }
+  PetscCall(PetscLogStagePush(Log().write));
+  for (const BranchRecord &r : done) PetscCall(WriteRecord(out.Viewer(), r, fk, n2, fmo.nev));
+  PetscCall(PetscLogStagePop());
   for (PetscInt k = 0; k < nb; k++) PetscCall(PetscFree(names[k]));
   PetscCall(PetscTime(&t_end));
   PetscCall(out.Commit("continuation", t_end - t_start));

@@ -49,3 +49,27 @@ assert m[-1] < 0.3 and np.all(m[:-1] >= 0.3), m
 assert 1.93 < w[-1] < np.sqrt(3.8) + 0.01 and 8 < e[-1] < 13, (w[-1], e[-1])
 print("-cont_mcr_min: stopped at E = %.3g, omega %.5f, MCR %.3f" % (e[-1], w[-1], m[-1]))
 PYEOF
+# -cont_checkpoint_seconds: a run killed mid-branch (SIGKILL, no clean-up)
+# leaves a readable -output file with the points so far, consistent across
+# datasets and marked complete = 0; finished runs are marked complete = 1.
+"$NLTOPO" -options_file "$SRC/options/fep_long.opts" -lattice_cells 25 -cont_energy_max 100 -cont_checkpoint_seconds 1e-9 -output ck.h5 > ck.txt 2>&1 &
+pid=$!
+for i in $(seq 1 240); do
+  sleep 0.25
+  [ "$(grep -c 'checkpoint:' ck.txt || true)" -ge 3 ] && break
+done
+kill -9 $pid
+wait $pid || true
+grep -q "checkpoint:" ck.txt
+$PY - <<'PYEOF'
+import h5py
+f = h5py.File("ck.h5", "r")
+assert f.attrs["complete"] == 0
+b = f["continuation/insulated"]
+n = b.attrs["points"]
+assert n >= 3 and b["energy"].shape == (n,) and b["z0"].shape == (n, 204) and b["multipliers_re"].shape == (n, 1) and b["stable"].shape == (n,)
+reason = b.attrs["stop_reason"]
+assert "checkpoint" in (reason.decode() if isinstance(reason, bytes) else reason)
+assert h5py.File("fep1.h5", "r").attrs["complete"] == 1 and h5py.File("mcr.h5", "r").attrs["complete"] == 1
+print("checkpoint of a killed run:", n, "points, complete = 0")
+PYEOF
