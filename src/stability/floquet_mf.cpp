@@ -102,9 +102,10 @@ static PetscErrorCode SolveOnce(MonodromyShell &shell, MPI_Comm comm, PetscInt n
   PetscCall(EPSSetDimensions(*eps, nev_eps, PETSC_DEFAULT, PETSC_DEFAULT));
   PetscCall(EPSSetTolerances(*eps, 1e-10, PETSC_DEFAULT));
   PetscCall(EPSSetFromOptions(*eps));
-  PetscInt nev_set, ncv, mpd;
+  PetscInt nev_set, ncv, mpd; // a user's -floquet_mf_eps_ncv stays unless too small for a repeat solve's nev
   PetscCall(EPSGetDimensions(*eps, &nev_set, &ncv, &mpd));
-  if (nev_set < nev_eps) PetscCall(EPSSetDimensions(*eps, nev_eps, ncv == PETSC_DEFAULT || ncv >= 2 * nev_eps + 1 ? ncv : 2 * nev_eps + 1, mpd));
+  if (nev_set < nev_eps || (ncv != PETSC_DEFAULT && ncv < 2 * nev_eps + 1))
+    PetscCall(EPSSetDimensions(*eps, PetscMax(nev_set, nev_eps), ncv == PETSC_DEFAULT ? ncv : PetscMax(ncv, 2 * nev_eps + 1), mpd));
   if (!defl.empty()) PetscCall(EPSSetDeflationSpace(*eps, (PetscInt)defl.size(), const_cast<Vec *>(defl.data())));
   if (!init.empty()) PetscCall(EPSSetInitialSpace(*eps, (PetscInt)init.size(), const_cast<Vec *>(init.data())));
   PetscCall(EPSSolve(*eps));
@@ -140,7 +141,7 @@ PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal
   PetscReal tol;
   std::vector<std::complex<PetscReal>> seen; // distinct values, largest |b| first
   std::vector<PetscInt> first;                // the index of each one's first copy
-  std::vector<OwnedVec> converged;            // the previous round's eigenvectors: the next one's start
+  std::vector<OwnedVec> previous;             // the previous round's eigenvectors: the next one's start
   for (PetscInt round = 0, nev_eps = nev;; round++) {
     PetscCall(SolveOnce(shell, comm, nev_eps, defl, init, &eps));
     PetscCall(EPSGetConverged(eps, &nconv));
@@ -162,7 +163,7 @@ PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal
       PetscCall(EPSGetEigenvector(eps, i, x[i], NULL));
       init.push_back(x[i]);
     }
-    converged = std::move(x);
+    previous = std::move(x);
     nev_eps += nev - (PetscInt)seen.size();
   }
   // Not converged within -floquet_mf_eps_max_it: NaN for the missing ones (a
