@@ -73,3 +73,15 @@ assert "checkpoint" in (reason.decode() if isinstance(reason, bytes) else reason
 assert h5py.File("fep1.h5", "r").attrs["complete"] == 1 and h5py.File("mcr.h5", "r").attrs["complete"] == 1
 print("checkpoint of a killed run:", n, "points, complete = 0")
 PYEOF
+# The same at 2 ranks (collective checkpoint writes), run to its end: every
+# checkpoint is replaced by the final file, complete = 1, no temporary left.
+run2 -options_file "$SRC/options/fep_long.opts" -lattice_cells 25 -cont_energy_max 0.01 -cont_verbose 0 -cont_checkpoint_seconds 1e-9 -output ck2.h5 > ck2.txt
+[ "$(grep -c 'checkpoint:' ck2.txt)" -ge 5 ]
+if ls ck2.h5.tmp.* > /dev/null 2>&1; then echo "a temporary file was left behind"; exit 1; fi
+$PY - <<'PYEOF'
+import h5py
+f = h5py.File("ck2.h5", "r")
+b = f["continuation/insulated"]
+assert f.attrs["complete"] == 1 and b.attrs["reached_energy_max"] == 1 and b["multipliers_re"].shape == (b.attrs["points"], 1)
+print("2-rank checkpoints, then the complete file:", b.attrs["points"], "points")
+PYEOF
