@@ -131,8 +131,29 @@ PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal
     PetscCall(flow.Field(z0, fz0));
     defl = {fz0.get(), dz0};
   }
-  if (warm)
-    for (auto &w : *warm) init.push_back(w.get());
+  // Krylov-Schur grows its space from the first initial vector only. The
+  // previous orbit's eigenvectors alone make it converge the same pair first
+  // and stop even when another pair has become the leading one (N = 10^4,
+  // E = 1.86: the edge pair 0.98746 was returned, not the interface pair near
+  // -0.9906), so they are mixed with an equal share of a random vector.
+  OwnedVec start;
+  if (warm && !warm->empty()) {
+    PetscRandom rnd;
+    PetscReal nrm;
+    PetscCall(VecDuplicate(z0, start.out()));
+    PetscCall(PetscRandomCreate(comm, &rnd));
+    PetscCall(PetscRandomSetSeed(rnd, 20261122));
+    PetscCall(PetscRandomSeed(rnd));
+    PetscCall(VecSetRandom(start, rnd));
+    PetscCall(PetscRandomDestroy(&rnd));
+    PetscCall(VecShift(start, -0.5));
+    PetscCall(VecNormalize(start, NULL));
+    for (auto &w : *warm) {
+      PetscCall(VecNorm(w, NORM_2, &nrm));
+      if (nrm > 0) PetscCall(VecAXPY(start, 1.0 / nrm, w));
+    }
+    init.push_back(start.get());
+  }
   // Critical route: every eigenvalue b of B is double (mu and 1/mu, which is
   // conj(mu) on the circle, give the same b), and a converged set may hold both
   // copies of a pair. The multipliers are the first nev DISTINCT values, one
