@@ -24,7 +24,7 @@ PetscErrorCode FloquetMfOptionsFromOptions(MPI_Comm comm, FloquetMfOptions *o)
   PetscInt w = static_cast<PetscInt>(o->which);
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "floquet_mf_", "Matrix-free Floquet multipliers (eigensolver options: -floquet_mf_eps_*)", NULL);
-  PetscCall(PetscOptionsInt("-nev", "Leading multipliers wanted per orbit", NULL, o->nev, &o->nev, NULL));
+  PetscCall(PetscOptionsInt("-nev", "Leading multiplier pairs wanted per orbit (critical: one per distinct b)", NULL, o->nev, &o->nev, NULL));
   PetscCall(PetscOptionsEList("-which",
                               "largest: largest modulus (Krylov-Schur on M); critical: nearest the critical points +-1 or off the unit circle "
                               "(Krylov-Schur on (M + M^-1)/2)",

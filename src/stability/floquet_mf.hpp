@@ -3,7 +3,8 @@
 // MATSHELL whose MatMult is the monodromy action M x = dz(T)/dz0 x, one
 // tangent-linear integration of the orbit per product (PeriodicFlow::
 // IntegrateWithTangent); the 2N x 2N monodromy is never formed. Options:
-// -floquet_mf_nev (multipliers wanted), -floquet_mf_which, -floquet_mf_eps_*.
+// -floquet_mf_nev (multiplier pairs wanted, one distinct b each on the critical
+// route), -floquet_mf_which, -floquet_mf_deflate, -floquet_mf_eps_*.
 //
 // -floquet_mf_which largest: the multipliers of largest modulus (Krylov-Schur
 // on M). Right for unstable orbits; on a stable orbit every multiplier has
