@@ -49,6 +49,16 @@ PetscErrorCode BranchStart(const Lattice &lat, const LinearModes &modes, const c
   PetscFunctionReturn(0);
 }
 
+// The Floquet columns of a branch, one entry (or row) per orbit: what both
+// hooks below collect and /continuation/<branch> stores (dense route: all 2N
+// multipliers, krein and instability; matrix-free: the -floquet_mf_nev
+// leading ones, products and unconverged).
+struct FloquetColumns {
+  std::vector<PetscReal> re, im, max_modulus;
+  std::vector<PetscInt> krein, stable, instability;
+  PetscInt products = 0, unconverged = 0;
+};
+
 // Floquet multipliers, Krein signatures and stability of every orbit of a branch.
 class FloquetHook : public PointHook {
 public:
@@ -63,17 +73,16 @@ public:
     }
     PetscCall(flow_.IntegrateWithMonodromy(z0, T, beta, zT_, S_)); // at the converged orbit
     PetscCall(FloquetAnalysis(flow_.Lat(), S_, opt_, &r));
-    re.insert(re.end(), r.re.begin(), r.re.end());
-    im.insert(im.end(), r.im.begin(), r.im.end());
-    krein.insert(krein.end(), r.krein.begin(), r.krein.end());
-    max_modulus.push_back(r.max_modulus);
-    stable.push_back(r.stable);
-    instability.push_back(r.instability);
+    c.re.insert(c.re.end(), r.re.begin(), r.re.end());
+    c.im.insert(c.im.end(), r.im.begin(), r.im.end());
+    c.krein.insert(c.krein.end(), r.krein.begin(), r.krein.end());
+    c.max_modulus.push_back(r.max_modulus);
+    c.stable.push_back(r.stable);
+    c.instability.push_back(r.instability);
     PetscFunctionReturn(0);
   }
-  void Clear() { re.clear(), im.clear(), krein.clear(), max_modulus.clear(), stable.clear(), instability.clear(); }
-  std::vector<PetscReal> re, im, max_modulus;
-  std::vector<PetscInt> krein, stable, instability;
+  void Clear() { c = FloquetColumns(); }
+  FloquetColumns c;
 
 private:
   PeriodicFlow &flow_;
@@ -92,22 +101,20 @@ public:
     LeadingMultipliers r;
     PetscFunctionBeginUser;
     PetscCall(FloquetLeading(flow_, z0, T, beta, mopt_, &r, &warm_, dz0));
-    re.insert(re.end(), r.re.begin(), r.re.end());
-    im.insert(im.end(), r.im.begin(), r.im.end());
-    max_modulus.push_back(r.max_modulus);
-    stable.push_back(r.max_modulus <= 1 + opt_.tol); // NaN (a multiplier did not converge): not shown stable, 0
-    products += r.products;
+    c.re.insert(c.re.end(), r.re.begin(), r.re.end());
+    c.im.insert(c.im.end(), r.im.begin(), r.im.end());
+    c.max_modulus.push_back(r.max_modulus);
+    c.stable.push_back(r.max_modulus <= 1 + opt_.tol); // NaN (a multiplier did not converge): not shown stable, 0
+    c.products += r.products;
     if (r.converged < mopt_.nev) {
-      unconverged++;
+      c.unconverged++;
       PetscCall(PetscPrintf(flow_.Lat().Comm(), "  matrix-free Floquet: %" PetscInt_FMT " of %" PetscInt_FMT " multipliers converged at omega %.6f (written as NaN; raise -floquet_mf_eps_max_it)\n",
                             r.converged, mopt_.nev, (double)(2 * PETSC_PI / T)));
     }
     PetscFunctionReturn(0);
   }
-  void Clear() { re.clear(), im.clear(), max_modulus.clear(), stable.clear(), products = 0, unconverged = 0, warm_.clear(); }
-  std::vector<PetscReal> re, im, max_modulus;
-  std::vector<PetscInt> stable;
-  PetscInt products = 0, unconverged = 0;
+  void Clear() { c = FloquetColumns(), warm_.clear(); }
+  FloquetColumns c;
 
 private:
   PeriodicFlow &flow_;
@@ -119,12 +126,11 @@ private:
 // Everything /continuation/<label> holds: the branch, its Floquet data (dense
 // or matrix-free hook) and its cost.
 struct BranchRecord {
-  std::string label, stop_reason;
+  std::string label;
   PetscReal omega = 0, seconds = 0;
   Branch b;
-  std::vector<PetscReal> re, im, max_modulus;
-  std::vector<PetscInt> krein, stable, instability;
-  PetscInt products = 0, unconverged = 0, jac = 0, res = 0, tan = 0, kry = 0;
+  FloquetColumns f;
+  PetscInt jac = 0, res = 0, tan = 0, kry = 0;
 };
 
 enum class FloquetKind { None, Dense, MatrixFree };
@@ -132,6 +138,7 @@ enum class FloquetKind { None, Dense, MatrixFree };
 PetscErrorCode WriteRecord(PetscViewer v, const BranchRecord &r, FloquetKind fk, PetscInt n2, PetscInt nev)
 {
   const Branch &b = r.b;
+  const FloquetColumns &f = r.f;
   const std::string g = "/continuation/" + r.label;
   PetscFunctionBeginUser;
   std::vector<PetscReal> its(b.newton_its.begin(), b.newton_its.end());
@@ -150,21 +157,21 @@ PetscErrorCode WriteRecord(PetscViewer v, const BranchRecord &r, FloquetKind fk,
   PetscCall(WriteAttr(v, g.c_str(), "linear_omega", r.omega));
   if (fk == FloquetKind::MatrixFree) {
     const std::vector<PetscInt> dims = {(PetscInt)b.energy.size(), nev}; // npts x nev, also for nev = 1
-    PetscCall(WriteArrayND(v, g.c_str(), "multipliers_re", r.re, dims));
-    PetscCall(WriteArrayND(v, g.c_str(), "multipliers_im", r.im, dims));
-    PetscCall(WriteArray(v, g.c_str(), "max_modulus", r.max_modulus));
-    PetscCall(WriteIntArray(v, g.c_str(), "stable", r.stable));
-    PetscCall(WriteAttr(v, g.c_str(), "floquet_products", r.products));
-    PetscCall(WriteAttr(v, g.c_str(), "floquet_unconverged", r.unconverged));
+    PetscCall(WriteArrayND(v, g.c_str(), "multipliers_re", f.re, dims));
+    PetscCall(WriteArrayND(v, g.c_str(), "multipliers_im", f.im, dims));
+    PetscCall(WriteArray(v, g.c_str(), "max_modulus", f.max_modulus));
+    PetscCall(WriteIntArray(v, g.c_str(), "stable", f.stable));
+    PetscCall(WriteAttr(v, g.c_str(), "floquet_products", f.products));
+    PetscCall(WriteAttr(v, g.c_str(), "floquet_unconverged", f.unconverged));
   } else if (fk == FloquetKind::Dense) {
-    PetscCall(WriteArray(v, g.c_str(), "multipliers_re", r.re, n2));
-    PetscCall(WriteArray(v, g.c_str(), "multipliers_im", r.im, n2));
-    PetscCall(WriteIntArray(v, g.c_str(), "krein", r.krein, n2));
-    PetscCall(WriteArray(v, g.c_str(), "max_modulus", r.max_modulus));
-    PetscCall(WriteIntArray(v, g.c_str(), "stable", r.stable));
-    PetscCall(WriteIntArray(v, g.c_str(), "instability", r.instability));
+    PetscCall(WriteArray(v, g.c_str(), "multipliers_re", f.re, n2));
+    PetscCall(WriteArray(v, g.c_str(), "multipliers_im", f.im, n2));
+    PetscCall(WriteIntArray(v, g.c_str(), "krein", f.krein, n2));
+    PetscCall(WriteArray(v, g.c_str(), "max_modulus", f.max_modulus));
+    PetscCall(WriteIntArray(v, g.c_str(), "stable", f.stable));
+    PetscCall(WriteIntArray(v, g.c_str(), "instability", f.instability));
   }
-  PetscCall(WriteAttr(v, g.c_str(), "stop_reason", r.stop_reason.c_str()));
+  PetscCall(WriteAttr(v, g.c_str(), "stop_reason", b.stop_reason.c_str()));
   PetscCall(WriteAttr(v, g.c_str(), "reached_energy_max", (PetscInt)b.reached_max));
   PetscCall(WriteAttr(v, g.c_str(), "points", (PetscInt)b.energy.size()));
   PetscCall(WriteAttr(v, g.c_str(), "jacobian_evaluations", r.jac));
@@ -269,18 +276,15 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
   const PetscInt n2 = 2 * lat.N();
   std::vector<BranchRecord> done;
   // The record of a branch from its live data (also mid-branch, for a checkpoint).
-  auto snapshot = [&](const std::string &label, PetscReal omega, const Branch &b, PetscInt j0, PetscInt r0, PetscInt p0, PetscInt k0, PetscLogDouble b0) {
+  // (b by value: the final record moves the branch in, a checkpoint copies it).
+  auto snapshot = [&](const std::string &label, PetscReal omega, Branch b, PetscInt j0, PetscInt r0, PetscInt p0, PetscInt k0, PetscLogDouble b0) {
     BranchRecord r;
     PetscLogDouble now;
     PetscTime(&now);
-    r.label = label, r.omega = omega, r.b = b, r.stop_reason = b.stop_reason, r.seconds = now - b0;
+    r.label = label, r.omega = omega, r.b = std::move(b), r.seconds = now - b0;
     r.jac = shoot.JacobianEvaluations() - j0, r.res = shoot.ResidualEvaluations() - r0, r.tan = shoot.TangentProducts() - p0,
     r.kry = shoot.KrylovIterations() - k0;
-    if (fk == FloquetKind::MatrixFree)
-      r.re = mf_hook.re, r.im = mf_hook.im, r.max_modulus = mf_hook.max_modulus, r.stable = mf_hook.stable, r.products = mf_hook.products,
-      r.unconverged = mf_hook.unconverged;
-    if (fk == FloquetKind::Dense)
-      r.re = hook.re, r.im = hook.im, r.max_modulus = hook.max_modulus, r.stable = hook.stable, r.krein = hook.krein, r.instability = hook.instability;
+    if (fk != FloquetKind::None) r.f = fk == FloquetKind::MatrixFree ? mf_hook.c : hook.c;
     return r;
   };
   for (PetscInt k = 0; k < nb; k++) {
@@ -302,7 +306,7 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
       PetscCall(f.Open(comm, path, "checkpoint."));
       for (const BranchRecord &r : done) PetscCall(WriteRecord(f.Viewer(), r, fk, n2, fmo.nev));
       BranchRecord cur = snapshot(label, omega, b, j0, r0, p0, k0, b0);
-      cur.stop_reason = "checkpoint: the run was still going";
+      cur.b.stop_reason = "checkpoint: the run was still going";
       PetscCall(WriteRecord(f.Viewer(), cur, fk, n2, fmo.nev));
       PetscCall(PetscTime(&now));
       PetscCall(f.Commit("continuation", now - t_start, false));
@@ -313,19 +317,19 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
     PetscCall(ContinueBranch(shoot, u, 2 * PETSC_PI / omega, co, label.c_str(), &b, &ck));
     PetscCall(PetscLogStagePop());
     PetscCall(PetscTime(&b1));
-    done.push_back(snapshot(label, omega, b, j0, r0, p0, k0, b0));
+    const size_t npts = b.energy.size();
+    done.push_back(snapshot(label, omega, std::move(b), j0, r0, p0, k0, b0));
     done.back().seconds = b1 - b0;
-    if (fk == FloquetKind::MatrixFree) {
+    if (fk != FloquetKind::None) {
+      const FloquetColumns &f = done.back().f;
       PetscInt ns = 0;
-      for (PetscInt s : mf_hook.stable) ns += s;
-      PetscCall(PetscPrintf(comm, "  [%s] Floquet (matrix-free, %" PetscInt_FMT " leading): %" PetscInt_FMT " of %zu orbits stable (|mu| <= 1 + %g), %" PetscInt_FMT " monodromy products\n",
-                            label.c_str(), fmo.nev, ns, mf_hook.stable.size(), (double)flo.tol, mf_hook.products));
-    } else if (fk == FloquetKind::Dense) {
-      PetscInt ns = 0;
-      for (PetscInt s : hook.stable) ns += s;
-      PetscCall(PetscPrintf(comm, "  [%s] Floquet: %" PetscInt_FMT " of %zu orbits stable (|mu| <= 1 + %g)\n", label.c_str(), ns, hook.stable.size(), (double)flo.tol));
+      for (PetscInt s : f.stable) ns += s;
+      PetscCall(PetscPrintf(comm, "  [%s] Floquet%s: %" PetscInt_FMT " of %zu orbits stable (|mu| <= 1 + %g)", label.c_str(),
+                            fk == FloquetKind::MatrixFree ? " (matrix-free, leading pairs)" : "", ns, f.stable.size(), (double)flo.tol));
+      if (fk == FloquetKind::MatrixFree) PetscCall(PetscPrintf(comm, ", %" PetscInt_FMT " monodromy products", f.products));
+      PetscCall(PetscPrintf(comm, "\n"));
     }
-    PetscCall(PetscPrintf(comm, "  [%s] %.2f s, %.3f s per point\n", label.c_str(), (double)(b1 - b0), (double)(b1 - b0) / b.energy.size()));
+    PetscCall(PetscPrintf(comm, "  [%s] %.2f s, %.3f s per point\n", label.c_str(), (double)(b1 - b0), (double)(b1 - b0) / npts));
   }
   PetscCall(PetscLogStagePush(Log().write));
   for (const BranchRecord &r : done) PetscCall(WriteRecord(out.Viewer(), r, fk, n2, fmo.nev));
