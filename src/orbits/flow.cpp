@@ -1,5 +1,6 @@
 #include "orbits/flow.hpp"
 #include "core/log.hpp"
+#include <cmath>
 #include <cstring>
 
 namespace nltopo {
@@ -183,35 +184,46 @@ PetscErrorCode PeriodicFlow::Integrate(Vec z0, PetscReal T, PetscReal beta, Vec 
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PeriodicFlow::IntegrateAveragingStiffness(Vec z0, PetscReal T, PetscReal beta, Vec zT, std::vector<PetscReal> *diag, std::vector<PetscReal> *off)
+PetscErrorCode PeriodicFlow::IntegrateAveragingStiffness(Vec z0, PetscReal T, PetscReal beta, Vec zT, StiffnessHarmonics *h)
 {
   PetscFunctionBeginUser;
-  diag->assign(lat_->OwnedCount(), 0.0);
-  off->assign(lat_->OwnedCount(), 0.0);
-  avg_diag_ = diag;
-  avg_off_ = off;
+  const PetscInt m = lat_->OwnedCount(), mh = h->parametric ? m : 0;
+  h->d0.assign(m, 0.0);
+  h->o0.assign(m, 0.0);
+  for (auto *v : {&h->dc, &h->oc, &h->ds, &h->os}) v->assign(mh, 0.0);
+  harm_ = h;
   beta_ = beta;
   const PetscErrorCode ierr = Run(ts_, z0, T, zT);
-  avg_diag_ = avg_off_ = nullptr;
+  harm_ = nullptr;
   PetscCall(ierr);
   PetscFunctionReturn(0);
 }
 
-// Trapezoidal weights over the samples at steps 0..n (the monitor sees every one).
+// Trapezoidal weights over the samples at steps 0..n (the monitor sees every
+// one); step k is at t = k T / n, so 2 w t = 4 pi k / n.
 PetscErrorCode PeriodicFlow::AccumulateStiffness(PetscInt step, Vec z)
 {
   const PetscScalar *u;
   Vec ul;
   PetscFunctionBeginUser;
-  if (!avg_diag_) PetscFunctionReturn(0);
+  if (!harm_) PetscFunctionReturn(0);
   const PetscReal w = (step == 0 || step == opt_.steps ? 0.5 : 1.0) / opt_.steps;
+  const PetscReal phase = 4 * PETSC_PI * step / opt_.steps, wc = 2 * w * std::cos(phase), ws = 2 * w * std::sin(phase);
   const PetscInt xs = lat_->OwnedStart(), xm = lat_->OwnedCount();
+  StiffnessHarmonics &h = *harm_;
   PetscCall(lat_->GetGhostedU(z, &ul, &u));
   for (PetscInt i = xs; i < xs + xm; i++) {
     PetscScalar c[3];
     lat_->TangentRow(i, u, c);
-    (*avg_diag_)[i - xs] += w * c[1];
-    (*avg_off_)[i - xs] += w * c[2];
+    const PetscInt k = i - xs;
+    h.d0[k] += w * c[1];
+    h.o0[k] += w * c[2];
+    if (h.parametric) {
+      h.dc[k] += wc * c[1];
+      h.oc[k] += wc * c[2];
+      h.ds[k] += ws * c[1];
+      h.os[k] += ws * c[2];
+    }
   }
   PetscCall(lat_->RestoreGhostedU(z, &ul, &u));
   PetscFunctionReturn(0);

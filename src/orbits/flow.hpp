@@ -21,6 +21,16 @@ namespace nltopo {
 
 enum class MonodromyRoute { Variational = 0, TSForward = 1 };
 
+// The tangent stiffness along a periodic orbit (period T, w = 2 pi / T, t from
+// z0), to its 2 w harmonic: K_T(u(t)) ~ K0 + Kc cos(2 w t) + Ks sin(2 w t).
+// Tridiagonal (nearest-neighbour chain), owned rows: d*[i - xs] = (i, i),
+// o*[i - xs] = (i, i + 1). K0 = <K_T>; Kc, Ks = (2/T) int K_T cos, sin(2 w t) dt,
+// filled only when `parametric` is set.
+struct StiffnessHarmonics {
+  std::vector<PetscReal> d0, o0, dc, oc, ds, os;
+  bool parametric = false;
+};
+
 struct FlowOptions {
   PetscInt steps = 128; // fixed RK steps per period
   MonodromyRoute route = MonodromyRoute::Variational;
@@ -38,11 +48,10 @@ public:
   PetscErrorCode IntegrateWithMonodromy(Vec z0, PetscReal T, PetscReal beta, Vec zT, Mat S);
   // Also w = dz(T)/dz0 dz + dz(T)/dbeta dbeta (one tangent-linear direction).
   PetscErrorCode IntegrateWithTangent(Vec z0, PetscReal T, PetscReal beta, Vec dz, PetscReal dbeta, Vec zT, Vec w);
-  // Integrate, and also the time average over [0, T] of the tangent stiffness
-  // K_T(u(t)) along the orbit: its diagonal and superdiagonal at the owned sites
-  // (diag[i - xs] = <K_T>_{i,i}, off[i - xs] = <K_T>_{i,i+1}). The trapezoidal rule
-  // on the fixed steps is spectrally accurate for a periodic orbit.
-  PetscErrorCode IntegrateAveragingStiffness(Vec z0, PetscReal T, PetscReal beta, Vec zT, std::vector<PetscReal> *diag, std::vector<PetscReal> *off);
+  // Integrate, and also the harmonics of the tangent stiffness K_T(u(t)) along
+  // the orbit (h->parametric chooses whether the 2 w ones too). The trapezoidal
+  // rule on the fixed steps is spectrally accurate for a periodic orbit.
+  PetscErrorCode IntegrateAveragingStiffness(Vec z0, PetscReal T, PetscReal beta, Vec zT, StiffnessHarmonics *h);
   PetscErrorCode CreateSensitivityMatrix(Mat *S) const;
 
   // f(z) of the free lattice (beta = 0) and grad E(z).
@@ -69,7 +78,7 @@ private:
   OwnedMat J_, Jp_mono_, Jp_tlm_, S_tlm_;
   std::unique_ptr<VariationalFlow> var_dense_, var_tlm_; // created on first use
   OwnedVec wb_;
-  std::vector<PetscReal> *avg_diag_ = nullptr, *avg_off_ = nullptr; // set while averaging K_T
+  StiffnessHarmonics *harm_ = nullptr; // set while averaging K_T
 };
 
 } // namespace nltopo

@@ -1,7 +1,15 @@
 #include "orbits/linear_monodromy_pc.hpp"
 #include <cmath>
 
+extern "C" { // LAPACK's banded LU (Debian liblapack)
+void dgbtrf_(const int *m, const int *n, const int *kl, const int *ku, double *ab, const int *ldab, int *ipiv, int *info);
+void dgbtrs_(const char *trans, const int *n, const int *kl, const int *ku, const int *nrhs, const double *ab, const int *ldab, const int *ipiv, double *b,
+             const int *ldb, int *info, size_t trans_len);
+}
+
 namespace nltopo {
+
+static const int kBandKl = 3, kBandKu = 3, kBandLd = 2 * kBandKl + kBandKu + 1; // B T in the order (a_0, b_0, a_1, b_1, ...)
 
 PetscErrorCode LinearMonodromyPC::Setup(const Lattice &lat)
 {
@@ -35,21 +43,46 @@ PetscErrorCode LinearMonodromyPC::Setup(const Lattice &lat)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode LinearMonodromyPC::SetStiffness(const std::vector<PetscReal> &diag, const std::vector<PetscReal> &off)
+// The whole chain's diagonals d, e (e[N-1] = 0) from owned rows.
+PetscErrorCode LinearMonodromyPC::GatherChain(const std::vector<PetscReal> &diag, const std::vector<PetscReal> &off, std::vector<PetscReal> *d,
+                                              std::vector<PetscReal> *e)
 {
   MPI_Comm comm = lat_->Comm();
   PetscFunctionBeginUser;
   const PetscMPIInt mine = (PetscMPIInt)lat_->OwnedCount();
   PetscCheck((PetscMPIInt)diag.size() == mine && (PetscMPIInt)off.size() == mine, comm, PETSC_ERR_ARG_SIZ, "stiffness diagonals must have the owned length");
-  diag_.resize(N_);
-  off_.resize(N_);
-  PetscCallMPI(MPI_Allgatherv(diag.data(), mine, MPIU_REAL, diag_.data(), counts_.data(), displs_.data(), MPIU_REAL, comm));
-  PetscCallMPI(MPI_Allgatherv(off.data(), mine, MPIU_REAL, off_.data(), counts_.data(), displs_.data(), MPIU_REAL, comm));
-  off_[N_ - 1] = 0; // no bond past the last site
+  d->resize(N_);
+  e->resize(N_);
+  PetscCallMPI(MPI_Allgatherv(diag.data(), mine, MPIU_REAL, d->data(), counts_.data(), displs_.data(), MPIU_REAL, comm));
+  PetscCallMPI(MPI_Allgatherv(off.data(), mine, MPIU_REAL, e->data(), counts_.data(), displs_.data(), MPIU_REAL, comm));
+  (*e)[N_ - 1] = 0; // no bond past the last site
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LinearMonodromyPC::SetStiffness(const std::vector<PetscReal> &diag, const std::vector<PetscReal> &off)
+{
+  PetscFunctionBeginUser;
+  PetscCall(GatherChain(diag, off, &diag_, &off_));
   lambda_max_ = 0; // Gershgorin bound of the spectrum
   for (PetscInt i = 0; i < N_; i++)
     lambda_max_ = std::max(lambda_max_, std::abs(diag_[i]) + std::abs(off_[i]) + (i > 0 ? std::abs(off_[i - 1]) : 0.0));
   T_ = 0; // refactor at the next SetPeriod
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LinearMonodromyPC::SetParametricTerm(const std::vector<PetscReal> &cdiag, const std::vector<PetscReal> &coff, const std::vector<PetscReal> &sdiag,
+                                                    const std::vector<PetscReal> &soff, PetscReal weight)
+{
+  PetscFunctionBeginUser;
+  parametric_ = !cdiag.empty();
+  pw_ = weight;
+  if (parametric_) {
+    PetscCall(GatherChain(cdiag, coff, &kcd_, &kco_));
+    PetscCall(GatherChain(sdiag, soff, &ksd_, &kso_));
+    cu_.resize(N_);
+    cv_.resize(N_);
+  }
+  T_ = 0;
   PetscFunctionReturn(0);
 }
 
@@ -132,7 +165,9 @@ PetscErrorCode LinearMonodromyPC::SetPeriod(PetscReal T)
       shift *= 1 - 1e-9;
       lu_[n].Factor(diag_, off_, shift);
     }
+    if (n == 1) shift1_ = shift;
   }
+  if (parametric_) PetscCall(FactorRotatingWave());
   // s_j = w1^{-2j} (zeta(2j) - sum_{n<=nmax} n^{-2j}), j = 1..4
   const PetscReal zeta[4] = {std::pow(PETSC_PI, 2) / 6, std::pow(PETSC_PI, 4) / 90, std::pow(PETSC_PI, 6) / 945, std::pow(PETSC_PI, 8) / 9450};
   for (int j = 0; j < 4; j++) {
@@ -141,6 +176,67 @@ PetscErrorCode LinearMonodromyPC::SetPeriod(PetscReal T)
     tail_[j] = (zeta[j] - partial) * std::pow(w1, -2.0 * (j + 1));
   }
   PetscFunctionReturn(0);
+}
+
+// B T = T/(2w) [[Ks/2, D - Kc/2], [-(D + Kc/2), -Ks/2]] (header), D = K0 - w^2 with
+// lu_[1]'s shift, so that with Kc = Ks = 0 it is exactly the averaged n = 1 term;
+// Kc and Ks scaled by the weight (header).
+PetscErrorCode LinearMonodromyPC::FactorRotatingWave()
+{
+  PetscFunctionBeginUser;
+  const int n2 = (int)(2 * N_), kl = kBandKl, ku = kBandKu, ld = kBandLd;
+  const PetscReal w = 2 * PETSC_PI / T_, scale = T_ / (2 * w);
+  band_.assign((size_t)ld * n2, 0.0);
+  ipiv_.resize(n2);
+  auto set = [&](PetscInt row, PetscInt col, PetscReal v) { band_[(size_t)(kl + ku + row - col) + (size_t)col * ld] = scale * v; };
+  for (PetscInt i = 0; i < N_; i++) {
+    for (PetscInt j = std::max<PetscInt>(0, i - 1); j <= std::min(N_ - 1, i + 1); j++) {
+      const PetscInt b = std::min(i, j); // bond (b, b+1) holds the off-diagonal entries
+      const PetscReal k0 = i == j ? diag_[i] - shift1_ : off_[b];
+      const PetscReal kc = pw_ * (i == j ? kcd_[i] : kco_[b]), ks = pw_ * (i == j ? ksd_[i] : kso_[b]);
+      set(2 * i, 2 * j, ks / 2);
+      set(2 * i, 2 * j + 1, k0 - kc / 2);
+      set(2 * i + 1, 2 * j, -(k0 + kc / 2));
+      set(2 * i + 1, 2 * j + 1, -ks / 2);
+    }
+  }
+  int info;
+  dgbtrf_(&n2, &n2, &kl, &ku, band_.data(), &ld, ipiv_.data(), &info);
+  PetscCheck(info >= 0, lat_->Comm(), PETSC_ERR_LIB, "LAPACK dgbtrf: argument %d illegal", -info);
+  // info > 0: an exact zero pivot (the 1:1 resonance itself). Drop the correction
+  // for this period rather than divide by zero; the averaged part stays.
+  if (info > 0) {
+    PetscCall(PetscInfo(NULL, "-nnm_mf_pc parametric: rotating-wave block singular at pivot %d, correction off for T = %g\n", info, (double)T_));
+    band_.clear();
+  }
+  PetscFunctionReturn(0);
+}
+
+// cu_, cv_ = S^-1 [(B T)^-1 - (B0 T)^-1] S [ru; rv], S = diag(I, I/w), whole chain.
+void LinearMonodromyPC::ApplyRotatingWave(const PetscReal *ru, const PetscReal *rv)
+{
+  const int n2 = (int)(2 * N_), kl = kBandKl, ku = kBandKu, ld = kBandLd, one = 1;
+  const PetscReal w = 2 * PETSC_PI / T_;
+  rhs2_.resize(n2);
+  for (PetscInt i = 0; i < N_; i++) {
+    rhs2_[2 * i] = ru[i];
+    rhs2_[2 * i + 1] = rv[i] / w;
+  }
+  int info;
+  dgbtrs_("N", &n2, &kl, &ku, &one, band_.data(), &ld, ipiv_.data(), rhs2_.data(), &n2, &info, 1);
+  // (B0 T)^-1 = (2w/T) [[0, -D^-1], [D^-1, 0]]
+  const PetscReal c = 2 * w / T_;
+  for (PetscInt i = 0; i < N_; i++) {
+    cu_[i] = rv[i] / w;
+    cv_[i] = ru[i];
+  }
+  lu_[1].Solve(cu_.data());
+  lu_[1].Solve(cv_.data());
+  for (PetscInt i = 0; i < N_; i++) {
+    const PetscReal ya = rhs2_[2 * i] + c * cu_[i], yb = rhs2_[2 * i + 1] - c * cv_[i];
+    cu_[i] = ya;
+    cv_[i] = w * yb;
+  }
 }
 
 void LinearMonodromyPC::MultK(const PetscReal *x, PetscReal *y) const
@@ -190,10 +286,12 @@ PetscErrorCode LinearMonodromyPC::Apply(Vec r, Vec x)
   ApplyG(ru_.data(), gu_.data());
   ApplyG(rv_.data(), gv_.data());
   MultK(gu_.data(), t1_.data()); // K G r_u
+  const bool rwa = parametric_ && !band_.empty();
+  if (rwa) ApplyRotatingWave(ru_.data(), rv_.data());
   PetscCall(VecGetArray(x, &xa));
   for (PetscInt i = 0; i < m; i++) {
-    xa[i] = -0.5 * ru_[s + i] - 0.5 * gv_[s + i];
-    xa[m + i] = 0.5 * t1_[s + i] - 0.5 * rv_[s + i];
+    xa[i] = -0.5 * ru_[s + i] - 0.5 * gv_[s + i] + (rwa ? cu_[s + i] : 0.0);
+    xa[m + i] = 0.5 * t1_[s + i] - 0.5 * rv_[s + i] + (rwa ? cv_[s + i] : 0.0);
   }
   PetscCall(VecRestoreArray(x, &xa));
   PetscCall(PetscLogFlops(2.0 * (lu_.size() * 8.0 + 12) * N_));

@@ -18,6 +18,25 @@
 // Why it bounds the Krylov iterations: away from the localized nonlinear core
 // the orbit is small and M - I equals M_lin - I, so the preconditioned operator
 // is the identity plus a perturbation whose rank is set by the core, not by N.
+//
+// -nnm_mf_pc parametric adds the orbit's 2 w parametric term (w = 2 pi / T) where
+// it matters: on the band modes of frequency near w, which the averaged
+// stiffness leaves near-singular once the orbit is inside a band. With
+// K_T(t) ~ K0 + Kc cos 2wt + Ks sin 2wt and u = a cos wt + b sin wt, averaging
+// over the fast phase (rotating-wave approximation) gives the slow system
+//   [a; b]' = B [a; b],  B = 1/(2w) [[Ks/2, D - Kc/2], [-(D + Kc/2), -Ks/2]],
+//   D = K0 - w^2,  and (u, v) = (a, w b) at t = 0 and T,
+// so near the 1:1 resonance M - I ~ S^-1 (B T) S with S = diag(I, I/w). Its
+// inverse is the exact averaged one's n = 1 partial fraction when Kc = Ks = 0;
+// the preconditioner adds the difference S^-1 [(B T)^-1 - (B0 T)^-1] S, which
+// vanishes away from the resonance. B T is a 2N x 2N band matrix in the order
+// (a_0, b_0, a_1, ...) with 3 sub- and superdiagonals: LAPACK's banded LU, O(N).
+// Along the orbit's own mode the block is exactly singular (D = |Kc + i Ks|/2:
+// the orbit's phase shift, which the shooting system fixes by its phase row,
+// not by the state rows this preconditioner acts on), and GMRES breaks down on
+// it once Newton has converged. Kc and Ks are therefore scaled by a weight < 1
+// (-nnm_mf_pc_parametric_weight, default 0.9): det = (1 - weight^2) D^2 there,
+// and the band modes keep 90 % of their parametric coupling.
 #include "lattice/lattice.hpp"
 #include <vector>
 
@@ -30,6 +49,11 @@ public:
   // time-averaged tangent stiffness <K_T(u(t))> (-nnm_mf_pc averaged); owned rows:
   // diag[i - xs] = K(i,i), off[i - xs] = K(i,i+1). Collective.
   PetscErrorCode SetStiffness(const std::vector<PetscReal> &diag, const std::vector<PetscReal> &off);
+  // The orbit's 2 w harmonics Kc, Ks of K_T (-nnm_mf_pc parametric), owned rows
+  // as in SetStiffness, scaled by weight in (0, 1]; empty vectors remove the
+  // term. Collective.
+  PetscErrorCode SetParametricTerm(const std::vector<PetscReal> &cdiag, const std::vector<PetscReal> &coff, const std::vector<PetscReal> &sdiag,
+                                   const std::vector<PetscReal> &soff, PetscReal weight);
   // Factor the shifted chains for the period T (called at every Jacobian evaluation).
   PetscErrorCode SetPeriod(PetscReal T);
   // x = (M_lin - I)^{-1} r on state vectors (x may not alias r).
@@ -46,6 +70,9 @@ private:
   };
   void MultK(const PetscReal *x, PetscReal *y) const; // y = K x on the whole chain
   void ApplyG(const PetscReal *r, PetscReal *y);      // y = g(K) r on the whole chain
+  PetscErrorCode GatherChain(const std::vector<PetscReal> &diag, const std::vector<PetscReal> &off, std::vector<PetscReal> *d, std::vector<PetscReal> *e);
+  PetscErrorCode FactorRotatingWave();                       // B T of the header, banded LU
+  void ApplyRotatingWave(const PetscReal *ru, const PetscReal *rv); // cu_, cv_ = the parametric correction
 
   const Lattice *lat_ = nullptr;
   PetscInt N_ = 0;
@@ -55,6 +82,14 @@ private:
   std::vector<TridiagonalLU> lu_; // shift 0, then w_1^2 .. w_nmax^2
   PetscReal tail_[4] = {0, 0, 0, 0}; // s_1 .. s_4
   std::vector<PetscReal> ru_, rv_, gu_, gv_, t1_, t2_;
+  // -nnm_mf_pc parametric
+  bool parametric_ = false;
+  std::vector<PetscReal> kcd_, kco_, ksd_, kso_; // Kc, Ks of the whole chain
+  PetscReal pw_ = 1; // scale of Kc, Ks
+  PetscReal shift1_ = 0;                          // the shift of lu_[1]: w^2, nudged off K's spectrum
+  std::vector<PetscReal> band_, rhs2_;            // LAPACK band storage of B T (ldab 10), interleaved right-hand side
+  std::vector<int> ipiv_;
+  std::vector<PetscReal> cu_, cv_;
 };
 
 } // namespace nltopo

@@ -5,7 +5,7 @@
 namespace nltopo {
 
 static const char *const kJacobianNames[] = {"dense", "mf"};
-static const char *const kMfPcNames[] = {"none", "linear", "averaged"};
+static const char *const kMfPcNames[] = {"none", "linear", "averaged", "parametric"};
 
 PetscErrorCode ShootingOptionsFromOptions(MPI_Comm comm, ShootingOptions *o)
 {
@@ -22,24 +22,46 @@ PetscErrorCode ShootingOptionsFromOptions(MPI_Comm comm, ShootingOptions *o)
   if (!start_set && j == static_cast<PetscInt>(ShootingJacobian::MatrixFree)) o->start_dense_max = 0;
   PetscCall(PetscOptionsEList("-mf_pc",
                               "Preconditioner of the mf shooting Jacobian: linear (exact inverse of M_lin - I of the linear lattice, O(N) per "
-                              "application), averaged (the same with K replaced by the orbit's time-averaged tangent stiffness) or none (plain GMRES)",
-                              NULL, kMfPcNames, 3, kMfPcNames[pc], &pc, NULL));
+                              "application), averaged (the same with K replaced by the orbit's time-averaged tangent stiffness), parametric (averaged "
+                              "plus the orbit's 2 omega parametric term on the band modes near omega, rotating-wave approximation) or none (plain GMRES)",
+                              NULL, kMfPcNames, 4, kMfPcNames[pc], &pc, NULL));
+  PetscCall(PetscOptionsReal("-mf_pc_parametric_weight",
+                             "Scale in (0, 1] of the 2 omega term in -nnm_mf_pc parametric; below 1 it keeps the block regular along the orbit's own phase "
+                             "direction (1 makes GMRES break down at converged orbits)",
+                             NULL, o->parametric_weight, &o->parametric_weight, NULL));
   PetscOptionsEnd();
+  PetscCheck(o->parametric_weight > 0 && o->parametric_weight <= 1, comm, PETSC_ERR_USER, "-nnm_mf_pc_parametric_weight %g: must lie in (0, 1]",
+             (double)o->parametric_weight);
   o->jacobian = static_cast<ShootingJacobian>(j);
   o->mf_pc = static_cast<MatrixFreePC>(pc);
   PetscFunctionReturn(0);
 }
 
 namespace {
+// A Newton iterate with T <= 0 (a failing step far from the branch) is outside
+// the domain: SNES stops with DIVERGED_FUNCTION_DOMAIN and the continuation
+// rejects the step, instead of integrating backwards or failing at SetPeriod.
 PetscErrorCode ShootResidual(SNES snes, Vec X, Vec F, void *ctx)
 {
+  PetscBool ok;
   PetscFunctionBeginUser;
+  PetscCall(static_cast<Shooting *>(ctx)->InDomain(X, &ok));
+  if (!ok) {
+    PetscCall(SNESSetFunctionDomainError(snes));
+    PetscFunctionReturn(0);
+  }
   PetscCall(static_cast<Shooting *>(ctx)->Residual(X, F));
   PetscFunctionReturn(0);
 }
 PetscErrorCode ShootJacobian(SNES snes, Vec X, Mat A, Mat P, void *ctx)
 {
+  PetscBool ok;
   PetscFunctionBeginUser;
+  PetscCall(static_cast<Shooting *>(ctx)->InDomain(X, &ok));
+  if (!ok) {
+    PetscCall(SNESSetJacobianDomainError(snes));
+    PetscFunctionReturn(0);
+  }
   PetscCall(static_cast<Shooting *>(ctx)->Jacobian(X, P));
   if (A != P) {
     PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
@@ -113,7 +135,10 @@ PetscErrorCode Shooting::Setup(PeriodicFlow &flow, const ShootingOptions &o)
       PetscCall(PCSetType(pc, PCSHELL));
       PetscCall(PCShellSetContext(pc, this));
       PetscCall(PCShellSetApply(pc, ShootPCApply));
-      PetscCall(PCShellSetName(pc, o.mf_pc == MatrixFreePC::Linear ? "exact inverse of M_lin - I (linear lattice) on the state rows, identity on the border" : "exact inverse of M_avg - I (linear lattice with the orbit's time-averaged tangent stiffness) on the state rows, identity on the border"));
+      const char *name = o.mf_pc == MatrixFreePC::Linear     ? "exact inverse of M_lin - I (linear lattice) on the state rows, identity on the border"
+                         : o.mf_pc == MatrixFreePC::Averaged ? "exact inverse of M_avg - I (linear lattice with the orbit's time-averaged tangent stiffness) on the state rows, identity on the border"
+                                                             : "inverse of M_avg - I plus the rotating-wave 2 omega parametric block near the 1:1 resonance on the state rows, identity on the border";
+      PetscCall(PCShellSetName(pc, name));
       PetscCall(KSPSetPCSide(ksp, PC_RIGHT)); // GMRES minimises the true residual
     } else PetscCall(PCSetType(pc, PCNONE));
     PetscCall(KSPSetTolerances(ksp, 1e-10, 1e-14, PETSC_DEFAULT, 400));
@@ -201,6 +226,15 @@ PetscErrorCode Shooting::Unpack(Vec X, Vec z, PetscReal *T, PetscReal *beta) con
   PetscCallMPI(MPI_Bcast(tb, 2, MPIU_REAL, size_ - 1, lat_->Comm()));
   *T = tb[0];
   *beta = tb[1];
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Shooting::InDomain(Vec X, PetscBool *ok)
+{
+  PetscReal T, beta;
+  PetscFunctionBeginUser;
+  PetscCall(Unpack(X, w_, &T, &beta));
+  *ok = T > 0 ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 
@@ -295,9 +329,11 @@ PetscErrorCode Shooting::Jacobian(Vec X, Mat J)
     PetscCall(VecCopy(z_, zlin_));
     Tlin_ = T;
     blin_ = beta;
-    if (opt_.mf_pc == MatrixFreePC::Averaged) {
-      PetscCall(flow_->IntegrateAveragingStiffness(z_, T, beta, zT_, &kavg_diag_, &kavg_off_));
-      PetscCall(lin_pc_.SetStiffness(kavg_diag_, kavg_off_));
+    if (opt_.mf_pc == MatrixFreePC::Averaged || opt_.mf_pc == MatrixFreePC::Parametric) {
+      kharm_.parametric = opt_.mf_pc == MatrixFreePC::Parametric;
+      PetscCall(flow_->IntegrateAveragingStiffness(z_, T, beta, zT_, &kharm_));
+      PetscCall(lin_pc_.SetStiffness(kharm_.d0, kharm_.o0));
+      if (kharm_.parametric) PetscCall(lin_pc_.SetParametricTerm(kharm_.dc, kharm_.oc, kharm_.ds, kharm_.os, opt_.parametric_weight));
     } else PetscCall(flow_->Integrate(z_, T, beta, zT_));
     if (opt_.mf_pc != MatrixFreePC::None) PetscCall(lin_pc_.SetPeriod(T));
     PetscCall(flow_->EvalRhs(T, zT_, fT_));

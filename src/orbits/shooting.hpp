@@ -14,7 +14,9 @@
 // [f(z_ref)^T, 0, 0], [c_X^T]] from forward sensitivities (small N); "mf" is a
 // MATSHELL whose product integrates one tangent-linear direction (any N;
 // GMRES, preconditioned by -nnm_mf_pc: "linear" applies the exact inverse of
-// M_lin - I of the linear lattice to the state rows, orbits/linear_monodromy_pc.hpp);
+// M_lin - I of the linear lattice to the state rows, "averaged" the same with
+// the orbit's time-averaged tangent stiffness, "parametric" adds its 2 omega
+// term near the 1:1 resonance; orbits/linear_monodromy_pc.hpp);
 // -nnm_snes_mf gives finite differences.
 #include "orbits/flow.hpp"
 #include "orbits/linear_monodromy_pc.hpp"
@@ -24,12 +26,13 @@
 namespace nltopo {
 
 enum class ShootingJacobian { Dense = 0, MatrixFree = 1 };
-enum class MatrixFreePC { None = 0, Linear = 1, Averaged = 2 };
+enum class MatrixFreePC { None = 0, Linear = 1, Averaged = 2, Parametric = 3 };
 
 struct ShootingOptions {
   ShootingJacobian jacobian = ShootingJacobian::Dense;
   PetscInt start_dense_max = 4000; // 2N up to which the first orbit uses the dense SVD start solver
   MatrixFreePC mf_pc = MatrixFreePC::Averaged;
+  PetscReal parametric_weight = 0.9; // scale of the 2 omega term in -nnm_mf_pc parametric (linear_monodromy_pc.hpp)
 };
 PetscErrorCode ShootingOptionsFromOptions(MPI_Comm comm, ShootingOptions *o);
 
@@ -63,6 +66,7 @@ public:
   Mat Operator() const { return Jshell_ ? Jshell_.get() : Jdense_.get(); } // the main solver's Jacobian
 
   // SNES callbacks.
+  PetscErrorCode InDomain(Vec X, PetscBool *ok); // T > 0 (collective)
   PetscErrorCode Residual(Vec X, Vec F);
   PetscErrorCode Jacobian(Vec X, Mat J);
   PetscErrorCode ShellMult(Vec x, Vec y);
@@ -93,7 +97,7 @@ private:
   SNESConvergedReason reason_ = SNES_CONVERGED_ITERATING;
   PetscReal tangent_rtol_ = 1e-10; // GMRES tolerance of the tangent solve (the configured -nnm_ksp_rtol)
   LinearMonodromyPC lin_pc_;
-  std::vector<PetscReal> kavg_diag_, kavg_off_; // <K_T(u(t))> over the orbit (-nnm_mf_pc averaged)
+  StiffnessHarmonics kharm_; // K_T(u(t)) over the orbit (-nnm_mf_pc averaged, parametric)
 };
 
 } // namespace nltopo
