@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Matrix-free continuation of the insulated branch against lattice length:
 options/fep_long.opts to E = 10 (default) with N = 102, 1002, 10002 (-lattice_cells 25, 250,
-2500), with each preconditioner of -nnm_mf_pc (PCS=averaged,linear,none by default;
+2500), with each preconditioner of -nnm_mf_pc (PCS=parametric,averaged,linear,none by default;
 "linear" and "none" rows are limited to 40 and 8 points: inside the band they crawl). Prints a
 markdown table: points, energy reached, Newton iterations per point, GMRES
 iterations per Newton step (median and max over the points, and overall,
@@ -19,7 +19,7 @@ root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 tmp = tempfile.mkdtemp()
 print("| N | preconditioner | points | E reached | Newton per point | GMRES per Newton step: median / max over points / overall | s per point | stop |\n|---|---|---|---|---|---|---|---|")
 for c in cells:
-    for pc in os.environ.get("PCS", "averaged,linear,none").split(","):
+    for pc in os.environ.get("PCS", "parametric,averaged,linear,none").split(","):
         out = os.path.join(tmp, f"c{c}{pc}.h5")
         cmd = [os.path.join(build, "nltopo"), "-options_file", os.path.join(root, "options", "fep_long.opts"), "-lattice_cells", str(c),
                "-nnm_mf_pc", pc, "-cont_energy_max", emax, "-cont_verbose", "0", "-floquet", "0", "-output", out]

@@ -35,8 +35,8 @@
 // the orbit's phase shift, which the shooting system fixes by its phase row,
 // not by the state rows this preconditioner acts on), and GMRES breaks down on
 // it once Newton has converged. Kc and Ks are therefore scaled by a weight < 1
-// (-nnm_mf_pc_parametric_weight, default 0.9): det = (1 - weight^2) D^2 there,
-// and the band modes keep 90 % of their parametric coupling.
+// (-nnm_mf_pc_parametric_weight, default 0.95): det = (1 - weight^2) D^2 there,
+// and the band modes keep 95 % of their parametric coupling.
 #include "lattice/lattice.hpp"
 #include <vector>
 

@@ -31,8 +31,8 @@ enum class MatrixFreePC { None = 0, Linear = 1, Averaged = 2, Parametric = 3 };
 struct ShootingOptions {
   ShootingJacobian jacobian = ShootingJacobian::Dense;
   PetscInt start_dense_max = 4000; // 2N up to which the first orbit uses the dense SVD start solver
-  MatrixFreePC mf_pc = MatrixFreePC::Averaged;
-  PetscReal parametric_weight = 0.9; // scale of the 2 omega term in -nnm_mf_pc parametric (linear_monodromy_pc.hpp)
+  MatrixFreePC mf_pc = MatrixFreePC::Parametric;
+  PetscReal parametric_weight = 0.95; // scale of the 2 omega term in -nnm_mf_pc parametric (linear_monodromy_pc.hpp)
 };
 PetscErrorCode ShootingOptionsFromOptions(MPI_Comm comm, ShootingOptions *o);
 
