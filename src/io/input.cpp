@@ -47,4 +47,22 @@ PetscErrorCode ReadInts(const std::string &file, const char *dataset, std::vecto
   PetscFunctionReturn(0);
 }
 
+bool HasDataset(const std::string &file, const char *dataset)
+{
+  H5E_auto2_t func;
+  void *data;
+  H5Eget_auto2(H5E_DEFAULT, &func, &data);
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  bool ok = f >= 0;
+  const std::string path = dataset;
+  for (size_t pos = path.find('/', 1); ok; pos = path.find('/', pos + 1)) { // every link along the path, then the dataset
+    ok = H5Lexists(f, path.substr(0, pos).c_str(), H5P_DEFAULT) > 0;
+    if (pos == std::string::npos) break;
+  }
+  if (f >= 0) H5Fclose(f);
+  H5Eset_auto2(H5E_DEFAULT, func, data);
+  return ok;
+}
+
 } // namespace nltopo

@@ -10,5 +10,7 @@ namespace nltopo {
 // Not collective: call on the rank that needs the data. Errors name the file and dataset.
 PetscErrorCode ReadDoubles(const std::string &file, const char *dataset, std::vector<PetscReal> *out);
 PetscErrorCode ReadInts(const std::string &file, const char *dataset, std::vector<PetscInt> *out);
+// Whether the file opens and holds the dataset (absolute path, e.g. "/continuation/insulated/energy").
+bool HasDataset(const std::string &file, const char *dataset);
 
 } // namespace nltopo

@@ -83,9 +83,24 @@ PetscErrorCode AppendRow(const Lattice &lat, Vec z, std::vector<PetscReal> *rows
   PetscFunctionReturn(0);
 }
 
+// z from a natural row [u_1..u_N, v_1..v_N] held by every rank.
+PetscErrorCode SetFromRow(const Lattice &lat, const PetscReal *row, Vec z)
+{
+  const PetscInt N = lat.N();
+  PetscFunctionBeginUser;
+  for (PetscInt i = lat.OwnedStart(); i < lat.OwnedStart() + lat.OwnedCount(); i++) {
+    PetscCall(VecSetValue(z, lat.StateIndexU(i), row[i], INSERT_VALUES));
+    PetscCall(VecSetValue(z, lat.StateIndexV(i), row[N + i], INSERT_VALUES));
+  }
+  PetscCall(VecAssemblyBegin(z));
+  PetscCall(VecAssemblyEnd(z));
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
-PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, const ContinuationOptions &o, const char *name, Branch *b, PointHook *hook)
+PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, const ContinuationOptions &o, const char *name, Branch *b, PointHook *hook,
+                              const Branch *resume)
 {
   PeriodicFlow &flow = shoot.Flow();
   const Lattice &lat = flow.Lat();
@@ -95,7 +110,8 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
   PetscInt its;
   bool ok;
   PetscFunctionBeginUser;
-  *b = Branch();
+  const bool resumed = resume && resume->energy.size() >= 2;
+  *b = resumed ? *resume : Branch();
   PetscLogDouble t_begin;
   PetscCall(PetscTime(&t_begin)); // the verbose lines print the elapsed time
   PetscCall(lat.CreateStateVector(z.out()));
@@ -103,9 +119,43 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
   PetscCall(VecDuplicate(z, tz.out()));
   PetscCall(shoot.CreateUnknowns(X.out()));
   for (OwnedVec *v : {&Xprev, &Xpred, &t, &tprev}) PetscCall(VecDuplicate(X, v->out()));
+  PetscInt kry0 = shoot.KrylovIterations();
+  PetscReal znorm;
 
-  // Guess (u, v = 0) scaled to the starting energy (linear scaling: E ~ amplitude^2).
-  {
+  if (resumed) {
+    // The last two orbits (rank 0's rows, to every rank): re-solve the last at its
+    // energy, take the family tangent there and a first step as long as the last.
+    const PetscInt N = lat.N(), np = (PetscInt)b->energy.size();
+    std::vector<PetscReal> rows(4 * N);
+    PetscMPIInt rank;
+    PetscCallMPI(MPI_Comm_rank(comm, &rank));
+    if (rank == 0) {
+      PetscCheck((PetscInt)b->z0.size() == np * 2 * N, PETSC_COMM_SELF, PETSC_ERR_USER, "-cont_resume: branch %s has %zu z0 values for %" PetscInt_FMT " points of 2N = %" PetscInt_FMT, name,
+                 b->z0.size(), np, 2 * N);
+      std::copy(b->z0.end() - 4 * N, b->z0.end(), rows.begin());
+    }
+    PetscCallMPI(MPI_Bcast(rows.data(), (PetscMPIInt)(4 * N), MPIU_REAL, 0, comm));
+    PetscCall(SetFromRow(lat, rows.data(), zprev));
+    PetscCall(SetFromRow(lat, rows.data() + 2 * N, z));
+    const PetscReal dT = b->period[np - 1] - b->period[np - 2];
+    PetscCall(shoot.Pack(z, b->period.back(), 0.0, X));
+    PetscCall(shoot.SetEnergyConstraint(z, b->energy.back()));
+    PetscCall(shoot.Solve(X, &ok, &its));
+    PetscCheck(ok, comm, PETSC_ERR_USER,
+               "-cont_resume: the last orbit of branch %s (E = %g) is not an orbit of this lattice (Newton failed after %" PetscInt_FMT " iterations): same -lattice_* options as the run that wrote it?",
+               name, (double)b->energy.back(), its);
+    PetscCall(shoot.Tangent(X, NULL, t));
+    PetscCall(VecAXPY(zprev, -1.0, z));
+    PetscCall(VecNorm(zprev, NORM_2, &ds));
+    ds = std::sqrt(ds * ds + dT * dT);
+    PetscCall(shoot.Unpack(X, z, &T, &beta));
+    PetscCall(VecNorm(z, NORM_2, &znorm));
+    ds = std::min(ds, o.max_change * znorm);
+    kry0 = shoot.KrylovIterations();
+    PetscCall(PetscPrintf(comm, "  [%s] resumed after point %" PetscInt_FMT ": E = %.5g, omega = %.8f\n", name, np - 1, (double)b->energy.back(),
+                          (double)(2 * PETSC_PI / T)));
+  } else {
+    // Guess (u, v = 0) scaled to the starting energy (linear scaling: E ~ amplitude^2).
     PetscScalar *a;
     const PetscScalar *u;
     EnergyParts e;
@@ -118,24 +168,22 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
     PetscCall(lat.Energy(z, &e));
     PetscCheck(e.Total() > 0, comm, PETSC_ERR_USER, "continuation %s: the starting shape has zero energy", name);
     PetscCall(VecScale(z, std::sqrt(o.energy_min / e.Total())));
+    // The first Newton starts just off the linear period: exactly on it, M - I
+    // vanishes on every other linear mode of the same frequency (the left-end
+    // edge mode of model.md's "Trap", degenerate with the insulated mode to
+    // rounding on long lattices), and the matrix-free Krylov solve breaks down.
+    // 1e-7 is below the nonlinear shift at -cont_energy_min's usual values.
+    PetscCall(shoot.Pack(z, T_guess * (1 - 1e-7), 0.0, X));
+    PetscCall(shoot.SetEnergyConstraint(z, o.energy_min));
+    PetscCall(shoot.Solve(X, &ok, &its));
+    PetscCheck(ok, comm, PETSC_ERR_NOT_CONVERGED, "continuation %s: no periodic orbit found at -cont_energy_min %g (Newton failed after %" PetscInt_FMT " iterations)",
+               name, (double)o.energy_min, its);
+    PetscCall(shoot.Tangent(X, NULL, t));
+    PetscCall(shoot.Unpack(X, z, &T, &beta));
+    PetscCall(VecNorm(z, NORM_2, &znorm));
+    ds = o.max_change * znorm;
   }
-  PetscInt kry0 = shoot.KrylovIterations();
-  // The first Newton starts just off the linear period: exactly on it, M - I
-  // vanishes on every other linear mode of the same frequency (the left-end
-  // edge mode of model.md's "Trap", degenerate with the insulated mode to
-  // rounding on long lattices), and the matrix-free Krylov solve breaks down.
-  // 1e-7 is below the nonlinear shift at -cont_energy_min's usual values.
-  PetscCall(shoot.Pack(z, T_guess * (1 - 1e-7), 0.0, X));
-  PetscCall(shoot.SetEnergyConstraint(z, o.energy_min));
-  PetscCall(shoot.Solve(X, &ok, &its));
-  PetscCheck(ok, comm, PETSC_ERR_NOT_CONVERGED, "continuation %s: no periodic orbit found at -cont_energy_min %g (Newton failed after %" PetscInt_FMT " iterations)",
-             name, (double)o.energy_min, its);
-  PetscCall(shoot.Tangent(X, NULL, t));
-
-  PetscReal znorm;
-  PetscCall(shoot.Unpack(X, z, &T, &beta));
-  PetscCall(VecNorm(z, NORM_2, &znorm));
-  ds = o.max_change * znorm;
+  bool record = !resumed; // a resumed branch's last point is already recorded
   PetscInt newton_its = its;
   for (;;) {
     // Record the point.
@@ -145,33 +193,36 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
     PetscCall(lat.Energy(z, &e));
     PetscCall(DisplacementMcr(lat, z, &mcr));
     if (!b->energy.empty()) PetscCall(ShapeCorrelation(lat, zprev, z, &corr));
-    b->energy.push_back(e.Total());
-    b->period.push_back(T);
-    b->omega.push_back(2 * PETSC_PI / T);
-    b->mcr.push_back(mcr);
-    b->shape_corr.push_back(corr);
-    b->beta.push_back(beta);
-    b->newton_its.push_back(newton_its);
-    b->krylov_its.push_back(shoot.KrylovIterations() - kry0);
-    kry0 = shoot.KrylovIterations();
-    PetscCall(AppendRow(lat, z, &b->z0));
-    if (hook) {
-      PetscReal dT, dbeta;
-      PetscCall(shoot.Unpack(t, tz, &dT, &dbeta));
-      PetscCall(hook->Point(z, T, beta, tz));
+    if (record) {
+      b->energy.push_back(e.Total());
+      b->period.push_back(T);
+      b->omega.push_back(2 * PETSC_PI / T);
+      b->mcr.push_back(mcr);
+      b->shape_corr.push_back(corr);
+      b->beta.push_back(beta);
+      b->newton_its.push_back(newton_its);
+      b->krylov_its.push_back(shoot.KrylovIterations() - kry0);
+      kry0 = shoot.KrylovIterations();
+      PetscCall(AppendRow(lat, z, &b->z0));
+      if (hook) {
+        PetscReal dT, dbeta;
+        PetscCall(shoot.Unpack(t, tz, &dT, &dbeta));
+        PetscCall(hook->Point(z, T, beta, tz));
+      }
+      const PetscInt k = (PetscInt)b->energy.size() - 1;
+      if (corr < o.interaction_corr) {
+        b->interactions.push_back(k);
+        PetscCall(PetscPrintf(comm, "  [%s] modal interaction at point %" PetscInt_FMT ": shape correlation %.3f, MCR %.3f -> %.3f, omega %.6f, E %.4g\n", name,
+                              k, (double)corr, (double)b->mcr[k - 1], (double)mcr, (double)b->omega[k], (double)e.Total()));
+      }
+      if (o.verbose) {
+        PetscLogDouble now;
+        PetscCall(PetscTime(&now));
+        PetscCall(PetscPrintf(comm, "  [%s] %4" PetscInt_FMT "  E = %-11.5g omega = %.8f  MCR = %.4f  Newton %" PetscInt_FMT "  Krylov %" PetscInt_FMT "  |beta| = %.1e  %.0f s\n",
+                              name, k, (double)e.Total(), (double)(2 * PETSC_PI / T), (double)mcr, newton_its, b->krylov_its.back(), (double)std::abs(beta), now - t_begin));
+      }
     }
-    const PetscInt k = (PetscInt)b->energy.size() - 1;
-    if (corr < o.interaction_corr) {
-      b->interactions.push_back(k);
-      PetscCall(PetscPrintf(comm, "  [%s] modal interaction at point %" PetscInt_FMT ": shape correlation %.3f, MCR %.3f -> %.3f, omega %.6f, E %.4g\n", name,
-                            k, (double)corr, (double)b->mcr[k - 1], (double)mcr, (double)b->omega[k], (double)e.Total()));
-    }
-    if (o.verbose) {
-      PetscLogDouble now;
-      PetscCall(PetscTime(&now));
-      PetscCall(PetscPrintf(comm, "  [%s] %4" PetscInt_FMT "  E = %-11.5g omega = %.8f  MCR = %.4f  Newton %" PetscInt_FMT "  Krylov %" PetscInt_FMT "  |beta| = %.1e  %.0f s\n",
-                            name, k, (double)e.Total(), (double)(2 * PETSC_PI / T), (double)mcr, newton_its, b->krylov_its.back(), (double)std::abs(beta), now - t_begin));
-    }
+    record = true;
     if (e.Total() >= o.energy_max) {
       b->stop_reason = "reached -cont_energy_max";
       b->reached_max = true;

@@ -43,8 +43,12 @@ public:
   virtual PetscErrorCode Point(Vec z0, PetscReal T, PetscReal beta, Vec dz0) = 0;
 };
 
-// Continues the family through the orbit guess (u_guess, v = 0) of period T_guess.
+// Continues the family through the orbit guess (u_guess, v = 0) of period T_guess,
+// or, given a resume branch of at least 2 points (as written by a previous run,
+// z0 rows on rank 0), from its last orbit on: its points are kept, the last one
+// is re-solved at its energy (a check that it belongs to this lattice) and the
+// first step has the length of the last one.
 PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, const ContinuationOptions &o, const char *name, Branch *b,
-                              PointHook *hook = nullptr);
+                              PointHook *hook = nullptr, const Branch *resume = nullptr);
 
 } // namespace nltopo

@@ -2,6 +2,7 @@
 // continuation of periodic orbits (orbits/); /continuation/<branch> of outputs.md.
 #include "studies/nnm_setup.hpp"
 #include "core/log.hpp"
+#include "io/input.hpp"
 #include "io/output.hpp"
 #include "orbits/continuation.hpp"
 #include "stability/floquet.hpp"
@@ -182,6 +183,93 @@ PetscErrorCode WriteRecord(PetscViewer v, const BranchRecord &r, FloquetKind fk,
   PetscFunctionReturn(0);
 }
 
+// Rank 0's vector to every rank.
+template <typename T>
+PetscErrorCode Broadcast(MPI_Comm comm, MPI_Datatype type, std::vector<T> *v)
+{
+  PetscFunctionBeginUser;
+  PetscInt n = (PetscInt)v->size();
+  PetscCallMPI(MPI_Bcast(&n, 1, MPIU_INT, 0, comm));
+  v->resize(n);
+  if (n) PetscCallMPI(MPI_Bcast(v->data(), (PetscMPIInt)n, type, 0, comm));
+  PetscFunctionReturn(0);
+}
+
+// -cont_resume: /continuation/<label> of an earlier output (complete or a
+// checkpoint) as a Branch (z0 rows on rank 0, the rest on every rank) and its
+// Floquet columns; found is false when the file has no such branch. Floquet
+// data the file lacks (it was written without -floquet) become NaN / 0.
+PetscErrorCode ReadResume(MPI_Comm comm, const std::string &file, const std::string &label, FloquetKind fk, PetscInt n2, PetscInt nev, Branch *b,
+                          FloquetColumns *f, bool *found)
+{
+  PetscMPIInt rank;
+  const std::string g = "/continuation/" + label + "/";
+  auto has = [&](const char *d) { return HasDataset(file, (g + d).c_str()); };
+  auto reals = [&](const char *d, std::vector<PetscReal> *v) -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    PetscCall(ReadDoubles(file, (g + d).c_str(), v));
+    PetscFunctionReturn(0);
+  };
+  PetscFunctionBeginUser;
+  *b = Branch();
+  *f = FloquetColumns();
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  int present = 0;
+  if (rank == 0) {
+    PetscCheck(HasDataset(file, "/continuation"), PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "-cont_resume %s: cannot open it, or it is not a continuation output (no /continuation group)", file.c_str());
+    present = has("energy");
+  }
+  PetscCallMPI(MPI_Bcast(&present, 1, MPI_INT, 0, comm));
+  *found = present;
+  if (!present) PetscFunctionReturn(0);
+  std::vector<PetscReal> its, kits, inter;
+  if (rank == 0) {
+    PetscCall(reals("energy", &b->energy));
+    PetscCall(reals("omega", &b->omega));
+    PetscCall(reals("period", &b->period));
+    PetscCall(reals("mcr", &b->mcr));
+    PetscCall(reals("shape_corr", &b->shape_corr));
+    PetscCall(reals("beta", &b->beta));
+    PetscCall(reals("newton_its", &its));
+    PetscCall(reals("krylov_its", &kits));
+    PetscCall(reals("interactions", &inter));
+    PetscCall(reals("z0", &b->z0));
+    PetscCheck(b->z0.size() == b->energy.size() * (size_t)n2, PETSC_COMM_SELF, PETSC_ERR_USER,
+               "-cont_resume %s: branch %s has orbits of %zu values, this lattice has 2N = %" PetscInt_FMT " (same -lattice_cells?)", file.c_str(), label.c_str(),
+               b->energy.empty() ? 0 : b->z0.size() / b->energy.size(), n2);
+    const size_t np = b->energy.size(), per = fk == FloquetKind::Dense ? (size_t)n2 : (size_t)nev;
+    if (fk != FloquetKind::None && has("max_modulus") && has("multipliers_re")) {
+      PetscCall(reals("multipliers_re", &f->re));
+      PetscCall(reals("multipliers_im", &f->im));
+      PetscCall(reals("max_modulus", &f->max_modulus));
+      PetscCall(ReadInts(file, (g + "stable").c_str(), &f->stable));
+      if (fk == FloquetKind::Dense && has("krein")) {
+        PetscCall(ReadInts(file, (g + "krein").c_str(), &f->krein));
+        PetscCall(ReadInts(file, (g + "instability").c_str(), &f->instability));
+      }
+    }
+    if (fk != FloquetKind::None && f->re.size() != np * per) { // absent, or another -floquet_mf_nev / route: not comparable
+      f->re.assign(np * per, NAN);
+      f->im.assign(np * per, NAN);
+      f->max_modulus.assign(np, NAN);
+      f->stable.assign(np, 0);
+      f->krein.clear();
+      f->instability.clear();
+    }
+    if (fk == FloquetKind::Dense) {
+      f->krein.resize(np * per, 0);
+      f->instability.resize(np, 0);
+    }
+  }
+  for (auto *v : {&b->energy, &b->omega, &b->period, &b->mcr, &b->shape_corr, &b->beta, &its, &kits, &inter, &f->re, &f->im, &f->max_modulus})
+    PetscCall(Broadcast(comm, MPIU_REAL, v));
+  for (auto *v : {&f->stable, &f->krein, &f->instability}) PetscCall(Broadcast(comm, MPIU_INT, v));
+  b->newton_its.assign(its.begin(), its.end());
+  b->krylov_its.assign(kits.begin(), kits.end());
+  b->interactions.assign(inter.begin(), inter.end());
+  PetscFunctionReturn(0);
+}
+
 // Forwards every orbit to the Floquet hook (if any), then, every
 // -cont_checkpoint_seconds, writes the -output file with what is done so far
 // (complete = 0), so that a long run that is killed keeps its points.
@@ -224,6 +312,8 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
   OutputFile out;
   PetscLogDouble t_start, t_end;
   PetscReal checkpoint_seconds = 0;
+  char resume_file[PETSC_MAX_PATH_LEN] = "";
+  PetscBool resume = PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t_start));
   PetscCall(LogRegister());
@@ -248,6 +338,10 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
                              "Write -output with the points so far (root attribute complete = 0) at most this often, so that a killed run keeps them "
                              "(0: only at the end)",
                              NULL, checkpoint_seconds, &checkpoint_seconds, NULL));
+  PetscCall(PetscOptionsString("-resume",
+                               "Continue the branches of this earlier -output (complete or a checkpoint) from their last points, keeping their "
+                               "points; branches it lacks start afresh",
+                               NULL, resume_file, resume_file, sizeof(resume_file), &resume));
   PetscOptionsEnd();
   PetscCheck(checkpoint_seconds >= 0, comm, PETSC_ERR_USER, "-cont_checkpoint_seconds must be >= 0, got %g", (double)checkpoint_seconds);
   if (!set) {
@@ -287,6 +381,19 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
     if (fk != FloquetKind::None) r.f = fk == FloquetKind::MatrixFree ? mf_hook.c : hook.c;
     return r;
   };
+  // -cont_resume: every branch read before the first checkpoint may replace the file
+  struct Resume {
+    Branch b;
+    FloquetColumns f;
+    bool found = false;
+  };
+  std::vector<Resume> resumes(nb);
+  for (PetscInt k = 0; k < nb && resume; k++) {
+    PetscReal omega;
+    std::string label;
+    PetscCall(BranchStart(lat, modes, names[k], u, &omega, &label));
+    PetscCall(ReadResume(comm, resume_file, label, fk, n2, fmo.nev, &resumes[k].b, &resumes[k].f, &resumes[k].found));
+  }
   for (PetscInt k = 0; k < nb; k++) {
     PetscReal omega = 0;
     std::string label;
@@ -298,6 +405,11 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
     const PetscInt j0 = shoot.JacobianEvaluations(), r0 = shoot.ResidualEvaluations(), p0 = shoot.TangentProducts(), k0 = shoot.KrylovIterations();
     hook.Clear();
     mf_hook.Clear();
+    Branch &rb = resumes[k].b;
+    const bool resumed = resumes[k].found && rb.energy.size() >= 2;
+    if (resumed && fk != FloquetKind::None) (fk == FloquetKind::MatrixFree ? mf_hook.c : hook.c) = resumes[k].f;
+    if (resume && !resumed)
+      PetscCall(PetscPrintf(comm, "  [%s] -cont_resume %s: fewer than 2 points of this branch there, starting afresh\n", label.c_str(), resume_file));
     CheckpointHook ck(comm, floquet_hook, checkpoint_seconds, [&]() -> PetscErrorCode {
       OutputFile f;
       PetscLogDouble now;
@@ -314,7 +426,7 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
       PetscCall(PetscPrintf(comm, "  [%s] checkpoint: %zu points written to %s\n", label.c_str(), b.energy.size(), path.c_str()));
       PetscFunctionReturn(0);
     });
-    PetscCall(ContinueBranch(shoot, u, 2 * PETSC_PI / omega, co, label.c_str(), &b, &ck));
+    PetscCall(ContinueBranch(shoot, u, 2 * PETSC_PI / omega, co, label.c_str(), &b, &ck, resumed ? &rb : nullptr));
     PetscCall(PetscLogStagePop());
     PetscCall(PetscTime(&b1));
     const size_t npts = b.energy.size();
@@ -329,7 +441,8 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
       if (fk == FloquetKind::MatrixFree) PetscCall(PetscPrintf(comm, ", %" PetscInt_FMT " monodromy products", f.products));
       PetscCall(PetscPrintf(comm, "\n"));
     }
-    PetscCall(PetscPrintf(comm, "  [%s] %.2f s, %.3f s per point\n", label.c_str(), (double)(b1 - b0), (double)(b1 - b0) / npts));
+    const size_t nnew = npts - (resumed ? rb.energy.size() : 0); // seconds and costs cover this run's points
+    PetscCall(PetscPrintf(comm, "  [%s] %.2f s, %.3f s per new point\n", label.c_str(), (double)(b1 - b0), (double)(b1 - b0) / std::max<size_t>(nnew, 1)));
   }
   PetscCall(PetscLogStagePush(Log().write));
   for (const BranchRecord &r : done) PetscCall(WriteRecord(out.Viewer(), r, fk, n2, fmo.nev));

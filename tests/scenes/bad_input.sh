@@ -23,6 +23,9 @@ expect_error "-output $WORK/no/such/dir/x.h5" "$WORK/no/such/dir/x.h5" -study li
 expect_error "-force_energy" o8.h5 -study simulate -force_energy -1
 expect_error "-lattice_cubic" o9.h5 -study linear -lattice_Gamma 0.5
 expect_error "-nnm_mf_pc_parametric_weight 0" o11.h5 -study continuation -lattice_cells 5 -nnm_jacobian mf -nnm_mf_pc parametric -nnm_mf_pc_parametric_weight 0
+"$NLTOPO" -study continuation -lattice_layout interface -lattice_cells 5 -cont_energy_max 1e-4 -cont_max_points 3 -cont_verbose 0 -output small.h5 > /dev/null
+expect_error "-cont_resume $WORK/small.h5" o12.h5 -study continuation -lattice_layout interface -lattice_cells 6 -cont_energy_max 1e-4 -cont_resume "$WORK/small.h5"
+expect_error "-cont_resume $WORK/missing.h5" o13.h5 -study continuation -lattice_layout interface -lattice_cells 6 -cont_resume "$WORK/missing.h5"
 # a diverging integration (softening cubic, large burst): the time is named, no file is left
 expect_error "non-finite state at t = " o10.h5 -study simulate -lattice_cubic -50 -force_amplitude 5 -force_energy 1e6 \
   -sim_ts_type basicsymplectic -sim_ts_basicsymplectic_type 2 -sim_ts_dt 0.05 -sim_t_final 300

@@ -16,11 +16,18 @@ run1 -options_file "$SRC/options/fep_long.opts" -lattice_cells 25 -floquet 0 "${
 run2 -options_file "$SRC/options/fep_long.opts" -lattice_cells 250 -floquet 0 "${common[@]}" -output mf1002.h5 > mf1002.txt
 # enough eigensolver restarts that every multiplier converges (an unconverged one makes the orbit "not shown stable")
 run1 -options_file "$SRC/options/fep_long.opts" -lattice_cells 25 -cont_energy_max 1 -cont_verbose 0 -floquet_mf_eps_max_it 40 -output floquet.h5 > floquet.txt
+# -cont_resume on 2 ranks: the E <= 1 branch above, continued to E = 3
+run2 -options_file "$SRC/options/fep_long.opts" -lattice_cells 25 -floquet 0 "${common[@]}" -cont_resume floquet.h5 -output resumed.h5 > resumed.txt
+grep -q "resumed after point" resumed.txt
 $PY - <<'PYEOF'
 import h5py, numpy as np
 g = lambda f: h5py.File(f, "r")["continuation/insulated"]
-D, A, B, F = g("dense.h5"), g("mf102.h5"), g("mf1002.h5"), g("floquet.h5")
-for X in (A, B):
+D, A, B, F, R = g("dense.h5"), g("mf102.h5"), g("mf1002.h5"), g("floquet.h5"), g("resumed.h5")
+# the resumed branch keeps the points it was given, bit for bit, and goes on along the same family
+n0 = len(F["energy"])
+assert len(R["energy"]) > n0 + 1 and np.array_equal(R["energy"][:n0], F["energy"][:]) and np.array_equal(R["z0"][:n0], F["z0"][:]), len(R["energy"])
+assert R["energy"][n0] > F["energy"][-1]
+for X in (A, B, R):
     assert X.attrs["reached_energy_max"] == 1
     # same orbits as the dense route: omega at the mf energies, by 4-point Lagrange interpolation in log E
     led, wd = np.log(D["energy"][:]), D["omega"][:]
@@ -33,6 +40,7 @@ for X in (A, B):
         matched += 1
     assert worst < 1e-6, worst
     assert matched >= 20, matched
+    if X == R: print("resumed branch: %d + %d points on the dense N = 102 branch to %.1e" % (n0, len(R["energy"]) - n0, worst))
     per_newton = X.attrs["krylov_iterations"] / X["newton_its"][:].sum()
     assert per_newton < 20, per_newton
     print("mf branch:", len(X["energy"]), "points on the dense N = 102 branch to %.1e; GMRES per Newton step" % worst, round(per_newton, 1))
