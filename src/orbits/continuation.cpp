@@ -129,11 +129,11 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
     std::vector<PetscReal> rows(4 * N);
     PetscMPIInt rank;
     PetscCallMPI(MPI_Comm_rank(comm, &rank));
-    if (rank == 0) {
-      PetscCheck((PetscInt)b->z0.size() == np * 2 * N, PETSC_COMM_SELF, PETSC_ERR_USER, "-cont_resume: branch %s has %zu z0 values for %" PetscInt_FMT " points of 2N = %" PetscInt_FMT, name,
-                 b->z0.size(), np, 2 * N);
-      std::copy(b->z0.end() - 4 * N, b->z0.end(), rows.begin());
-    }
+    PetscInt stored = rank == 0 ? (PetscInt)b->z0.size() : 0;
+    PetscCallMPI(MPI_Bcast(&stored, 1, MPIU_INT, 0, comm));
+    PetscCheck(stored == np * 2 * N, comm, PETSC_ERR_USER, "-cont_resume: branch %s has %" PetscInt_FMT " z0 values for %" PetscInt_FMT " points of 2N = %" PetscInt_FMT, name,
+               stored, np, 2 * N);
+    if (rank == 0) std::copy(b->z0.end() - 4 * N, b->z0.end(), rows.begin());
     PetscCallMPI(MPI_Bcast(rows.data(), (PetscMPIInt)(4 * N), MPIU_REAL, 0, comm));
     PetscCall(SetFromRow(lat, rows.data(), zprev));
     PetscCall(SetFromRow(lat, rows.data() + 2 * N, z));

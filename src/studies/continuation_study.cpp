@@ -214,14 +214,16 @@ PetscErrorCode ReadResume(MPI_Comm comm, const std::string &file, const std::str
   *b = Branch();
   *f = FloquetColumns();
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  int present = 0;
+  int status[2] = {0, 0}; // rank 0 reads; every rank checks: [readable, branch present]
   if (rank == 0) {
-    PetscCheck(HasDataset(file, "/continuation"), PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "-cont_resume %s: cannot open it, or it is not a continuation output (no /continuation group)", file.c_str());
-    present = has("energy");
+    status[0] = HasDataset(file, "/continuation");
+    status[1] = status[0] && has("energy");
   }
-  PetscCallMPI(MPI_Bcast(&present, 1, MPI_INT, 0, comm));
-  *found = present;
-  if (!present) PetscFunctionReturn(0);
+  PetscCallMPI(MPI_Bcast(status, 2, MPI_INT, 0, comm));
+  PetscCheck(status[0], comm, PETSC_ERR_FILE_OPEN, "-cont_resume %s: cannot open it, or it is not a continuation output (no /continuation group)", file.c_str());
+  *found = status[1];
+  if (!*found) PetscFunctionReturn(0);
+  PetscInt rowlen = 0; // values per stored orbit
   std::vector<PetscReal> its, kits, inter;
   if (rank == 0) {
     PetscCall(reals("energy", &b->energy));
@@ -234,9 +236,7 @@ PetscErrorCode ReadResume(MPI_Comm comm, const std::string &file, const std::str
     PetscCall(reals("krylov_its", &kits));
     PetscCall(reals("interactions", &inter));
     PetscCall(reals("z0", &b->z0));
-    PetscCheck(b->z0.size() == b->energy.size() * (size_t)n2, PETSC_COMM_SELF, PETSC_ERR_USER,
-               "-cont_resume %s: branch %s has orbits of %zu values, this lattice has 2N = %" PetscInt_FMT " (same -lattice_cells?)", file.c_str(), label.c_str(),
-               b->energy.empty() ? 0 : b->z0.size() / b->energy.size(), n2);
+    rowlen = b->z0.size() == b->energy.size() * (size_t)n2 ? n2 : b->energy.empty() ? -1 : (PetscInt)(b->z0.size() / b->energy.size());
     const size_t np = b->energy.size(), per = fk == FloquetKind::Dense ? (size_t)n2 : (size_t)nev;
     if (fk != FloquetKind::None && has("max_modulus") && has("multipliers_re")) {
       PetscCall(reals("multipliers_re", &f->re));
@@ -261,6 +261,9 @@ PetscErrorCode ReadResume(MPI_Comm comm, const std::string &file, const std::str
       f->instability.resize(np, 0);
     }
   }
+  PetscCallMPI(MPI_Bcast(&rowlen, 1, MPIU_INT, 0, comm));
+  PetscCheck(rowlen == n2, comm, PETSC_ERR_USER, "-cont_resume %s: branch %s has orbits of %" PetscInt_FMT " values, this lattice has 2N = %" PetscInt_FMT " (same -lattice_cells?)",
+             file.c_str(), label.c_str(), rowlen, n2);
   for (auto *v : {&b->energy, &b->omega, &b->period, &b->mcr, &b->shape_corr, &b->beta, &its, &kits, &inter, &f->re, &f->im, &f->max_modulus})
     PetscCall(Broadcast(comm, MPIU_REAL, v));
   for (auto *v : {&f->stable, &f->krein, &f->instability}) PetscCall(Broadcast(comm, MPIU_INT, v));
