@@ -249,7 +249,7 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
     PetscCall(VecCopy(t, tprev));
     PetscCall(VecCopy(z, zprev));
     PetscCall(VecNorm(z, NORM_2, &znorm));
-    bool accepted = false;
+    bool accepted = false, rejected = false;
     while (!accepted) {
       if (ds < o.ds_min * znorm) break;
       PetscCall(VecWAXPY(Xpred, ds, tprev, Xprev));
@@ -270,6 +270,7 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
                                 converged ? "orbit changed by more than -cont_max_change" : "Newton failed: ", converged ? "" : shoot.LastReason(), its,
                                 (double)ds, (double)(0.5 * ds)));
         ds *= 0.5;
+        rejected = true;
         continue;
       }
       accepted = true;
@@ -281,7 +282,11 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
     newton_its = its;
     PetscCall(shoot.Tangent(X, tprev, t));
     // Step control: Newton effort, then the cap from the largest change of the orbit.
-    if (its <= o.newton_target - 1) ds *= 1.6;
+    // No growth right after a rejection: the larger step has just failed, and
+    // growing again would alternate failing and accepted steps (inside a dense
+    // band the failures are Newton stalling near a resonance, 6-12 wasted
+    // iterations each; README "Long lattices").
+    if (its <= o.newton_target - 1 && !rejected) ds *= 1.6;
     else if (its > o.newton_target + 1) ds *= 0.6;
     PetscCall(shoot.Unpack(X, z, &T, &beta));
     PetscCall(VecNorm(z, NORM_2, &znorm));

@@ -245,7 +245,7 @@ PetscErrorCode PeriodicFlow::IntegrateWithMonodromy(Vec z0, PetscReal T, PetscRe
       var_dense_ = std::make_unique<VariationalFlow>();
       PetscCall(var_dense_->Setup(*lat_, 2 * lat_->N() + 1, opt_.steps));
     }
-    PetscCall(var_dense_->Integrate(z0, T, beta, NULL, zT, S, NULL, NULL));
+    PetscCall(var_dense_->Integrate(z0, T, beta, NULL, 1.0, 0.0, zT, S, NULL));
     PetscFunctionReturn(0);
   }
   if (!ts_mono_) {
@@ -260,19 +260,17 @@ PetscErrorCode PeriodicFlow::IntegrateWithMonodromy(Vec z0, PetscReal T, PetscRe
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PeriodicFlow::IntegrateWithTangent(Vec z0, PetscReal T, PetscReal beta, Vec dz, PetscReal dbeta, Vec zT, Vec w)
+PetscErrorCode PeriodicFlow::IntegrateWithTangent(Vec z0, PetscReal T, PetscReal beta, Vec dz, PetscReal dbeta, PetscReal dT, Vec zT, Vec w)
 {
   Vec c;
   PetscFunctionBeginUser;
   beta_ = beta;
   if (opt_.route == MonodromyRoute::Variational) {
-    if (!var_tlm_) {
+    if (!var_tlm_) { // one column: dbeta and dT enter as sources
       var_tlm_ = std::make_unique<VariationalFlow>();
-      PetscCall(var_tlm_->Setup(*lat_, 2, opt_.steps));
-      PetscCall(VecDuplicate(z0, wb_.out()));
+      PetscCall(var_tlm_->Setup(*lat_, 1, opt_.steps));
     }
-    PetscCall(var_tlm_->Integrate(z0, T, beta, dz, zT, NULL, w, wb_));
-    if (dbeta != 0) PetscCall(VecAXPY(w, dbeta, wb_));
+    PetscCall(var_tlm_->Integrate(z0, T, beta, dz, dbeta, dT, zT, NULL, w));
     PetscFunctionReturn(0);
   }
   // Column 0: the direction (dz, dbeta) combined: d/deps z(T; z0 + eps dz, beta + eps dbeta);
@@ -290,6 +288,11 @@ PetscErrorCode PeriodicFlow::IntegrateWithTangent(Vec z0, PetscReal T, PetscReal
     PetscCall(MatDenseGetColumnVecRead(S_tlm_, 1, &c));
     PetscCall(VecAXPY(w, dbeta, c));
     PetscCall(MatDenseRestoreColumnVecRead(S_tlm_, 1, &c));
+  }
+  if (dT != 0) { // the exact flow's T-derivative
+    if (!wb_) PetscCall(VecDuplicate(z0, wb_.out()));
+    PetscCall(EvalRhs(T, zT, wb_));
+    PetscCall(VecAXPY(w, dT, wb_));
   }
   PetscFunctionReturn(0);
 }

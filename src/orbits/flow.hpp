@@ -46,8 +46,11 @@ public:
   PetscErrorCode Integrate(Vec z0, PetscReal T, PetscReal beta, Vec zT);
   // Also S = [dz(T)/dz0 | dz(T)/dbeta] (dense 2N x (2N+1), from CreateSensitivityMatrix).
   PetscErrorCode IntegrateWithMonodromy(Vec z0, PetscReal T, PetscReal beta, Vec zT, Mat S);
-  // Also w = dz(T)/dz0 dz + dz(T)/dbeta dbeta (one tangent-linear direction).
-  PetscErrorCode IntegrateWithTangent(Vec z0, PetscReal T, PetscReal beta, Vec dz, PetscReal dbeta, Vec zT, Vec w);
+  // Also w = dz(T)/dz0 dz + dz(T)/dbeta dbeta + dz(T)/dT dT (one tangent-linear
+  // direction). On the variational route (default) w is the exact derivative of
+  // the fixed-step discrete map, T column included (variational.hpp); on the
+  // TSForward route the T column is f_beta(z(T)).
+  PetscErrorCode IntegrateWithTangent(Vec z0, PetscReal T, PetscReal beta, Vec dz, PetscReal dbeta, PetscReal dT, Vec zT, Vec w);
   // Integrate, and also the harmonics of the tangent stiffness K_T(u(t)) along
   // the orbit (h->parametric chooses whether the 2 w ones too). The trapezoidal
   // rule on the fixed steps is spectrally accurate for a periodic orbit.

@@ -1,6 +1,8 @@
 #include "orbits/shooting.hpp"
 #include "core/gather.hpp"
 #include "core/log.hpp"
+#include <algorithm>
+#include <cmath>
 
 namespace nltopo {
 
@@ -29,7 +31,12 @@ PetscErrorCode ShootingOptionsFromOptions(MPI_Comm comm, ShootingOptions *o)
                              "Scale in (0, 1] of the 2 omega term in -nnm_mf_pc parametric; below 1 it keeps the block regular along the orbit's own phase "
                              "direction (1 makes GMRES break down at converged orbits)",
                              NULL, o->parametric_weight, &o->parametric_weight, NULL));
+  PetscCall(PetscOptionsReal("-orbit_rtol",
+                             "Newton also stops once |z(T) - z0| <= this times |z0| (0: only -nnm_snes_atol and -nnm_snes_rtol); for branches whose "
+                             "amplitude grows by decades, where one absolute tolerance is too tight at the top or too loose at the bottom",
+                             NULL, o->orbit_rtol, &o->orbit_rtol, NULL));
   PetscOptionsEnd();
+  PetscCheck(o->orbit_rtol >= 0 && o->orbit_rtol < 1, comm, PETSC_ERR_USER, "-nnm_orbit_rtol %g: must lie in [0, 1)", (double)o->orbit_rtol);
   PetscCheck(o->parametric_weight > 0 && o->parametric_weight <= 1, comm, PETSC_ERR_USER, "-nnm_mf_pc_parametric_weight %g: must lie in (0, 1]",
              (double)o->parametric_weight);
   o->jacobian = static_cast<ShootingJacobian>(j);
@@ -67,6 +74,12 @@ PetscErrorCode ShootJacobian(SNES snes, Vec X, Mat A, Mat P, void *ctx)
     PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
   }
+  PetscFunctionReturn(0);
+}
+PetscErrorCode ShootConverged(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm, SNESConvergedReason *reason, void *ctx)
+{
+  PetscFunctionBeginUser;
+  PetscCall(static_cast<Shooting *>(ctx)->Converged(snes, it, xnorm, snorm, fnorm, reason));
   PetscFunctionReturn(0);
 }
 PetscErrorCode ShootPCApply(PC pc, Vec r, Vec x)
@@ -143,6 +156,12 @@ PetscErrorCode Shooting::Setup(PeriodicFlow &flow, const ShootingOptions &o)
     } else PetscCall(PCSetType(pc, PCNONE));
     PetscCall(KSPSetTolerances(ksp, 1e-10, 1e-14, PETSC_DEFAULT, 400));
     PetscCall(KSPGMRESSetRestart(ksp, 100)); // no restarts within the iteration counts the preconditioner gives
+    // Classical Gram-Schmidt loses orthogonality on the nearly singular M - I of
+    // long lattices in a band; at a restart PETSc then finds the recursion's
+    // residual far from the true one and stops with DIVERGED_BREAKDOWN (seen at
+    // iterations 100 and 200, N = 10^4). A second pass when needed costs
+    // O(k N) per iteration, nothing beside a tangent integration.
+    PetscCall(KSPGMRESSetCGSRefinementType(ksp, KSP_GMRES_CGS_REFINE_IFNEEDED));
     // Inexact Newton (Eisenstat-Walker forcing terms): GMRES is converged only as far as
     // the Newton step needs. Inside the bands, where resonant modes make the
     // preconditioned operator far from the identity, the GMRES iterations per point
@@ -151,18 +170,17 @@ PetscErrorCode Shooting::Setup(PeriodicFlow &flow, const ShootingOptions &o)
   }
   PetscCall(SNESSetTolerances(snes_, 1e-12, 1e-10, 1e-14, 12, PETSC_DEFAULT));
   PetscCall(SNESSetFromOptions(snes_));
+  PetscCall(SNESGetTolerances(snes_, &snes_atol_, NULL, NULL, NULL, NULL));
   if (o.jacobian == ShootingJacobian::MatrixFree) {
     // No GMRES iterations beyond what Newton's own -nnm_snes_atol asks for: a
     // linear residual below half of it makes the next |F| (linear residual +
     // O(|step|^2)) meet it. Eisenstat-Walker alone asks the last solve for a
     // relative 1e-4 or so, which near the band edge of long lattices took 100+
     // iterations to reduce a residual already at 1.4 x atol (benchmarks/README.md).
-    PetscReal satol;
-    PetscBool kset;
-    PetscCall(SNESGetTolerances(snes_, &satol, NULL, NULL, NULL, NULL));
-    PetscCall(PetscOptionsHasName(NULL, "nnm_", "-ksp_atol", &kset));
-    if (!kset) PetscCall(KSPSetTolerances(ksp, PETSC_DEFAULT, 0.5 * satol, PETSC_DEFAULT, PETSC_DEFAULT));
+    PetscCall(PetscOptionsHasName(NULL, "nnm_", "-ksp_atol", &ksp_atol_set_));
+    if (!ksp_atol_set_) PetscCall(KSPSetTolerances(ksp, PETSC_DEFAULT, 0.5 * snes_atol_, PETSC_DEFAULT, PETSC_DEFAULT));
   }
+  PetscCall(SNESSetConvergenceTest(snes_, ShootConverged, this, NULL));
   PetscCall(KSPGetTolerances(ksp, &tangent_rtol_, NULL, NULL, NULL)); // before Eisenstat-Walker changes it
   PetscCall(PetscOptionsHasName(NULL, "nnm_", "-snes_mf", &snes_mf_));
   if (Jdense_) {
@@ -348,7 +366,6 @@ PetscErrorCode Shooting::Jacobian(Vec X, Mat J)
       if (kharm_.parametric) PetscCall(lin_pc_.SetParametricTerm(kharm_.dc, kharm_.oc, kharm_.ds, kharm_.os, opt_.parametric_weight));
     } else PetscCall(flow_->Integrate(z_, T, beta, zT_));
     if (opt_.mf_pc != MatrixFreePC::None) PetscCall(lin_pc_.SetPeriod(T));
-    PetscCall(flow_->EvalRhs(T, zT_, fT_));
     PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
     PetscFunctionReturn(0);
@@ -405,13 +422,13 @@ PetscErrorCode Shooting::ShellMult(Vec x, Vec y)
 {
   PetscReal dT, db, p = 0, c = 0;
   PetscScalar *yv;
-  const PetscScalar *wv, *dv, *ft, *xv;
+  const PetscScalar *wv, *dv, *xv;
   const PetscInt m = 2 * lat_->OwnedCount();
   PetscInt rs;
   PetscFunctionBeginUser;
   nlin_++;
   PetscCall(Unpack(x, g_, &dT, &db)); // g_ as scratch for dz
-  PetscCall(flow_->IntegrateWithTangent(zlin_, Tlin_, blin_, g_, db, zT_, w_));
+  PetscCall(flow_->IntegrateWithTangent(zlin_, Tlin_, blin_, g_, db, dT, zT_, w_)); // the T column too
   // rows 2N, 2N+1: fref . dz and c_X . x, with the gathered rows
   PetscCall(VecGetOwnershipRange(x, &rs, NULL));
   PetscCall(VecGetArrayRead(x, &xv));
@@ -430,9 +447,7 @@ PetscErrorCode Shooting::ShellMult(Vec x, Vec y)
   PetscCall(VecGetArray(y, &yv));
   PetscCall(VecGetArrayRead(w_, &wv));
   PetscCall(VecGetArrayRead(g_, &dv));
-  PetscCall(VecGetArrayRead(fT_, &ft));
-  for (PetscInt k = 0; k < m; k++) yv[k] = wv[k] - dv[k] + ft[k] * dT;
-  PetscCall(VecRestoreArrayRead(fT_, &ft));
+  for (PetscInt k = 0; k < m; k++) yv[k] = wv[k] - dv[k];
   PetscCall(VecRestoreArrayRead(g_, &dv));
   PetscCall(VecRestoreArrayRead(w_, &wv));
   if (rank_ == size_ - 1) {
@@ -461,6 +476,31 @@ PetscErrorCode Shooting::PCApply(Vec r, Vec x)
     PetscCall(VecRestoreArrayRead(r, &ra));
   }
   PetscCall(PetscLogEventEnd(Log().mf_pc, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Shooting::Converged(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm, SNESConvergedReason *reason)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SNESConvergedDefault(snes, it, xnorm, snorm, fnorm, reason, NULL));
+  if (opt_.orbit_rtol <= 0 || *reason != SNES_CONVERGED_ITERATING) PetscFunctionReturn(0);
+  Vec X;
+  const PetscScalar *x;
+  PetscReal loc = 0, zz;
+  PetscCall(SNESGetSolution(snes, &X));
+  PetscCall(VecGetArrayRead(X, &x));
+  for (PetscInt k = 0; k < 2 * lat_->OwnedCount(); k++) loc += x[k] * x[k]; // the z0 rows
+  PetscCall(VecRestoreArrayRead(X, &x));
+  PetscCall(MPIU_Allreduce(&loc, &zz, 1, MPIU_REAL, MPIU_SUM, lat_->Comm()));
+  const PetscReal thr = std::max(snes_atol_, opt_.orbit_rtol * std::sqrt(zz));
+  if (fnorm <= thr) {
+    PetscCall(PetscInfo(snes, "|F| = %g <= -nnm_orbit_rtol |z0| = %g\n", (double)fnorm, (double)thr));
+    *reason = SNES_CONVERGED_FNORM_ABS;
+  } else if (opt_.jacobian == ShootingJacobian::MatrixFree && !ksp_atol_set_) {
+    KSP ksp; // the next GMRES solve: no further than half of the threshold (see Setup)
+    PetscCall(SNESGetKSP(snes, &ksp));
+    PetscCall(KSPSetTolerances(ksp, PETSC_DEFAULT, 0.5 * thr, PETSC_DEFAULT, PETSC_DEFAULT));
+  }
   PetscFunctionReturn(0);
 }
 

@@ -33,6 +33,7 @@ struct ShootingOptions {
   PetscInt start_dense_max = 4000; // 2N up to which the first orbit uses the dense SVD start solver
   MatrixFreePC mf_pc = MatrixFreePC::Parametric;
   PetscReal parametric_weight = 0.95; // scale of the 2 omega term in -nnm_mf_pc parametric (linear_monodromy_pc.hpp)
+  PetscReal orbit_rtol = 0; // Newton also converged once |F| <= orbit_rtol |z0| (0: off)
 };
 PetscErrorCode ShootingOptionsFromOptions(MPI_Comm comm, ShootingOptions *o);
 
@@ -71,6 +72,9 @@ public:
   PetscErrorCode Jacobian(Vec X, Mat J);
   PetscErrorCode ShellMult(Vec x, Vec y);
   PetscErrorCode PCApply(Vec r, Vec x);
+  // SNESConvergedDefault, plus |F| <= -nnm_orbit_rtol |z0|; on the mf route
+  // it also keeps GMRES's atol at half of the threshold in force.
+  PetscErrorCode Converged(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm, SNESConvergedReason *reason);
 
 private:
 
@@ -95,6 +99,8 @@ private:
   std::vector<PetscReal> fr_, cr_; // gathered phase and constraint rows
   PetscInt njac_ = 0, nres_ = 0, nlin_ = 0, nkrylov_ = 0;
   SNESConvergedReason reason_ = SNES_CONVERGED_ITERATING;
+  PetscReal snes_atol_ = 0;         // -nnm_snes_atol of the main solver
+  PetscBool ksp_atol_set_ = PETSC_FALSE; // -nnm_ksp_atol given: GMRES's atol is the user's
   PetscReal tangent_rtol_ = 1e-10; // GMRES tolerance of the tangent solve (the configured -nnm_ksp_rtol)
   LinearMonodromyPC lin_pc_;
   StiffnessHarmonics kharm_; // K_T(u(t)) over the orbit (-nnm_mf_pc averaged, parametric)

@@ -51,7 +51,7 @@ PetscErrorCode VariationalFlow::Rhs(PetscReal t, Vec Y, Vec F)
   PetscScalar *f;
   PetscInt gxs, gxm;
   const PetscInt xs = lat_->OwnedStart(), xm = lat_->OwnedCount(), N = lat_->N(), nc = ncol_, d = dof_;
-  const PetscReal b = beta_;
+  const PetscReal b = beta_, sb = src_beta_, sf = src_f_;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(Log().variational, 0, 0, 0, 0));
   if (lat_->Serial()) { // one rank: the global array holds every neighbour (no ghost copy of Y)
@@ -88,8 +88,8 @@ PetscErrorCode VariationalFlow::Rhs(PetscReal t, Vec Y, Vec F)
       Fu[k] = pu - b * pv;
       Fv[k] = pv + b * pu;
     }
-    Fu[nc - 1] += -dv; // d f_beta / d beta = grad E = [-a, v]
-    Fv[nc - 1] += du;
+    Fu[nc - 1] += sb * (-dv) + sf * fi[0]; // d f_beta / d beta = grad E = [-a, v]; f_beta / T
+    Fv[nc - 1] += sb * du + sf * fi[1];
   }
   PetscCall(VecRestoreArray(F, &f));
   PetscCall(VecRestoreArrayRead(Yl, &y));
@@ -99,14 +99,17 @@ PetscErrorCode VariationalFlow::Rhs(PetscReal t, Vec Y, Vec F)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode VariationalFlow::Integrate(Vec z0, PetscReal T, PetscReal beta, Vec dz, Vec zT, Mat S, Vec w_dir, Vec w_beta)
+PetscErrorCode VariationalFlow::Integrate(Vec z0, PetscReal T, PetscReal beta, Vec dz, PetscReal s_beta, PetscReal s_T, Vec zT, Mat S, Vec w)
 {
   const PetscScalar *z, *dza = NULL;
   PetscScalar *y;
   const PetscInt xs = lat_->OwnedStart(), xm = lat_->OwnedCount(), nc = ncol_, d = dof_;
   TSConvergedReason reason;
   PetscFunctionBeginUser;
+  PetscCheck(dz ? nc == 1 : (s_beta == 1 && s_T == 0), lat_->Comm(), PETSC_ERR_PLIB, "variational flow: %" PetscInt_FMT " columns for this use", nc);
   beta_ = beta;
+  src_beta_ = s_beta;
+  src_f_ = s_T / T;
   PetscCall(VecGetArrayRead(z0, &z));
   if (dz) PetscCall(VecGetArrayRead(dz, &dza));
   PetscCall(VecGetArray(Y_, &y));
@@ -160,19 +163,14 @@ PetscErrorCode VariationalFlow::Integrate(Vec z0, PetscReal T, PetscReal beta, V
     }
     PetscCall(MatDenseRestoreArrayWrite(S, &s));
   }
-  if (w_dir) { // tangent columns: 0 = direction, 1 = beta
-    PetscScalar *wd, *wb;
-    PetscCall(VecGetArray(w_dir, &wd));
-    PetscCall(VecGetArray(w_beta, &wb));
+  if (w) { // the one tangent column
+    PetscScalar *wd;
+    PetscCall(VecGetArray(w, &wd));
     for (PetscInt k = 0; k < xm; k++) {
-      const PetscScalar *yi = ya + d * k;
-      wd[k] = yi[2];
-      wd[xm + k] = yi[2 + nc];
-      wb[k] = yi[3];
-      wb[xm + k] = yi[3 + nc];
+      wd[k] = ya[d * k + 2];
+      wd[xm + k] = ya[d * k + 3];
     }
-    PetscCall(VecRestoreArray(w_beta, &wb));
-    PetscCall(VecRestoreArray(w_dir, &wd));
+    PetscCall(VecRestoreArray(w, &wd));
   }
   PetscCall(VecRestoreArrayRead(Y_, &ya));
   PetscFunctionReturn(0);

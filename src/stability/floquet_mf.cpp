@@ -74,12 +74,12 @@ PetscErrorCode MonodromyShell::Create(PeriodicFlow &flow, Vec z0, PetscReal T, P
 PetscErrorCode MonodromyShell::Mult(Vec x, Vec y)
 {
   PetscFunctionBeginUser;
-  PetscCall(flow_->IntegrateWithTangent(z0_, T_, beta_, x, 0.0, zT_, y));
+  PetscCall(flow_->IntegrateWithTangent(z0_, T_, beta_, x, 0.0, 0.0, zT_, y));
   products_++;
   if (symmetrized_) { // y = (M x + R M(R z0) R x) / 2; beta = 0 keeps the flow reversible
     PetscCall(VecCopy(x, xr_));
     PetscCall(FlipMomentum(flow_->Lat(), xr_));
-    PetscCall(flow_->IntegrateWithTangent(zr_, T_, 0.0, xr_, 0.0, zT_, yr_));
+    PetscCall(flow_->IntegrateWithTangent(zr_, T_, 0.0, xr_, 0.0, 0.0, zT_, yr_));
     PetscCall(FlipMomentum(flow_->Lat(), yr_));
     PetscCall(VecAXPBY(y, 0.5, 0.5, yr_));
     products_++;

@@ -23,6 +23,7 @@ expect_error "-output $WORK/no/such/dir/x.h5" "$WORK/no/such/dir/x.h5" -study li
 expect_error "-force_energy" o8.h5 -study simulate -force_energy -1
 expect_error "-lattice_cubic" o9.h5 -study linear -lattice_Gamma 0.5
 expect_error "-nnm_mf_pc_parametric_weight 0" o11.h5 -study continuation -lattice_cells 5 -nnm_jacobian mf -nnm_mf_pc parametric -nnm_mf_pc_parametric_weight 0
+expect_error "-nnm_orbit_rtol -1" o14.h5 -study continuation -lattice_cells 5 -nnm_orbit_rtol -1
 "$NLTOPO" -study continuation -lattice_layout interface -lattice_cells 5 -cont_energy_max 1e-4 -cont_max_points 3 -cont_verbose 0 -output small.h5 > /dev/null
 expect_error "-cont_resume $WORK/small.h5" o12.h5 -study continuation -lattice_layout interface -lattice_cells 6 -cont_energy_max 1e-4 -cont_resume "$WORK/small.h5"
 expect_error "-cont_resume $WORK/missing.h5" o13.h5 -study continuation -lattice_layout interface -lattice_cells 6 -cont_resume "$WORK/missing.h5"

@@ -10,8 +10,9 @@
 # largest nontrivial |b| (N = 102 dense spectra).
 source "$(dirname "$0")/common.bash"
 common=(-cont_energy_max 3 -cont_verbose 0 -cont_max_change 0.2)
-# the dense reference with small steps: interpolated to the mf points (their steps differ: inexact Newton)
-run1 -options_file "$SRC/options/fep.opts" -cont_branch insulated -floquet 0 -cont_energy_max 3.5 -cont_verbose 0 -cont_max_change 0.04 -output dense.h5 > dense.txt
+# the dense reference with small steps, past E = 3 (the mf branches' last step may overshoot it by ~40 %):
+# interpolated to the mf points (their steps differ: inexact Newton)
+run1 -options_file "$SRC/options/fep.opts" -cont_branch insulated -floquet 0 -cont_energy_max 5 -cont_verbose 0 -cont_max_change 0.04 -output dense.h5 > dense.txt
 run1 -options_file "$SRC/options/fep_long.opts" -lattice_cells 25 -floquet 0 "${common[@]}" -output mf102.h5 > mf102.txt
 run2 -options_file "$SRC/options/fep_long.opts" -lattice_cells 250 -floquet 0 "${common[@]}" -output mf1002.h5 > mf1002.txt
 # enough eigensolver restarts that every multiplier converges (an unconverged one makes the orbit "not shown stable")
@@ -38,10 +39,12 @@ for X in (A, B, R):
         wi = sum(ys[i] * np.prod([(x - xs[j]) / (xs[i] - xs[j]) for j in range(4) if j != i]) for i in range(4))
         worst = max(worst, abs(w - wi) / wi)
         matched += 1
-    assert worst < 1e-6, worst
+    assert worst < 1e-7, worst
     assert matched >= 20, matched
     if X == R: print("resumed branch: %d + %d points on the dense N = 102 branch to %.1e" % (n0, len(R["energy"]) - n0, worst))
-    per_newton = X.attrs["krylov_iterations"] / X["newton_its"][:].sum()
+    assert X["energy"][-1] <= D["energy"][-1], (X["energy"][-1], D["energy"][-1])   # no extrapolation
+    # the Krylov count of a resumed run covers its new points only
+    per_newton = X.attrs["krylov_iterations"] / X["newton_its"][n0 if X == R else 0:].sum()
     assert per_newton < 20, per_newton
     print("mf branch:", len(X["energy"]), "points on the dense N = 102 branch to %.1e; GMRES per Newton step" % worst, round(per_newton, 1))
 ka, kb = A.attrs["krylov_iterations"], B.attrs["krylov_iterations"]

@@ -73,7 +73,7 @@ TEST_CASE("monodromy (variational TS and TSForward routes) equals central differ
   PCHK(VecDuplicate(z0, Sdz.out()));
   SetState(lat, dzu, dzv, dz);
   const PetscReal dbeta = 0.3;
-  PCHK(flow.IntegrateWithTangent(z0, T, beta, dz, dbeta, zT, w));
+  PCHK(flow.IntegrateWithTangent(z0, T, beta, dz, dbeta, 0.0, zT, w));
   OwnedVec x;
   PCHK(MatCreateVecs(S, x.out(), NULL));
   {
@@ -91,6 +91,45 @@ TEST_CASE("monodromy (variational TS and TSForward routes) equals central differ
   PCHK(VecNorm(Sdz, NORM_INFINITY, &e));
   PCHK(VecNorm(w, NORM_INFINITY, &nw));
   REQUIRE(e < 1e-10 * nw);
+}
+
+// The tangent's T column is the T-derivative of the fixed-step discrete map
+// z0 -> z_n (n steps of T/n), not the exact flow's f(z(T)): on a coarse grid
+// (16 steps per period, discretization error ~1e-3) it equals the central
+// difference of the discrete map in T, which f(z(T)) does not. Newton on the
+// shooting residual needs the former (README "Long lattices").
+TEST_CASE("tangent T column is the derivative of the discrete flow", "[orbits][mf]")
+{
+  LatticeParams p;
+  p.cells = 2; // N = 10
+  p.Gamma = 0.5;
+  Lattice lat;
+  PCHK(lat.Setup(PETSC_COMM_WORLD, p));
+  PeriodicFlow flow;
+  FlowOptions fo;
+  fo.steps = 16;
+  PCHK(flow.Setup(lat, fo));
+  OwnedVec z0, zero, zT, zp, zm, w, f;
+  PCHK(lat.CreateStateVector(z0.out()));
+  for (OwnedVec *v : {&zero, &zT, &zp, &zm, &w, &f}) PCHK(VecDuplicate(z0, v->out()));
+  SetState(lat, Pseudo(lat.N(), 5), Pseudo(lat.N(), 6), z0); // amplitude ~1: strongly nonlinear
+  PCHK(VecZeroEntries(zero));
+  const PetscReal T = 3.3, beta = 0.01, h = 1e-5;
+  PCHK(flow.IntegrateWithTangent(z0, T, beta, zero, 0.0, 1.0, zT, w)); // dT = 1
+  PCHK(flow.Integrate(z0, T + h, beta, zp));
+  PCHK(flow.Integrate(z0, T - h, beta, zm));
+  PCHK(VecAXPY(zp, -1.0, zm));
+  PCHK(VecScale(zp, 0.5 / h)); // central difference of the discrete map
+  PCHK(flow.EvalRhs(T, zT, f));    // the exact flow's derivative at the discrete z(T)
+  PetscReal nfd, ew, ef;
+  PCHK(VecNorm(zp, NORM_INFINITY, &nfd));
+  PCHK(VecAXPY(w, -1.0, zp));
+  PCHK(VecAXPY(f, -1.0, zp));
+  PCHK(VecNorm(w, NORM_INFINITY, &ew));
+  PCHK(VecNorm(f, NORM_INFINITY, &ef));
+  INFO("|w_T - FD| / |FD| = " << ew / nfd << ", |f(z(T)) - FD| / |FD| = " << ef / nfd);
+  REQUIRE(ew < 1e-8 * nfd);
+  REQUIRE(ef > 1e3 * ew); // the grid is coarse enough for the difference to show
 }
 
 // The N = 14 interface chain with the paper's cubic coefficient (Gamma = 0.5).
@@ -119,7 +158,7 @@ static PetscReal PreconditionerError(const Lattice &lat, LinearMonodromyPC &pc, 
   for (OwnedVec *v : {&x, &zT, &w, &y}) PCHK(VecDuplicate(z0, v->out()));
   PCHK(VecZeroEntries(z0));
   SetState(lat, Pseudo(lat.N(), seed), Pseudo(lat.N(), seed + 1), x);
-  PCHK(flow.IntegrateWithTangent(z0, T, 0.0, x, 0.0, zT, w)); // w = M x
+  PCHK(flow.IntegrateWithTangent(z0, T, 0.0, x, 0.0, 0.0, zT, w)); // w = M x
   PCHK(VecAXPY(w, -1.0, x));                                   // (M - I) x
   PCHK(pc.Apply(w, y));
   PetscReal e, nx;
@@ -352,7 +391,9 @@ TEST_CASE_METHOD(NonlinearChain14, "matrix-free shooting Jacobian action equals 
   for (OwnedVec *v : {&t, &x, &yd, &ym}) PCHK(VecDuplicate(X, v->out()));
   PCHK(dense.Pack(z, 3.4, 1e-3, X));
   Scatter(Pseudo(2 * N + 2, 33), t);
-  Scatter(Pseudo(2 * N + 2, 34), x);
+  auto xs = Pseudo(2 * N + 2, 34);
+  xs[2 * N] = 0; // no T component: the mf T column is the discrete map's (tested below), the dense one f(z(T))
+  Scatter(xs, x);
   for (int c = 0; c < 2; c++) {
     for (Shooting *s : {&dense, &mf}) {
       if (c == 0) PCHK(s->SetEnergyConstraint(z, 2.0));
@@ -368,4 +409,53 @@ TEST_CASE_METHOD(NonlinearChain14, "matrix-free shooting Jacobian action equals 
     INFO((c ? "arclength" : "energy") << " constraint: |J_mf x - J_dense x| / |J_dense x| = " << e / n);
     REQUIRE(e < 1e-8 * n);
   }
+}
+
+// The matrix-free Jacobian is the derivative of the shooting residual that
+// Newton drives to zero, T column included: against central differences of
+// Shooting::Residual on a coarse grid (24 steps per period), where the dense
+// route's f(z(T)) column is visibly off. A Jacobian off by the discretization
+// error stalled inexact Newton at |F| ~ 1e-9 on the N = 10^4 branch.
+TEST_CASE_METHOD(NonlinearChain14, "matrix-free shooting Jacobian is the derivative of the residual", "[orbits][mf]")
+{
+  const PetscInt N = lat.N();
+  PeriodicFlow flow;
+  FlowOptions fo;
+  fo.steps = 24;
+  PCHK(flow.Setup(lat, fo));
+  Shooting dense, mf;
+  ShootingOptions so;
+  PCHK(dense.Setup(flow, so));
+  so.jacobian = ShootingJacobian::MatrixFree;
+  PCHK(mf.Setup(flow, so));
+  OwnedVec z, X, t, x, Xp, Fp, Fm, y;
+  PCHK(lat.CreateStateVector(z.out()));
+  SetState(lat, Pseudo(N, 31), Pseudo(N, 32), z);
+  PCHK(mf.CreateUnknowns(X.out()));
+  for (OwnedVec *v : {&t, &x, &Xp, &Fp, &Fm, &y}) PCHK(VecDuplicate(X, v->out()));
+  PCHK(mf.Pack(z, 3.4, 1e-3, X));
+  Scatter(Pseudo(2 * N + 2, 33), t);
+  Scatter(Pseudo(2 * N + 2, 34), x); // dz, dT and dbeta all nonzero
+  const PetscReal h = 1e-6;
+  PetscReal err[2], nfd = 0;
+  Shooting *routes[2] = {&mf, &dense};
+  for (int r = 0; r < 2; r++) {
+    Shooting &s = *routes[r];
+    PCHK(s.SetArclengthConstraint(z, t, X));
+    PCHK(VecWAXPY(Xp, h, x, X));
+    PCHK(s.Residual(Xp, Fp));
+    PCHK(VecWAXPY(Xp, -h, x, X));
+    PCHK(s.Residual(Xp, Fm));
+    PCHK(VecAXPY(Fp, -1.0, Fm));
+    PCHK(VecScale(Fp, 0.5 / h));
+    PCHK(s.Jacobian(X, s.Operator()));
+    PCHK(MatMult(s.Operator(), x, y));
+    PCHK(VecNorm(Fp, NORM_INFINITY, &nfd));
+    PCHK(VecAXPY(y, -1.0, Fp));
+    PCHK(VecNorm(y, NORM_INFINITY, &err[r]));
+    err[r] /= nfd;
+  }
+  INFO("|J x - FD| / |FD|: matrix-free " << err[0] << ", dense " << err[1]);
+  REQUIRE(err[0] < 1e-7);
+  REQUIRE(err[1] > 10 * err[0]);
 }
