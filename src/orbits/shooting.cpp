@@ -172,7 +172,8 @@ PetscErrorCode Shooting::Setup(PeriodicFlow &flow, const ShootingOptions &o)
   PetscCall(SNESSetFromOptions(snes_));
   PetscCall(SNESGetTolerances(snes_, &snes_atol_, NULL, NULL, NULL, NULL));
   if (o.jacobian == ShootingJacobian::MatrixFree) {
-    // No GMRES iterations beyond what Newton's own -nnm_snes_atol asks for: a
+    // No GMRES iterations beyond what Newton's own threshold asks for
+    // (-nnm_snes_atol here, or -nnm_orbit_rtol |z0| once larger: Converged): a
     // linear residual below half of it makes the next |F| (linear residual +
     // O(|step|^2)) meet it. Eisenstat-Walker alone asks the last solve for a
     // relative 1e-4 or so, which near the band edge of long lattices took 100+

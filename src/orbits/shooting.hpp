@@ -94,7 +94,8 @@ private:
   bool fresh_ = false; // fresh_: the KSP holds this solve's last Jacobian
   PetscReal energy_target_ = 0;
   // linearisation point of the matrix-free product
-  OwnedVec zlin_, fT_;
+  OwnedVec zlin_;
+  OwnedVec fT_; // the dense route's T column, f_beta(z(T))
   PetscReal Tlin_ = 0, blin_ = 0;
   std::vector<PetscReal> fr_, cr_; // gathered phase and constraint rows
   PetscInt njac_ = 0, nres_ = 0, nlin_ = 0, nkrylov_ = 0;
