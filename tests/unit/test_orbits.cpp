@@ -459,3 +459,60 @@ TEST_CASE_METHOD(NonlinearChain14, "matrix-free shooting Jacobian is the derivat
   REQUIRE(err[0] < 1e-7);
   REQUIRE(err[1] > 10 * err[0]);
 }
+
+// -nnm_orbit_rtol: Newton accepts an orbit once |F| <= rtol |z0|. From the
+// same guess (the top linear mode at amplitude 0.3, strongly nonlinear) a
+// loose rtol stops earlier, with a residual within it; rtol 0 goes on to the
+// SNES atol. A huge rtol accepts the guess itself (no iteration).
+TEST_CASE_METHOD(NonlinearChain14, "-nnm_orbit_rtol stops Newton at |F| <= rtol |z0|", "[orbits][mf]")
+{
+  const PetscInt N = lat.N();
+  LinearModes modes;
+  PCHK(modes.Compute(lat, LinearModesOptions()));
+  PeriodicFlow flow;
+  PCHK(flow.Setup(lat, FlowOptions()));
+  OwnedVec z, zs, X, F;
+  PCHK(lat.CreateStateVector(z.out()));
+  PCHK(VecDuplicate(z, zs.out()));
+  PCHK(VecZeroEntries(z));
+  {
+    PetscScalar *a;
+    const PetscScalar *m;
+    PCHK(VecGetArray(z, &a));
+    PCHK(VecGetArrayRead(modes.Mode(N - 1), &m));
+    for (PetscInt k = 0; k < lat.OwnedCount(); k++) a[k] = 0.3 * m[k];
+    PCHK(VecRestoreArrayRead(modes.Mode(N - 1), &m));
+    PCHK(VecRestoreArray(z, &a));
+  }
+  EnergyParts e;
+  PCHK(lat.Energy(z, &e));
+  const PetscReal T = 2 * PETSC_PI / modes.Omega()[N - 1];
+  PetscInt its[3];
+  PetscReal fn[3], zn[3];
+  const PetscReal rtols[3] = {0, 1e-3, 0.9};
+  for (int r = 0; r < 3; r++) {
+    ShootingOptions so;
+    so.jacobian = ShootingJacobian::MatrixFree;
+    so.start_dense_max = 0; // the main (inexact-Newton GMRES) solver from the first orbit on
+    so.orbit_rtol = rtols[r];
+    Shooting s;
+    PCHK(s.Setup(flow, so));
+    PCHK(s.CreateUnknowns(X.out()));
+    PCHK(VecDuplicate(X, F.out()));
+    PCHK(s.Pack(z, T, 0.0, X));
+    PCHK(s.SetEnergyConstraint(z, e.Total()));
+    bool ok;
+    PCHK(s.Solve(X, &ok, &its[r]));
+    REQUIRE(ok);
+    PetscReal Tr, br;
+    PCHK(s.Residual(X, F));
+    PCHK(VecNorm(F, NORM_2, &fn[r]));
+    PCHK(s.Unpack(X, zs, &Tr, &br));
+    PCHK(VecNorm(zs, NORM_2, &zn[r]));
+  }
+  INFO("Newton iterations " << its[0] << ", " << its[1] << ", " << its[2] << "; |F| " << fn[0] << ", " << fn[1] << ", " << fn[2]);
+  REQUIRE(fn[0] <= 1e-12);
+  REQUIRE(fn[1] <= 1e-3 * zn[1]);
+  REQUIRE(its[1] < its[0]);
+  REQUIRE(its[2] == 0);
+}
