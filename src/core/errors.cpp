@@ -1,5 +1,8 @@
 #include "core/errors.hpp"
+#include <cctype>
 #include <cstdio>
+#include <string>
+#include <vector>
 #include <cstdlib>
 #include <cerrno>
 #include <cstring>
@@ -7,6 +10,36 @@
 #include <unistd.h>
 
 namespace nltopo {
+
+// The option (-name value) whose value is the word w (case-insensitive), "" if none or several.
+static std::string OptionWithValue(const std::string &w)
+{
+  char *all = NULL;
+  std::string found;
+  int hits = 0;
+  if (w.empty() || PetscOptionsGetAll(NULL, &all) || !all) return found;
+  std::vector<std::string> tok;
+  for (char *t = std::strtok(all, " "); t; t = std::strtok(NULL, " ")) tok.emplace_back(t);
+  PetscFree(all);
+  for (size_t i = 0; i + 1 < tok.size(); i++)
+    if (tok[i][0] == '-' && std::isalpha((unsigned char)tok[i][1]) && !strcasecmp(tok[i + 1].c_str(), w.c_str())) {
+      found = tok[i] + " " + tok[i + 1];
+      hits++;
+    }
+  return hits == 1 ? found : std::string();
+}
+
+// A word of the message after the marker, e.g. "Input string abc has ..." -> "abc".
+static std::string WordAfter(const char *mess, const char *marker)
+{
+  const char *p = mess ? std::strstr(mess, marker) : NULL;
+  if (!p) return "";
+  p += std::strlen(marker);
+  while (*p == ' ') p++;
+  const char *e = p;
+  while (*e && *e != ' ' && *e != '\n') e++;
+  return std::string(p, e);
+}
 
 PetscErrorCode OneLineErrorHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p,
                                    const char *mess, void *ctx)
@@ -19,8 +52,35 @@ PetscErrorCode OneLineErrorHandler(MPI_Comm comm, int line, const char *fun, con
   const char *text = NULL;
   PetscErrorMessage(n, &text, NULL);
   const bool user = n == PETSC_ERR_USER || n == PETSC_ERR_FILE_OPEN || n == PETSC_ERR_FILE_WRITE || n == PETSC_ERR_FP || n == PETSC_ERR_NOT_CONVERGED;
+  // A value PETSc cannot parse: name the option that holds it (its messages name only the value).
+  static const struct {
+    const char *fun, *marker, *what;
+  } parse[] = {{"PetscOptionsStringToReal", "Input string", "not a real number"},
+               {"PetscOptionsStringToScalar", "Input string", "not a number"},
+               {"PetscOptionsStringToInt", "Input string", "not an integer"},
+               {"PetscOptionsStringToBool", "Unknown logical value:", "not a boolean (true/false, yes/no, 1/0)"}};
+  for (const auto &q : parse)
+    if (fun && !std::strcmp(fun, q.fun)) {
+      const std::string v = WordAfter(mess, q.marker), opt = OptionWithValue(v);
+      std::fprintf(stderr, "nltopo: error: %s: %s\n", opt.empty() ? ("'" + v + "'").c_str() : opt.c_str(), q.what);
+      std::fflush(stderr);
+      return n;
+    }
   if (user) std::fprintf(stderr, "nltopo: error: %s\n", mess && mess[0] ? mess : text);
-  else std::fprintf(stderr, "nltopo: error: %s: %s [%s, %s:%d]\n", text ? text : "PETSc error", mess ? mess : "", fun, file, line);
+  else {
+    // PETSc's own message, without its source location; when it quotes a
+    // value the user gave (an unknown type name), name that option too.
+    std::string opt, m = mess ? mess : "";
+    for (size_t i = 0; i < m.size() && opt.empty();) {
+      while (i < m.size() && !std::isalnum((unsigned char)m[i])) i++;
+      size_t j = i;
+      while (j < m.size() && (std::isalnum((unsigned char)m[j]) || m[j] == '_' || m[j] == '.')) j++;
+      const std::string w = m.substr(i, j - i);
+      if (w.size() >= 2 && !std::isdigit((unsigned char)w[0])) opt = OptionWithValue(w);
+      i = j;
+    }
+    std::fprintf(stderr, "nltopo: error: %s%s%s: %s\n", opt.empty() ? "" : opt.c_str(), opt.empty() ? "" : ": ", text ? text : "PETSc error", m.c_str());
+  }
   std::fflush(stderr);
   return n;
 }

@@ -22,6 +22,14 @@ PetscErrorCode OutputPathFromOptions(MPI_Comm comm, const char *study, std::stri
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode (*g_commit_guard)(MPI_Comm) = nullptr;
+
+PetscErrorCode SetCommitGuard(PetscErrorCode (*guard)(MPI_Comm))
+{
+  g_commit_guard = guard;
+  return 0;
+}
+
 OutputFile::~OutputFile()
 {
   if (tmp_.empty() || committed_) return;
@@ -69,6 +77,12 @@ PetscErrorCode OutputFile::Commit(const char *study, PetscReal wall_seconds, boo
   PetscMPIInt rank;
   int err = 0;
   PetscFunctionBeginUser;
+  if (complete && g_commit_guard) {
+    PetscMPIInt size, world;
+    PetscCallMPI(MPI_Comm_size(comm_, &size));
+    PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &world));
+    if (size == world) PetscCall(g_commit_guard(comm_)); // a rank-local commit (sweep) audits collectively itself
+  }
   PetscCall(PetscOptionsGetAll(NULL, &opts));
   PetscCall(WriteAttr(viewer_, "/", "study", study));
   PetscCall(WriteAttr(viewer_, "/", "version", NLTOPO_VERSION));

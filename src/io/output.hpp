@@ -13,6 +13,10 @@ namespace nltopo {
 // -output <file.h5>, default "<study>.h5".
 PetscErrorCode OutputPathFromOptions(MPI_Comm comm, const char *study, std::string *path);
 
+// Called by Commit before a complete output is renamed into place, when the
+// file's communicator spans every rank (the registry's unused-options audit).
+PetscErrorCode SetCommitGuard(PetscErrorCode (*guard)(MPI_Comm));
+
 class OutputFile {
 public:
   ~OutputFile();

@@ -2,6 +2,7 @@
 // continuation of periodic orbits (orbits/); /continuation/<branch> of outputs.md.
 #include "studies/nnm_setup.hpp"
 #include "core/log.hpp"
+#include "core/options_audit.hpp"
 #include "io/input.hpp"
 #include "io/output.hpp"
 #include "orbits/continuation.hpp"
@@ -303,54 +304,95 @@ private:
   PetscLogDouble last_ = 0;
 };
 
+// The study's own choices: Floquet on/off, the branches, checkpoints, resume.
+struct StudyChoices {
+  PetscBool floquet = PETSC_FALSE, floquet_mf = PETSC_FALSE;
+  char *names[16] = {};
+  PetscInt nb = 16;
+  PetscReal checkpoint_seconds = 0;
+  char resume_file[PETSC_MAX_PATH_LEN] = "";
+  PetscBool resume = PETSC_FALSE;
+  ~StudyChoices()
+  {
+    for (char *n : names) PetscFree(n);
+  }
+};
+
+PetscErrorCode ReadStudyChoices(MPI_Comm comm, StudyChoices *c)
+{
+  PetscBool set;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, NULL, "Floquet stability along the branches", NULL);
+  PetscCall(PetscOptionsBool("-floquet", "Add Floquet multipliers, Krein signatures and stability to every orbit (-floquet_* options)", NULL, c->floquet,
+                             &c->floquet, NULL));
+  PetscCall(PetscOptionsBool("-floquet_mf",
+                             "With -floquet: only the -floquet_mf_nev leading multipliers, matrix-free (long lattices; no Krein signatures)", NULL,
+                             c->floquet_mf, &c->floquet_mf, NULL));
+  PetscOptionsEnd();
+  PetscOptionsBegin(comm, "cont_", "NNM branches", NULL);
+  PetscCall(PetscOptionsStringArray("-branch", "Comma-separated branches: insulated, interface, acoustic_top, optical_bottom, optical_top, mode<k> or k",
+                                    NULL, c->names, &c->nb, &set));
+  PetscCall(PetscOptionsReal("-checkpoint_seconds",
+                             "Write -output with the points so far (root attribute complete = 0) at most this often, so that a killed run keeps them "
+                             "(0: only at the end)",
+                             NULL, c->checkpoint_seconds, &c->checkpoint_seconds, NULL));
+  PetscCall(PetscOptionsString("-resume",
+                               "Continue the branches of this earlier -output (complete or a checkpoint) from their last points, keeping their "
+                               "points; branches it lacks start afresh",
+                               NULL, c->resume_file, c->resume_file, sizeof(c->resume_file), &c->resume));
+  PetscOptionsEnd();
+  PetscCheck(c->checkpoint_seconds >= 0, comm, PETSC_ERR_USER, "-cont_checkpoint_seconds must be >= 0, got %g", (double)c->checkpoint_seconds);
+  if (!set) {
+    PetscCall(PetscStrallocpy("insulated", &c->names[0]));
+    c->nb = 1;
+  }
+  PetscCheck(c->nb >= 1, comm, PETSC_ERR_USER, "-cont_branch needs at least one branch name");
+  PetscFunctionReturn(0);
+}
+
 } // namespace
+
+PetscErrorCode ContinuationStudyOptions(MPI_Comm comm)
+{
+  NnmSetup nnm;
+  StudyChoices ch;
+  FloquetOptions flo;
+  FloquetMfOptions fmo;
+  std::string path;
+  PetscFunctionBeginUser;
+  PetscCall(nnm.DeclareOptions(comm));
+  PetscCall(ReadStudyChoices(comm, &ch));
+  PetscCall(FloquetOptionsFromOptions(comm, &flo)); // read even without -floquet: they belong to this study
+  PetscCall(FloquetMfOptionsFromOptions(comm, &fmo));
+  PetscCall(DeclareEPS(comm, "floquet_"));
+  PetscCall(DeclareEPS(comm, "floquet_mf_"));
+  PetscCall(OutputPathFromOptions(comm, "continuation", &path));
+  PetscFunctionReturn(0);
+}
 
 PetscErrorCode ContinuationStudy(MPI_Comm comm)
 {
   NnmSetup nnm;
-  char *names[16];
-  PetscInt nb = 16;
-  PetscBool set;
   std::string path;
   OutputFile out;
   PetscLogDouble t_start, t_end;
-  PetscReal checkpoint_seconds = 0;
-  char resume_file[PETSC_MAX_PATH_LEN] = "";
-  PetscBool resume = PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t_start));
   PetscCall(LogRegister());
   PetscCall(PetscLogStagePush(Log().setup));
   PetscCall(nnm.ReadOptions(comm));
-  PetscBool floquet = PETSC_FALSE, floquet_mf = PETSC_FALSE;
+  StudyChoices ch;
+  PetscCall(ReadStudyChoices(comm, &ch));
+  const PetscBool floquet = ch.floquet, floquet_mf = ch.floquet_mf;
   FloquetOptions flo;
   FloquetMfOptions fmo;
-  PetscOptionsBegin(comm, NULL, "Floquet stability along the branches", NULL);
-  PetscCall(PetscOptionsBool("-floquet", "Add Floquet multipliers, Krein signatures and stability to every orbit (-floquet_* options)", NULL, floquet,
-                             &floquet, NULL));
-  PetscCall(PetscOptionsBool("-floquet_mf",
-                             "With -floquet: only the -floquet_mf_nev leading multipliers, matrix-free (long lattices; no Krein signatures)", NULL,
-                             floquet_mf, &floquet_mf, NULL));
-  PetscOptionsEnd();
   if (floquet) PetscCall(FloquetOptionsFromOptions(comm, &flo));
   if (floquet && floquet_mf) PetscCall(FloquetMfOptionsFromOptions(comm, &fmo));
-  PetscOptionsBegin(comm, "cont_", "NNM branches", NULL);
-  PetscCall(PetscOptionsStringArray("-branch", "Comma-separated branches: insulated, interface, acoustic_top, optical_bottom, optical_top, mode<k> or k",
-                                    NULL, names, &nb, &set));
-  PetscCall(PetscOptionsReal("-checkpoint_seconds",
-                             "Write -output with the points so far (root attribute complete = 0) at most this often, so that a killed run keeps them "
-                             "(0: only at the end)",
-                             NULL, checkpoint_seconds, &checkpoint_seconds, NULL));
-  PetscCall(PetscOptionsString("-resume",
-                               "Continue the branches of this earlier -output (complete or a checkpoint) from their last points, keeping their "
-                               "points; branches it lacks start afresh",
-                               NULL, resume_file, resume_file, sizeof(resume_file), &resume));
-  PetscOptionsEnd();
-  PetscCheck(checkpoint_seconds >= 0, comm, PETSC_ERR_USER, "-cont_checkpoint_seconds must be >= 0, got %g", (double)checkpoint_seconds);
-  if (!set) {
-    PetscCall(PetscStrallocpy("insulated", &names[0]));
-    nb = 1;
-  }
+  char **names = ch.names;
+  const PetscInt nb = ch.nb;
+  const PetscReal checkpoint_seconds = ch.checkpoint_seconds;
+  const char *resume_file = ch.resume_file;
+  const PetscBool resume = ch.resume;
   PetscCall(OutputPathFromOptions(comm, "continuation", &path));
   PetscCall(out.Open(comm, path));
   PetscCall(nnm.Build(comm));
@@ -450,7 +492,6 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
   PetscCall(PetscLogStagePush(Log().write));
   for (const BranchRecord &r : done) PetscCall(WriteRecord(out.Viewer(), r, fk, n2, fmo.nev));
   PetscCall(PetscLogStagePop());
-  for (PetscInt k = 0; k < nb; k++) PetscCall(PetscFree(names[k]));
   PetscCall(PetscTime(&t_end));
   PetscCall(out.Commit("continuation", t_end - t_start));
   PetscCall(PetscPrintf(comm, "  wrote %s\n", path.c_str()));

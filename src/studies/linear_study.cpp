@@ -2,6 +2,7 @@
 // identification"), infinite-lattice Bloch bands and Zak phases; /linear of outputs.md.
 #include "bands/linear_modes.hpp"
 #include "core/log.hpp"
+#include "core/options_audit.hpp"
 #include "io/output.hpp"
 #include "studies/registry.hpp"
 #include <petscviewerhdf5.h>
@@ -11,11 +12,38 @@ namespace nltopo {
 
 static PetscReal OmegaOf(const LinearModes &m, PetscInt j) { return j >= 0 ? m.Omega()[j] : NAN; }
 
+static const PetscInt kBlochDefaultNq = 201; // -linear_nq
+
+static PetscErrorCode BlochOptionsFromOptions(MPI_Comm comm, PetscInt *nq)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, "linear_", "Linear study", NULL);
+  PetscCall(PetscOptionsInt("-nq", "Wavenumbers for the Bloch bands; the Zak loop uses 2 nq points", NULL, *nq, nq, NULL));
+  PetscOptionsEnd();
+  PetscCheck(*nq >= 4 && *nq <= 100000000, comm, PETSC_ERR_USER, "-linear_nq must lie in [4, 1e8], got %" PetscInt_FMT, *nq);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LinearStudyOptions(MPI_Comm comm)
+{
+  LatticeParams lp;
+  LinearModesOptions mo;
+  PetscInt nq = kBlochDefaultNq;
+  std::string path;
+  PetscFunctionBeginUser;
+  PetscCall(LatticeParamsFromOptions(comm, &lp));
+  PetscCall(LinearModesOptionsFromOptions(comm, &mo));
+  PetscCall(BlochOptionsFromOptions(comm, &nq));
+  PetscCall(DeclareEPS(comm, "linear_"));
+  PetscCall(OutputPathFromOptions(comm, "linear", &path));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode LinearStudy(MPI_Comm comm)
 {
   LatticeParams lp;
   LinearModesOptions mo;
-  PetscInt nq = 201;
+  PetscInt nq = kBlochDefaultNq;
   std::string path;
   OutputFile out;
   Lattice lat;
@@ -27,10 +55,7 @@ PetscErrorCode LinearStudy(MPI_Comm comm)
   PetscCall(PetscLogStagePush(Log().setup));
   PetscCall(LatticeParamsFromOptions(comm, &lp));
   PetscCall(LinearModesOptionsFromOptions(comm, &mo));
-  PetscOptionsBegin(comm, "linear_", "Linear study", NULL);
-  PetscCall(PetscOptionsInt("-nq", "Wavenumbers for the Bloch bands; the Zak loop uses 2 nq points", NULL, nq, &nq, NULL));
-  PetscOptionsEnd();
-  PetscCheck(nq >= 4, comm, PETSC_ERR_USER, "-linear_nq must be >= 4, got %" PetscInt_FMT, nq);
+  PetscCall(BlochOptionsFromOptions(comm, &nq));
   PetscCall(OutputPathFromOptions(comm, "linear", &path));
   PetscCall(out.Open(comm, path));
   PetscCall(lat.Setup(comm, lp));

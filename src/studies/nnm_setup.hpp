@@ -3,6 +3,7 @@
 // shooting and continuation options; read first (bad options fail before any
 // output file exists), built after.
 #include "bands/linear_modes.hpp"
+#include "core/options_audit.hpp"
 #include "orbits/continuation.hpp"
 
 namespace nltopo {
@@ -26,6 +27,18 @@ struct NnmSetup {
     PetscCall(FlowOptionsFromOptions(comm, &fo));
     PetscCall(ShootingOptionsFromOptions(comm, &so));
     PetscCall(ContinuationOptionsFromOptions(comm, &co));
+    PetscFunctionReturn(0);
+  }
+  // ReadOptions plus the solver objects' prefixes (-nnm_snes_*, -nnm_start_snes_*,
+  // -nnm_ts_*, -linear_eps_*), for the studies' options functions (registry.hpp).
+  PetscErrorCode DeclareOptions(MPI_Comm comm)
+  {
+    PetscFunctionBeginUser;
+    PetscCall(ReadOptions(comm));
+    PetscCall(DeclareSNES(comm, "nnm_"));
+    PetscCall(DeclareSNES(comm, "nnm_start_"));
+    PetscCall(DeclareTS(comm, "nnm_"));
+    PetscCall(DeclareEPS(comm, "linear_"));
     PetscFunctionReturn(0);
   }
   PetscErrorCode Build(MPI_Comm comm)

@@ -8,6 +8,7 @@
 #include "bands/linear_modes.hpp"
 #include "core/errors.hpp"
 #include "core/log.hpp"
+#include "core/options_audit.hpp"
 #include "core/work_queue.hpp"
 #include "io/input.hpp"
 #include "io/output.hpp"
@@ -67,6 +68,60 @@ PetscErrorCode InsulatedOmega(const Lattice &lat, const LinearModes &modes, Pets
 
 } // namespace
 
+// The -perturb_ block (the study sets the spring perturbation, omega_ext and E* itself).
+static PetscErrorCode PerturbOptionsFromOptions(MPI_Comm comm, PerturbOptions *po)
+{
+  PetscFunctionBeginUser;
+  PetscCall(RejectGivenOptions(comm, {"-sim_progress", "-sim_sample_dt"}, "-study perturb (no progress lines or samples per run)"));
+  {
+    PetscReal dl[64];
+    PetscInt nd = 64, nk = 2;
+    PetscBool set;
+    char *kinds[2];
+    PetscOptionsBegin(comm, "perturb_", "Perturbation ensembles", NULL);
+    PetscCall(PetscOptionsRealArray("-delta_list", "Perturbation levels delta (mean |relative spring change|)", NULL, dl, &nd, &set));
+    if (set) po->delta.assign(dl, dl + nd);
+    PetscCall(PetscOptionsStringArray("-kinds", "Perturbation kinds: chiral, achiral", NULL, kinds, &nk, &set));
+    if (set) {
+      po->kinds.clear();
+      for (PetscInt k = 0; k < nk; k++) {
+        PetscBool c, a;
+        PetscCall(PetscStrcmp(kinds[k], "chiral", &c));
+        PetscCall(PetscStrcmp(kinds[k], "achiral", &a));
+        PetscCheck(c || a, comm, PETSC_ERR_USER, "-perturb_kinds: unknown kind %s (chiral, achiral)", kinds[k]);
+        po->kinds.push_back(c ? Perturbation::Chiral : Perturbation::Achiral);
+        PetscCall(PetscFree(kinds[k]));
+      }
+    }
+    PetscCall(PetscOptionsInt("-ensemble", "Realisations (seeds) per perturbation level", NULL, po->ensemble, &po->ensemble, NULL));
+    PetscCall(PetscOptionsInt("-seed", "Seed of the first realisation (realisation r uses seed + r)", NULL, po->seed0, &po->seed0, NULL));
+    PetscCall(ReadAxis(PetscOptionsObject, comm, "perturb_", "energy", 1e-2, 1e2, 9, true, &po->energy));
+    PetscCall(PetscOptionsString("-fep", "Continuation file with /continuation/insulated (omega(E) of the insulated NNM); default: computed here", NULL, po->fep,
+                                 po->fep, sizeof(po->fep), NULL));
+    PetscOptionsEnd();
+  }
+  PetscCheck(po->ensemble >= 1, comm, PETSC_ERR_USER, "-perturb_ensemble must be >= 1, got %" PetscInt_FMT, po->ensemble);
+  for (PetscReal d : po->delta) PetscCheck(d >= 0 && d < 0.5, comm, PETSC_ERR_USER, "-perturb_delta_list: values must lie in [0, 0.5), got %g", (double)d);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PerturbStudyOptions(MPI_Comm comm)
+{
+  PerturbOptions po;
+  ToneBurstOptions fo;
+  SimulationOptions sim;
+  NnmSetup nnm;
+  std::string path;
+  PetscFunctionBeginUser;
+  PetscCall(nnm.DeclareOptions(comm));
+  PetscCall(PerturbOptionsFromOptions(comm, &po));
+  PetscCall(ToneBurstOptionsFromOptions(comm, nnm.lp, &fo));
+  PetscCall(SimulationOptionsFromOptions(comm, &sim));
+  PetscCall(DeclareTS(comm, "sim_"));
+  PetscCall(OutputPathFromOptions(comm, "perturb", &path));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode PerturbStudy(MPI_Comm comm)
 {
   PerturbOptions po;
@@ -84,35 +139,7 @@ PetscErrorCode PerturbStudy(MPI_Comm comm)
                                "-study perturb (-perturb_kinds, -perturb_delta_list, -perturb_ensemble, -perturb_energy_*)"));
   PetscCall(nnm.ReadOptions(comm));
   PetscCheck(nnm.lp.layout == Layout::Interface, comm, PETSC_ERR_USER, "-study perturb follows the insulated mode: -lattice_layout must be interface");
-  {
-    PetscReal dl[64];
-    PetscInt nd = 64, nk = 2;
-    PetscBool set;
-    char *kinds[2];
-    PetscOptionsBegin(comm, "perturb_", "Perturbation ensembles", NULL);
-    PetscCall(PetscOptionsRealArray("-delta_list", "Perturbation levels delta (mean |relative spring change|)", NULL, dl, &nd, &set));
-    if (set) po.delta.assign(dl, dl + nd);
-    PetscCall(PetscOptionsStringArray("-kinds", "Perturbation kinds: chiral, achiral", NULL, kinds, &nk, &set));
-    if (set) {
-      po.kinds.clear();
-      for (PetscInt k = 0; k < nk; k++) {
-        PetscBool c, a;
-        PetscCall(PetscStrcmp(kinds[k], "chiral", &c));
-        PetscCall(PetscStrcmp(kinds[k], "achiral", &a));
-        PetscCheck(c || a, comm, PETSC_ERR_USER, "-perturb_kinds: unknown kind %s (chiral, achiral)", kinds[k]);
-        po.kinds.push_back(c ? Perturbation::Chiral : Perturbation::Achiral);
-        PetscCall(PetscFree(kinds[k]));
-      }
-    }
-    PetscCall(PetscOptionsInt("-ensemble", "Realisations (seeds) per perturbation level", NULL, po.ensemble, &po.ensemble, NULL));
-    PetscCall(PetscOptionsInt("-seed", "Seed of the first realisation (realisation r uses seed + r)", NULL, po.seed0, &po.seed0, NULL));
-    PetscCall(ReadAxis(PetscOptionsObject, comm, "perturb_", "energy", 1e-2, 1e2, 9, true, &po.energy));
-    PetscCall(PetscOptionsString("-fep", "Continuation file with /continuation/insulated (omega(E) of the insulated NNM); default: computed here", NULL, po.fep,
-                                 po.fep, sizeof(po.fep), NULL));
-    PetscOptionsEnd();
-  }
-  PetscCheck(po.ensemble >= 1, comm, PETSC_ERR_USER, "-perturb_ensemble must be >= 1, got %" PetscInt_FMT, po.ensemble);
-  for (PetscReal d : po.delta) PetscCheck(d >= 0 && d < 0.5, comm, PETSC_ERR_USER, "-perturb_delta_list: values must lie in [0, 0.5), got %g", (double)d);
+  PetscCall(PerturbOptionsFromOptions(comm, &po));
   PetscCall(ToneBurstOptionsFromOptions(comm, nnm.lp, &fo));
   PetscCall(SimulationOptionsFromOptions(comm, &sim));
   sim.progress = 0;

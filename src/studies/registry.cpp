@@ -1,22 +1,44 @@
 #include "studies/registry.hpp"
+#include "core/options_audit.hpp"
+#include "io/output.hpp"
 #include <string>
 
 namespace nltopo {
 
 static const StudyEntry kStudies[] = {
-  {"linear", "linear modes of K, named modes, Bloch bands and Zak phases", LinearStudy},
-  {"simulate", "one forced tone-burst run with energy cut-off", SimulateStudy},
-  {"continuation", "NNM branches by shooting and pseudo-arclength continuation", ContinuationStudy},
-  {"sweep", "a grid of forced runs (omega_ext x E*) scored by MCR, 0-1 test and energy ratio; parallel, resumable", SweepStudy},
-  {"zak", "the half-lattice phase experiment: phi_0, phi_pi and the energy where they stop being distinct", ZakStudy},
-  {"perturb", "chiral and achiral spring-perturbation ensembles: insulated frequency and MCR along the insulated NNM", PerturbStudy},
-  {"stability", "perturbed insulated-branch NNMs integrated for many periods: does the standing wave persist", StabilityStudy},
+  {"linear", "linear modes of K, named modes, Bloch bands and Zak phases", LinearStudy, LinearStudyOptions},
+  {"simulate", "one forced tone-burst run with energy cut-off", SimulateStudy, SimulateStudyOptions},
+  {"continuation", "NNM branches by shooting and pseudo-arclength continuation", ContinuationStudy, ContinuationStudyOptions},
+  {"sweep", "a grid of forced runs (omega_ext x E*) scored by MCR, 0-1 test and energy ratio; parallel, resumable", SweepStudy, SweepStudyOptions},
+  {"zak", "the half-lattice phase experiment: phi_0, phi_pi and the energy where they stop being distinct", ZakStudy, ZakStudyOptions},
+  {"perturb", "chiral and achiral spring-perturbation ensembles: insulated frequency and MCR along the insulated NNM", PerturbStudy, PerturbStudyOptions},
+  {"stability", "perturbed insulated-branch NNMs integrated for many periods: does the standing wave persist", StabilityStudy, StabilityStudyOptions},
 };
+
+static std::map<std::string, OptionsFn> StudyOptionFunctions()
+{
+  std::map<std::string, OptionsFn> m;
+  for (const auto &s : kStudies) m[s.name] = s.options;
+  return m;
+}
+
+static const StudyEntry *g_running = nullptr;
+static bool g_audited = false;
+
+PetscErrorCode AuditOptionsBeforeCommit(MPI_Comm comm)
+{
+  PetscFunctionBeginUser;
+  if (!g_running || g_audited) PetscFunctionReturn(0);
+  PetscCall(AuditUnusedOptions(comm, g_running->name, StudyOptionFunctions(), false));
+  g_audited = true;
+  PetscFunctionReturn(0);
+}
 
 PetscErrorCode RunStudyFromOptions(MPI_Comm comm)
 {
   char name[64] = "linear";
   std::string known, help = "Study to run:";
+  PetscBool list_help;
   PetscFunctionBeginUser;
   for (const auto &s : kStudies) {
     known += std::string(known.empty() ? "" : ", ") + s.name;
@@ -25,15 +47,25 @@ PetscErrorCode RunStudyFromOptions(MPI_Comm comm)
   PetscOptionsBegin(comm, NULL, "nltopo", NULL);
   PetscCall(PetscOptionsString("-study", help.c_str(), NULL, name, name, sizeof(name), NULL));
   PetscOptionsEnd();
+  const StudyEntry *entry = nullptr;
   for (const auto &s : kStudies) {
     PetscBool match;
     PetscCall(PetscStrcmp(name, s.name, &match));
-    if (match) {
-      PetscCall(s.run(comm));
-      PetscFunctionReturn(0);
-    }
+    if (match) entry = &s;
   }
-  SETERRQ(comm, PETSC_ERR_USER, "unknown -study %s (available: %s)", name, known.c_str());
+  PetscCheck(entry, comm, PETSC_ERR_USER, "unknown -study %s (available: %s)", name, known.c_str());
+  PetscCall(CheckFiniteOptionValues(comm));
+  PetscCall(PetscOptionsHasHelp(NULL, &list_help));
+  PetscCall(entry->options(comm)); // -help: prints them all; otherwise marks them read
+  if (list_help) {
+    PetscCall(PetscPrintf(comm, "nltopo: -help listed the options of -study %s; nothing was computed\n", name));
+    PetscFunctionReturn(0);
+  }
+  g_running = entry;
+  PetscCall(AuditUnusedOptions(comm, name, StudyOptionFunctions(), true)); // misspelt or foreign options fail before any work
+  PetscCall(SetCommitGuard(AuditOptionsBeforeCommit));
+  PetscCall(entry->run(comm));
+  PetscFunctionReturn(0);
 }
 
 } // namespace nltopo

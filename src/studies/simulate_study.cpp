@@ -1,6 +1,7 @@
 // -study simulate: one forced tone-burst run with energy cut-off; /simulate of outputs.md.
 #include "bands/linear_modes.hpp"
 #include "core/log.hpp"
+#include "core/options_audit.hpp"
 #include "io/output.hpp"
 #include "studies/registry.hpp"
 #include "timeint/simulation.hpp"
@@ -51,7 +52,39 @@ private:
   PetscInt col0_ = 0, ncols_ = 0;
 };
 
+PetscErrorCode StoreOptionsFromOptions(MPI_Comm comm, PetscBool *store_u, PetscInt *stride)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, "sim_", "Simulate study output", NULL);
+  PetscCall(PetscOptionsBool("-store_u", "Store the sub-sampled displacement u(t) (/simulate/u)", NULL, *store_u, store_u, NULL));
+  PetscCall(PetscOptionsInt("-store_u_stride", "Store u at every this many sites (0-based index divisible by it; long lattices)", NULL, *stride, stride, NULL));
+  PetscOptionsEnd();
+  PetscCheck(*stride >= 1, comm, PETSC_ERR_USER, "-sim_store_u_stride must be >= 1, got %" PetscInt_FMT, *stride);
+  PetscFunctionReturn(0);
+}
+
 } // namespace
+
+PetscErrorCode SimulateStudyOptions(MPI_Comm comm)
+{
+  LatticeParams lp;
+  ToneBurstOptions fo;
+  SimulationOptions so;
+  LinearModesOptions mo;
+  PetscBool store_u = PETSC_TRUE;
+  PetscInt stride = 1;
+  std::string path;
+  PetscFunctionBeginUser;
+  PetscCall(LatticeParamsFromOptions(comm, &lp));
+  PetscCall(ToneBurstOptionsFromOptions(comm, lp, &fo));
+  PetscCall(SimulationOptionsFromOptions(comm, &so));
+  PetscCall(StoreOptionsFromOptions(comm, &store_u, &stride));
+  PetscCall(LinearModesOptionsFromOptions(comm, &mo)); // the mode profiles and the amplitude rule
+  PetscCall(DeclareEPS(comm, "linear_"));
+  PetscCall(DeclareTS(comm, "sim_"));
+  PetscCall(OutputPathFromOptions(comm, "simulate", &path));
+  PetscFunctionReturn(0);
+}
 
 PetscErrorCode SimulateStudy(MPI_Comm comm)
 {
@@ -75,10 +108,7 @@ PetscErrorCode SimulateStudy(MPI_Comm comm)
   PetscCall(LatticeParamsFromOptions(comm, &lp));
   PetscCall(ToneBurstOptionsFromOptions(comm, lp, &fo));
   PetscCall(SimulationOptionsFromOptions(comm, &so));
-  PetscOptionsBegin(comm, "sim_", "Simulate study output", NULL);
-  PetscCall(PetscOptionsBool("-store_u", "Store the sub-sampled displacement u(t) (/simulate/u)", NULL, store_u, &store_u, NULL));
-  PetscCall(PetscOptionsInt("-store_u_stride", "Store u at every this many sites (0-based index divisible by it; long lattices)", NULL, stride, &stride, NULL));
-  PetscOptionsEnd();
+  PetscCall(StoreOptionsFromOptions(comm, &store_u, &stride));
   const bool need_modes = fo.profile == ForceProfile::Mode || fo.profile == ForceProfile::Exponential || (fo.profile != ForceProfile::None && fo.amplitude < 0);
   if (need_modes) PetscCall(LinearModesOptionsFromOptions(comm, &mo));
   PetscCall(OutputPathFromOptions(comm, "simulate", &path));
@@ -89,7 +119,6 @@ PetscErrorCode SimulateStudy(MPI_Comm comm)
   PetscCall(PetscLogStagePop());
   PetscInt rescalings = 0;
 
-  PetscCheck(stride >= 1, comm, PETSC_ERR_USER, "-sim_store_u_stride must be >= 1, got %" PetscInt_FMT, stride);
   Samples sink(lat, store_u, stride);
   PetscCall(PetscLogStagePush(Log().solve));
   PetscCall(PetscTime(&t_solve0));

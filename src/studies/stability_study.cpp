@@ -4,7 +4,9 @@
 // recording the shape correlation with the orbit and the MCR every few periods.
 #include "studies/nnm_setup.hpp"
 #include "core/gather.hpp"
+#include "core/errors.hpp"
 #include "core/log.hpp"
+#include "core/options_audit.hpp"
 #include "io/output.hpp"
 #include "orbits/continuation.hpp"
 #include "stability/floquet.hpp"
@@ -89,14 +91,63 @@ PetscErrorCode RowToState(const Lattice &lat, const std::vector<PetscReal> &rows
 
 } // namespace
 
+struct StabilityOptions {
+  PetscReal omegas[16] = {std::sqrt(3.0), 1.8245, 2.1876, 2.2654}, eps = 0.01, corr_min = 0.9;
+  PetscInt nw = 4, periods = 30000, sample_periods = 10, seed = 1;
+};
+
+static PetscErrorCode StabilityOptionsFromOptions(MPI_Comm comm, StabilityOptions *o)
+{
+  PetscInt nw = 16;
+  PetscBool set;
+  PetscFunctionBeginUser;
+  PetscCall(RejectGivenOptions(comm, {"-sim_t_final", "-sim_sample_dt"}, "-study stability (-stability_periods, 8 samples per period)"));
+  PetscOptionsBegin(comm, "stability_", "NNM persistence under perturbation (insulated branch)", NULL);
+  PetscCall(PetscOptionsRealArray("-omega", "Frequencies of the insulated-branch orbits to test (paper: sqrt(3),1.8245,2.1876,2.2654)", NULL, o->omegas, &nw, &set));
+  PetscCall(PetscOptionsInt("-periods", "Periods to integrate each perturbed orbit", NULL, o->periods, &o->periods, NULL));
+  PetscCall(PetscOptionsInt("-sample_periods", "Record the best shape correlation (8 snapshots per period) and its MCR per window of this many periods", NULL,
+                            o->sample_periods, &o->sample_periods, NULL));
+  PetscCall(PetscOptionsReal("-perturbation", "Perturbation size relative to the orbit's norm (uniform random per entry)", NULL, o->eps, &o->eps, NULL));
+  PetscCall(PetscOptionsInt("-seed", "Seed of the perturbation", NULL, o->seed, &o->seed, NULL));
+  PetscCall(PetscOptionsReal("-corr_min", "The standing wave persisted if its shape correlation stays above this over the last 10 % of the run", NULL,
+                             o->corr_min, &o->corr_min, NULL));
+  PetscOptionsEnd();
+  if (set) o->nw = nw;
+  PetscCheck(o->nw >= 1, comm, PETSC_ERR_USER, "-stability_omega needs at least one frequency");
+  for (PetscInt c = 0; c < o->nw; c++)
+    PetscCheck(o->omegas[c] > 0, comm, PETSC_ERR_USER, "-stability_omega: frequencies must be positive, got %g", (double)o->omegas[c]);
+  PetscCheck(o->periods >= 1 && o->periods <= 100000000 && o->sample_periods >= 1 && o->sample_periods <= o->periods, comm, PETSC_ERR_USER,
+             "-stability_periods must lie in [1, 1e8] and -stability_sample_periods in [1, -stability_periods], got %" PetscInt_FMT " and %" PetscInt_FMT,
+             o->periods, o->sample_periods);
+  PetscCheck(o->eps >= 0 && o->eps < 1, comm, PETSC_ERR_USER, "-stability_perturbation must lie in [0, 1), got %g", (double)o->eps);
+  PetscCheck(o->corr_min > 0 && o->corr_min <= 1, comm, PETSC_ERR_USER, "-stability_corr_min must lie in (0, 1], got %g", (double)o->corr_min);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode StabilityStudyOptions(MPI_Comm comm)
+{
+  NnmSetup nnm;
+  FloquetOptions flo;
+  SimulationOptions sim;
+  StabilityOptions st;
+  std::string path;
+  PetscFunctionBeginUser;
+  PetscCall(nnm.DeclareOptions(comm));
+  PetscCall(FloquetOptionsFromOptions(comm, &flo));
+  PetscCall(DeclareEPS(comm, "floquet_"));
+  PetscCall(SimulationOptionsFromOptions(comm, &sim));
+  PetscCall(StabilityOptionsFromOptions(comm, &st));
+  PetscCall(DeclareTS(comm, "sim_"));
+  PetscCall(OutputPathFromOptions(comm, "stability", &path));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode StabilityStudy(MPI_Comm comm)
 {
   NnmSetup nnm;
   FloquetOptions flo;
   SimulationOptions sim;
-  PetscReal omegas[16] = {std::sqrt(3.0), 1.8245, 2.1876, 2.2654}, eps = 0.01, corr_min = 0.9;
-  PetscInt nw = 16, periods = 30000, sample_periods = 10, seed = 1;
-  PetscBool set;
+  StabilityOptions st;
   std::string path;
   OutputFile out;
   PetscLogDouble t_start, t_end;
@@ -106,19 +157,9 @@ PetscErrorCode StabilityStudy(MPI_Comm comm)
   PetscCall(nnm.ReadOptions(comm));
   PetscCall(FloquetOptionsFromOptions(comm, &flo));
   PetscCall(SimulationOptionsFromOptions(comm, &sim));
-  PetscOptionsBegin(comm, "stability_", "NNM persistence under perturbation (insulated branch)", NULL);
-  PetscCall(PetscOptionsRealArray("-omega", "Frequencies of the insulated-branch orbits to test (paper: sqrt(3),1.8245,2.1876,2.2654)", NULL, omegas, &nw, &set));
-  PetscCall(PetscOptionsInt("-periods", "Periods to integrate each perturbed orbit", NULL, periods, &periods, NULL));
-  PetscCall(PetscOptionsInt("-sample_periods", "Record the best shape correlation (8 snapshots per period) and its MCR per window of this many periods", NULL,
-                            sample_periods, &sample_periods, NULL));
-  PetscCall(PetscOptionsReal("-perturbation", "Perturbation size relative to the orbit's norm (uniform random per entry)", NULL, eps, &eps, NULL));
-  PetscCall(PetscOptionsInt("-seed", "Seed of the perturbation", NULL, seed, &seed, NULL));
-  PetscCall(PetscOptionsReal("-corr_min", "The standing wave persisted if its shape correlation stays above this over the last 10 % of the run", NULL,
-                             corr_min, &corr_min, NULL));
-  PetscOptionsEnd();
-  if (!set) nw = 4;
-  PetscCheck(periods >= 1 && sample_periods >= 1, comm, PETSC_ERR_USER, "-stability_periods and -stability_sample_periods must be >= 1");
-  PetscCheck(eps >= 0 && std::isfinite(eps), comm, PETSC_ERR_USER, "-stability_perturbation must be >= 0, got %g", (double)eps);
+  PetscCall(StabilityOptionsFromOptions(comm, &st));
+  const PetscReal *omegas = st.omegas, eps = st.eps, corr_min = st.corr_min;
+  const PetscInt nw = st.nw, periods = st.periods, sample_periods = st.sample_periods, seed = st.seed;
   PetscCall(OutputPathFromOptions(comm, "stability", &path));
   PetscCall(out.Open(comm, path));
   PetscCall(nnm.Build(comm));

@@ -7,6 +7,7 @@
 #include "bands/linear_modes.hpp"
 #include "core/errors.hpp"
 #include "core/log.hpp"
+#include "core/options_audit.hpp"
 #include "core/work_queue.hpp"
 #include "diagnostics/zero_one.hpp"
 #include "io/output.hpp"
@@ -179,6 +180,27 @@ PetscErrorCode ComputePoint(const Lattice &lat, const LinearModes &modes, const 
 
 } // namespace
 
+PetscErrorCode SweepStudyOptions(MPI_Comm comm)
+{
+  LatticeParams lp;
+  SweepOptions so;
+  ToneBurstOptions fo;
+  SimulationOptions sim;
+  LinearModesOptions mo;
+  std::string path;
+  PetscFunctionBeginUser;
+  PetscCall(RejectGivenOptions(comm, {"-sim_progress", "-sim_sample_dt"}, "-study sweep (progress: -sweep_progress; no samples are stored)"));
+  PetscCall(LatticeParamsFromOptions(comm, &lp));
+  PetscCall(SweepOptionsFromOptions(comm, &so));
+  PetscCall(ToneBurstOptionsFromOptions(comm, lp, &fo));
+  PetscCall(SimulationOptionsFromOptions(comm, &sim));
+  PetscCall(LinearModesOptionsFromOptions(comm, &mo));
+  PetscCall(DeclareEPS(comm, "linear_"));
+  PetscCall(DeclareTS(comm, "sim_"));
+  PetscCall(OutputPathFromOptions(comm, "sweep", &path));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SweepStudy(MPI_Comm comm)
 {
   LatticeParams lp;
@@ -315,6 +337,7 @@ PetscErrorCode SweepStudy(MPI_Comm comm)
     }
   }
   journal.Close();
+  PetscCall(AuditOptionsBeforeCommit(comm)); // collective; rank 0 alone commits the file below
   PetscCallMPI(MPI_Barrier(comm)); // every journal is complete
   PetscCall(PetscLogStagePop());
 

@@ -13,6 +13,7 @@
 #include "bands/linear_modes.hpp"
 #include "core/errors.hpp"
 #include "core/log.hpp"
+#include "core/options_audit.hpp"
 #include "core/work_queue.hpp"
 #include "diagnostics/phase.hpp"
 #include "io/output.hpp"
@@ -101,6 +102,53 @@ PetscErrorCode PhaseRun(const Lattice &lat, const LinearModes &modes, const Tone
 
 } // namespace
 
+// The left half lattice's defaults, the fixed forcing and the -zak_ block.
+static PetscErrorCode ZakOptionsFromOptions(MPI_Comm comm, LatticeParams *lp, ZakOptions *zo)
+{
+  PetscFunctionBeginUser;
+  PetscCall(RejectGivenOptions(comm, {"-sim_progress", "-sim_sample_dt"}, "-study zak (-zak_samples_per_period)"));
+  {
+    lp->layout = Layout::Left; // the nontrivial half lattice, 51 cells (N = 102) unless given
+    lp->cells = 51;
+    PetscCall(LatticeParamsFromOptions(comm, lp));
+    PetscCheck(lp->layout == Layout::Left, comm, PETSC_ERR_USER, "-study zak works on the left (nontrivial) half lattice: -lattice_layout must be left, got %s",
+               LayoutName(lp->layout));
+    PetscCall(RejectGivenOptions(comm, {"-force_omega", "-force_energy", "-force_profile", "-force_mode_index"},
+                                 "-study zak (the optical band-edge modes, -zak_energy_*)"));
+  }
+  PetscOptionsBegin(comm, "zak_", "Half-lattice phase (Zak) experiment", NULL);
+  PetscCall(ReadAxis(PetscOptionsObject, comm, "zak_", "energy", 1e-2, 1e3, 21, true, &zo->energy));
+  PetscCall(PetscOptionsInt("-windows", "Steady windows after t_off over which phases are taken", NULL, zo->windows, &zo->windows, NULL));
+  PetscCall(PetscOptionsInt("-samples_per_period", "Samples per forcing period for the Fourier coefficients", NULL, zo->samples_per_period,
+                            &zo->samples_per_period, NULL));
+  PetscCall(PetscOptionsReal("-theta_tol", "Threshold rule: phi_0 and phi_pi are distinct while theta = phi_pi - phi_0 (of the means and of the medians) is within this of pi",
+                             NULL, zo->theta_tol, &zo->theta_tol, NULL));
+  PetscOptionsEnd();
+  PetscCheck(zo->windows >= 1, comm, PETSC_ERR_USER, "-zak_windows must be >= 1, got %" PetscInt_FMT, zo->windows);
+  PetscCheck(zo->samples_per_period >= 4, comm, PETSC_ERR_USER, "-zak_samples_per_period must be >= 4, got %" PetscInt_FMT, zo->samples_per_period);
+  PetscCheck(zo->theta_tol > 0 && zo->theta_tol < PETSC_PI, comm, PETSC_ERR_USER, "-zak_theta_tol must lie in (0, pi), got %g", (double)zo->theta_tol);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ZakStudyOptions(MPI_Comm comm)
+{
+  LatticeParams lp;
+  ToneBurstOptions fo;
+  SimulationOptions sim;
+  LinearModesOptions mo;
+  ZakOptions zo;
+  std::string path;
+  PetscFunctionBeginUser;
+  PetscCall(ZakOptionsFromOptions(comm, &lp, &zo));
+  PetscCall(ToneBurstOptionsFromOptions(comm, lp, &fo));
+  PetscCall(SimulationOptionsFromOptions(comm, &sim));
+  PetscCall(LinearModesOptionsFromOptions(comm, &mo));
+  PetscCall(DeclareEPS(comm, "linear_"));
+  PetscCall(DeclareTS(comm, "sim_"));
+  PetscCall(OutputPathFromOptions(comm, "zak", &path));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode ZakStudy(MPI_Comm comm)
 {
   LatticeParams lp;
@@ -117,26 +165,7 @@ PetscErrorCode ZakStudy(MPI_Comm comm)
   PetscCall(PetscTime(&t_start));
   PetscCall(LogRegister());
   PetscCall(PetscLogStagePush(Log().setup));
-  {
-    lp.layout = Layout::Left; // the nontrivial half lattice, 51 cells (N = 102) unless given
-    lp.cells = 51;
-    PetscCall(LatticeParamsFromOptions(comm, &lp));
-    PetscCheck(lp.layout == Layout::Left, comm, PETSC_ERR_USER, "-study zak works on the left (nontrivial) half lattice: -lattice_layout must be left, got %s",
-               LayoutName(lp.layout));
-    PetscCall(RejectGivenOptions(comm, {"-force_omega", "-force_energy", "-force_profile", "-force_mode_index"},
-                                 "-study zak (the optical band-edge modes, -zak_energy_*)"));
-  }
-  PetscOptionsBegin(comm, "zak_", "Half-lattice phase (Zak) experiment", NULL);
-  PetscCall(ReadAxis(PetscOptionsObject, comm, "zak_", "energy", 1e-2, 1e3, 21, true, &zo.energy));
-  PetscCall(PetscOptionsInt("-windows", "Steady windows after t_off over which phases are taken", NULL, zo.windows, &zo.windows, NULL));
-  PetscCall(PetscOptionsInt("-samples_per_period", "Samples per forcing period for the Fourier coefficients", NULL, zo.samples_per_period,
-                            &zo.samples_per_period, NULL));
-  PetscCall(PetscOptionsReal("-theta_tol", "Threshold rule: phi_0 and phi_pi are distinct while theta = phi_pi - phi_0 (of the means and of the medians) is within this of pi",
-                             NULL, zo.theta_tol, &zo.theta_tol, NULL));
-  PetscOptionsEnd();
-  PetscCheck(zo.windows >= 1, comm, PETSC_ERR_USER, "-zak_windows must be >= 1, got %" PetscInt_FMT, zo.windows);
-  PetscCheck(zo.samples_per_period >= 4, comm, PETSC_ERR_USER, "-zak_samples_per_period must be >= 4, got %" PetscInt_FMT, zo.samples_per_period);
-  PetscCheck(zo.theta_tol > 0 && zo.theta_tol < PETSC_PI, comm, PETSC_ERR_USER, "-zak_theta_tol must lie in (0, pi), got %g", (double)zo.theta_tol);
+  PetscCall(ZakOptionsFromOptions(comm, &lp, &zo));
   PetscCall(ToneBurstOptionsFromOptions(comm, lp, &fo));
   PetscCall(SimulationOptionsFromOptions(comm, &sim));
   sim.progress = 0;

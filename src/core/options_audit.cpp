@@ -1,0 +1,295 @@
+#include "core/options_audit.hpp"
+#include <petscts.h>
+#include <slepceps.h>
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <vector>
+
+namespace nltopo {
+
+PetscErrorCode DeclareTS(MPI_Comm comm, const char *prefix)
+{
+  TS ts;
+  PetscFunctionBeginUser;
+  PetscCall(TSCreate(comm, &ts));
+  PetscCall(TSSetOptionsPrefix(ts, prefix));
+  PetscCall(TSSetFromOptions(ts));
+  PetscCall(TSDestroy(&ts));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode DeclareSNES(MPI_Comm comm, const char *prefix)
+{
+  SNES snes;
+  PetscFunctionBeginUser;
+  PetscCall(SNESCreate(comm, &snes));
+  PetscCall(SNESSetOptionsPrefix(snes, prefix));
+  PetscCall(SNESSetFromOptions(snes));
+  PetscCall(SNESDestroy(&snes));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode DeclareEPS(MPI_Comm comm, const char *prefix)
+{
+  EPS eps;
+  PetscFunctionBeginUser;
+  PetscCall(EPSCreate(comm, &eps));
+  PetscCall(EPSSetOptionsPrefix(eps, prefix));
+  PetscCall(EPSSetFromOptions(eps));
+  PetscCall(EPSDestroy(&eps));
+  PetscFunctionReturn(0);
+}
+
+namespace {
+
+struct Unused {
+  std::vector<std::string> names, values; // names without the leading '-'
+};
+
+PetscErrorCode UnusedOptions(Unused *u)
+{
+  PetscInt n;
+  char **names, **values;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsLeftGet(NULL, &n, &names, &values));
+  for (PetscInt i = 0; i < n; i++) {
+    u->names.emplace_back(names[i]);
+    u->values.emplace_back(values[i] ? values[i] : "");
+  }
+  PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
+  PetscFunctionReturn(0);
+}
+
+bool StartsWith(const std::string &s, const char *p) { return s.compare(0, std::strlen(p), p) == 0; }
+
+// PETSc's own options: read at PetscInitialize/PetscFinalize or by objects
+// nltopo does not create; never reported.
+bool PetscOwn(const std::string &n)
+{
+  static const char *own[] = {"log", "options_", "malloc", "memory_view", "objects_dump", "help", "h", "info", "version", "history", "on_error",
+                              "fp_trap", "check_pointer_intensity", "nox", "viewer", "mpi", "display", "debugger", "stop_for_debugger",
+                              "start_in_debugger", "no_signal_handler", "skip_petscrc", "use_gpu_aware_mpi", "petsc", "error_output", "saws",
+                              "python", "x_virtual", "checkstack", "blas", "omp_", "device", "slepc", "citations", "compare", "timeout",
+                              "test_"};
+  for (const char *p : own)
+    if (StartsWith(n, p)) return true;
+  return false;
+}
+
+// nltopo's own option blocks (complete in every options function) as opposed
+// to the options of solver objects with these prefixes (-sim_ts_*, -nnm_snes_*, ...).
+bool OwnComponent(const std::string &n)
+{
+  static const char *prefixes[] = {"study", "output", "lattice_", "force_", "sim_", "sweep_", "kcorr_", "zak_", "perturb_", "stability_", "cont_", "nnm_",
+                                   "floquet", "linear_"};
+  static const char *solver_prefixes[] = {"sim_", "nnm_start_", "nnm_", "linear_", "floquet_mf_", "floquet_"};
+  static const char *classes[] = {"ts_", "snes_", "ksp_", "pc_", "eps_", "st_", "bv_", "ds_", "rg_", "fn_", "mat_", "dm_", "tao_", "sf_"};
+  bool own = false;
+  for (const char *p : prefixes) own = own || StartsWith(n, p);
+  if (!own) return false;
+  for (const char *p : solver_prefixes)
+    if (StartsWith(n, p))
+      for (const char *c : classes)
+        if (n.compare(std::strlen(p), std::strlen(c), c) == 0) return false;
+  return true;
+}
+
+std::string *g_capture = nullptr;
+
+PetscErrorCode CapturePrintf(MPI_Comm, const char format[], ...)
+{
+  char buf[2048];
+  va_list ap;
+  va_start(ap, format);
+  std::vsnprintf(buf, sizeof(buf), format, ap);
+  va_end(ap);
+  if (g_capture) g_capture->append(buf);
+  return 0;
+}
+
+// Solver objects print their type lists with PetscFPrintf(comm, stdout, ...).
+PetscErrorCode (*g_saved_vfprintf)(FILE *, const char[], va_list) = nullptr;
+
+PetscErrorCode CaptureVFPrintf(FILE *fd, const char format[], va_list ap)
+{
+  if (fd != stdout || !g_capture) return g_saved_vfprintf(fd, format, ap);
+  char buf[4096];
+  std::vsnprintf(buf, sizeof(buf), format, ap);
+  g_capture->append(buf);
+  return 0;
+}
+
+// "  -name <...>: help" lines of PETSc's -help output.
+void ParseHelp(const std::string &text, std::set<std::string> *names)
+{
+  size_t pos = 0;
+  while (pos < text.size()) {
+    size_t end = text.find('\n', pos);
+    if (end == std::string::npos) end = text.size();
+    size_t i = pos;
+    while (i < end && text[i] == ' ') i++;
+    if (i > pos && i + 1 < end && text[i] == '-' && std::isalpha((unsigned char)text[i + 1])) {
+      size_t j = i + 1;
+      while (j < end && (std::isalnum((unsigned char)text[j]) || text[j] == '_')) j++;
+      if (j == end || text[j] == ' ' || text[j] == '<' || text[j] == ':') {
+        std::string n = text.substr(i + 1, j - i - 1);
+        std::transform(n.begin(), n.end(), n.begin(), [](unsigned char c) { return (char)std::tolower(c); });
+        names->insert(n);
+      }
+    }
+    pos = end + 1;
+  }
+}
+
+size_t EditDistance(const std::string &a, const std::string &b)
+{
+  const size_t n = a.size(), m = b.size();
+  std::vector<std::vector<size_t>> d(n + 1, std::vector<size_t>(m + 1));
+  for (size_t i = 0; i <= n; i++) d[i][0] = i;
+  for (size_t j = 0; j <= m; j++) d[0][j] = j;
+  for (size_t i = 1; i <= n; i++)
+    for (size_t j = 1; j <= m; j++) {
+      const size_t cost = a[i - 1] == b[j - 1] ? 0 : 1;
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1); // transposition
+    }
+  return d[n][m];
+}
+
+} // namespace
+
+std::string ClosestOption(const std::string &name, const std::set<std::string> &candidates)
+{
+  std::string best;
+  size_t best_d = std::max<size_t>(2, name.size() / 4) + 1; // at most ~a quarter of the letters wrong
+  for (const std::string &c : candidates) {
+    const size_t d = EditDistance(name, c);
+    if (d < best_d) best_d = d, best = c;
+  }
+  return best;
+}
+
+PetscErrorCode CheckFiniteOptionValues(MPI_Comm comm)
+{
+  Unused u;
+  PetscFunctionBeginUser;
+  PetscCall(UnusedOptions(&u)); // before the study runs: every option the user set
+  for (size_t i = 0; i < u.names.size(); i++) {
+    const std::string &v = u.values[i];
+    size_t pos = 0;
+    while (pos <= v.size()) {
+      size_t end = v.find(',', pos);
+      if (end == std::string::npos) end = v.size();
+      std::string tok = v.substr(pos, end - pos);
+      tok.erase(0, tok.find_first_not_of(" \t"));
+      tok.erase(tok.find_last_not_of(" \t") + 1);
+      if (!tok.empty()) {
+        char *stop;
+        const double x = std::strtod(tok.c_str(), &stop);
+        PetscCheck(*stop || std::isfinite(x), comm, PETSC_ERR_USER, "-%s %s: the value must be a finite number", u.names[i].c_str(), v.c_str());
+      }
+      pos = end + 1;
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CollectKnownOptions(MPI_Comm comm, const std::map<std::string, OptionsFn> &studies, std::map<std::string, std::set<std::string>> *known)
+{
+  PetscBool had_help;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-help", &had_help));
+  if (!had_help) PetscCall(PetscOptionsSetValue(NULL, "-help", NULL));
+  auto saved = PetscHelpPrintf;
+  g_saved_vfprintf = PetscVFPrintf;
+  PetscHelpPrintf = CapturePrintf;
+  PetscVFPrintf = CaptureVFPrintf;
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  for (const auto &s : studies) {
+    std::string text;
+    // PETSc prints each options block once per process; the blocks this run
+    // has read already count as printed, so forget them.
+    PetscCall(PetscOptionsHelpPrintedDestroy(&PetscOptionsHelpPrintedSingleton));
+    g_capture = &text;
+    (void)s.second(comm); // a validation error of another study's options stops its listing, nothing else
+    g_capture = nullptr;
+    ParseHelp(text, &(*known)[s.first]);
+  }
+  PetscCall(PetscPopErrorHandler());
+  PetscHelpPrintf = saved;
+  PetscVFPrintf = g_saved_vfprintf;
+  if (!had_help) PetscCall(PetscOptionsClearValue(NULL, "-help"));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AuditUnusedOptions(MPI_Comm comm, const char *study, const std::map<std::string, OptionsFn> &studies, bool early)
+{
+  Unused u;
+  PetscMPIInt rank;
+  std::vector<std::string> lines;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCall(UnusedOptions(&u));
+  // An option counts as used if any rank used it (sweep ranks run different
+  // points): rank 0's candidates, kept only where every rank left them unused.
+  std::string packed;
+  for (size_t i = 0; i < u.names.size(); i++)
+    if (!PetscOwn(u.names[i]) && (!early || OwnComponent(u.names[i]))) packed += u.names[i] + '\n';
+  int len = (int)packed.size();
+  PetscCallMPI(MPI_Bcast(&len, 1, MPI_INT, 0, comm));
+  if (!len) PetscFunctionReturn(0);
+  packed.resize(len);
+  PetscCallMPI(MPI_Bcast(&packed[0], len, MPI_CHAR, 0, comm));
+  std::vector<std::string> cand;
+  for (size_t pos = 0; pos < packed.size();) {
+    const size_t end = packed.find('\n', pos);
+    cand.push_back(packed.substr(pos, end - pos));
+    pos = end + 1;
+  }
+  std::vector<int> used(cand.size()), any(cand.size());
+  for (size_t i = 0; i < cand.size(); i++) {
+    PetscBool f;
+    PetscCall(PetscOptionsUsed(NULL, cand[i].c_str(), &f)); // names are stored without the dash
+    used[i] = f ? 1 : 0;
+  }
+  PetscCallMPI(MPI_Allreduce(used.data(), any.data(), (int)cand.size(), MPI_INT, MPI_MAX, comm));
+  std::vector<std::string> bad;
+  for (size_t i = 0; i < cand.size(); i++)
+    if (!any[i]) bad.push_back(cand[i]);
+  if (bad.empty()) PetscFunctionReturn(0);
+
+  std::map<std::string, std::set<std::string>> known;
+  PetscCall(CollectKnownOptions(comm, studies, &known));
+  std::set<std::string> all;
+  for (const auto &k : known) all.insert(k.second.begin(), k.second.end());
+  for (const std::string &n : bad) {
+    char value[256] = "";
+    PetscBool set;
+    PetscCall(PetscOptionsGetString(NULL, NULL, ("-" + n).c_str(), value, sizeof(value), &set));
+    const std::string shown = "-" + n + (value[0] ? std::string(" ") + value : std::string());
+    std::string owner;
+    for (const auto &k : known)
+      if (k.first != study && k.second.count(n)) {
+        owner = k.first;
+        break;
+      }
+    std::string line;
+    if (known[study].count(n)) line = shown + ": not used by this run (it applies only to other solver types or settings; remove it)";
+    else if (!owner.empty()) line = shown + ": not an option of -study " + study + " (it belongs to -study " + owner + "); remove it";
+    else {
+      const std::string near = ClosestOption(n, all);
+      line = "unknown option " + shown + (near.empty() ? std::string(" (no component reads it; -help lists the options)") : " (did you mean -" + near + "?)");
+    }
+    lines.push_back(line);
+  }
+  for (size_t i = 0; i + 1 < lines.size(); i++)
+    if (!rank) std::fprintf(stderr, "nltopo: error: %s\n", lines[i].c_str());
+  SETERRQ(comm, PETSC_ERR_USER, "%s", lines.back().c_str());
+}
+
+} // namespace nltopo
