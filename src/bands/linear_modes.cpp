@@ -1,4 +1,5 @@
 #include "bands/linear_modes.hpp"
+#include "core/memory_guard.hpp"
 #include "core/log.hpp"
 #include <algorithm>
 #include <cmath>
@@ -289,7 +290,11 @@ PetscErrorCode LinearModes::Compute(const Lattice &lat, const LinearModesOptions
   PetscCall(PetscLogEventBegin(Log().eigen, 0, 0, 0, 0));
   omega_.clear();
   modes_.clear();
-  if (lat.N() <= o.dense_max) PetscCall(SolveAll(lat));
+  if (lat.N() <= o.dense_max) {
+    // LAPACK on the dense N x N matrix: the matrix, its eigenvectors and workspace on every rank.
+    PetscCall(CheckMemory(lat.Comm(), 4.0 * 8.0 * (double)lat.N() * (double)lat.N(), "all linear eigenpairs (N <= -linear_dense_max)"));
+    PetscCall(SolveAll(lat));
+  }
   else PetscCall(SolveNear(lat, o));
   PetscCall(SortAndNormalise());
   PetscCall(Identify(lat));

@@ -11,6 +11,10 @@
 
 namespace nltopo {
 
+static std::string g_output_path;
+
+void SetOutputContext(const char *path) { g_output_path = path ? path : ""; }
+
 // The option (-name value) whose value is the word w (case-insensitive), "" if none or several.
 static std::string OptionWithValue(const std::string &w)
 {
@@ -51,7 +55,7 @@ PetscErrorCode OneLineErrorHandler(MPI_Comm comm, int line, const char *fun, con
   if (rank) return n; // collective errors print once
   const char *text = NULL;
   PetscErrorMessage(n, &text, NULL);
-  const bool user = n == PETSC_ERR_USER || n == PETSC_ERR_FILE_OPEN || n == PETSC_ERR_FILE_WRITE || n == PETSC_ERR_FP || n == PETSC_ERR_NOT_CONVERGED;
+  const bool user = n == PETSC_ERR_USER || n == PETSC_ERR_FILE_OPEN || n == PETSC_ERR_FILE_READ || n == PETSC_ERR_FILE_WRITE || n == PETSC_ERR_FP || n == PETSC_ERR_NOT_CONVERGED;
   // A value PETSc cannot parse: name the option that holds it (its messages name only the value).
   static const struct {
     const char *fun, *marker, *what;
@@ -66,7 +70,9 @@ PetscErrorCode OneLineErrorHandler(MPI_Comm comm, int line, const char *fun, con
       std::fflush(stderr);
       return n;
     }
-  if (user) std::fprintf(stderr, "nltopo: error: %s\n", mess && mess[0] ? mess : text);
+  if (n == PETSC_ERR_LIB && mess && std::strstr(mess, "HDF5") && !g_output_path.empty())
+    std::fprintf(stderr, "nltopo: error: cannot write -output %s: %s (disk full, over quota, or the file or its directory removed?)\n", g_output_path.c_str(), mess);
+  else if (user) std::fprintf(stderr, "nltopo: error: %s\n", mess && mess[0] ? mess : text);
   else {
     // PETSc's own message, without its source location; when it quotes a
     // value the user gave (an unknown type name), name that option too.

@@ -19,6 +19,10 @@ bool PreflightArguments(int argc, char **argv);
 
 // A study that sets some options itself refuses them from the user: one line
 // naming the first one given and what sets it instead.
+// The output being written (OutputFile::Open sets it): HDF5 failures (disk
+// full, the file or its directory removed) are reported as "cannot write -output <path>".
+void SetOutputContext(const char *path);
+
 PetscErrorCode RejectGivenOptions(MPI_Comm comm, std::initializer_list<const char *> names, const char *set_by);
 
 } // namespace nltopo

@@ -29,6 +29,8 @@ public:
   // Address for PETSc "create" calls; releases any handle held before.
   T *out() { reset(); return &h_; }
   void reset() { if (h_) (void)Destroy(&h_); h_ = nullptr; }
+  // Gives up ownership (the caller destroys it and checks the error).
+  T release() { return std::exchange(h_, nullptr); }
   explicit operator bool() const { return h_ != nullptr; }
 
 private:

@@ -191,7 +191,10 @@ PetscErrorCode CheckFiniteOptionValues(MPI_Comm comm)
       if (!tok.empty()) {
         char *stop;
         const double x = std::strtod(tok.c_str(), &stop);
-        PetscCheck(*stop || std::isfinite(x), comm, PETSC_ERR_USER, "-%s %s: the value must be a finite number", u.names[i].c_str(), v.c_str());
+        std::string low = tok;
+        std::transform(low.begin(), low.end(), low.begin(), [](unsigned char c) { return (char)std::tolower(c); });
+        const bool norm_name = low == "infinity" && !OwnComponent(u.names[i]); // PETSc's norm type names (-ts_adapt_wnormtype infinity)
+        PetscCheck(*stop || std::isfinite(x) || norm_name, comm, PETSC_ERR_USER, "-%s %s: the value must be a finite number", u.names[i].c_str(), v.c_str());
       }
       pos = end + 1;
     }

@@ -1,10 +1,12 @@
 #include "io/output.hpp"
+#include "core/errors.hpp"
 #include "core/log.hpp"
 #include <petscviewerhdf5.h>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 namespace nltopo {
@@ -23,6 +25,20 @@ PetscErrorCode OutputPathFromOptions(MPI_Comm comm, const char *study, std::stri
 }
 
 static PetscErrorCode (*g_commit_guard)(MPI_Comm) = nullptr;
+static const double kMinFreeBytes = 1e6; // HDF5 metadata and the root attributes
+
+// A collective write step fails on every rank if it failed on any: a failure
+// on some ranks only (disk full under MPI-IO) would leave the others waiting
+// in the next collective call.
+#define AGREE(comm, expr, what) \
+  do { \
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL)); \
+    const int bad_ = (expr) ? 1 : 0; \
+    PetscCall(PetscPopErrorHandler()); \
+    int any_; \
+    PetscCallMPI(MPI_Allreduce(&bad_, &any_, 1, MPI_INT, MPI_MAX, comm)); \
+    PetscCheck(!any_, comm, PETSC_ERR_LIB, "HDF5 %s failed", what); \
+  } while (0)
 
 PetscErrorCode SetCommitGuard(PetscErrorCode (*guard)(MPI_Comm))
 {
@@ -33,13 +49,15 @@ PetscErrorCode SetCommitGuard(PetscErrorCode (*guard)(MPI_Comm))
 OutputFile::~OutputFile()
 {
   if (tmp_.empty() || committed_) return;
+  PetscPushErrorHandler(PetscIgnoreErrorHandler, NULL); // closing after a failed write fails too: the first error was reported
   viewer_.reset();
+  PetscPopErrorHandler();
   PetscMPIInt rank = 0;
   MPI_Comm_rank(comm_, &rank);
   if (!rank) std::remove(tmp_.c_str()); // never leave a partial file behind
 }
 
-PetscErrorCode OutputFile::Open(MPI_Comm comm, const std::string &path, const std::string &tag)
+PetscErrorCode OutputFile::Open(MPI_Comm comm, const std::string &path, const std::string &tag, double expected_bytes)
 {
   PetscMPIInt rank;
   int pid = (int)getpid(), err = 0;
@@ -61,12 +79,23 @@ PetscErrorCode OutputFile::Open(MPI_Comm comm, const std::string &path, const st
       PetscCall(PetscStrncpy(msg, std::strerror(err), sizeof(msg)));
     } else {
       std::fclose(f);
+      std::remove(tmp_.c_str());
+      // Disk full is refused here, up front: parallel HDF5 (1.10) does not
+      // fail collectively when MPI-IO runs out of space mid-write.
+      struct statvfs fs;
+      const std::string dir = path.find('/') == std::string::npos ? "." : path.substr(0, path.rfind('/') + 1);
+      const double need = expected_bytes + kMinFreeBytes;
+      if (!statvfs(dir.c_str(), &fs) && (double)fs.f_bavail * (double)fs.f_frsize < need) {
+        err = ENOSPC;
+        PetscCall(PetscSNPrintf(msg, sizeof(msg), "needs about %.3g MB, the filesystem has %.3g MB free", need / 1e6, (double)fs.f_bavail * fs.f_frsize / 1e6));
+      }
     }
   }
   PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm));
   PetscCallMPI(MPI_Bcast(msg, sizeof(msg), MPI_CHAR, 0, comm));
   if (err) tmp_.clear(); // nothing of ours to remove
   PetscCheck(!err, comm, PETSC_ERR_FILE_OPEN, "cannot write -output %s: %s", path.c_str(), msg);
+  SetOutputContext(path.c_str());
   PetscCall(PetscViewerHDF5Open(comm, tmp_.c_str(), FILE_MODE_WRITE, viewer_.out()));
   PetscFunctionReturn(0);
 }
@@ -90,7 +119,8 @@ PetscErrorCode OutputFile::Commit(const char *study, PetscReal wall_seconds, boo
   PetscCall(WriteAttr(viewer_, "/", "wall_seconds", wall_seconds));
   PetscCall(WriteAttr(viewer_, "/", "complete", (PetscInt)complete));
   PetscCall(PetscFree(opts));
-  viewer_.reset(); // flush and close
+  PetscViewer raw = viewer_.release();
+  AGREE(comm_, PetscViewerDestroy(&raw), "flush and close"); // the close may fail (disk full)
   PetscCallMPI(MPI_Comm_rank(comm_, &rank));
   if (!rank && std::rename(tmp_.c_str(), path_.c_str())) err = errno;
   PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm_));
@@ -131,7 +161,7 @@ PetscErrorCode WriteArray(PetscViewer v, const char *group, const char *name, co
 // Raw HDF5 calls return a negative value on failure.
 #define H5CHK(call) \
   do { \
-    if ((call) < 0) SETERRQ(PETSC_COMM_SELF, PETSC_ERR_LIB, "HDF5 call failed: %s", #call); \
+    if ((call) < 0) SETERRQ(PetscObjectComm((PetscObject)v), PETSC_ERR_LIB, "HDF5 call %.*s failed", (int)std::strcspn(#call, "("), #call); /* collective writes fail on every rank */ \
   } while (0)
 
 PetscErrorCode WriteColumnBlock(PetscViewer v, const char *group, const char *name, PetscInt rows, PetscInt ncols, PetscInt col0, PetscInt nloc,
@@ -162,7 +192,7 @@ PetscErrorCode WriteColumnBlock(PetscViewer v, const char *group, const char *na
 #if defined(H5_HAVE_PARALLEL)
   if (size > 1) H5CHK(H5Pset_dxpl_mpio(xfer, H5FD_MPIO_COLLECTIVE));
 #endif
-  H5CHK(H5Dwrite(dset, H5T_NATIVE_DOUBLE, mem, space, xfer, local.data()));
+  AGREE(PetscObjectComm((PetscObject)v), H5Dwrite(dset, H5T_NATIVE_DOUBLE, mem, space, xfer, local.data()) < 0, "H5Dwrite");
   H5CHK(H5Pclose(xfer));
   H5CHK(H5Sclose(mem));
   H5CHK(H5Dclose(dset));
@@ -194,7 +224,7 @@ PetscErrorCode WriteArrayND(PetscViewer v, const char *group, const char *name, 
 #if defined(H5_HAVE_PARALLEL)
   if (size > 1) H5CHK(H5Pset_dxpl_mpio(xfer, H5FD_MPIO_COLLECTIVE));
 #endif
-  H5CHK(H5Dwrite(dset, H5T_NATIVE_DOUBLE, rank ? space : H5S_ALL, space, xfer, data.data()));
+  AGREE(PetscObjectComm((PetscObject)v), H5Dwrite(dset, H5T_NATIVE_DOUBLE, rank ? space : H5S_ALL, space, xfer, data.data()) < 0, "H5Dwrite");
   H5CHK(H5Pclose(xfer));
   H5CHK(H5Dclose(dset));
   H5CHK(H5Sclose(space));
@@ -253,7 +283,7 @@ PetscErrorCode WriteVec(PetscViewer v, const char *group, const char *name, Vec 
   PetscCall(PetscLogEventBegin(Log().output, 0, 0, 0, 0));
   PetscCall(PetscObjectSetName((PetscObject)x, name));
   PetscCall(PetscViewerHDF5PushGroup(v, group));
-  PetscCall(VecView(x, v));
+  AGREE(PetscObjectComm((PetscObject)v), VecView(x, v), "write");
   PetscCall(PetscViewerHDF5PopGroup(v));
   PetscCall(PetscLogEventEnd(Log().output, 0, 0, 0, 0));
   PetscFunctionReturn(0);

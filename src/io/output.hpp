@@ -20,10 +20,11 @@ PetscErrorCode SetCommitGuard(PetscErrorCode (*guard)(MPI_Comm));
 class OutputFile {
 public:
   ~OutputFile();
-  // Checks that the path is writable (error names -output) and opens the
-  // temporary file <path>.tmp.<tag><pid> (tag: e.g. "checkpoint.", so that a
-  // checkpoint and the final file can be open at once).
-  PetscErrorCode Open(MPI_Comm comm, const std::string &path, const std::string &tag = "");
+  // Checks that the path is writable and its filesystem has room for about
+  // expected_bytes plus 1 MB (errors name -output), and opens the temporary
+  // file <path>.tmp.<tag><pid> (tag: e.g. "checkpoint.", so that a checkpoint
+  // and the final file can be open at once).
+  PetscErrorCode Open(MPI_Comm comm, const std::string &path, const std::string &tag = "", double expected_bytes = 0);
   PetscViewer Viewer() const { return viewer_; }
   // Writes the root attributes (study, version, options, wall_seconds,
   // complete: 0 for a checkpoint of a run still going), closes, renames.

@@ -1,4 +1,5 @@
 #include "orbits/shooting.hpp"
+#include "core/memory_guard.hpp"
 #include "core/gather.hpp"
 #include "core/log.hpp"
 #include <algorithm>
@@ -129,6 +130,8 @@ PetscErrorCode Shooting::Setup(PeriodicFlow &flow, const ShootingOptions &o)
   // solver of every route while 2N is small enough to hold it.
   const PetscInt M = n_ + 2;
   if (o.jacobian == ShootingJacobian::Dense || n_ <= o.start_dense_max) {
+    // Dense-pattern AIJ (12 bytes per entry) plus the sensitivity matrix and MUMPS's factor.
+    PetscCall(CheckMemory(comm, 4.0 * 12.0 * (double)M * (double)nlocx_, "the dense shooting Jacobian (2N = -lattice_cells x 4; -nnm_jacobian mf avoids it)"));
     PetscCall(flow.CreateSensitivityMatrix(S_.out()));
     PetscCall(MatCreateAIJ(comm, nlocx_, nlocx_, M, M, nlocx_, NULL, M - nlocx_, NULL, Jdense_.out())); // dense pattern
   }

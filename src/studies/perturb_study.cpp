@@ -154,12 +154,27 @@ PetscErrorCode PerturbStudy(MPI_Comm comm)
     PetscMPIInt rank;
     PetscCallMPI(MPI_Comm_rank(comm, &rank));
     PetscInt n = 0;
-    if (!rank) {
-      PetscCall(ReadDoubles(po.fep, "/continuation/insulated/energy", &bE));
-      PetscCall(ReadDoubles(po.fep, "/continuation/insulated/omega", &bw));
-      n = (PetscInt)bE.size();
+    char msg[512] = "";
+    if (!rank) { // rank 0 reads; a missing or unreadable file fails every rank with its one line
+      PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+      PetscErrorCode ierr = ReadDoubles(po.fep, "/continuation/insulated/energy", &bE);
+      if (!ierr) ierr = ReadDoubles(po.fep, "/continuation/insulated/omega", &bw);
+      PetscCall(PetscPopErrorHandler());
+      if (ierr) {
+        const char *text;
+        char *specific = NULL;
+        PetscCall(PetscErrorMessage(ierr, &text, &specific));
+        PetscCall(PetscSNPrintf(msg, sizeof(msg), "-perturb_fep %s: %s", po.fep, specific ? specific : text));
+      }
+      n = ierr ? -1 : (PetscInt)bE.size();
+      if (!ierr && bE.size() != bw.size()) {
+        PetscCall(PetscSNPrintf(msg, sizeof(msg), "-perturb_fep %s: /continuation/insulated energy and omega differ in length", po.fep));
+        n = -1;
+      }
     }
     PetscCallMPI(MPI_Bcast(&n, 1, MPIU_INT, 0, comm));
+    PetscCallMPI(MPI_Bcast(msg, sizeof(msg), MPI_CHAR, 0, comm));
+    PetscCheck(n >= 0, comm, PETSC_ERR_FILE_READ, "%s", msg);
     bE.resize(n), bw.resize(n);
     PetscCallMPI(MPI_Bcast(bE.data(), n, MPIU_REAL, 0, comm));
     PetscCallMPI(MPI_Bcast(bw.data(), n, MPIU_REAL, 0, comm));

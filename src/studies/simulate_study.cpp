@@ -1,5 +1,6 @@
 // -study simulate: one forced tone-burst run with energy cut-off; /simulate of outputs.md.
 #include "bands/linear_modes.hpp"
+#include "core/memory_guard.hpp"
 #include "core/log.hpp"
 #include "core/options_audit.hpp"
 #include "io/output.hpp"
@@ -112,7 +113,15 @@ PetscErrorCode SimulateStudy(MPI_Comm comm)
   const bool need_modes = fo.profile == ForceProfile::Mode || fo.profile == ForceProfile::Exponential || (fo.profile != ForceProfile::None && fo.amplitude < 0);
   if (need_modes) PetscCall(LinearModesOptionsFromOptions(comm, &mo));
   PetscCall(OutputPathFromOptions(comm, "simulate", &path));
-  PetscCall(out.Open(comm, path));
+  double u_bytes = 0;
+  if (store_u && so.sample_dt > 0) {
+    PetscMPIInt nranks;
+    PetscCallMPI(MPI_Comm_size(comm, &nranks));
+    const double samples = (so.t_final - so.t_start) / so.sample_dt + 2, sites = std::ceil((double)lp.N() / stride) / nranks;
+    PetscCall(CheckMemory(comm, 8.0 * samples * sites, "/simulate/u (-lattice_cells x -sim_t_final / -sim_sample_dt; -sim_store_u_stride or -sim_store_u 0 shrink it)"));
+    u_bytes = 8.0 * samples * sites * nranks;
+  }
+  PetscCall(out.Open(comm, path, "", u_bytes + 16.0 * lp.N()));
   PetscCall(lat.Setup(comm, lp));
   if (need_modes) PetscCall(modes.Compute(lat, mo));
   PetscCall(burst.Setup(lat, fo, need_modes ? &modes : NULL));
