@@ -53,6 +53,11 @@ PetscErrorCode OneLineErrorHandler(MPI_Comm comm, int line, const char *fun, con
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
   if (rank) return n; // collective errors print once
+  if (fun && !std::strncmp(fun, "PetscOptions", 12)) { // an option error is raised on every rank alike (often on PETSC_COMM_SELF): print once
+    int world_rank = 0;
+    MPI_Comm_rank(PETSC_COMM_WORLD, &world_rank);
+    if (world_rank) return n;
+  }
   const char *text = NULL;
   PetscErrorMessage(n, &text, NULL);
   const bool user = n == PETSC_ERR_USER || n == PETSC_ERR_FILE_OPEN || n == PETSC_ERR_FILE_READ || n == PETSC_ERR_FILE_WRITE || n == PETSC_ERR_FP || n == PETSC_ERR_NOT_CONVERGED;
@@ -85,6 +90,9 @@ PetscErrorCode OneLineErrorHandler(MPI_Comm comm, int line, const char *fun, con
       if (w.size() >= 2 && !std::isdigit((unsigned char)w[0])) opt = OptionWithValue(w);
       i = j;
     }
+    int world_rank = 0;
+    MPI_Comm_rank(PETSC_COMM_WORLD, &world_rank);
+    if (!opt.empty() && world_rank) return n; // a bad option value fails alike on every rank: print once
     std::fprintf(stderr, "nltopo: error: %s%s%s: %s\n", opt.empty() ? "" : opt.c_str(), opt.empty() ? "" : ": ", text ? text : "PETSc error", m.c_str());
   }
   std::fflush(stderr);
@@ -102,11 +110,20 @@ PetscErrorCode RejectGivenOptions(MPI_Comm comm, std::initializer_list<const cha
   PetscFunctionReturn(0);
 }
 
+// Before MPI starts: only the first rank of a launch prints (every rank exits).
+static bool FirstRank()
+{
+  for (const char *v : {"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"})
+    if (const char *r = std::getenv(v)) return std::atoi(r) == 0;
+  return true;
+}
+#define PREFLIGHT_ERROR(...) (FirstRank() ? (void)std::fprintf(stderr, __VA_ARGS__) : (void)0)
+
 static bool CaseTrap(const char *token, const char *where)
 {
   // Any spelling of -lattice_gamma with an upper-case letter (-lattice_Gamma, -LATTICE_GAMMA, ...)
   if (strcasecmp(token, "-lattice_gamma") || !std::strcmp(token, "-lattice_gamma")) return false;
-  std::fprintf(stderr, "nltopo: error: %s: %s is the same option as -lattice_gamma (PETSc option names are case-insensitive); set the cubic coefficient with -lattice_cubic\n", where, token);
+  PREFLIGHT_ERROR("nltopo: error: %s: %s is the same option as -lattice_gamma (PETSc option names are case-insensitive); set the cubic coefficient with -lattice_cubic\n", where, token);
   return true;
 }
 
@@ -116,12 +133,12 @@ bool PreflightArguments(int argc, char **argv)
     if (CaseTrap(argv[i], "command line")) return false;
     if (std::strcmp(argv[i], "-options_file")) continue;
     if (i + 1 >= argc) {
-      std::fprintf(stderr, "nltopo: error: -options_file needs a file name\n");
+      PREFLIGHT_ERROR("nltopo: error: -options_file needs a file name\n");
       return false;
     }
     std::FILE *f = std::fopen(argv[i + 1], "r");
     if (!f) {
-      std::fprintf(stderr, "nltopo: error: cannot read -options_file %s: %s\n", argv[i + 1], std::strerror(errno));
+      PREFLIGHT_ERROR("nltopo: error: cannot read -options_file %s: %s\n", argv[i + 1], std::strerror(errno));
       return false;
     }
     char line[4096], tok[4096];

@@ -1,33 +1,129 @@
-# Bad input: one line naming the option/file/time, non-zero exit, no HDF5 file left behind.
+# Bad input (README.md "Error contract"): every case at 1 and 2 ranks, under a
+# timeout, must end with exactly one line on stderr (both ranks together)
+# naming the option, value or file, a non-zero exit, and neither the output
+# file nor a temporary left behind.
 source "$(dirname "$0")/common.bash"
 fail() { echo "FAILED: $*" >&2; exit 1; }
-expect_error() { # expect_error <pattern> <output file> nltopo args...
-  local pattern=$1 out=$2; shift 2
+cases=0
+check_one() { # check_one <np> <pattern> <output file> nltopo args...
+  local np=$1 pattern=$2 out=$3; shift 3
   set +e
-  "$NLTOPO" "$@" -output "$out" > stdout.txt 2> stderr.txt
+  if [ "$np" = 1 ]; then timeout 120 "$NLTOPO" "$@" -output "$out" > stdout.txt 2> stderr.txt
+  else timeout 120 "$MPIEXEC" -q -n "$np" "$NLTOPO" "$@" -output "$out" > stdout.txt 2> stderr.txt; fi
   local rc=$?
   set -e
-  [ $rc -ne 0 ] || fail "exit 0 for: $*"
-  [ "$(grep -c . stderr.txt)" -eq 1 ] || { cat stderr.txt; fail "not a one-line error for: $*"; }
-  grep -q -- "$pattern" stderr.txt || { cat stderr.txt; fail "error does not name '$pattern' for: $*"; }
-  ls "$out"* > /dev/null 2>&1 && fail "output left behind for: $*"
+  [ $rc -ne 124 ] || fail "hang (timeout) at $np rank(s) for: $*"
+  [ $rc -ne 0 ] || fail "exit 0 at $np rank(s) for: $*"
+  [ "$(grep -c . stderr.txt)" -eq 1 ] || { cat stderr.txt; fail "not a one-line error at $np rank(s) for: $*"; }
+  grep -q -- "$pattern" stderr.txt || { cat stderr.txt; fail "error does not name '$pattern' at $np rank(s) for: $*"; }
+  ! grep -q "\.c:[0-9]" stderr.txt || { cat stderr.txt; fail "a source path in the message for: $*"; }
+  [ ! -f "$out" ] || fail "output left behind at $np rank(s) for: $*"
+  ls -d "$out".tmp.* "$out".journal.* > /dev/null 2>&1 && fail "temporary left behind at $np rank(s) for: $*"
+  return 0
+}
+expect_error() { # expect_error <pattern> <output file> nltopo args...
+  local pattern=$1 out=$2; shift 2
+  check_one 1 "$pattern" "$out" "$@"
+  check_one 2 "$pattern" "$out" "$@"
+  cases=$((cases + 1))
   echo "ok: $(cat stderr.txt)"
 }
-expect_error "unknown -study nope" o1.h5 -study nope
-expect_error "-lattice_cells" o2.h5 -study linear -lattice_cells 0
-expect_error "-lattice_k" o3.h5 -study linear -lattice_k -1
-expect_error "-lattice_gamma0" o4.h5 -study simulate -lattice_gamma0 -0.5
-expect_error "-lattice_gamma " o5.h5 -study linear -lattice_gamma 1.2
-expect_error "-options_file $WORK/missing.opts" o6.h5 -options_file "$WORK/missing.opts"
+S="-study simulate -sim_t_final 5"
+C="-study continuation -lattice_cells 5 -cont_energy_max 1e-4 -cont_max_points 3 -cont_verbose 0"
+W="-study sweep -sweep_omega_n 2 -sweep_energy_n 1 -sim_t_final 20"
+
+# the study, the lattice and the files
+expect_error "unknown -study nope" o.h5 -study nope
+expect_error "-lattice_cells" o.h5 -study linear -lattice_cells 0
+expect_error "-lattice_k" o.h5 -study linear -lattice_k -1
+expect_error "-lattice_gamma0" o.h5 $S -lattice_gamma0 -0.5
+expect_error "-lattice_gamma " o.h5 -study linear -lattice_gamma 1.2
+expect_error "-options_file $WORK/missing.opts" o.h5 -options_file "$WORK/missing.opts"
 expect_error "-output $WORK/no/such/dir/x.h5" "$WORK/no/such/dir/x.h5" -study linear
-expect_error "-force_energy" o8.h5 -study simulate -force_energy -1
-expect_error "-lattice_cubic" o9.h5 -study linear -lattice_Gamma 0.5
-expect_error "-nnm_mf_pc_parametric_weight 0" o11.h5 -study continuation -lattice_cells 5 -nnm_jacobian mf -nnm_mf_pc parametric -nnm_mf_pc_parametric_weight 0
-expect_error "-nnm_orbit_rtol -1" o14.h5 -study continuation -lattice_cells 5 -nnm_orbit_rtol -1
-"$NLTOPO" -study continuation -lattice_layout interface -lattice_cells 5 -cont_energy_max 1e-4 -cont_max_points 3 -cont_verbose 0 -output small.h5 > /dev/null
-expect_error "-cont_resume $WORK/small.h5" o12.h5 -study continuation -lattice_layout interface -lattice_cells 6 -cont_energy_max 1e-4 -cont_resume "$WORK/small.h5"
-expect_error "-cont_resume $WORK/missing.h5" o13.h5 -study continuation -lattice_layout interface -lattice_cells 6 -cont_resume "$WORK/missing.h5"
+mkdir -p adir.h5
+expect_error "-output $WORK/adir.h5: is a directory" "$WORK/adir.h5" -study linear -lattice_cells 5
+expect_error "-force_energy" o.h5 $S -force_energy -1
+expect_error "-lattice_cubic" o.h5 -study linear -lattice_Gamma 0.5
+expect_error "-lattice_layout" o.h5 -study linear -lattice_layout sideways
+expect_error "-force_profile" o.h5 $S -force_profile sideways
+# misspelt, foreign and unused options: the closest known option is named
+expect_error "did you mean -force_omega?" o.h5 $S -force_omgea 2.0
+expect_error "did you mean -sim_t_final?" o.h5 $S -sim_tfinal 3
+expect_error "did you mean -sim_ts_rtol?" o.h5 $S -sim_ts_rtoll 1e-6
+expect_error "-sweep_omega_n 3: not an option of -study simulate (it belongs to -study sweep)" o.h5 $S -sweep_omega_n 3
+expect_error "-nnm_orbit_rtol 0.1: not an option of -study simulate" o.h5 $S -nnm_orbit_rtol 0.1
+expect_error "-sim_ts_rk_type 5dp: not used by this run" o.h5 $S -sim_ts_type euler -sim_ts_dt 0.1 -sim_ts_rk_type 5dp
+expect_error "unknown option -bogus" o.h5 -study linear -lattice_cells 5 -bogus 1
+# options a study sets itself are refused, not read and overwritten
+expect_error "-sim_progress is set by -study sweep" o.h5 $W -sim_progress 1
+expect_error "-sim_sample_dt is set by -study zak" o.h5 -study zak -zak_energy_list 0.01 -sim_t_final 300 -lattice_cells 4 -sim_sample_dt 0.5
+expect_error "-sim_t_final is set by -study stability" o.h5 -study stability -lattice_cells 5 -sim_t_final 10
+expect_error "-sim_progress is set by -study perturb" o.h5 -study perturb -lattice_cells 5 -sim_progress 1
+expect_error "-force_omega is set by" o.h5 $W -force_omega 2
+# values: garbage, NaN, inf, wrong types
+expect_error "-force_omega abc: not a real number" o.h5 $S -force_omega abc
+expect_error "-lattice_cells 2.5: not an integer" o.h5 -study linear -lattice_cells 2.5
+expect_error "-sim_store_u maybe: not a boolean" o.h5 $S -sim_store_u maybe
+expect_error "-sim_ts_type foo" o.h5 $S -sim_ts_type foo
+expect_error "-kcorr_record inf: the value must be a finite number" o.h5 $W -sweep_kcorr -kcorr_record inf
+expect_error "-floquet_tol inf: the value must be a finite number" o.h5 $C -floquet -floquet_tol inf
+expect_error "-sim_t_final nan: the value must be a finite number" o.h5 -study simulate -sim_t_final nan
+expect_error "-force_omega -inf: the value must be a finite number" o.h5 $S -force_omega -inf
+expect_error "-sweep_energy_list 1,nan: the value must be a finite number" o.h5 $W -sweep_energy_list 1,nan
+expect_error "-sim_ts_rtol 1e999: the value must be a finite number" o.h5 $S -sim_ts_rtol 1e999
+# ranges
+expect_error "-linear_nq" o.h5 -study linear -lattice_cells 5 -linear_nq 2
+expect_error "-kcorr_nc" o.h5 $W -sweep_kcorr -kcorr_nc 0
+expect_error "-zak_theta_tol" o.h5 -study zak -zak_energy_list 0.01 -sim_t_final 300 -lattice_cells 4 -zak_theta_tol 4
+expect_error "-stability_periods" o.h5 -study stability -lattice_cells 5 -stability_periods 0
+expect_error "-cont_checkpoint_seconds" o.h5 $C -cont_checkpoint_seconds -1
+expect_error "-sim_store_u_stride" o.h5 $S -sim_store_u_stride 0
+expect_error "-nnm_mf_pc_parametric_weight 0" o.h5 -study continuation -lattice_cells 5 -nnm_jacobian mf -nnm_mf_pc parametric -nnm_mf_pc_parametric_weight 0
+expect_error "-nnm_orbit_rtol -1" o.h5 -study continuation -lattice_cells 5 -nnm_orbit_rtol -1
+# resource guard: the estimate is named before anything is allocated
+expect_error "more than this machine's" o.h5 -study simulate -lattice_cells 20000000 -sim_t_final 1000
+expect_error "more than this machine's" o.h5 -study linear -lattice_cells 40000 -linear_dense_max 1000000
+# files that cannot be read: missing, truncated, not HDF5, another lattice
+"$NLTOPO" $C -lattice_layout interface -output small.h5 > /dev/null
+head -c 3000 small.h5 > truncated.h5
+head -c 5000 /dev/urandom > garbage.h5
+expect_error "-cont_resume $WORK/small.h5" o.h5 $C -lattice_layout interface -lattice_cells 6 -cont_resume "$WORK/small.h5"
+expect_error "-cont_resume $WORK/missing.h5" o.h5 $C -cont_resume "$WORK/missing.h5"
+expect_error "-cont_resume $WORK/truncated.h5" o.h5 $C -cont_resume "$WORK/truncated.h5"
+expect_error "-cont_resume $WORK/garbage.h5" o.h5 $C -cont_resume "$WORK/garbage.h5"
+expect_error "-perturb_fep $WORK/missing.h5" o.h5 -study perturb -lattice_cells 5 -perturb_fep "$WORK/missing.h5"
+expect_error "-perturb_fep $WORK/garbage.h5" o.h5 -study perturb -lattice_cells 5 -perturb_fep "$WORK/garbage.h5"
+expect_error "-sweep_resume: no sweep file" o.h5 $W -sweep_resume
 # a diverging integration (softening cubic, large burst): the time is named, no file is left
-expect_error "non-finite state at t = " o10.h5 -study simulate -lattice_cubic -50 -force_amplitude 5 -force_energy 1e6 \
+expect_error "non-finite state at t = " o.h5 -study simulate -lattice_cubic -50 -force_amplitude 5 -force_energy 1e6 \
   -sim_ts_type basicsymplectic -sim_ts_basicsymplectic_type 2 -sim_ts_dt 0.05 -sim_t_final 300
-echo "bad input OK"
+
+# Faults while writing, at 1, 2 and 3 ranks: a full filesystem (a 256 kB tmpfs,
+# when this user may mount one) and the output directory removed mid-run.
+if mkdir -p small_fs && mount -t tmpfs -o size=256k tmpfs small_fs 2> /dev/null; then
+  trap 'umount "$WORK/small_fs" 2> /dev/null || true' EXIT
+  for np in 1 2 3; do check_one "$np" "cannot write -output $WORK/small_fs/x.h5: needs about" "$WORK/small_fs/x.h5" -study simulate -sim_t_final 400; done
+  cases=$((cases + 1))
+  echo "ok: $(cat stderr.txt)"
+else
+  echo "skipped: disk-full case (cannot mount a tmpfs here)"
+fi
+for np in 1 2 3; do
+  rm -rf vanish && mkdir -p vanish/d
+  set +e
+  tf=$([ $np = 1 ] && echo 20000 || echo 3000) # a few seconds of run, so the directory goes first
+  timeout 120 "$MPIEXEC" -q -n $np "$NLTOPO" -study simulate -sim_t_final $tf -sim_store_u 0 -output "$WORK/vanish/d/x.h5" > stdout.txt 2> stderr.txt &
+  pid=$!
+  sleep 1.5
+  rm -rf vanish/d
+  wait $pid
+  rc=$?
+  set -e
+  [ $rc -ne 124 ] || fail "hang at $np rank(s) after the output directory vanished"
+  [ $rc -ne 0 ] || fail "exit 0 at $np rank(s) after the output directory vanished"
+  [ "$(grep -c . stderr.txt)" -eq 1 ] && grep -q "cannot write -output $WORK/vanish/d/x.h5" stderr.txt || { cat stderr.txt; fail "vanished directory at $np rank(s)"; }
+done
+cases=$((cases + 1))
+echo "ok: $(cat stderr.txt)"
+[ "$cases" -ge 40 ] || fail "only $cases bad-input cases"
+echo "bad input OK: $cases cases, each at 1 and 2 ranks (the write faults also at 3)"
