@@ -9,7 +9,7 @@ run1 "${OPTS[@]}" -output full1.h5 | tee out1.txt
 run2 "${OPTS[@]}" -output full2.h5 | tee out2.txt
 ls full1.h5.journal.* 2> /dev/null && { echo "journals left behind"; exit 1; }
 
-# Kill a 2-rank sweep (the whole process group, SIGKILL) once a few points are journaled.
+# Kill a 2-rank sweep (mpiexec and both ranks, SIGKILL) once a few points are journaled.
 setsid "$MPIEXEC" -n 2 "$NLTOPO" "${OPTS[@]}" -output killed.h5 > killed.txt 2>&1 &
 pid=$!
 for i in $(seq 1 600); do
@@ -17,9 +17,23 @@ for i in $(seq 1 600); do
   [ "$n" -ge 5 ] && break
   sleep 0.05
 done
-pkill -9 -f -- "-output killed.h5" || true # mpiexec and both ranks
-wait "$pid" 2> /dev/null || true
-sleep 0.2
+# setsid made mpiexec ($pid) a session leader; its ranks share the session but
+# Open MPI puts each in its own process group, so `kill -- -$pid` alone would
+# leave them running. Kill every process of that session (mpiexec and both
+# ranks) by id at once, then check that none of them is left alive.
+pids=$(pgrep -s "$pid" || true)
+echo "killing session $pid: $(ps -o pid=,comm= -p "$(echo $pids | tr ' ' ,)" | tr '\n' ' ')"
+[ "$(ps -o comm= -p "$(echo $pids | tr ' ' ,)" | grep -cx nltopo)" -eq 2 ] || { echo "expected mpiexec and 2 ranks in session $pid"; exit 1; }
+kill -9 $pids || true # a process that already exited is reported here, not hidden
+wait "$pid" 2> /dev/null || true # bash's "Killed" notice: expected
+for i in $(seq 1 100); do
+  alive=$(ps -o pid=,stat= -p "$(echo $pids | tr ' ' ,)" | awk '$2 !~ /^Z/ {print $1}' || true)
+  [ -z "$alive" ] && break
+  sleep 0.05
+done
+[ -z "$alive" ] || { echo "processes of the killed sweep still alive: $alive"; exit 1; }
+echo "--- output of the killed sweep (both ranks) ---"; cat killed.txt; echo "---"
+! grep -q "error" killed.txt || { echo "the killed sweep reported an error before the kill"; exit 1; }
 $PY - <<'PYEOF'
 import h5py
 d = h5py.File("killed.h5", "r")["sweep/done"][:]   # a complete, readable file at any moment
