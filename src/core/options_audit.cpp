@@ -12,38 +12,23 @@
 
 namespace nltopo {
 
-PetscErrorCode DeclareTS(MPI_Comm comm, const char *prefix)
+// A throw-away object of a solver class, configured from the database.
+template <typename T, PetscErrorCode (*Create)(MPI_Comm, T *), PetscErrorCode (*Prefix)(T, const char[]), PetscErrorCode (*FromOptions)(T),
+          PetscErrorCode (*Destroy)(T *)>
+static PetscErrorCode Declare(MPI_Comm comm, const char *prefix)
 {
-  TS ts;
+  T obj;
   PetscFunctionBeginUser;
-  PetscCall(TSCreate(comm, &ts));
-  PetscCall(TSSetOptionsPrefix(ts, prefix));
-  PetscCall(TSSetFromOptions(ts));
-  PetscCall(TSDestroy(&ts));
+  PetscCall(Create(comm, &obj));
+  PetscCall(Prefix(obj, prefix));
+  PetscCall(FromOptions(obj));
+  PetscCall(Destroy(&obj));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode DeclareSNES(MPI_Comm comm, const char *prefix)
-{
-  SNES snes;
-  PetscFunctionBeginUser;
-  PetscCall(SNESCreate(comm, &snes));
-  PetscCall(SNESSetOptionsPrefix(snes, prefix));
-  PetscCall(SNESSetFromOptions(snes));
-  PetscCall(SNESDestroy(&snes));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode DeclareEPS(MPI_Comm comm, const char *prefix)
-{
-  EPS eps;
-  PetscFunctionBeginUser;
-  PetscCall(EPSCreate(comm, &eps));
-  PetscCall(EPSSetOptionsPrefix(eps, prefix));
-  PetscCall(EPSSetFromOptions(eps));
-  PetscCall(EPSDestroy(&eps));
-  PetscFunctionReturn(0);
-}
+PetscErrorCode DeclareTS(MPI_Comm comm, const char *prefix) { return Declare<TS, TSCreate, TSSetOptionsPrefix, TSSetFromOptions, TSDestroy>(comm, prefix); }
+PetscErrorCode DeclareSNES(MPI_Comm comm, const char *prefix) { return Declare<SNES, SNESCreate, SNESSetOptionsPrefix, SNESSetFromOptions, SNESDestroy>(comm, prefix); }
+PetscErrorCode DeclareEPS(MPI_Comm comm, const char *prefix) { return Declare<EPS, EPSCreate, EPSSetOptionsPrefix, EPSSetFromOptions, EPSDestroy>(comm, prefix); }
 
 namespace {
 
