@@ -16,6 +16,13 @@ PetscErrorCode OneLineErrorHandler(MPI_Comm comm, int line, const char *fun, con
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
   if (rank) return n; // collective errors print once
+  if (n == PETSC_ERR_SIG) { // a stop signal (core/signals.hpp): silent on the way out, then the study's one line
+    if (mess && mess[0] && mess[0] != ' ') {
+      std::fprintf(stderr, "nltopo: %s\n", mess);
+      std::fflush(stderr);
+    }
+    return n;
+  }
   const char *text = NULL;
   PetscErrorMessage(n, &text, NULL);
   const bool user = n == PETSC_ERR_USER || n == PETSC_ERR_FILE_OPEN || n == PETSC_ERR_FILE_WRITE || n == PETSC_ERR_FP || n == PETSC_ERR_NOT_CONVERGED;
@@ -34,6 +41,23 @@ PetscErrorCode RejectGivenOptions(MPI_Comm comm, std::initializer_list<const cha
     PetscCheck(!set, comm, PETSC_ERR_USER, "%s is set by %s; remove it", name, set_by);
   }
   PetscFunctionReturn(0);
+}
+
+PetscErrorCode FailTogether(MPI_Comm comm, PetscErrorCode code, const char *msg)
+{
+  PetscMPIInt rank, size, first, who;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  first = code ? rank : size;
+  PetscCallMPI(MPI_Allreduce(&first, &who, 1, MPI_INT, MPI_MIN, comm));
+  if (who == size) PetscFunctionReturn(0);
+  int c = (int)code;
+  char buf[1024] = "";
+  if (rank == who) PetscCall(PetscStrncpy(buf, msg ? msg : "", sizeof(buf)));
+  PetscCallMPI(MPI_Bcast(&c, 1, MPI_INT, who, comm));
+  PetscCallMPI(MPI_Bcast(buf, sizeof(buf), MPI_CHAR, who, comm));
+  SETERRQ(comm, (PetscErrorCode)c, "%s", buf);
 }
 
 static bool CaseTrap(const char *token, const char *where)
