@@ -5,6 +5,7 @@
 #include "core/signals.hpp"
 #include "io/input.hpp"
 #include "io/output.hpp"
+#include "io/run_options.hpp"
 #include "orbits/continuation.hpp"
 #include "stability/floquet.hpp"
 #include "stability/floquet_mf.hpp"
@@ -363,7 +364,8 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
     PetscCall(PetscStrallocpy("insulated", &names[0]));
     nb = 1;
   }
-  PetscCall(OutputPathFromOptions(comm, "continuation", &path));
+  if (resume) PetscCall(CheckResumeOptions(comm, resume_file, "continuation", "-cont_resume")); // the same physics and numerics, or one line naming the first difference
+  PetscCall(OutputPathFromOptions(comm, "continuation", &path, [&](const std::string &p) { return resume && SameFile(p, resume_file); }));
   PetscCall(out.Open(comm, path));
   PetscCall(nnm.Build(comm));
   Lattice &lat = nnm.lat;

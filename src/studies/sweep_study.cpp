@@ -11,6 +11,7 @@
 #include "core/work_queue.hpp"
 #include "diagnostics/zero_one.hpp"
 #include "io/output.hpp"
+#include "io/run_options.hpp"
 #include "studies/grid_axis.hpp"
 #include "studies/registry.hpp"
 #include "studies/sweep_store.hpp"
@@ -210,7 +211,8 @@ PetscErrorCode SweepStudy(MPI_Comm comm)
   PetscCheck(fo.profile != ForceProfile::None, comm, PETSC_ERR_USER, "-force_profile none: a sweep needs a forcing");
   PetscCall(SimulationOptionsFromOptions(comm, &sim));
   PetscCall(LinearModesOptionsFromOptions(comm, &mo));
-  PetscCall(OutputPathFromOptions(comm, "sweep", &path));
+  PetscCall(OutputPathFromOptions(comm, "sweep", &path, [&](const std::string &) { return (bool)so.resume; }));
+  if (so.resume) PetscCall(CheckResumeOptions(comm, path, "sweep", "-sweep_resume")); // the same physics and numerics, or one line naming the first difference
   // Every rank integrates whole runs on its own copy of the lattice.
   PetscCall(lat.Setup(PETSC_COMM_SELF, lp));
   PetscCall(modes.Compute(lat, mo));
