@@ -263,7 +263,12 @@ PetscErrorCode SweepStudy(MPI_Comm comm)
   std::stable_sort(todo.begin(), todo.end(), [&](size_t a, size_t b) { return a / no != b / no ? a / no > b / no : a % no > b % no; });
   PetscCall(PetscPrintf(comm, "nltopo sweep: %zu omega x %zu E* = %zu points, %zu to compute on %d rank(s)%s, N = %" PetscInt_FMT ", t_final = %g\n", no, ne,
                         grid.Size(), todo.size(), size, so.kcorr ? ", with the 0-1 test" : "", lat.N(), (double)sim.t_final));
-  PetscCall(journal.Open(path, rank));
+  {
+    PetscErrorCode jerr = 0;
+    char jmsg[1024];
+    PetscCall(CaptureError([&]() { return journal.Open(path, rank); }, &jerr, jmsg, sizeof(jmsg)));
+    PetscCall(FailTogether(comm, jerr, jmsg)); // one rank's journal: every rank stops
+  }
   PetscCall(queue.Create(comm, (PetscInt)todo.size()));
   PetscCall(PetscLogStagePop());
 
