@@ -240,7 +240,7 @@ PetscErrorCode StabilityStudy(MPI_Comm comm)
   PetscCall(WriteAttr(out.Viewer(), "/stability", "cases_done", cases_done)); // of -stability_omega's; fewer only when interrupted
   PetscCall(PetscTime(&t_end));
   PetscCall(out.Commit("stability", t_end - t_start, !interrupted));
-  PetscCheck(!interrupted, comm, PETSC_ERR_SIG, "interrupted by %s during stability case %" PetscInt_FMT " (omega %g); partial output %s with the %" PetscInt_FMT " case(s) before it (complete = 0)",
+  PetscCheck(!interrupted, comm, PETSC_ERR_SIG, "interrupted by %s during stability case %" PetscInt_FMT " (omega %g); partial output %s (complete = 0) with the %" PetscInt_FMT " case(s) before it",
              SignalName(StopSignalSeen()), cases_done, (double)omegas[cases_done], path.c_str(), cases_done);
   PetscCall(PetscPrintf(comm, "  wrote %s\n", path.c_str()));
   PetscFunctionReturn(0);

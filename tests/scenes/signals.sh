@@ -1,6 +1,6 @@
 # Stop signals (README.md "Signals and resume rules"). SIGTERM to mpiexec (by
 # its process id) of a 2-rank sweep and of a 2-rank continuation, and to a
-# serial continuation: each stops at its next safe point with one line
+# serial continuation and stability study: each stops at its next safe point with one line
 # "nltopo: interrupted by SIGTERM ...", a non-zero exit, its output marked
 # complete = 0 and no temporary (or journal) left; the resumed run equals an
 # uninterrupted one bit for bit. Then failures at 2 ranks leave no temporary
@@ -125,6 +125,17 @@ check_interrupted "$rc" c2_int.err c2_int.h5 "after [0-9]* points of branch insu
 timeout "$LIMIT" "${M2[@]}" "$NLTOPO" "${C2[@]}" -cont_resume c2_int.h5 -output c2_int.h5 -options_left > c2_res.txt
 grep -q "stored tangent and step" c2_res.txt
 compare_branches c2_full.h5 c2_int.h5 energy omega period mcr beta z0 newton_its
+
+# 2c. Stability (serial): SIGTERM during the second case keeps the first.
+"$NLTOPO" -options_file "$SRC/options/stability.opts" -stability_omega 1.7320508075688772,1.75 -stability_periods 5000 -sim_progress 0 \
+  -output st_int.h5 -options_left > st_int.txt 2> st_int.err &
+pid=$!
+case_done() { grep -q "nltopo stability: omega" st_int.txt; }
+wait_until 120 case_done
+kill -TERM "$pid"
+wait_limited "$pid"
+check_interrupted "$RC" st_int.err st_int.h5 "during stability case 1"
+$PY -c "import h5py; s = h5py.File('st_int.h5', 'r')['stability']; assert list(s.keys()) == ['case0'] and s.attrs['cases_done'] == 1"
 
 # 3. Failures at 2 ranks: one line from nltopo, a non-zero exit, no hang, no temporary.
 expect_fail2() { # expect_fail2 <pattern> <output> nltopo args...
