@@ -8,6 +8,10 @@
 
 namespace nltopo {
 
+static bool interrupt_reported = false;
+
+bool InterruptReported() { return interrupt_reported; }
+
 PetscErrorCode OneLineErrorHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p,
                                    const char *mess, void *ctx)
 {
@@ -20,6 +24,7 @@ PetscErrorCode OneLineErrorHandler(MPI_Comm comm, int line, const char *fun, con
     if (mess && mess[0] && mess[0] != ' ') {
       std::fprintf(stderr, "nltopo: %s\n", mess);
       std::fflush(stderr);
+      interrupt_reported = true;
     }
     return n;
   }

@@ -19,6 +19,10 @@ PetscErrorCode OneLineErrorHandler(MPI_Comm comm, int line, const char *fun, con
 // Returns false (and prints) on the first problem.
 bool PreflightArguments(int argc, char **argv);
 
+// Whether OneLineErrorHandler has printed a stop signal's message (main
+// prints a generic one for a study that stopped without saying where).
+bool InterruptReported();
+
 // A study that sets some options itself refuses them from the user: one line
 // naming the first one given and what sets it instead.
 PetscErrorCode RejectGivenOptions(MPI_Comm comm, std::initializer_list<const char *> names, const char *set_by);

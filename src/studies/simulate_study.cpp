@@ -1,6 +1,7 @@
 // -study simulate: one forced tone-burst run with energy cut-off; /simulate of outputs.md.
 #include "bands/linear_modes.hpp"
 #include "core/log.hpp"
+#include "core/signals.hpp"
 #include "io/output.hpp"
 #include "studies/registry.hpp"
 #include "timeint/simulation.hpp"
@@ -93,7 +94,13 @@ PetscErrorCode SimulateStudy(MPI_Comm comm)
   Samples sink(lat, store_u, stride);
   PetscCall(PetscLogStagePush(Log().solve));
   PetscCall(PetscTime(&t_solve0));
-  PetscCall(SimulateForced(lat, &burst, so, &sink, &r, &rescalings));
+  {
+    const PetscErrorCode ierr = SimulateForced(lat, &burst, so, &sink, &r, &rescalings);
+    // One run has nothing partial worth keeping: a stop signal ends it without output.
+    PetscCheck(!IsInterrupt(ierr), comm, PETSC_ERR_SIG, "interrupted by %s during the forced run; no output written (one run has no partial result)",
+               SignalName(StopSignalSeen()));
+    PetscCall(ierr);
+  }
   PetscCall(PetscTime(&t_solve1));
   PetscCall(PetscLogStagePop());
 
