@@ -60,7 +60,7 @@ t0=$(date +%s.%N)
 kill -TERM "$pid"
 wait_limited "$pid"
 rc=$RC
-echo "sweep: mpiexec exited $(echo "$(date +%s.%N) - $t0" | bc) s after SIGTERM"
+echo "sweep: mpiexec exited $($PY -c "print(round($(date +%s.%N) - $t0, 2))") s after SIGTERM"
 check_interrupted "$rc" sw_int.err sw_int.h5 "between sweep points"
 if ls sw_int.h5.journal.* > /dev/null 2>&1; then echo "FAILED: journals left (they are merged into the file)"; exit 1; fi
 done_before=$($PY -c "import h5py; print(int(h5py.File('sw_int.h5', 'r')['sweep/done'][:].sum()))")
