@@ -44,6 +44,9 @@ static std::string WordAfter(const char *mess, const char *marker)
   while (*e && *e != ' ' && *e != '\n') e++;
   return std::string(p, e);
 }
+static bool interrupt_reported = false;
+
+bool InterruptReported() { return interrupt_reported; }
 
 PetscErrorCode OneLineErrorHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p,
                                    const char *mess, void *ctx)
@@ -53,6 +56,14 @@ PetscErrorCode OneLineErrorHandler(MPI_Comm comm, int line, const char *fun, con
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
   if (rank) return n; // collective errors print once
+  if (n == PETSC_ERR_SIG) { // a stop signal (core/signals.hpp): silent on the way out, then the study's one line
+    if (mess && mess[0] && mess[0] != ' ') {
+      std::fprintf(stderr, "nltopo: %s\n", mess);
+      std::fflush(stderr);
+      interrupt_reported = true;
+    }
+    return n;
+  }
   if (fun && !std::strncmp(fun, "PetscOptions", 12)) { // an option error is raised on every rank alike (often on PETSC_COMM_SELF): print once
     int world_rank = 0;
     MPI_Comm_rank(PETSC_COMM_WORLD, &world_rank);
@@ -118,6 +129,22 @@ static bool FirstRank()
   return true;
 }
 #define PREFLIGHT_ERROR(...) (FirstRank() ? (void)std::fprintf(stderr, __VA_ARGS__) : (void)0)
+PetscErrorCode FailTogether(MPI_Comm comm, PetscErrorCode code, const char *msg)
+{
+  PetscMPIInt rank, size, first, who;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  first = code ? rank : size;
+  PetscCallMPI(MPI_Allreduce(&first, &who, 1, MPI_INT, MPI_MIN, comm));
+  if (who == size) PetscFunctionReturn(0);
+  int c = (int)code;
+  char buf[1024] = "";
+  if (rank == who) PetscCall(PetscStrncpy(buf, msg ? msg : "", sizeof(buf)));
+  PetscCallMPI(MPI_Bcast(&c, 1, MPI_INT, who, comm));
+  PetscCallMPI(MPI_Bcast(buf, sizeof(buf), MPI_CHAR, who, comm));
+  SETERRQ(comm, (PetscErrorCode)c, "%s", buf);
+}
 
 static bool CaseTrap(const char *token, const char *where)
 {

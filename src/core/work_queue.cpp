@@ -31,4 +31,15 @@ PetscErrorCode WorkQueue::Next(PetscInt *item)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode WorkQueue::Stop()
+{
+  const long all = 1L << 40; // far past any count: every later fetch-and-add gives -1
+  long got = 0;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Win_lock(MPI_LOCK_SHARED, 0, 0, win_));
+  PetscCallMPI(MPI_Fetch_and_op(&all, &got, MPI_LONG, 0, 0, MPI_SUM, win_));
+  PetscCallMPI(MPI_Win_unlock(0, win_));
+  PetscFunctionReturn(0);
+}
+
 } // namespace nltopo

@@ -65,4 +65,64 @@ bool HasDataset(const std::string &file, const char *dataset)
   return ok;
 }
 
+namespace {
+// Opens the root attribute `name` of file (errors silenced); f, a < 0 on failure.
+void OpenRootAttribute(const std::string &file, const char *name, hid_t *f, hid_t *a)
+{
+  *f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  *a = *f >= 0 && H5Aexists(*f, name) > 0 ? H5Aopen(*f, name, H5P_DEFAULT) : -1;
+}
+} // namespace
+
+bool ReadRootAttribute(const std::string &file, const char *name, std::string *value)
+{
+  H5E_auto2_t func;
+  void *data;
+  H5Eget_auto2(H5E_DEFAULT, &func, &data);
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  hid_t f, a, t = -1;
+  bool ok = false;
+  OpenRootAttribute(file, name, &f, &a);
+  if (a >= 0 && (t = H5Aget_type(a)) >= 0 && H5Tget_class(t) == H5T_STRING) {
+    if (H5Tis_variable_str(t) > 0) {
+      char *s = NULL;
+      hid_t mt = H5Tcopy(H5T_C_S1);
+      H5Tset_size(mt, H5T_VARIABLE);
+      if (H5Aread(a, mt, &s) >= 0 && s) {
+        *value = s;
+        ok = true;
+        H5free_memory(s);
+      }
+      H5Tclose(mt);
+    } else {
+      std::string buf(H5Tget_size(t) + 1, '\0');
+      if (H5Aread(a, t, &buf[0]) >= 0) {
+        *value = buf.c_str();
+        ok = true;
+      }
+    }
+  }
+  if (t >= 0) H5Tclose(t);
+  if (a >= 0) H5Aclose(a);
+  if (f >= 0) H5Fclose(f);
+  H5Eset_auto2(H5E_DEFAULT, func, data);
+  return ok;
+}
+
+bool ReadRootAttribute(const std::string &file, const char *name, long *value)
+{
+  H5E_auto2_t func;
+  void *data;
+  H5Eget_auto2(H5E_DEFAULT, &func, &data);
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  hid_t f, a;
+  bool ok = false;
+  OpenRootAttribute(file, name, &f, &a);
+  if (a >= 0) ok = H5Aread(a, H5T_NATIVE_LONG, value) >= 0;
+  if (a >= 0) H5Aclose(a);
+  if (f >= 0) H5Fclose(f);
+  H5Eset_auto2(H5E_DEFAULT, func, data);
+  return ok;
+}
+
 } // namespace nltopo

@@ -1,6 +1,7 @@
 #include "io/output.hpp"
 #include "core/errors.hpp"
 #include "core/log.hpp"
+#include "io/run_options.hpp"
 #include <petscviewerhdf5.h>
 #include <cerrno>
 #include <cstdio>
@@ -11,16 +12,36 @@
 
 namespace nltopo {
 
-PetscErrorCode OutputPathFromOptions(MPI_Comm comm, const char *study, std::string *path)
+static PetscErrorCode ReadOutputOptions(MPI_Comm comm, const char *study, std::string *path, PetscBool *overwrite)
 {
   char buf[PETSC_MAX_PATH_LEN];
   PetscFunctionBeginUser;
+  *overwrite = PETSC_FALSE;
   PetscCall(PetscSNPrintf(buf, sizeof(buf), "%s.h5", study));
   PetscOptionsBegin(comm, NULL, "Output (shared/spec/outputs.md)", NULL);
   PetscCall(PetscOptionsString("-output", "HDF5 file to write (default <study>.h5)", NULL, buf, buf, sizeof(buf), NULL));
+  PetscCall(PetscOptionsBool("-output_overwrite",
+                             "Replace -output even if it holds the output of another study or of other physics/numerics options (README.md, Signals and resume rules)",
+                             NULL, *overwrite, overwrite, NULL));
   PetscOptionsEnd();
   PetscCheck(buf[0], comm, PETSC_ERR_USER, "-output must name a file");
   *path = buf;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode DeclareOutputOptions(MPI_Comm comm, const char *study)
+{
+  std::string path;
+  PetscBool overwrite;
+  return ReadOutputOptions(comm, study, &path, &overwrite);
+}
+
+PetscErrorCode OutputPathFromOptions(MPI_Comm comm, const char *study, std::string *path, const std::function<bool(const std::string &)> &resumes)
+{
+  PetscBool overwrite;
+  PetscFunctionBeginUser;
+  PetscCall(ReadOutputOptions(comm, study, path, &overwrite));
+  if (!(resumes && resumes(*path))) PetscCall(CheckOverwrite(comm, *path, study, overwrite));
   PetscFunctionReturn(0);
 }
 

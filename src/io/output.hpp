@@ -5,13 +5,20 @@
 // a continuation with -cont_checkpoint_seconds commits whole, readable files
 // of the points so far, marked by the root attribute complete = 0.
 #include "core/handle.hpp"
+#include <functional>
 #include <string>
 #include <vector>
 
 namespace nltopo {
 
-// -output <file.h5>, default "<study>.h5".
-PetscErrorCode OutputPathFromOptions(MPI_Comm comm, const char *study, std::string *path);
+// -output <file.h5>, default "<study>.h5". An existing nltopo output there of
+// another study or other options (io/run_options.hpp) is an error unless
+// -output_overwrite is given, or resumes(path) says this run continues that
+// very file (its resume check applies instead).
+PetscErrorCode OutputPathFromOptions(MPI_Comm comm, const char *study, std::string *path,
+                                     const std::function<bool(const std::string &)> &resumes = nullptr);
+// The same options read without looking at the file (a study's options function, -help).
+PetscErrorCode DeclareOutputOptions(MPI_Comm comm, const char *study);
 
 // Called by Commit before a complete output is renamed into place, when the
 // file's communicator spans every rank (the registry's unused-options audit).

@@ -1,5 +1,6 @@
 #include "orbits/continuation.hpp"
 #include "core/gather.hpp"
+#include "core/signals.hpp"
 #include "diagnostics/mcr.hpp"
 #include <cmath>
 
@@ -97,6 +98,23 @@ PetscErrorCode SetFromRow(const Lattice &lat, const PetscReal *row, Vec z)
   PetscFunctionReturn(0);
 }
 
+// The resume state after a point: the tangent t (natural order on rank 0) and ds.
+PetscErrorCode StoreNextStep(const Lattice &lat, Shooting &shoot, Vec t, Vec tz, PetscReal ds, Branch *b)
+{
+  PetscReal dT, dbeta;
+  std::vector<PetscReal> row;
+  PetscFunctionBeginUser;
+  PetscCall(shoot.Unpack(t, tz, &dT, &dbeta));
+  PetscCall(AppendRow(lat, tz, &row));
+  if (!row.empty()) {
+    row.push_back(dT);
+    row.push_back(dbeta);
+  }
+  b->next_tangent = std::move(row);
+  b->next_ds = ds;
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
 PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, const ContinuationOptions &o, const char *name, Branch *b, PointHook *hook,
@@ -122,9 +140,8 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
   PetscInt kry0 = shoot.KrylovIterations();
   PetscReal znorm;
 
+  PetscInt exact = 0; // resume from the stored tangent and step (bit for bit)
   if (resumed) {
-    // The last two orbits (rank 0's rows, to every rank): re-solve the last at its
-    // energy, take the family tangent there and a first step as long as the last.
     const PetscInt N = lat.N(), np = (PetscInt)b->energy.size();
     std::vector<PetscReal> rows(4 * N);
     PetscMPIInt rank;
@@ -133,6 +150,43 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
     PetscCallMPI(MPI_Bcast(&stored, 1, MPIU_INT, 0, comm));
     PetscCheck(stored == np * 2 * N, comm, PETSC_ERR_USER, "-cont_resume: branch %s has %" PetscInt_FMT " z0 values for %" PetscInt_FMT " points of 2N = %" PetscInt_FMT, name,
                stored, np, 2 * N);
+    if (rank == 0) std::copy(b->z0.end() - 4 * N, b->z0.end(), rows.begin());
+    PetscCallMPI(MPI_Bcast(rows.data(), (PetscMPIInt)(4 * N), MPIU_REAL, 0, comm));
+    exact = rank == 0 ? (PetscInt)(b->next_tangent.size() == (size_t)(2 * N + 2)) : 0;
+    PetscCallMPI(MPI_Bcast(&exact, 1, MPIU_INT, 0, comm));
+  }
+  if (exact) {
+    // The last orbit as it was recorded (X = its z0, T, beta), the tangent
+    // and the step stored with it: the state of the run that wrote the file
+    // after that point, so the next steps are the ones it would have taken.
+    const PetscInt N = lat.N(), np = (PetscInt)b->energy.size();
+    std::vector<PetscReal> row(2 * N + 2), last(2 * N);
+    PetscMPIInt rank;
+    PetscCallMPI(MPI_Comm_rank(comm, &rank));
+    if (rank == 0) {
+      std::copy(b->next_tangent.begin(), b->next_tangent.end(), row.begin());
+      std::copy(b->z0.end() - 2 * N, b->z0.end(), last.begin());
+    }
+    PetscCallMPI(MPI_Bcast(row.data(), (PetscMPIInt)(2 * N + 2), MPIU_REAL, 0, comm));
+    PetscCallMPI(MPI_Bcast(last.data(), (PetscMPIInt)(2 * N), MPIU_REAL, 0, comm));
+    PetscCall(SetFromRow(lat, last.data(), z));
+    PetscCall(shoot.Pack(z, b->period.back(), b->beta.back(), X));
+    PetscCall(SetFromRow(lat, row.data(), tz));
+    PetscCall(shoot.Pack(tz, row[2 * N], row[2 * N + 1], t));
+    ds = b->next_ds;
+    PetscCallMPI(MPI_Bcast(&ds, 1, MPIU_REAL, 0, comm));
+    its = b->newton_its.back();
+    PetscCall(shoot.Unpack(X, z, &T, &beta));
+    PetscCall(PetscPrintf(comm, "  [%s] resumed after point %" PetscInt_FMT ": E = %.5g, omega = %.8f (stored tangent and step)\n", name, np - 1,
+                          (double)b->energy.back(), (double)(2 * PETSC_PI / T)));
+  } else if (resumed) {
+    // A file without the stored step (written before they were): re-solve the
+    // last orbit at its energy, take the family tangent there and a first
+    // step as long as the last one.
+    const PetscInt N = lat.N(), np = (PetscInt)b->energy.size();
+    std::vector<PetscReal> rows(4 * N);
+    PetscMPIInt rank;
+    PetscCallMPI(MPI_Comm_rank(comm, &rank));
     if (rank == 0) std::copy(b->z0.end() - 4 * N, b->z0.end(), rows.begin());
     PetscCallMPI(MPI_Bcast(rows.data(), (PetscMPIInt)(4 * N), MPIU_REAL, 0, comm));
     PetscCall(SetFromRow(lat, rows.data(), zprev));
@@ -193,6 +247,9 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
     PetscCall(lat.Energy(z, &e));
     PetscCall(DisplacementMcr(lat, z, &mcr));
     if (!b->energy.empty()) PetscCall(ShapeCorrelation(lat, zprev, z, &corr));
+    std::vector<PetscReal> prev_tangent = b->next_tangent; // to drop this point again (below)
+    const PetscReal prev_ds = b->next_ds;
+    PetscCall(StoreNextStep(lat, shoot, t, tz, ds, b)); // what a resume from this point needs
     if (record) {
       b->energy.push_back(e.Total());
       b->period.push_back(T);
@@ -207,7 +264,20 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
       if (hook) {
         PetscReal dT, dbeta;
         PetscCall(shoot.Unpack(t, tz, &dT, &dbeta));
-        PetscCall(hook->Point(z, T, beta, tz));
+        const PetscErrorCode ierr = hook->Point(z, T, beta, tz);
+        if (IsInterrupt(ierr)) {
+          // A stop signal inside the hook (e.g. the Floquet multipliers of
+          // this orbit): the point is dropped, so that the branch, its hook
+          // columns and the step stored for a resume stay consistent; a
+          // resume recomputes it.
+          for (auto *v : {&b->energy, &b->period, &b->omega, &b->mcr, &b->shape_corr, &b->beta}) v->pop_back();
+          b->newton_its.pop_back();
+          b->krylov_its.pop_back();
+          if (b->z0.size() >= (size_t)(2 * lat.N())) b->z0.resize(b->z0.size() - 2 * lat.N()); // rank 0's rows
+          b->next_tangent = std::move(prev_tangent);
+          b->next_ds = prev_ds;
+        }
+        PetscCall(ierr);
       }
       const PetscInt k = (PetscInt)b->energy.size() - 1;
       if (corr < o.interaction_corr) {

@@ -32,6 +32,12 @@ struct Branch {
   std::vector<PetscInt> interactions; // point indices flagged as modal interactions
   std::string stop_reason;
   bool reached_max = false;
+  // Where the continuation stands after the last point: the family tangent
+  // there (rank 0, natural order [du_1..du_N, dv_1..dv_N, dT, dbeta]) and the
+  // next step length. A resume from them takes the steps an uninterrupted run
+  // takes, bit for bit (README.md "Signals and resume rules").
+  std::vector<PetscReal> next_tangent;
+  PetscReal next_ds = 0;
 };
 
 // Called at every accepted orbit (z0, T, beta), e.g. for its Floquet
@@ -45,9 +51,12 @@ public:
 
 // Continues the family through the orbit guess (u_guess, v = 0) of period T_guess,
 // or, given a resume branch of at least 2 points (as written by a previous run,
-// z0 rows on rank 0), from its last orbit on: its points are kept, the last one
-// is re-solved at its energy (a check that it belongs to this lattice) and the
-// first step has the length of the last one.
+// z0 rows on rank 0), from its last orbit on: its points are kept; with the
+// stored next_tangent and next_ds the continuation goes on exactly where it
+// stood, otherwise (files written before they were stored) the last orbit is
+// re-solved at its energy and the first step has the length of the last one.
+// A stop signal (core/signals.hpp) returns the silent PETSC_ERR_SIG from the
+// solve in progress; *b then holds every point recorded so far.
 PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, const ContinuationOptions &o, const char *name, Branch *b,
                               PointHook *hook = nullptr, const Branch *resume = nullptr);
 

@@ -2,6 +2,7 @@
 #include "core/memory_guard.hpp"
 #include "core/gather.hpp"
 #include "core/log.hpp"
+#include "core/signals.hpp"
 #include <algorithm>
 #include <cmath>
 
@@ -316,6 +317,7 @@ PetscErrorCode Shooting::Residual(Vec X, Vec F)
   const PetscScalar *a, *b;
   const PetscInt m = 2 * lat_->OwnedCount();
   PetscFunctionBeginUser;
+  PetscCall(CheckInterrupt(lat_->Comm())); // a stop signal ends the solve here (core/signals.hpp)
   nres_++;
   PetscCall(Unpack(X, z_, &T, &beta));
   PetscCall(flow_->Integrate(z_, T, beta, zT_));
@@ -350,6 +352,7 @@ PetscErrorCode Shooting::Jacobian(Vec X, Mat J)
 {
   PetscReal T, beta;
   PetscFunctionBeginUser;
+  PetscCall(CheckInterrupt(lat_->Comm())); // a stop signal ends the solve here (core/signals.hpp)
   njac_++;
   PetscCall(Unpack(X, z_, &T, &beta));
   if (kind_ == Constraint::Energy) PetscCall(flow_->GradEnergy(z_, g_));
@@ -430,6 +433,7 @@ PetscErrorCode Shooting::ShellMult(Vec x, Vec y)
   const PetscInt m = 2 * lat_->OwnedCount();
   PetscInt rs;
   PetscFunctionBeginUser;
+  PetscCall(CheckInterrupt(lat_->Comm())); // a stop signal ends the solve here (core/signals.hpp)
   nlin_++;
   PetscCall(Unpack(x, g_, &dT, &db)); // g_ as scratch for dz
   PetscCall(flow_->IntegrateWithTangent(zlin_, Tlin_, blin_, g_, db, dT, zT_, w_)); // the T column too

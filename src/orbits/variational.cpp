@@ -1,5 +1,6 @@
 #include "orbits/variational.hpp"
 #include "core/log.hpp"
+#include "core/signals.hpp"
 #include <petscdmda.h>
 
 namespace nltopo {
@@ -9,6 +10,15 @@ PetscErrorCode VarRhs(TS ts, PetscReal t, Vec Y, Vec F, void *ctx)
 {
   PetscFunctionBeginUser;
   PetscCall(static_cast<VariationalFlow *>(ctx)->Rhs(t, Y, F));
+  PetscFunctionReturn(0);
+}
+// A stop signal (core/signals.hpp) ends the integration at a step.
+PetscErrorCode InterruptPostStep(TS ts)
+{
+  PetscInt step;
+  PetscFunctionBeginUser;
+  PetscCall(TSGetStepNumber(ts, &step));
+  PetscCall(CheckInterruptAtStep(PetscObjectComm((PetscObject)ts), step));
   PetscFunctionReturn(0);
 }
 } // namespace
@@ -37,6 +47,7 @@ PetscErrorCode VariationalFlow::Setup(const Lattice &lat, PetscInt ncol, PetscIn
   PetscCall(TSGetAdapt(ts_, &adapt));
   PetscCall(TSAdaptSetType(adapt, TSADAPTNONE));
   PetscCall(TSSetRHSFunction(ts_, NULL, VarRhs, this));
+  PetscCall(TSSetPostStep(ts_, InterruptPostStep));
   PetscCall(TSSetExactFinalTime(ts_, TS_EXACTFINALTIME_MATCHSTEP));
   PetscCall(TSSetFromOptions(ts_));
   u_.assign(lat.N(), 0.0);

@@ -3,8 +3,10 @@
 #include "studies/nnm_setup.hpp"
 #include "core/log.hpp"
 #include "core/options_audit.hpp"
+#include "core/signals.hpp"
 #include "io/input.hpp"
 #include "io/output.hpp"
+#include "io/run_options.hpp"
 #include "orbits/continuation.hpp"
 #include "stability/floquet.hpp"
 #include "stability/floquet_mf.hpp"
@@ -157,6 +159,10 @@ PetscErrorCode WriteRecord(PetscViewer v, const BranchRecord &r, FloquetKind fk,
   std::vector<PetscReal> inter(b.interactions.begin(), b.interactions.end());
   PetscCall(WriteArray(v, g.c_str(), "interactions", inter));
   PetscCall(WriteAttr(v, g.c_str(), "linear_omega", r.omega));
+  if (!b.energy.empty()) { // where the continuation stands: what -cont_resume needs to go on bit for bit
+    PetscCall(WriteArray(v, g.c_str(), "next_tangent", b.next_tangent));
+    PetscCall(WriteArray(v, g.c_str(), "next_ds", std::vector<PetscReal>{b.next_ds}));
+  }
   if (fk == FloquetKind::MatrixFree) {
     const std::vector<PetscInt> dims = {(PetscInt)b.energy.size(), nev}; // npts x nev, also for nev = 1
     PetscCall(WriteArrayND(v, g.c_str(), "multipliers_re", f.re, dims));
@@ -237,6 +243,13 @@ PetscErrorCode ReadResume(MPI_Comm comm, const std::string &file, const std::str
     PetscCall(reals("krylov_its", &kits));
     PetscCall(reals("interactions", &inter));
     PetscCall(reals("z0", &b->z0));
+    if (has("next_tangent") && has("next_ds")) { // written since the step state is stored (else: the re-solving resume)
+      std::vector<PetscReal> ds;
+      PetscCall(reals("next_tangent", &b->next_tangent));
+      PetscCall(reals("next_ds", &ds));
+      b->next_ds = ds.empty() ? 0 : ds[0];
+      if (b->next_tangent.size() != (size_t)n2 + 2 || ds.size() != 1) b->next_tangent.clear();
+    }
     rowlen = b->z0.size() == b->energy.size() * (size_t)n2 ? n2 : b->energy.empty() ? -1 : (PetscInt)(b->z0.size() / b->energy.size());
     const size_t np = b->energy.size(), per = fk == FloquetKind::Dense ? (size_t)n2 : (size_t)nev;
     if (fk != FloquetKind::None && has("max_modulus") && has("multipliers_re")) {
@@ -358,7 +371,6 @@ PetscErrorCode ContinuationStudyOptions(MPI_Comm comm)
   StudyChoices ch;
   FloquetOptions flo;
   FloquetMfOptions fmo;
-  std::string path;
   PetscFunctionBeginUser;
   PetscCall(nnm.DeclareOptions(comm));
   PetscCall(ReadStudyChoices(comm, &ch));
@@ -366,7 +378,7 @@ PetscErrorCode ContinuationStudyOptions(MPI_Comm comm)
   PetscCall(FloquetMfOptionsFromOptions(comm, &fmo));
   PetscCall(DeclareEPS(comm, "floquet_"));
   PetscCall(DeclareEPS(comm, "floquet_mf_"));
-  PetscCall(OutputPathFromOptions(comm, "continuation", &path));
+  PetscCall(DeclareOutputOptions(comm, "continuation"));
   PetscFunctionReturn(0);
 }
 
@@ -393,7 +405,8 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
   const PetscReal checkpoint_seconds = ch.checkpoint_seconds;
   const char *resume_file = ch.resume_file;
   const PetscBool resume = ch.resume;
-  PetscCall(OutputPathFromOptions(comm, "continuation", &path));
+  if (resume) PetscCall(CheckResumeOptions(comm, resume_file, "continuation", "-cont_resume")); // the same physics and numerics, or one line naming the first difference
+  PetscCall(OutputPathFromOptions(comm, "continuation", &path, [&](const std::string &p) { return resume && SameFile(p, resume_file); }));
   PetscCall(out.Open(comm, path));
   PetscCall(nnm.Build(comm));
   Lattice &lat = nnm.lat;
@@ -455,24 +468,46 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
     if (resumed && fk != FloquetKind::None) (fk == FloquetKind::MatrixFree ? mf_hook.c : hook.c) = resumes[k].f;
     if (resume && !resumed)
       PetscCall(PetscPrintf(comm, "  [%s] -cont_resume %s: fewer than 2 points of this branch there, starting afresh\n", label.c_str(), resume_file));
-    CheckpointHook ck(comm, floquet_hook, checkpoint_seconds, [&]() -> PetscErrorCode {
+    // -output with the branches done and this one so far, complete = 0.
+    auto write_partial = [&](const char *reason) -> PetscErrorCode {
       OutputFile f;
       PetscLogDouble now;
       PetscFunctionBeginUser;
       PetscCall(PetscLogStagePush(Log().write));
       PetscCall(f.Open(comm, path, "checkpoint."));
       for (const BranchRecord &r : done) PetscCall(WriteRecord(f.Viewer(), r, fk, n2, fmo.nev));
-      BranchRecord cur = snapshot(label, omega, b, j0, r0, p0, k0, b0);
-      cur.b.stop_reason = "checkpoint: the run was still going";
-      PetscCall(WriteRecord(f.Viewer(), cur, fk, n2, fmo.nev));
+      if (!b.energy.empty()) {
+        BranchRecord cur = snapshot(label, omega, b, j0, r0, p0, k0, b0);
+        cur.b.stop_reason = reason;
+        PetscCall(WriteRecord(f.Viewer(), cur, fk, n2, fmo.nev));
+      }
       PetscCall(PetscTime(&now));
       PetscCall(f.Commit("continuation", now - t_start, false));
       PetscCall(PetscLogStagePop());
+      PetscFunctionReturn(0);
+    };
+    CheckpointHook ck(comm, floquet_hook, checkpoint_seconds, [&]() -> PetscErrorCode {
+      PetscFunctionBeginUser;
+      PetscCall(write_partial("checkpoint: the run was still going"));
       PetscCall(PetscPrintf(comm, "  [%s] checkpoint: %zu points written to %s\n", label.c_str(), b.energy.size(), path.c_str()));
       PetscFunctionReturn(0);
     });
-    PetscCall(ContinueBranch(shoot, u, 2 * PETSC_PI / omega, co, label.c_str(), &b, &ck, resumed ? &rb : nullptr));
+    const PetscErrorCode ic = ContinueBranch(shoot, u, 2 * PETSC_PI / omega, co, label.c_str(), &b, &ck, resumed ? &rb : nullptr);
     PetscCall(PetscLogStagePop());
+    if (IsInterrupt(ic)) {
+      // A stop signal during the solve of the next point: the points so far
+      // (every earlier branch, this one's recorded points with the step to
+      // take next) are the checkpoint a -cont_resume continues bit for bit.
+      const char *sn = SignalName(StopSignalSeen());
+      PetscCheck(!done.empty() || !b.energy.empty(), comm, PETSC_ERR_SIG, "interrupted by %s before the first orbit of branch %s; no output written", sn,
+                 label.c_str());
+      const std::string reason = std::string("interrupted by ") + sn + ": -cont_resume continues it";
+      PetscCall(write_partial(reason.c_str()));
+      for (PetscInt j = 0; j < nb; j++) PetscCall(PetscFree(names[j]));
+      SETERRQ(comm, PETSC_ERR_SIG, "interrupted by %s after %zu points of branch %s (last E = %g); partial output %s (complete = 0); -cont_resume %s continues it", sn,
+              b.energy.size(), label.c_str(), b.energy.empty() ? 0.0 : (double)b.energy.back(), path.c_str(), path.c_str());
+    }
+    PetscCall(ic);
     PetscCall(PetscTime(&b1));
     const size_t npts = b.energy.size();
     done.push_back(snapshot(label, omega, std::move(b), j0, r0, p0, k0, b0));

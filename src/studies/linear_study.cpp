@@ -29,13 +29,12 @@ PetscErrorCode LinearStudyOptions(MPI_Comm comm)
   LatticeParams lp;
   LinearModesOptions mo;
   PetscInt nq = kBlochDefaultNq;
-  std::string path;
   PetscFunctionBeginUser;
   PetscCall(LatticeParamsFromOptions(comm, &lp));
   PetscCall(LinearModesOptionsFromOptions(comm, &mo));
   PetscCall(BlochOptionsFromOptions(comm, &nq));
   PetscCall(DeclareEPS(comm, "linear_"));
-  PetscCall(OutputPathFromOptions(comm, "linear", &path));
+  PetscCall(DeclareOutputOptions(comm, "linear"));
   PetscFunctionReturn(0);
 }
 

@@ -9,6 +9,7 @@
 #include "core/errors.hpp"
 #include "core/log.hpp"
 #include "core/options_audit.hpp"
+#include "core/signals.hpp"
 #include "core/work_queue.hpp"
 #include "io/input.hpp"
 #include "io/output.hpp"
@@ -111,14 +112,13 @@ PetscErrorCode PerturbStudyOptions(MPI_Comm comm)
   ToneBurstOptions fo;
   SimulationOptions sim;
   NnmSetup nnm;
-  std::string path;
   PetscFunctionBeginUser;
   PetscCall(nnm.DeclareOptions(comm));
   PetscCall(PerturbOptionsFromOptions(comm, &po));
   PetscCall(ToneBurstOptionsFromOptions(comm, nnm.lp, &fo));
   PetscCall(SimulationOptionsFromOptions(comm, &sim));
   PetscCall(DeclareTS(comm, "sim_"));
-  PetscCall(OutputPathFromOptions(comm, "perturb", &path));
+  PetscCall(DeclareOutputOptions(comm, "perturb"));
   PetscFunctionReturn(0);
 }
 
@@ -183,7 +183,10 @@ PetscErrorCode PerturbStudy(MPI_Comm comm)
     nnm.co.verbose = PETSC_FALSE;
     nnm.co.energy_max = 1.2 * Emax;
     Branch b;
-    PetscCall(ContinueBranch(nnm.shoot, nnm.modes.Insulated(), 2 * PETSC_PI / nnm.modes.Named().insulated_omega, nnm.co, "insulated", &b));
+    const PetscErrorCode ib = ContinueBranch(nnm.shoot, nnm.modes.Insulated(), 2 * PETSC_PI / nnm.modes.Named().insulated_omega, nnm.co, "insulated", &b);
+    PetscCheck(!IsInterrupt(ib), comm, PETSC_ERR_SIG, "interrupted by %s while continuing the insulated branch, before the first forced run; no output written",
+               SignalName(StopSignalSeen()));
+    PetscCall(ib);
     bE = b.energy, bw = b.omega;
   }
   PetscCheck(bE.size() >= 2 && bE.back() >= Emax * (1 - 1e-9), comm, PETSC_ERR_USER, "-study perturb: the insulated branch reaches E = %g only, below -perturb_energy_max %g",
@@ -225,8 +228,16 @@ PetscErrorCode PerturbStudy(MPI_Comm comm)
     }
     PetscFunctionReturn(0);
   };
-  PetscCall(RunDistributed(comm, nk * nd * ns, 1 + ne, item, &res));
+  std::vector<PetscInt> ran;
+  const PetscErrorCode irun = RunDistributed(comm, nk * nd * ns, 1 + ne, item, &res, &ran);
   PetscCall(PetscLogStagePop());
+  if (!IsInterrupt(irun)) PetscCall(irun);
+  const bool interrupted = IsInterrupt(irun); // a stop signal: the realisations done are written, complete = 0
+  const PetscInt nran = (PetscInt)std::count(ran.begin(), ran.end(), 1);
+  PetscCheck(!interrupted || nran > 0, comm, PETSC_ERR_SIG, "interrupted by %s before the first realisation ended; no output written",
+             SignalName(StopSignalSeen()));
+  for (PetscInt it = 0; it < nk * nd * ns; it++)
+    if (!ran[it]) std::fill(res.begin() + it * (1 + ne), res.begin() + (it + 1) * (1 + ne), NAN); // not run
 
   PetscCall(PetscLogStagePush(Log().write));
   PetscViewer v = out.Viewer();
@@ -265,12 +276,15 @@ PetscErrorCode PerturbStudy(MPI_Comm comm)
     PetscCall(WriteArray(v, g.c_str(), "omega_ext", wext));
     PetscCall(WriteArrayND(v, g.c_str(), "mcr", mcr, {nd, ne, ns}));
     PetscCall(WriteArrayND(v, g.c_str(), "insulated_omega", win, {nd, ns}));
+    PetscCall(WriteIntArray(v, g.c_str(), "done", std::vector<PetscInt>(ran.begin() + k * nd * ns, ran.begin() + (k + 1) * nd * ns), ns)); // nd x ns; 0: not run (stop signal)
     PetscCall(WriteAttr(v, g.c_str(), "seed_first", po.seed0));
     PetscCall(WriteAttr(v, g.c_str(), "rule", "springs change by k delta_b, delta_b uniform in (-2 delta, 2 delta) (README.md); realisation r uses seed seed_first + r"));
   }
   PetscCall(PetscTime(&t_end));
-  PetscCall(out.Commit("perturb", t_end - t_start));
+  PetscCall(out.Commit("perturb", t_end - t_start, !interrupted));
   PetscCall(PetscLogStagePop());
+  PetscCheck(!interrupted, comm, PETSC_ERR_SIG, "interrupted by %s between realisations (%" PetscInt_FMT " of %" PetscInt_FMT " done); partial output %s (complete = 0)",
+             SignalName(StopSignalSeen()), nran, nk * nd * ns, path.c_str());
   PetscCall(PetscPrintf(comm, "  wrote %s\n", path.c_str()));
   PetscFunctionReturn(0);
 }

@@ -3,6 +3,7 @@
 #include "core/memory_guard.hpp"
 #include "core/log.hpp"
 #include "core/options_audit.hpp"
+#include "core/signals.hpp"
 #include "io/output.hpp"
 #include "studies/registry.hpp"
 #include "timeint/simulation.hpp"
@@ -74,7 +75,6 @@ PetscErrorCode SimulateStudyOptions(MPI_Comm comm)
   LinearModesOptions mo;
   PetscBool store_u = PETSC_TRUE;
   PetscInt stride = 1;
-  std::string path;
   PetscFunctionBeginUser;
   PetscCall(LatticeParamsFromOptions(comm, &lp));
   PetscCall(ToneBurstOptionsFromOptions(comm, lp, &fo));
@@ -83,7 +83,7 @@ PetscErrorCode SimulateStudyOptions(MPI_Comm comm)
   PetscCall(LinearModesOptionsFromOptions(comm, &mo)); // the mode profiles and the amplitude rule
   PetscCall(DeclareEPS(comm, "linear_"));
   PetscCall(DeclareTS(comm, "sim_"));
-  PetscCall(OutputPathFromOptions(comm, "simulate", &path));
+  PetscCall(DeclareOutputOptions(comm, "simulate"));
   PetscFunctionReturn(0);
 }
 
@@ -131,7 +131,13 @@ PetscErrorCode SimulateStudy(MPI_Comm comm)
   Samples sink(lat, store_u, stride);
   PetscCall(PetscLogStagePush(Log().solve));
   PetscCall(PetscTime(&t_solve0));
-  PetscCall(SimulateForced(lat, &burst, so, &sink, &r, &rescalings));
+  {
+    const PetscErrorCode ierr = SimulateForced(lat, &burst, so, &sink, &r, &rescalings);
+    // One run has nothing partial worth keeping: a stop signal ends it without output.
+    PetscCheck(!IsInterrupt(ierr), comm, PETSC_ERR_SIG, "interrupted by %s during the forced run; no output written (one run has no partial result)",
+               SignalName(StopSignalSeen()));
+    PetscCall(ierr);
+  }
   PetscCall(PetscTime(&t_solve1));
   PetscCall(PetscLogStagePop());
 

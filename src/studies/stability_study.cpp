@@ -7,6 +7,7 @@
 #include "core/errors.hpp"
 #include "core/log.hpp"
 #include "core/options_audit.hpp"
+#include "core/signals.hpp"
 #include "io/output.hpp"
 #include "orbits/continuation.hpp"
 #include "stability/floquet.hpp"
@@ -130,7 +131,6 @@ PetscErrorCode StabilityStudyOptions(MPI_Comm comm)
   FloquetOptions flo;
   SimulationOptions sim;
   StabilityOptions st;
-  std::string path;
   PetscFunctionBeginUser;
   PetscCall(nnm.DeclareOptions(comm));
   PetscCall(FloquetOptionsFromOptions(comm, &flo));
@@ -138,7 +138,7 @@ PetscErrorCode StabilityStudyOptions(MPI_Comm comm)
   PetscCall(SimulationOptionsFromOptions(comm, &sim));
   PetscCall(StabilityOptionsFromOptions(comm, &st));
   PetscCall(DeclareTS(comm, "sim_"));
-  PetscCall(OutputPathFromOptions(comm, "stability", &path));
+  PetscCall(DeclareOutputOptions(comm, "stability"));
   PetscFunctionReturn(0);
 }
 
@@ -181,92 +181,107 @@ PetscErrorCode StabilityStudy(MPI_Comm comm)
   const PetscReal w0 = modes.Named().insulated_omega;
   Branch b;
   co.omega_max = *std::max_element(omegas, omegas + nw);
-  PetscCall(ContinueBranch(shoot, modes.Insulated(), 2 * PETSC_PI / w0, co, "insulated", &b));
-  for (PetscInt c = 0; c < nw; c++) {
-    const PetscReal wt = omegas[c];
-    PetscCheck(b.omega.back() >= wt, comm, PETSC_ERR_USER, "-stability_omega %g: the insulated branch ends at omega %g (%s)", (double)wt,
-               (double)b.omega.back(), b.stop_reason.c_str());
-    // The orbit at omega = wt: Newton at fixed period from the first stored orbit
-    // at or above wt (the low-energy orbit itself when wt is at or below its frequency).
-    size_t k = 0;
-    while (b.omega[k] < wt) k++;
-    PetscCall(RowToState(lat, b.z0, k, z));
-    PetscReal T = b.period[k], beta = 0;
-    if (k > 0) {
-      bool ok;
-      PetscInt its;
-      PetscCall(shoot.Pack(z, 2 * PETSC_PI / wt, 0.0, X));
-      PetscCall(shoot.SetPeriodConstraint(z, 2 * PETSC_PI / wt));
-      PetscCall(shoot.Solve(X, &ok, &its));
-      PetscCheck(ok, comm, PETSC_ERR_NOT_CONVERGED, "-stability_omega %g: no insulated-branch orbit found at this frequency", (double)wt);
-      PetscCall(shoot.Unpack(X, z, &T, &beta));
-    }
-    EnergyParts e;
-    FloquetResult fr;
-    PetscCall(lat.Energy(z, &e));
-    PetscCall(flow.IntegrateWithMonodromy(z, T, beta, zT, S));
-    PetscCall(FloquetAnalysis(lat, S, flo, &fr));
-    // Perturbation: z0 + eps ||z0|| / sqrt(2N) xi, xi uniform in (-1, 1) per entry,
-    // drawn by global index from the seed (the same on any number of ranks).
-    OwnedVec zp;
-    PetscReal nz;
-    PetscCall(VecDuplicate(z, zp.out()));
-    PetscCall(VecNorm(z, NORM_2, &nz));
-    {
-      std::mt19937_64 rng((unsigned long)seed * 7919 + c);
-      std::uniform_real_distribution<PetscReal> xi(-1, 1);
-      std::vector<PetscReal> noise(2 * lat.N());
-      for (auto &x : noise) x = xi(rng);
-      const PetscScalar *a;
-      PetscScalar *p;
-      const PetscInt xs = lat.OwnedStart(), xm = lat.OwnedCount(), N = lat.N();
-      const PetscReal scale = eps * nz / std::sqrt(2.0 * N);
-      PetscCall(VecGetArrayRead(z, &a));
-      PetscCall(VecGetArray(zp, &p));
-      for (PetscInt k = 0; k < xm; k++) {
-        p[k] = a[k] + scale * noise[xs + k];
-        p[xm + k] = a[xm + k] + scale * noise[N + xs + k];
+  // A stop signal (core/signals.hpp) ends the branch continuation or a case
+  // (its Newton solve or free run) at once; the cases done are kept.
+  PetscInt cases_done = 0;
+  const PetscErrorCode irun = [&]() -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    PetscCall(ContinueBranch(shoot, modes.Insulated(), 2 * PETSC_PI / w0, co, "insulated", &b));
+    for (PetscInt c = 0; c < nw; c++) {
+      const PetscReal wt = omegas[c];
+      PetscCheck(b.omega.back() >= wt, comm, PETSC_ERR_USER, "-stability_omega %g: the insulated branch ends at omega %g (%s)", (double)wt,
+                 (double)b.omega.back(), b.stop_reason.c_str());
+      // The orbit at omega = wt: Newton at fixed period from the first stored orbit
+      // at or above wt (the low-energy orbit itself when wt is at or below its frequency).
+      size_t k = 0;
+      while (b.omega[k] < wt) k++;
+      PetscCall(RowToState(lat, b.z0, k, z));
+      PetscReal T = b.period[k], beta = 0;
+      if (k > 0) {
+        bool ok;
+        PetscInt its;
+        PetscCall(shoot.Pack(z, 2 * PETSC_PI / wt, 0.0, X));
+        PetscCall(shoot.SetPeriodConstraint(z, 2 * PETSC_PI / wt));
+        PetscCall(shoot.Solve(X, &ok, &its));
+        PetscCheck(ok, comm, PETSC_ERR_NOT_CONVERGED, "-stability_omega %g: no insulated-branch orbit found at this frequency", (double)wt);
+        PetscCall(shoot.Unpack(X, z, &T, &beta));
       }
-      PetscCall(VecRestoreArray(zp, &p));
-      PetscCall(VecRestoreArrayRead(z, &a));
+      EnergyParts e;
+      FloquetResult fr;
+      PetscCall(lat.Energy(z, &e));
+      PetscCall(flow.IntegrateWithMonodromy(z, T, beta, zT, S));
+      PetscCall(FloquetAnalysis(lat, S, flo, &fr));
+      // Perturbation: z0 + eps ||z0|| / sqrt(2N) xi, xi uniform in (-1, 1) per entry,
+      // drawn by global index from the seed (the same on any number of ranks).
+      OwnedVec zp;
+      PetscReal nz;
+      PetscCall(VecDuplicate(z, zp.out()));
+      PetscCall(VecNorm(z, NORM_2, &nz));
+      {
+        std::mt19937_64 rng((unsigned long)seed * 7919 + c);
+        std::uniform_real_distribution<PetscReal> xi(-1, 1);
+        std::vector<PetscReal> noise(2 * lat.N());
+        for (auto &x : noise) x = xi(rng);
+        const PetscScalar *a;
+        PetscScalar *p;
+        const PetscInt xs = lat.OwnedStart(), xm = lat.OwnedCount(), N = lat.N();
+        const PetscReal scale = eps * nz / std::sqrt(2.0 * N);
+        PetscCall(VecGetArrayRead(z, &a));
+        PetscCall(VecGetArray(zp, &p));
+        for (PetscInt k = 0; k < xm; k++) {
+          p[k] = a[k] + scale * noise[xs + k];
+          p[xm + k] = a[xm + k] + scale * noise[N + xs + k];
+        }
+        PetscCall(VecRestoreArray(zp, &p));
+        PetscCall(VecRestoreArrayRead(z, &a));
+      }
+      EnergyParts ep;
+      PetscCall(lat.Energy(zp, &ep)); // the perturbed start: the free run conserves this
+      SimulationOptions run = sim;
+      run.t_final = periods * T;
+      run.sample_dt = T / 8;
+      Persistence sink(lat, z, 8 * sample_periods);
+      SimulationResult r;
+      PetscCall(Simulate(lat, nullptr, run, zp, &sink, &r));
+      const size_t ns = sink.corr_.size(), tail = std::max<size_t>(1, ns / 10);
+      PetscReal tail_min = 1;
+      for (size_t k = ns - tail; k < ns; k++) tail_min = std::min(tail_min, sink.corr_[k]);
+      const bool persisted = tail_min >= corr_min;
+      PetscCall(PetscPrintf(comm, "nltopo stability: omega %.4f (E = %.4g): Floquet max |mu| = %.6f (%s), %" PetscInt_FMT " periods: shape correlation %.3f at the end (min %.3f over the last 10 %%), MCR %.3f -> %.3f: %s\n",
+                            (double)(2 * PETSC_PI / T), (double)e.Total(), (double)fr.max_modulus, fr.stable ? "stable" : "unstable", periods,
+                            (double)sink.corr_.back(), (double)tail_min, (double)sink.mcr_.front(), (double)sink.mcr_.back(),
+                            persisted ? "the standing wave persisted" : "the standing wave did NOT persist"));
+      const std::string g = "/stability/case" + std::to_string(c);
+      PetscViewer v = out.Viewer();
+      PetscCall(WriteArray(v, g.c_str(), "t", sink.t_));
+      PetscCall(WriteArray(v, g.c_str(), "corr", sink.corr_));
+      PetscCall(WriteArray(v, g.c_str(), "mcr", sink.mcr_));
+      PetscCall(WriteArray(v, g.c_str(), "energy", sink.energy_));
+      PetscCall(WriteArray(v, g.c_str(), "multipliers_re", fr.re));
+      PetscCall(WriteArray(v, g.c_str(), "multipliers_im", fr.im));
+      PetscCall(WriteAttr(v, g.c_str(), "omega_target", wt));
+      PetscCall(WriteAttr(v, g.c_str(), "omega", (PetscReal)(2 * PETSC_PI / T)));
+      PetscCall(WriteAttr(v, g.c_str(), "energy", e.Total()));
+      PetscCall(WriteAttr(v, g.c_str(), "period", T));
+      PetscCall(WriteAttr(v, g.c_str(), "max_modulus", fr.max_modulus));
+      PetscCall(WriteAttr(v, g.c_str(), "floquet_stable", (PetscInt)fr.stable));
+      PetscCall(WriteAttr(v, g.c_str(), "instability", fr.instability));
+      PetscCall(WriteAttr(v, g.c_str(), "persisted", (PetscInt)persisted));
+      PetscCall(WriteAttr(v, g.c_str(), "corr_tail_min", tail_min));
+      PetscCall(WriteAttr(v, g.c_str(), "energy_drift", (r.energy_final - ep.Total()) / ep.Total()));
+      cases_done++;
     }
-    EnergyParts ep;
-    PetscCall(lat.Energy(zp, &ep)); // the perturbed start: the free run conserves this
-    SimulationOptions run = sim;
-    run.t_final = periods * T;
-    run.sample_dt = T / 8;
-    Persistence sink(lat, z, 8 * sample_periods);
-    SimulationResult r;
-    PetscCall(Simulate(lat, nullptr, run, zp, &sink, &r));
-    const size_t ns = sink.corr_.size(), tail = std::max<size_t>(1, ns / 10);
-    PetscReal tail_min = 1;
-    for (size_t k = ns - tail; k < ns; k++) tail_min = std::min(tail_min, sink.corr_[k]);
-    const bool persisted = tail_min >= corr_min;
-    PetscCall(PetscPrintf(comm, "nltopo stability: omega %.4f (E = %.4g): Floquet max |mu| = %.6f (%s), %" PetscInt_FMT " periods: shape correlation %.3f at the end (min %.3f over the last 10 %%), MCR %.3f -> %.3f: %s\n",
-                          (double)(2 * PETSC_PI / T), (double)e.Total(), (double)fr.max_modulus, fr.stable ? "stable" : "unstable", periods,
-                          (double)sink.corr_.back(), (double)tail_min, (double)sink.mcr_.front(), (double)sink.mcr_.back(),
-                          persisted ? "the standing wave persisted" : "the standing wave did NOT persist"));
-    const std::string g = "/stability/case" + std::to_string(c);
-    PetscViewer v = out.Viewer();
-    PetscCall(WriteArray(v, g.c_str(), "t", sink.t_));
-    PetscCall(WriteArray(v, g.c_str(), "corr", sink.corr_));
-    PetscCall(WriteArray(v, g.c_str(), "mcr", sink.mcr_));
-    PetscCall(WriteArray(v, g.c_str(), "energy", sink.energy_));
-    PetscCall(WriteArray(v, g.c_str(), "multipliers_re", fr.re));
-    PetscCall(WriteArray(v, g.c_str(), "multipliers_im", fr.im));
-    PetscCall(WriteAttr(v, g.c_str(), "omega_target", wt));
-    PetscCall(WriteAttr(v, g.c_str(), "omega", (PetscReal)(2 * PETSC_PI / T)));
-    PetscCall(WriteAttr(v, g.c_str(), "energy", e.Total()));
-    PetscCall(WriteAttr(v, g.c_str(), "period", T));
-    PetscCall(WriteAttr(v, g.c_str(), "max_modulus", fr.max_modulus));
-    PetscCall(WriteAttr(v, g.c_str(), "floquet_stable", (PetscInt)fr.stable));
-    PetscCall(WriteAttr(v, g.c_str(), "instability", fr.instability));
-    PetscCall(WriteAttr(v, g.c_str(), "persisted", (PetscInt)persisted));
-    PetscCall(WriteAttr(v, g.c_str(), "corr_tail_min", tail_min));
-    PetscCall(WriteAttr(v, g.c_str(), "energy_drift", (r.energy_final - ep.Total()) / ep.Total()));
-  }
+    PetscFunctionReturn(0);
+  }();
+  if (!IsInterrupt(irun)) PetscCall(irun);
+  const bool interrupted = IsInterrupt(irun);
+  PetscCheck(!interrupted || cases_done > 0, comm, PETSC_ERR_SIG, "interrupted by %s before the first stability case ended; no output written",
+             SignalName(StopSignalSeen()));
+  PetscCall(WriteAttr(out.Viewer(), "/stability", "cases_done", cases_done)); // of -stability_omega's; fewer only when interrupted
   PetscCall(PetscTime(&t_end));
-  PetscCall(out.Commit("stability", t_end - t_start));
+  PetscCall(out.Commit("stability", t_end - t_start, !interrupted));
+  PetscCheck(!interrupted, comm, PETSC_ERR_SIG, "interrupted by %s during stability case %" PetscInt_FMT " (omega %g); partial output %s (complete = 0) with the %" PetscInt_FMT " case(s) before it",
+             SignalName(StopSignalSeen()), cases_done, (double)omegas[cases_done], path.c_str(), cases_done);
   PetscCall(PetscPrintf(comm, "  wrote %s\n", path.c_str()));
   PetscFunctionReturn(0);
 }

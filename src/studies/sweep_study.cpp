@@ -8,9 +8,11 @@
 #include "core/errors.hpp"
 #include "core/log.hpp"
 #include "core/options_audit.hpp"
+#include "core/signals.hpp"
 #include "core/work_queue.hpp"
 #include "diagnostics/zero_one.hpp"
 #include "io/output.hpp"
+#include "io/run_options.hpp"
 #include "studies/grid_axis.hpp"
 #include "studies/registry.hpp"
 #include "studies/sweep_store.hpp"
@@ -18,6 +20,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <unistd.h>
 
@@ -76,7 +79,9 @@ PetscErrorCode SweepOptionsFromOptions(MPI_Comm comm, SweepOptions *o)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode WriteSweep(const std::string &path, const SweepGrid &g, const SweepOptions &so, PetscInt computed, PetscReal wall)
+// complete: false for the file a sweep keeps while it runs (and leaves when
+// interrupted or failed), true once every point is done.
+PetscErrorCode WriteSweep(const std::string &path, const SweepGrid &g, const SweepOptions &so, PetscInt computed, PetscReal wall, bool complete)
 {
   OutputFile out;
   const size_t n = g.Size();
@@ -116,7 +121,7 @@ PetscErrorCode WriteSweep(const std::string &path, const SweepGrid &g, const Swe
   PetscCall(WriteAttr(w, grp, "amplitude_rule",
                       "linear Gaussian-burst energy = -force_amplitude_safety * E*; a run whose burst ends before E* is repeated with a larger S (x "
                       "(1.2 E*/E_peak)^(1/p), p the log-log slope of the misses) up to -force_amplitude_retries times (README.md, Amplitude rule); reached = 0 marks points that never reached E*"));
-  PetscCall(out.Commit("sweep", wall));
+  PetscCall(out.Commit("sweep", wall, complete));
   PetscCall(PetscLogEventEnd(Log().output, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -187,7 +192,6 @@ PetscErrorCode SweepStudyOptions(MPI_Comm comm)
   ToneBurstOptions fo;
   SimulationOptions sim;
   LinearModesOptions mo;
-  std::string path;
   PetscFunctionBeginUser;
   PetscCall(RejectGivenOptions(comm, {"-sim_progress", "-sim_sample_dt"}, "-study sweep (progress: -sweep_progress; no samples are stored)"));
   PetscCall(LatticeParamsFromOptions(comm, &lp));
@@ -197,7 +201,7 @@ PetscErrorCode SweepStudyOptions(MPI_Comm comm)
   PetscCall(LinearModesOptionsFromOptions(comm, &mo));
   PetscCall(DeclareEPS(comm, "linear_"));
   PetscCall(DeclareTS(comm, "sim_"));
-  PetscCall(OutputPathFromOptions(comm, "sweep", &path));
+  PetscCall(DeclareOutputOptions(comm, "sweep"));
   PetscFunctionReturn(0);
 }
 
@@ -215,7 +219,7 @@ PetscErrorCode SweepStudy(MPI_Comm comm)
   Journal journal;
   WorkQueue queue;
   PetscMPIInt rank, size;
-  PetscLogDouble t_start, t_last_ck, t_last_pr, now;
+  PetscLogDouble t_start, t_last_ck, t_last_pr, now = 0;
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t_start));
   PetscCall(LogRegister());
@@ -228,7 +232,8 @@ PetscErrorCode SweepStudy(MPI_Comm comm)
   PetscCheck(fo.profile != ForceProfile::None, comm, PETSC_ERR_USER, "-force_profile none: a sweep needs a forcing");
   PetscCall(SimulationOptionsFromOptions(comm, &sim));
   PetscCall(LinearModesOptionsFromOptions(comm, &mo));
-  PetscCall(OutputPathFromOptions(comm, "sweep", &path));
+  PetscCall(OutputPathFromOptions(comm, "sweep", &path, [&](const std::string &) { return (bool)so.resume; }));
+  if (so.resume) PetscCall(CheckResumeOptions(comm, path, "sweep", "-sweep_resume")); // the same physics and numerics, or one line naming the first difference
   // Every rank integrates whole runs on its own copy of the lattice.
   PetscCall(lat.Setup(PETSC_COMM_SELF, lp));
   PetscCall(modes.Compute(lat, mo));
@@ -251,7 +256,7 @@ PetscErrorCode SweepStudy(MPI_Comm comm)
       if (!ierr) ierr = grid.Load(path);
       if (!ierr) ierr = grid.MergeJournals(path, &merged);
     }
-    if (!ierr) ierr = WriteSweep(path, grid, so, 0, 0); // the file exists (and is valid) from the start
+    if (!ierr) ierr = WriteSweep(path, grid, so, 0, 0, false); // the file exists (and is valid) from the start
     PetscCall(PetscPopErrorHandler());
     if (ierr) {
       const char *text;
@@ -279,7 +284,12 @@ PetscErrorCode SweepStudy(MPI_Comm comm)
   std::stable_sort(todo.begin(), todo.end(), [&](size_t a, size_t b) { return a / no != b / no ? a / no > b / no : a % no > b % no; });
   PetscCall(PetscPrintf(comm, "nltopo sweep: %zu omega x %zu E* = %zu points, %zu to compute on %d rank(s)%s, N = %" PetscInt_FMT ", t_final = %g\n", no, ne,
                         grid.Size(), todo.size(), size, so.kcorr ? ", with the 0-1 test" : "", lat.N(), (double)sim.t_final));
-  PetscCall(journal.Open(path, rank));
+  {
+    PetscErrorCode jerr = 0;
+    char jmsg[1024];
+    PetscCall(CaptureError([&]() { return journal.Open(path, rank); }, &jerr, jmsg, sizeof(jmsg)));
+    PetscCall(FailTogether(comm, jerr, jmsg)); // one rank's journal: every rank stops
+  }
   PetscCall(queue.Create(comm, (PetscInt)todo.size()));
   PetscCall(PetscLogStagePop());
 
@@ -293,37 +303,61 @@ PetscErrorCode SweepStudy(MPI_Comm comm)
   t_last_ck = t_last_pr = t_start;
   PetscLogDouble t_loop;
   PetscCall(PetscTime(&t_loop));
+  // A rank stops drawing points at a stop signal (the point it is integrating
+  // ends at its next time step and is dropped: a resume recomputes it) or when
+  // its journal or rank 0's checkpoint cannot be written; WorkQueue::Stop makes
+  // the others stop after their current point. Then all ranks meet below.
+  PetscErrorCode failed = 0;
+  char fail_msg[1024] = "";
   for (;;) {
-    PetscCallAbort(PETSC_COMM_WORLD, queue.Next(&item));
+    if (StopSignalLocal()) {
+      PetscCall(queue.Stop());
+      break;
+    }
+    PetscCallAbort(PETSC_COMM_WORLD, queue.Next(&item)); // MPI itself failing: nothing to save
     if (item < 0) break;
     const size_t idx = todo[item];
     SweepPoint pt;
-    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
-    const PetscErrorCode ierr = ComputePoint(lat, modes, fo, sim, so, zero_one, so.omega[idx % no], so.energy[idx / no], &pt);
-    PetscCall(PetscPopErrorHandler());
+    PetscErrorCode ierr = 0;
+    char msg[1024];
+    PetscCall(CaptureError([&]() { return ComputePoint(lat, modes, fo, sim, so, zero_one, so.omega[idx % no], so.energy[idx / no], &pt); }, &ierr, msg,
+                           sizeof(msg)));
+    if (IsInterrupt(ierr)) {
+      PetscCall(queue.Stop());
+      break;
+    }
     if (ierr) { // one failed run (e.g. a diverging integration) is flagged; the sweep goes on
-      const char *text;
-      char *specific = NULL;
-      PetscCall(PetscErrorMessage(ierr, &text, &specific));
       std::fprintf(stderr, "nltopo: warning: sweep point E* = %g, omega = %g failed (flagged failed = 1): %s\n", (double)so.energy[idx / no],
-                   (double)so.omega[idx % no], specific && specific[0] ? specific : text);
+                   (double)so.omega[idx % no], msg);
       const PetscReal nan = std::numeric_limits<PetscReal>::quiet_NaN();
       pt = SweepPoint();
       pt.mcr = pt.t_off = pt.kcorr = pt.nl_ratio = pt.amplitude = pt.energy_final = nan;
       pt.failed = 1;
     }
-    PetscCallAbort(PETSC_COMM_WORLD, journal.Append(idx, pt)); // a rank that cannot journal stops every rank
+    PetscCall(CaptureError([&]() { return journal.Append(idx, pt); }, &failed, fail_msg, sizeof(fail_msg)));
+    if (failed) { // a rank that cannot journal stops every rank
+      PetscCall(queue.Stop());
+      break;
+    }
     computed++;
     if (!rank) { // rank 0 merges what every rank journaled: checkpoint file and progress
       PetscCall(PetscTime(&now));
       const bool ck = now - t_last_ck >= so.checkpoint, pr = so.progress > 0 && (tty || now - t_last_pr >= so.progress);
       if (ck || pr) {
-        PetscInt lines;
-        PetscCallAbort(PETSC_COMM_WORLD, grid.MergeJournals(path, &lines));
-        if (ck) {
-          PetscCallAbort(PETSC_COMM_WORLD, WriteSweep(path, grid, so, computed, now - t_start));
-          t_last_ck = now;
+        PetscCall(CaptureError(
+          [&]() -> PetscErrorCode {
+            PetscInt lines;
+            PetscFunctionBeginUser;
+            PetscCall(grid.MergeJournals(path, &lines));
+            if (ck) PetscCall(WriteSweep(path, grid, so, computed, now - t_start, false));
+            PetscFunctionReturn(0);
+          },
+          &failed, fail_msg, sizeof(fail_msg)));
+        if (failed) {
+          PetscCall(queue.Stop());
+          break;
         }
+        if (ck) t_last_ck = now;
         if (pr && (tty ? now - t_last_pr >= 0.5 : true)) {
           const PetscInt d = grid.Done();
           const double rate = (d - (PetscInt)(grid.Size() - todo.size())) / (now - t_loop);
@@ -337,31 +371,53 @@ PetscErrorCode SweepStudy(MPI_Comm comm)
     }
   }
   journal.Close();
-  PetscCall(AuditOptionsBeforeCommit(comm)); // collective; rank 0 alone commits the file below
   PetscCallMPI(MPI_Barrier(comm)); // every journal is complete
   PetscCall(PetscLogStagePop());
+  // A journal or checkpoint failure: every rank fails with its message; the
+  // last checkpoint and the journals stay for -sweep_resume.
+  PetscCall(FailTogether(comm, failed, fail_msg));
+  PetscCall(AuditOptionsBeforeCommit(comm)); // collective; rank 0 alone commits the file below
 
   PetscCall(PetscLogStagePush(Log().write));
   PetscInt total_computed = 0;
+  int sig;
+  PetscCall(InterruptRequested(comm, &sig));
   PetscCallMPI(MPI_Reduce(&computed, &total_computed, 1, MPIU_INT, MPI_SUM, 0, comm));
+  PetscInt done_now = 0;
   if (!rank) {
-    PetscInt lines;
-    PetscCall(grid.MergeJournals(path, &lines));
-    PetscCall(PetscTime(&now));
-    PetscCall(WriteSweep(path, grid, so, total_computed, now - t_start));
-    for (const std::string &f : JournalFiles(path)) std::remove(f.c_str());
-    PetscInt missed = 0, failed = 0;
-    for (size_t i = 0; i < grid.Size(); i++) {
-      missed += grid.done[i] && !grid.pts[i].reached && !grid.pts[i].failed;
-      failed += grid.done[i] && grid.pts[i].failed;
+    // The journals hold every point done; merged into -output they are no
+    // longer needed, also when the sweep was interrupted (the file is then
+    // complete = 0 and -sweep_resume continues from it alone).
+    PetscCall(CaptureError(
+      [&]() -> PetscErrorCode {
+        PetscInt lines;
+        PetscFunctionBeginUser;
+        PetscCall(grid.MergeJournals(path, &lines));
+        PetscCall(PetscTime(&now));
+        done_now = grid.Done();
+        PetscCall(WriteSweep(path, grid, so, total_computed, now - t_start, done_now == (PetscInt)grid.Size()));
+        PetscFunctionReturn(0);
+      },
+      &failed, fail_msg, sizeof(fail_msg)));
+    if (!failed) {
+      for (const std::string &f : JournalFiles(path)) std::remove(f.c_str());
+      PetscInt missed = 0, nfailed = 0;
+      for (size_t i = 0; i < grid.Size(); i++) {
+        missed += grid.done[i] && !grid.pts[i].reached && !grid.pts[i].failed;
+        nfailed += grid.done[i] && grid.pts[i].failed;
+      }
+      PetscCall(PetscPrintf(PETSC_COMM_SELF, "%s  computed %" PetscInt_FMT " points in %.2f s (%.2f points/s on %d ranks); %" PetscInt_FMT
+                                             " point(s) never reached E* (reached = 0), %" PetscInt_FMT " failed (failed = 1)\n  wrote %s\n",
+                            tty ? "\n" : "", total_computed, (double)(now - t_loop), total_computed / std::max(1e-9, (double)(now - t_loop)), size, missed,
+                            nfailed, path.c_str()));
     }
-    PetscCall(PetscPrintf(PETSC_COMM_SELF, "%s  computed %" PetscInt_FMT " points in %.2f s (%.2f points/s on %d ranks); %" PetscInt_FMT
-                                           " point(s) never reached E* (reached = 0), %" PetscInt_FMT " failed (failed = 1)\n  wrote %s\n",
-                          tty ? "\n" : "", total_computed, (double)(now - t_loop), total_computed / std::max(1e-9, (double)(now - t_loop)), size, missed, failed,
-                          path.c_str()));
   }
-  PetscCallMPI(MPI_Barrier(comm));
+  PetscCall(FailTogether(comm, failed, fail_msg));
+  PetscCallMPI(MPI_Bcast(&done_now, 1, MPIU_INT, 0, comm));
   PetscCall(PetscLogStagePop());
+  PetscCheck(!sig || done_now == (PetscInt)grid.Size(), comm, PETSC_ERR_SIG,
+             "interrupted by %s between sweep points (%" PetscInt_FMT " of %zu done, %" PetscInt_FMT " by this run); partial output %s (complete = 0); -sweep_resume continues it",
+             SignalName(sig), done_now, grid.Size(), total_computed, path.c_str());
   PetscFunctionReturn(0);
 }
 

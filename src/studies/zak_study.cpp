@@ -14,6 +14,7 @@
 #include "core/errors.hpp"
 #include "core/log.hpp"
 #include "core/options_audit.hpp"
+#include "core/signals.hpp"
 #include "core/work_queue.hpp"
 #include "diagnostics/phase.hpp"
 #include "io/output.hpp"
@@ -137,7 +138,6 @@ PetscErrorCode ZakStudyOptions(MPI_Comm comm)
   SimulationOptions sim;
   LinearModesOptions mo;
   ZakOptions zo;
-  std::string path;
   PetscFunctionBeginUser;
   PetscCall(ZakOptionsFromOptions(comm, &lp, &zo));
   PetscCall(ToneBurstOptionsFromOptions(comm, lp, &fo));
@@ -145,7 +145,7 @@ PetscErrorCode ZakStudyOptions(MPI_Comm comm)
   PetscCall(LinearModesOptionsFromOptions(comm, &mo));
   PetscCall(DeclareEPS(comm, "linear_"));
   PetscCall(DeclareTS(comm, "sim_"));
-  PetscCall(OutputPathFromOptions(comm, "zak", &path));
+  PetscCall(DeclareOutputOptions(comm, "zak"));
   PetscFunctionReturn(0);
 }
 
@@ -186,9 +186,19 @@ PetscErrorCode ZakStudy(MPI_Comm comm)
 
   PetscCall(PetscLogStagePush(Log().solve));
   std::vector<PetscReal> res; // run r = 2 e + edge
-  PetscCall(RunDistributed(comm, 2 * ne, width,
-                           [&](PetscInt r, PetscReal *row) { return PhaseRun(lat, modes, fo, sim, zo, edge_mode[r % 2], zo.energy[r / 2], row); }, &res));
+  std::vector<PetscInt> ran;
+  const PetscErrorCode irun = RunDistributed(
+    comm, 2 * ne, width, [&](PetscInt r, PetscReal *row) { return PhaseRun(lat, modes, fo, sim, zo, edge_mode[r % 2], zo.energy[r / 2], row); }, &res, &ran);
   PetscCall(PetscLogStagePop());
+  if (!IsInterrupt(irun)) PetscCall(irun);
+  const bool interrupted = IsInterrupt(irun); // a stop signal: the runs done are written, complete = 0
+  const PetscInt nran = (PetscInt)std::count(ran.begin(), ran.end(), 1);
+  PetscCheck(!interrupted || nran > 0, comm, PETSC_ERR_SIG, "interrupted by %s before the first zak run ended; no output written", SignalName(StopSignalSeen()));
+  for (PetscInt r = 0; r < 2 * ne; r++)
+    if (!ran[r]) { // not run: reached 0, NaN phases
+      res[r * width] = 0;
+      for (PetscInt k = 1; k < width; k++) res[r * width + k] = std::numeric_limits<PetscReal>::quiet_NaN();
+    }
 
   // Threshold: the lowest energy at which phi_0 and phi_pi are no longer distinct.
   std::vector<PetscReal> p0m(ne), p0d(ne), ppm(ne), ppd(ne), thm(ne), thd(ne), w0(ne * zo.windows), wp(ne * zo.windows), mcr0(ne), mcrp(ne);
@@ -227,6 +237,7 @@ PetscErrorCode ZakStudy(MPI_Comm comm)
   PetscCall(WriteArray(v, g, "mcr0", mcr0));
   PetscCall(WriteArray(v, g, "mcrpi", mcrp));
   PetscCall(WriteIntArray(v, g, "reached", reached, 2));
+  PetscCall(WriteIntArray(v, g, "done", ran, 2)); // 0: not run (a stop signal came first)
   PetscCall(WriteAttr(v, g, "energy_threshold", threshold));
   PetscCall(WriteAttr(v, g, "energy_last_distinct", last_distinct));
   PetscCall(WriteAttr(v, g, "omega0", modes.Omega()[edge_mode[0]]));
@@ -235,8 +246,10 @@ PetscErrorCode ZakStudy(MPI_Comm comm)
   PetscCall(WriteAttr(v, g, "threshold_rule",
                       "lowest E at which theta = phi_pi - phi_0 of the means or of the medians over cells and windows is more than theta_tol from pi (-1: never in range)"));
   PetscCall(PetscTime(&t_end));
-  PetscCall(out.Commit("zak", t_end - t_start));
+  PetscCall(out.Commit("zak", t_end - t_start, !interrupted));
   PetscCall(PetscLogStagePop());
+  PetscCheck(!interrupted, comm, PETSC_ERR_SIG, "interrupted by %s between zak runs (%" PetscInt_FMT " of %" PetscInt_FMT " done); partial output %s (complete = 0)",
+             SignalName(StopSignalSeen()), nran, 2 * ne, path.c_str());
   PetscCall(PetscPrintf(comm, "  wrote %s\n", path.c_str()));
   PetscFunctionReturn(0);
 }

@@ -1,6 +1,7 @@
 #include "timeint/simulation.hpp"
 #include <petsc/private/tsimpl.h> // ts->ops->rollback: can the type locate events?
 #include "core/log.hpp"
+#include "core/signals.hpp"
 #include "diagnostics/mcr.hpp"
 #include <cmath>
 #include <cstring>
@@ -192,6 +193,11 @@ PetscErrorCode PostStep(TS ts)
   EnergyParts e;
   PetscFunctionBeginUser;
   PetscCall(TSGetApplicationContext(ts, &run));
+  {
+    PetscInt step;
+    PetscCall(TSGetStepNumber(ts, &step));
+    PetscCall(CheckInterruptAtStep(run->lat->Comm(), step)); // a stop signal ends the run here
+  }
   PetscCall(TSGetTime(ts, &t));
   PetscCall(TSGetSolution(ts, &z));
   PetscCall(run->EnergyAt(z, &e));
@@ -370,6 +376,7 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
     PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
     const PetscErrorCode ierr = TSSolve(ts, z);
     PetscCall(PetscPopErrorHandler());
+    PetscCheck(!IsInterrupt(ierr), comm, PETSC_ERR_SIG, "%s", ""); // stopped by a signal: passed on, silent
     if (ierr) {
       const char *text = NULL;
       char *specific = NULL;

@@ -16,8 +16,10 @@ run1 -options_file "$SRC/options/fep.opts" -cont_branch insulated -floquet 0 -co
 run1 -options_file "$SRC/options/fep_long.opts" -lattice_cells 25 -floquet 0 "${common[@]}" -output mf102.h5 > mf102.txt
 run2 -options_file "$SRC/options/fep_long.opts" -lattice_cells 250 -floquet 0 "${common[@]}" -output mf1002.h5 > mf1002.txt
 # enough eigensolver restarts that every multiplier converges (an unconverged one makes the orbit "not shown stable")
-run1 -options_file "$SRC/options/fep_long.opts" -lattice_cells 25 -cont_energy_max 1 -cont_verbose 0 -floquet_mf_eps_max_it 40 -output floquet.h5 > floquet.txt
-# -cont_resume on 2 ranks: the E <= 1 branch above, continued to E = 3
+run1 -options_file "$SRC/options/fep_long.opts" -lattice_cells 25 -cont_energy_max 1 -cont_verbose 0 -cont_max_change 0.2 -floquet_mf_eps_max_it 40 -output floquet.h5 > floquet.txt
+# -cont_resume on 2 ranks: the E <= 1 branch above, continued to E = 3 (with
+# the numerics it was computed with: a resume refuses others), without the
+# multipliers (-floquet 0: their options then do not count)
 run2 -options_file "$SRC/options/fep_long.opts" -lattice_cells 25 -floquet 0 "${common[@]}" -cont_resume floquet.h5 -output resumed.h5 > resumed.txt
 grep -q "resumed after point" resumed.txt
 $PY - <<'PYEOF'

@@ -1,0 +1,43 @@
+#pragma once
+// SIGINT and SIGTERM stop a run at its next safe point (README.md "Signals and
+// resume rules"). The handler only records the signal (a volatile
+// sig_atomic_t); the studies poll it where they can stop without losing what
+// is done, write that (root attribute complete = 0) and exit non-zero with
+//   nltopo: interrupted by SIGTERM at <safe point>; partial output <file> (complete = 0)
+// A second signal takes the default action: the process dies at once.
+#include <petscsys.h>
+
+namespace nltopo {
+
+// Installs the handler for SIGINT and SIGTERM (replacing PETSc's). Call once,
+// after PetscInitialize.
+void InstallStopSignalHandlers();
+
+// The stop signal this process received (0: none). Not collective; async-signal safe to read.
+int StopSignalLocal();
+
+// The stop signal any rank of comm received (0: none): MPI_Allreduce MAX of the
+// local flags (no communication on a one-rank comm). Collective on comm.
+PetscErrorCode InterruptRequested(MPI_Comm comm, int *sig);
+
+// The largest signal number any InterruptRequested has returned in this process (0: none).
+int StopSignalSeen();
+
+// "SIGINT", "SIGTERM" or "signal <n>".
+const char *SignalName(int sig);
+
+// Returns the silent error PETSC_ERR_SIG (empty message: OneLineErrorHandler
+// prints nothing) when InterruptRequested(comm). Deep inside a computation
+// (a time step, a shooting residual) this unwinds to the study, which writes
+// what it has and raises the one-line message. Collective on comm.
+PetscErrorCode CheckInterrupt(MPI_Comm comm);
+
+// CheckInterrupt inside a time integration, after step number `step`: at every
+// step on one rank (a flag read), at every 16th step (the same steps on every
+// rank) across ranks. Collective on comm.
+PetscErrorCode CheckInterruptAtStep(MPI_Comm comm, PetscInt step);
+
+// Whether ierr is that error: the run was interrupted, not failed.
+inline bool IsInterrupt(PetscErrorCode ierr) { return ierr == PETSC_ERR_SIG; }
+
+} // namespace nltopo

@@ -1,0 +1,233 @@
+#include "io/run_options.hpp"
+#include "io/input.hpp"
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <sys/stat.h>
+#include <vector>
+
+namespace nltopo {
+
+namespace {
+
+enum class Kind { Ignore, Extent, Physics };
+
+bool StartsWith(const std::string &s, const char *p) { return s.compare(0, std::strlen(p), p) == 0; }
+
+Kind Classify(const std::string &key)
+{
+  static const char *physics_prefixes[] = {"-lattice_", "-force_", "-sim_",  "-nnm_", "-cont_",       "-floquet",
+                                           "-linear_",  "-sweep_", "-kcorr_", "-zak_", "-stability_", "-perturb_"};
+  static const char *bookkeeping[] = {"-cont_resume",   "-sweep_resume", "-cont_checkpoint_seconds", "-sweep_checkpoint",
+                                      "-sweep_progress", "-sim_progress", "-cont_verbose"};
+  static const char *extent[] = {"-cont_energy_max", "-cont_max_points", "-cont_omega_max",     "-cont_mcr_min",
+                                 "-cont_branch",     "-sim_store_u",     "-sim_store_u_stride", "-sim_sample_dt"};
+  if (std::none_of(std::begin(physics_prefixes), std::end(physics_prefixes), [&](const char *p) { return StartsWith(key, p); })) return Kind::Ignore;
+  for (const char *b : bookkeeping)
+    if (key == b) return Kind::Ignore;
+  for (const char *d : {"monitor", "_view", "converged_reason"})
+    if (key.find(d) != std::string::npos) return Kind::Ignore;
+  for (const char *e : extent)
+    if (key == e) return Kind::Extent;
+  return Kind::Physics;
+}
+
+// Options nltopo itself puts into the database when the user did not: absent = this value.
+const std::map<std::string, std::string> &InternalDefaults()
+{
+  static const std::map<std::string, std::string> d = {{"-nnm_start_pc_svd_zero_sing", "1e-9"}};
+  return d;
+}
+
+std::string Lower(std::string s)
+{
+  for (char &c : s) c = (char)std::tolower((unsigned char)c);
+  return s;
+}
+
+// A key is "-" followed by a letter (so -0.5 and -.5 are values), as PETSc reads them.
+bool IsKey(const std::string &tok) { return tok.size() > 1 && tok[0] == '-' && std::isalpha((unsigned char)tok[1]); }
+
+// PetscOptionsGetAll's "-a 1 -b -c x y" as {-a: "1", -b: "", -c: "x y"} (names lower-case: PETSc's are case-insensitive).
+std::map<std::string, std::string> Parse(const std::string &all)
+{
+  std::map<std::string, std::string> m;
+  std::string key;
+  size_t i = 0;
+  while (i < all.size()) {
+    while (i < all.size() && std::isspace((unsigned char)all[i])) i++;
+    size_t j = i;
+    while (j < all.size() && !std::isspace((unsigned char)all[j])) j++;
+    if (j == i) break;
+    const std::string tok = all.substr(i, j - i);
+    i = j;
+    if (IsKey(tok)) {
+      key = Lower(tok);
+      m[key] = "";
+    } else if (!key.empty()) {
+      std::string &v = m[key];
+      v += (v.empty() ? "" : " ") + tok;
+    }
+  }
+  return m;
+}
+
+// One element of a value: a number, a boolean, or a string.
+bool SameElement(std::string a, std::string b)
+{
+  auto number = [](const std::string &s, double *x) {
+    if (s.empty()) return false;
+    char *end;
+    errno = 0;
+    *x = std::strtod(s.c_str(), &end);
+    return *end == 0 && errno == 0;
+  };
+  auto boolean = [](std::string s) -> int {
+    s = Lower(s);
+    if (s.empty() || s == "true" || s == "yes" || s == "on") return 1;
+    if (s == "false" || s == "no" || s == "off") return 0;
+    return -1;
+  };
+  double x, y;
+  int bx = boolean(a), by = boolean(b);
+  if (bx >= 0) a = bx ? "1" : "0";
+  if (by >= 0) b = by ? "1" : "0";
+  if (number(a, &x) && number(b, &y)) return x == y;
+  return Lower(a) == Lower(b);
+}
+
+bool SameValue(const std::string &a, const std::string &b)
+{
+  auto split = [](const std::string &s) {
+    std::vector<std::string> v;
+    size_t i = 0;
+    for (;;) {
+      size_t j = s.find(',', i);
+      v.push_back(s.substr(i, j == std::string::npos ? std::string::npos : j - i));
+      if (j == std::string::npos) break;
+      i = j + 1;
+    }
+    return v;
+  };
+  const auto va = split(a), vb = split(b);
+  if (va.size() != vb.size()) return false;
+  for (size_t k = 0; k < va.size(); k++)
+    if (!SameElement(va[k], vb[k])) return false;
+  return true;
+}
+
+std::string Shown(const std::string &key, const std::string &value) { return value.empty() ? key : key + " " + value; }
+
+// Rank 0's result, on every rank: a non-empty message fails all of them.
+PetscErrorCode FailIfMessage(MPI_Comm comm, PetscErrorCode code, std::string msg)
+{
+  char buf[2048] = "";
+  PetscMPIInt rank;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (!rank) PetscCall(PetscStrncpy(buf, msg.c_str(), sizeof(buf)));
+  PetscCallMPI(MPI_Bcast(buf, sizeof(buf), MPI_CHAR, 0, comm));
+  PetscCheck(!buf[0], comm, code, "%s", buf);
+  PetscFunctionReturn(0);
+}
+
+std::string RunOptions()
+{
+  char *opts = NULL;
+  std::string s;
+  if (!PetscOptionsGetAll(NULL, &opts) && opts) s = opts;
+  PetscFree(opts);
+  return s;
+}
+
+} // namespace
+
+std::string FirstOptionDifference(const std::string &file_options, const std::string &run_options, OptionRule rule)
+{
+  const auto f = Parse(file_options), r = Parse(run_options);
+  // Floquet multipliers post-process each stored orbit and never feed back: a
+  // resume that does not compute them (-floquet off) ignores their options.
+  const auto fl = r.find("-floquet");
+  const bool floquet_now = fl != r.end() && SameElement(fl->second, "1");
+  auto compared = [&](const std::string &key) {
+    const Kind k = Classify(key);
+    if (rule == OptionRule::Resume && !floquet_now && StartsWith(key, "-floquet")) return false;
+    return k == Kind::Physics || (k == Kind::Extent && rule == OptionRule::Overwrite);
+  };
+  std::map<std::string, int> keys;
+  for (const auto &kv : f) keys[kv.first] |= 1;
+  for (const auto &kv : r) keys[kv.first] |= 2;
+  for (const auto &k : keys) {
+    const std::string &key = k.first;
+    if (!compared(key)) continue;
+    const auto def = InternalDefaults().find(key);
+    const bool in_f = k.second & 1, in_r = k.second & 2;
+    const std::string fv = in_f ? f.at(key) : def != InternalDefaults().end() ? def->second : "";
+    const std::string rv = in_r ? r.at(key) : def != InternalDefaults().end() ? def->second : "";
+    const bool known_f = in_f || def != InternalDefaults().end(), known_r = in_r || def != InternalDefaults().end();
+    if (known_f && known_r) {
+      if (!SameValue(fv, rv)) return "with " + Shown(key, fv) + " (now " + (rv.empty() ? key : rv) + ")";
+    } else if (known_f) return "with " + Shown(key, fv) + " (now not given)";
+    else return "without " + key + " (now " + (rv.empty() ? key : rv) + ")";
+  }
+  return "";
+}
+
+bool SameFile(const std::string &a, const std::string &b)
+{
+  struct stat sa, sb;
+  if (!stat(a.c_str(), &sa) && !stat(b.c_str(), &sb)) return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+  return a == b;
+}
+
+PetscErrorCode CheckResumeOptions(MPI_Comm comm, const std::string &file, const char *study, const char *what)
+{
+  PetscMPIInt rank;
+  std::string msg;
+  struct stat st;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (!rank && !stat(file.c_str(), &st)) { // a missing file is the caller's error (it names what it expected)
+    std::string s, o;
+    if (!ReadRootAttribute(file, "study", &s) || !ReadRootAttribute(file, "options", &o))
+      msg = std::string(what) + " " + file + ": not an nltopo output (no root attributes study and options)";
+    else if (s != study) msg = std::string(what) + " " + file + " was written by -study " + s + " (now " + study + ")";
+    else {
+      const std::string d = FirstOptionDifference(o, RunOptions(), OptionRule::Resume);
+      if (!d.empty()) msg = std::string(what) + " " + file + " was written " + d;
+    }
+  }
+  PetscCall(FailIfMessage(comm, PETSC_ERR_USER, msg));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CheckOverwrite(MPI_Comm comm, const std::string &path, const char *study, PetscBool overwrite)
+{
+  PetscMPIInt rank;
+  std::string msg;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (!rank && !overwrite) {
+    std::string s, o;
+    long complete = 1;
+    if (ReadRootAttribute(path, "study", &s)) { // an nltopo output
+      ReadRootAttribute(path, "options", &o);
+      ReadRootAttribute(path, "complete", &complete);
+      const std::string held = complete ? "the complete output" : "a partial output (complete = 0)";
+      std::string d;
+      if (s != study) d = held + " of -study " + s + " (this run: -study " + study + ")";
+      else {
+        d = FirstOptionDifference(o, RunOptions(), OptionRule::Overwrite);
+        if (!d.empty()) d = held + " of a run " + d;
+      }
+      if (!d.empty()) msg = "-output " + path + " holds " + d + "; choose another -output or give -output_overwrite";
+    }
+  }
+  PetscCall(FailIfMessage(comm, PETSC_ERR_FILE_WRITE, msg));
+  PetscFunctionReturn(0);
+}
+
+} // namespace nltopo

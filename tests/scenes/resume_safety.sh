@@ -1,0 +1,64 @@
+# Resume and overwrite rules (README.md "Signals and resume rules"), at 1 and 2
+# ranks: -sweep_resume / -cont_resume refuse a file written with other physics
+# or numerics with one line naming the first differing option, and accept
+# bookkeeping and extent changes; a fresh run refuses to replace the output of
+# another study or of other options (the file is left byte for byte as it was)
+# unless -output_overwrite is given; the same scene may be re-run into its file.
+source "$(dirname "$0")/common.bash"
+LIMIT=120
+
+for np in 1 2; do
+  if [ "$np" -eq 1 ]; then RUN=(timeout "$LIMIT" "$NLTOPO"); else RUN=(timeout "$LIMIT" "$MPIEXEC" -q -n 2 "$NLTOPO"); fi
+  ok() { "${RUN[@]}" "$@" -options_left > ok.txt 2> ok.err || { cat ok.err; echo "FAILED (np $np): $*"; exit 1; }; }
+  refused() { # refused <pattern> <file that must stay unchanged> nltopo args...
+    local pattern=$1 keep=$2 rc=0
+    shift 2
+    cp "$keep" keep.copy
+    "${RUN[@]}" "$@" > no.txt 2> no.err || rc=$?
+    [ "$rc" -ne 0 ] && [ "$rc" -ne 124 ] || { cat no.err; echo "FAILED (np $np, exit $rc): $*"; exit 1; }
+    [ "$(grep -c . no.err)" -eq 1 ] && grep -q -- "$pattern" no.err || { cat no.err; echo "FAILED (np $np): not one line naming '$pattern'"; exit 1; }
+    cmp -s "$keep" keep.copy || { echo "FAILED (np $np): $keep was changed"; exit 1; }
+    if ls ./*.tmp.* > /dev/null 2>&1; then echo "FAILED (np $np): temporary left: $(ls ./*.tmp.*)"; exit 1; fi
+    echo "ok (np $np): $(cat no.err)"
+  }
+  study_of() { $PY -c "import h5py; s = h5py.File('$1', 'r').attrs['study']; print(s.decode() if isinstance(s, bytes) else s)"; }
+
+  # -sweep_resume
+  SW=(-study sweep -sweep_omega_n 2 -sweep_energy_n 2 -sweep_energy_min 1e-3 -sweep_energy_max 1e-2 -sim_t_final 300)
+  ok "${SW[@]}" -output sw$np.h5
+  refused "-sweep_resume sw$np.h5 was written without -force_tau_periods (now 20)" sw$np.h5 "${SW[@]}" -force_tau_periods 20 -sweep_resume -output sw$np.h5
+  refused "-sweep_resume sw$np.h5 was written without -sim_ts_type (now cn)" sw$np.h5 "${SW[@]}" -sim_ts_type cn -sweep_resume -output sw$np.h5
+  refused "-sweep_resume sw$np.h5 was written without -lattice_cubic (now 1)" sw$np.h5 "${SW[@]}" -lattice_cubic 1 -sweep_resume -output sw$np.h5
+  refused "-sweep_resume sw$np.h5 was written with -sweep_energy_max 1e-2 (now 0.1)" sw$np.h5 "${SW[@]}" -sweep_energy_max 0.1 -sweep_resume -output sw$np.h5
+  # bookkeeping differs, and a value written another way (1e-2 = 0.01): accepted
+  ok "${SW[@]}" -sweep_energy_max 0.01 -sweep_progress 0 -sweep_checkpoint 100 -sweep_resume -output sw$np.h5
+  grep -q "resuming sw$np.h5: 4 of 4 points done" ok.txt
+
+  # -cont_resume
+  CO=(-study continuation -lattice_layout interface -lattice_cells 5 -lattice_cubic 0.5 -cont_energy_max 1e-4 -cont_max_points 3 -cont_verbose 0)
+  ok "${CO[@]}" -output co$np.h5
+  refused "-cont_resume co$np.h5 was written with -lattice_cubic 0.5 (now 2)" co$np.h5 "${CO[@]}" -lattice_cubic 2 -cont_resume co$np.h5 -output res$np.h5
+  refused "-cont_resume co$np.h5 was written without -nnm_steps_per_period (now 64)" co$np.h5 "${CO[@]}" -nnm_steps_per_period 64 -cont_resume co$np.h5 -output res$np.h5
+  refused "-cont_resume co$np.h5 was written without -lattice_gamma (now 0.3)" co$np.h5 "${CO[@]}" -lattice_gamma 0.3 -cont_resume co$np.h5 -output res$np.h5
+  refused "-cont_resume sw$np.h5 was written by -study sweep (now continuation)" sw$np.h5 "${CO[@]}" -cont_resume sw$np.h5 -output res$np.h5
+  [ ! -e res$np.h5 ] || { echo "FAILED: a refused resume wrote its -output"; exit 1; }
+  # extent (-cont_energy_max, -cont_max_points) and diagnostics may change; into the same file
+  ok "${CO[@]}" -lattice_cubic 5e-1 -cont_energy_max 2e-4 -cont_max_points 6 -nnm_snes_converged_reason -cont_resume co$np.h5 -output co$np.h5
+  grep -q "stored tangent and step" ok.txt
+  $PY -c "import h5py; f = h5py.File('co$np.h5', 'r'); assert f.attrs['complete'] == 1 and f['continuation/insulated'].attrs['points'] > 3"
+
+  # overwrite: another study's complete output, then the same study with other options
+  ok -study linear -output lin$np.h5
+  refused "-output lin$np.h5 holds the complete output of -study linear (this run: -study simulate); choose another -output or give -output_overwrite" lin$np.h5 \
+    -study simulate -sim_t_final 50 -output lin$np.h5
+  ok -study linear -output lin$np.h5 # the same scene again
+  refused "-output lin$np.h5 holds the complete output of a run without -lattice_cells (now 10)" lin$np.h5 -study linear -lattice_cells 10 -output lin$np.h5
+  refused "-output co$np.h5 holds the complete output of a run with -cont_energy_max 2e-4 (now 1e-4)" co$np.h5 "${CO[@]}" -output co$np.h5
+  ok -study simulate -sim_t_final 50 -output lin$np.h5 -output_overwrite
+  [ "$(study_of lin$np.h5)" = simulate ] || { echo "FAILED: -output_overwrite did not replace lin$np.h5"; exit 1; }
+  # a file that is not an nltopo output is replaced as before
+  echo "not hdf5" > plain$np.h5
+  ok -study linear -output plain$np.h5
+  [ "$(study_of plain$np.h5)" = linear ]
+done
+echo "resume safety scene OK"

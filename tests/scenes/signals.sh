@@ -1,0 +1,162 @@
+# Stop signals (README.md "Signals and resume rules"). SIGTERM to mpiexec (by
+# its process id) of a 2-rank sweep and of a 2-rank continuation, and to a
+# serial continuation and stability study: each stops at its next safe point with one line
+# "nltopo: interrupted by SIGTERM ...", a non-zero exit, its output marked
+# complete = 0 and no temporary (or journal) left; the resumed run equals an
+# uninterrupted one bit for bit. Then failures at 2 ranks leave no temporary
+# and do not hang. Every run is under a time limit.
+source "$(dirname "$0")/common.bash"
+LIMIT=180 # seconds for any one run
+# OpenMPI's mpiexec (4.1) forwards SIGTERM/SIGINT as SIGCONT at once, SIGTERM
+# after odls_base_sigkill_timeout (1 s) and SIGKILL after as long again: the
+# runs below stop within that second (README.md). -q: no mpiexec banner.
+M2=("$MPIEXEC" -q -n 2)
+
+# wait_limited <pid>: RC = its exit status; kills it (and fails) if it outlives LIMIT
+wait_limited() {
+  local pid=$1
+  if ! timeout "$LIMIT" tail --pid="$pid" -f /dev/null; then
+    kill -KILL "$pid" 2> /dev/null || true
+    echo "FAILED: process $pid still running after $LIMIT s" >&2
+    exit 1
+  fi
+  RC=0
+  wait "$pid" || RC=$?
+}
+# wait_until <seconds> <command...>: polls until the command succeeds
+wait_until() {
+  local limit=$1
+  shift
+  for _ in $(seq 1 $((limit * 20))); do
+    "$@" && return 0
+    sleep 0.05
+  done
+  echo "FAILED: timed out waiting for: $*" >&2
+  exit 1
+}
+# check_interrupted <rc> <stderr file> <output file> <pattern>: non-zero exit, one
+# nltopo line naming SIGTERM and the output, the file complete = 0, no temporary
+check_interrupted() {
+  local rc=$1 err=$2 out=$3 pattern=$4
+  [ "$rc" -ne 0 ] || { echo "FAILED: exit 0 after SIGTERM ($out)"; exit 1; }
+  if [ "$(grep -c '^nltopo:' "$err")" -ne 1 ] || ! grep -q -- "^nltopo: interrupted by SIGTERM $pattern.*partial output $out (complete = 0)" "$err"; then
+    cat "$err"
+    echo "FAILED: not one 'interrupted' line for $out"
+    exit 1
+  fi
+  if ls "$out".tmp.* > /dev/null 2>&1; then echo "FAILED: temporary left: $(ls "$out".tmp.*)"; exit 1; fi
+  $PY -c "import h5py, sys; c = h5py.File('$out', 'r').attrs['complete']; sys.exit(0 if c == 0 else 1)" || { echo "FAILED: $out not complete = 0"; exit 1; }
+  echo "ok (exit $rc): $(grep '^nltopo:' "$err")"
+}
+
+# 1. A 2-rank sweep: SIGTERM to mpiexec once a few points are journaled.
+SW=(-options_file "$SRC/options/sweep_quick.opts" -sweep_omega_n 8 -sweep_energy_n 4 -sweep_energy_min 1e-1 -sweep_energy_max 1e2 -sweep_checkpoint 0.5)
+timeout "$LIMIT" "${M2[@]}" "$NLTOPO" "${SW[@]}" -output sw_full.h5 -options_left > sw_full.txt
+"${M2[@]}" "$NLTOPO" "${SW[@]}" -output sw_int.h5 -options_left > sw_int.txt 2> sw_int.err &
+pid=$!
+journaled() { [ "$( (cat sw_int.h5.journal.* 2> /dev/null || true) | wc -l)" -ge 2 ]; }
+wait_until 120 journaled
+t0=$(date +%s.%N)
+kill -TERM "$pid"
+wait_limited "$pid"
+rc=$RC
+echo "sweep: mpiexec exited $($PY -c "print(round($(date +%s.%N) - $t0, 2))") s after SIGTERM"
+check_interrupted "$rc" sw_int.err sw_int.h5 "between sweep points"
+if ls sw_int.h5.journal.* > /dev/null 2>&1; then echo "FAILED: journals left (they are merged into the file)"; exit 1; fi
+done_before=$($PY -c "import h5py; print(int(h5py.File('sw_int.h5', 'r')['sweep/done'][:].sum()))")
+[ "$done_before" -lt 32 ] || { echo "FAILED: the sweep ended before the signal arrived: nothing to test"; exit 1; }
+timeout "$LIMIT" "${M2[@]}" "$NLTOPO" "${SW[@]}" -output sw_int.h5 -sweep_resume -options_left > sw_res.txt
+DONE_BEFORE=$done_before $PY - <<'PYEOF'
+import h5py, numpy as np, os
+a, f = h5py.File("sw_full.h5", "r"), h5py.File("sw_int.h5", "r")
+assert a.attrs["complete"] == 1 and f.attrs["complete"] == 1
+s, r = a["sweep"], f["sweep"]
+for k in ("mcr", "t_off", "kcorr", "nl_ratio", "done", "reached", "amplitude", "energy_final", "rescalings", "rhs_evals", "steps"):
+    assert np.array_equal(s[k][:], r[k][:], equal_nan=True), ("interrupted + resumed vs uninterrupted", k)
+n0 = int(os.environ["DONE_BEFORE"])
+assert r.attrs["points_computed"] == 32 - n0, (r.attrs["points_computed"], n0)
+print("sweep: SIGTERM after %d of 32 points, resume computed %d; mcr, t_off, kcorr, nl_ratio equal bit for bit" % (n0, 32 - n0))
+PYEOF
+
+# 2. Continuations: SIGTERM between (or inside) the solves of two points; the
+#    resume takes the stored tangent and step, so it goes on exactly as the
+#    uninterrupted run did.
+# compare_branches <uninterrupted> <resumed> <datasets...>
+compare_branches() {
+  local a=$1 b=$2
+  shift 2
+  $PY - "$a" "$b" "$@" <<'PYEOF'
+import h5py, numpy as np, sys
+a, b = (h5py.File(n, "r") for n in sys.argv[1:3])
+assert b.attrs["complete"] == 1
+x, y = a["continuation/insulated"], b["continuation/insulated"]
+for k in sys.argv[3:]:
+    assert x[k].shape == y[k].shape and np.array_equal(x[k][:], y[k][:], equal_nan=True), ("resumed vs uninterrupted", k, x[k].shape, y[k].shape)
+print("%s: %d points, %s equal bit for bit" % (sys.argv[2], x["energy"].shape[0], ", ".join(sys.argv[3:])))
+PYEOF
+}
+points_printed() { [ "$(grep -c ' E = ' "$1" || true)" -ge "$2" ]; }
+
+# 2a. Serial, dense Floquet multipliers at every point: SIGTERM to nltopo itself.
+C1=(-options_file "$SRC/options/fep.opts" -cont_branch insulated -cont_energy_max 10 -cont_verbose 1)
+timeout "$LIMIT" "$NLTOPO" "${C1[@]}" -output c1_full.h5 -options_left > c1_full.txt
+"$NLTOPO" "${C1[@]}" -output c1_int.h5 -options_left > c1_int.txt 2> c1_int.err &
+pid=$!
+wait_until 120 points_printed c1_int.txt 8
+kill -TERM "$pid"
+wait_limited "$pid"
+rc=$RC
+[ "$rc" -eq 143 ] || { echo "FAILED: exit $rc, expected 143 (128 + SIGTERM)"; exit 1; }
+check_interrupted "$rc" c1_int.err c1_int.h5 "after [0-9]* points of branch insulated"
+timeout "$LIMIT" "$NLTOPO" "${C1[@]}" -cont_resume c1_int.h5 -output c1_int.h5 -options_left > c1_res.txt
+grep -q "stored tangent and step" c1_res.txt
+compare_branches c1_full.h5 c1_int.h5 energy omega period mcr beta z0 newton_its multipliers_re multipliers_im max_modulus stable
+
+# 2b. Two ranks: SIGTERM to mpiexec.
+C2=(-options_file "$SRC/options/fep.opts" -cont_branch insulated -floquet 0 -cont_energy_max 100 -cont_verbose 1)
+timeout "$LIMIT" "${M2[@]}" "$NLTOPO" "${C2[@]}" -output c2_full.h5 -options_left > c2_full.txt
+"${M2[@]}" "$NLTOPO" "${C2[@]}" -output c2_int.h5 -options_left > c2_int.txt 2> c2_int.err &
+pid=$!
+wait_until 120 points_printed c2_int.txt 12
+kill -TERM "$pid"
+wait_limited "$pid"
+rc=$RC
+check_interrupted "$rc" c2_int.err c2_int.h5 "after [0-9]* points of branch insulated"
+timeout "$LIMIT" "${M2[@]}" "$NLTOPO" "${C2[@]}" -cont_resume c2_int.h5 -output c2_int.h5 -options_left > c2_res.txt
+grep -q "stored tangent and step" c2_res.txt
+compare_branches c2_full.h5 c2_int.h5 energy omega period mcr beta z0 newton_its
+
+# 2c. Stability (serial): SIGTERM during the second case keeps the first.
+"$NLTOPO" -options_file "$SRC/options/stability.opts" -stability_omega 1.7320508075688772,1.75 -stability_periods 5000 -sim_progress 0 \
+  -output st_int.h5 -options_left > st_int.txt 2> st_int.err &
+pid=$!
+case_done() { grep -q "nltopo stability: omega" st_int.txt; }
+wait_until 120 case_done
+kill -TERM "$pid"
+wait_limited "$pid"
+check_interrupted "$RC" st_int.err st_int.h5 "during stability case 1"
+$PY -c "import h5py; s = h5py.File('st_int.h5', 'r')['stability']; assert list(s.keys()) == ['case0'] and s.attrs['cases_done'] == 1"
+
+# 3. Failures at 2 ranks: one line from nltopo, a non-zero exit, no hang, no temporary.
+expect_fail2() { # expect_fail2 <pattern> <output> nltopo args...
+  local pattern=$1 out=$2
+  shift 2
+  local rc=0
+  timeout "$LIMIT" "${M2[@]}" "$NLTOPO" "$@" -output "$out" > f.txt 2> f.err || rc=$?
+  [ "$rc" -ne 0 ] && [ "$rc" -ne 124 ] || { cat f.err; echo "FAILED (exit $rc): $*"; exit 1; }
+  [ "$(grep -c . f.err)" -eq 1 ] && grep -q -- "$pattern" f.err || { cat f.err; echo "FAILED: not one line naming '$pattern'"; exit 1; }
+  if ls "$out".tmp.* > /dev/null 2>&1; then echo "FAILED: temporary left: $(ls "$out".tmp.*)"; exit 1; fi
+  echo "ok: $(cat f.err)"
+}
+# an error after the output is opened, on every rank (the continuation's first orbit)
+expect_fail2 "no periodic orbit found at -cont_energy_min" fc.h5 -options_file "$SRC/options/fep.opts" -cont_branch insulated -floquet 0 -nnm_start_snes_max_it 1
+# a check after the branch is continued (stability)
+expect_fail2 "-stability_omega 1.95: the insulated branch ends" fs.h5 -options_file "$SRC/options/stability.opts" -cont_energy_max 1 -stability_omega 1.95
+# a run that fails on one rank's own lattice (zak, perturb): every rank fails with its message
+expect_fail2 "time integration stopped at t = " fz.h5 -options_file "$SRC/options/zak.opts" -zak_energy_list 0.01,0.1 -sim_ts_max_steps 10
+expect_fail2 "time integration stopped at t = " fp.h5 -options_file "$SRC/options/perturb.opts" -perturb_ensemble 1 -perturb_delta_list 0.1 \
+  -perturb_energy_list 0.1 -sim_ts_max_steps 10
+# one rank cannot write its sweep journal (a directory in the way)
+mkdir -p fj.h5.journal.1 && touch fj.h5.journal.1/keep
+expect_fail2 "cannot write the sweep journal fj.h5.journal.1" fj.h5 -study sweep -sweep_omega_n 2 -sweep_energy_n 2 -sim_t_final 100
+echo "signals scene OK"
