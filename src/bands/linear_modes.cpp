@@ -11,13 +11,15 @@ PetscErrorCode LinearModesOptionsFromOptions(MPI_Comm comm, LinearModesOptions *
 {
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "linear_", "Linear modes (SLEPc EPS on K; solver options -linear_eps_*)", NULL);
-  PetscCall(PetscOptionsInt("-dense_max", "Largest N solved for all eigenpairs; above it, shift-invert around the band edges", NULL,
+  PetscCall(PetscOptionsInt("-dense_max", "Largest N solved for all eigenpairs (at most 10000); above it, shift-invert around the band edges", NULL,
                             o->dense_max, &o->dense_max, NULL));
   PetscCall(PetscOptionsInt("-nev", "Shift-invert path: eigenpairs computed per target", NULL, o->nev, &o->nev, NULL));
   PetscCall(PetscOptionsReal("-target_offset", "Shift-invert path: relative distance of each target outside its band edge (small: fast convergence; not 0: an exact eigenvalue is a zero pivot)",
                              NULL, o->offset, &o->offset, NULL));
   PetscOptionsEnd();
-  PetscCheck(o->nev >= 1, comm, PETSC_ERR_USER, "-linear_nev must be >= 1, got %" PetscInt_FMT, o->nev);
+  // the dense path holds N x N: 10^4 sites is 800 MB
+  PetscCheck(o->dense_max >= 0 && o->dense_max <= 10000, comm, PETSC_ERR_USER, "-linear_dense_max must lie in [0, 10000], got %" PetscInt_FMT, o->dense_max);
+  PetscCheck(o->nev >= 1 && o->nev <= 1000, comm, PETSC_ERR_USER, "-linear_nev must lie in [1, 1000], got %" PetscInt_FMT, o->nev);
   PetscCheck(o->offset > 0 && o->offset < 0.1, comm, PETSC_ERR_USER, "-linear_target_offset must lie in (0, 0.1), got %g", (double)o->offset);
   PetscFunctionReturn(0);
 }

@@ -4,6 +4,8 @@
 
 namespace nltopo {
 
+static const PetscInt kMaxCells = 2500000;
+
 static const char *const kLayoutNames[] = {"interface", "left", "right"};
 
 static const char *const kPerturbationNames[] = {"none", "chiral", "achiral"};
@@ -43,7 +45,7 @@ PetscErrorCode LatticeParamsFromOptions(MPI_Comm comm, LatticeParams *p)
   // model.md's Gamma. Not "-lattice_Gamma": PETSc option names are case-insensitive,
   // so that name IS -lattice_gamma (README.md, "Option names").
   PetscCall(PetscOptionsReal("-cubic", "Cubic coefficient Gamma on every stiff bond (0 = linear lattice)", NULL, p->Gamma, &p->Gamma, NULL));
-  PetscCall(PetscOptionsInt("-cells", "Unit cells per side Nc (interface: N = 4 Nc + 2; left/right: N = 2 Nc)", NULL, p->cells, &p->cells, NULL));
+  PetscCall(PetscOptionsInt("-cells", "Unit cells per side Nc, at most 2.5e6 (interface: N = 4 Nc + 2; left/right: N = 2 Nc)", NULL, p->cells, &p->cells, NULL));
   PetscCall(PetscOptionsEList("-layout", "Lattice layout", NULL, kLayoutNames, 3, kLayoutNames[layout], &layout, NULL));
   PetscCall(PetscOptionsEList("-perturbation", "Random spring perturbation (README.md): chiral keeps diag(K) = k_hat, achiral varies every spring", NULL,
                               kPerturbationNames, 3, kPerturbationNames[pert], &pert, NULL));
@@ -55,13 +57,15 @@ PetscErrorCode LatticeParamsFromOptions(MPI_Comm comm, LatticeParams *p)
   p->perturbation = static_cast<Perturbation>(pert);
   PetscCheck(std::isfinite(p->delta) && p->delta >= 0 && p->delta < 0.5, comm, PETSC_ERR_USER, "-lattice_delta must lie in [0, 0.5), got %g", (double)p->delta);
 
-  PetscCheck(p->cells >= 1 && p->cells <= (PETSC_MAX_INT - 2) / 4, comm, PETSC_ERR_USER, "-lattice_cells must lie in 1..%d, got %" PetscInt_FMT,
-             (int)((PETSC_MAX_INT - 2) / 4), p->cells);
+  // 2.5e6 cells: N ~ 10^7 sites, a few GB for a forced run (the state, TS stages, K and L); more would exhaust memory
+  PetscCheck(p->cells >= 1 && p->cells <= kMaxCells, comm, PETSC_ERR_USER, "-lattice_cells must lie in 1..%d, got %" PetscInt_FMT, (int)kMaxCells, p->cells);
   PetscCheck(std::isfinite(p->k) && p->k > 0, comm, PETSC_ERR_USER, "-lattice_k must be a positive stiffness, got %g", (double)p->k);
+  PetscCheck(p->k >= 1e-6 && p->k <= 1e6, comm, PETSC_ERR_USER, "-lattice_k must lie in [1e-6, 1e6], got %g", (double)p->k);
   PetscCheck(std::isfinite(p->gamma) && p->gamma > -1 && p->gamma < 1, comm, PETSC_ERR_USER,
              "-lattice_gamma must lie in (-1, 1) so that k1 = k(1+gamma) and k2 = k(1-gamma) are positive stiffnesses, got %g", (double)p->gamma);
   PetscCheck(std::isfinite(p->gamma0) && p->gamma0 >= 0, comm, PETSC_ERR_USER, "-lattice_gamma0 must be a non-negative stiffness, got %g", (double)p->gamma0);
-  PetscCheck(std::isfinite(p->Gamma), comm, PETSC_ERR_USER, "-lattice_cubic must be finite, got %g", (double)p->Gamma);
+  PetscCheck(p->gamma0 <= 1e6, comm, PETSC_ERR_USER, "-lattice_gamma0 must lie in [0, 1e6], got %g", (double)p->gamma0);
+  PetscCheck(std::isfinite(p->Gamma) && std::abs(p->Gamma) <= 1e6, comm, PETSC_ERR_USER, "-lattice_cubic must lie in [-1e6, 1e6], got %g", (double)p->Gamma);
   PetscFunctionReturn(0);
 }
 

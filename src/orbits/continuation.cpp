@@ -26,7 +26,15 @@ PetscErrorCode ContinuationOptionsFromOptions(MPI_Comm comm, ContinuationOptions
   PetscOptionsEnd();
   PetscCheck(o->energy_min > 0 && o->energy_max > o->energy_min, comm, PETSC_ERR_USER,
              "-cont_energy_min must be positive and below -cont_energy_max, got %g and %g", (double)o->energy_min, (double)o->energy_max);
-  PetscCheck(o->max_points >= 1, comm, PETSC_ERR_USER, "-cont_max_points must be >= 1, got %" PetscInt_FMT, o->max_points);
+  PetscCheck(o->energy_min >= 1e-12 && o->energy_max <= 1e12, comm, PETSC_ERR_USER,
+             "-cont_energy_min and -cont_energy_max must lie in [1e-12, 1e12], got %g and %g", (double)o->energy_min, (double)o->energy_max);
+  PetscCheck(o->max_points >= 1 && o->max_points <= 1000000, comm, PETSC_ERR_USER, "-cont_max_points must lie in [1, 1e6], got %" PetscInt_FMT, o->max_points);
+  PetscCheck(o->omega_max >= 0 && o->omega_max <= 1e3, comm, PETSC_ERR_USER, "-cont_omega_max must lie in [0, 1e3] (0: no limit), got %g", (double)o->omega_max);
+  PetscCheck(o->ds_min > 0 && o->ds_min < 1, comm, PETSC_ERR_USER, "-cont_ds_min must lie in (0, 1), got %g", (double)o->ds_min);
+  PetscCheck(o->newton_target >= 1 && o->newton_target <= 100, comm, PETSC_ERR_USER, "-cont_newton_target must lie in [1, 100], got %" PetscInt_FMT,
+             o->newton_target);
+  PetscCheck(o->interaction_corr >= 0 && o->interaction_corr <= 1, comm, PETSC_ERR_USER, "-cont_interaction_corr must lie in [0, 1], got %g",
+             (double)o->interaction_corr);
   PetscCheck(o->max_change > 0 && o->max_change < 1, comm, PETSC_ERR_USER, "-cont_max_change must lie in (0, 1), got %g", (double)o->max_change);
   PetscCheck(o->mcr_min >= 0 && o->mcr_min < 1, comm, PETSC_ERR_USER, "-cont_mcr_min must lie in [0, 1), got %g", (double)o->mcr_min);
   PetscFunctionReturn(0);

@@ -17,7 +17,7 @@ PetscErrorCode FlowOptionsFromOptions(MPI_Comm comm, FlowOptions *o)
                               NULL, routes, 2, routes[r], &r, NULL));
   o->route = static_cast<MonodromyRoute>(r);
   PetscOptionsEnd();
-  PetscCheck(o->steps >= 8, comm, PETSC_ERR_USER, "-nnm_steps_per_period must be >= 8, got %" PetscInt_FMT, o->steps);
+  PetscCheck(o->steps >= 8 && o->steps <= 1000000, comm, PETSC_ERR_USER, "-nnm_steps_per_period must lie in [8, 1e6], got %" PetscInt_FMT, o->steps);
   PetscFunctionReturn(0);
 }
 

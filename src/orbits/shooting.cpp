@@ -38,6 +38,8 @@ PetscErrorCode ShootingOptionsFromOptions(MPI_Comm comm, ShootingOptions *o)
                              "amplitude grows by decades, where one absolute tolerance is too tight at the top or too loose at the bottom",
                              NULL, o->orbit_rtol, &o->orbit_rtol, NULL));
   PetscOptionsEnd();
+  PetscCheck(o->start_dense_max >= 0 && o->start_dense_max <= 20000, comm, PETSC_ERR_USER, "-nnm_start_dense_max must lie in [0, 20000], got %" PetscInt_FMT,
+             o->start_dense_max);
   PetscCheck(o->orbit_rtol >= 0 && o->orbit_rtol < 1, comm, PETSC_ERR_USER, "-nnm_orbit_rtol %g: must lie in [0, 1)", (double)o->orbit_rtol);
   PetscCheck(o->parametric_weight > 0 && o->parametric_weight <= 1, comm, PETSC_ERR_USER, "-nnm_mf_pc_parametric_weight %g: must lie in (0, 1]",
              (double)o->parametric_weight);

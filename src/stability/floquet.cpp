@@ -17,7 +17,9 @@ PetscErrorCode FloquetOptionsFromOptions(MPI_Comm comm, FloquetOptions *o)
   PetscCall(PetscOptionsReal("-edge_weight", "Unstable eigenvector: edge (E-E) above this share of its displacement norm in the edge region, bulk (B-B) below 1 minus it, B-E between",
                              NULL, o->edge_weight, &o->edge_weight, NULL));
   PetscOptionsEnd();
-  PetscCheck(o->tol > 0 && o->krein_tol > 0, comm, PETSC_ERR_USER, "-floquet_tol and -floquet_krein_tol must be positive");
+  PetscCheck(o->tol > 0 && o->tol < 1, comm, PETSC_ERR_USER, "-floquet_tol must lie in (0, 1), got %g", (double)o->tol);
+  PetscCheck(o->krein_tol > 0 && o->krein_tol < 1, comm, PETSC_ERR_USER, "-floquet_krein_tol must lie in (0, 1), got %g", (double)o->krein_tol);
+  PetscCheck(o->edge_sites >= 0, comm, PETSC_ERR_USER, "-floquet_edge_sites must be >= 0, got %" PetscInt_FMT, o->edge_sites);
   PetscCheck(o->edge_weight > 0.5 && o->edge_weight < 1, comm, PETSC_ERR_USER, "-floquet_edge_weight must lie in (0.5, 1), got %g", (double)o->edge_weight);
   PetscFunctionReturn(0);
 }

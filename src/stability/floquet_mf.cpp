@@ -35,8 +35,8 @@ PetscErrorCode FloquetMfOptionsFromOptions(MPI_Comm comm, FloquetMfOptions *o)
   PetscCall(PetscOptionsBool("-deflate", "Deflate the trivial pair mu = 1 (span of f(z0) and the family tangent) so that the nev multipliers are nontrivial",
                              NULL, o->deflate, &o->deflate, NULL));
   PetscOptionsEnd();
-  PetscCheck(o->circle_tol > 0, comm, PETSC_ERR_USER, "-floquet_mf_circle_tol must be positive, got %g", (double)o->circle_tol);
-  PetscCheck(o->nev >= 1, comm, PETSC_ERR_USER, "-floquet_mf_nev must be >= 1, got %" PetscInt_FMT, o->nev);
+  PetscCheck(o->circle_tol > 0 && o->circle_tol < 1, comm, PETSC_ERR_USER, "-floquet_mf_circle_tol must lie in (0, 1), got %g", (double)o->circle_tol);
+  PetscCheck(o->nev >= 1 && o->nev <= 1000, comm, PETSC_ERR_USER, "-floquet_mf_nev must lie in [1, 1000], got %" PetscInt_FMT, o->nev);
   o->which = static_cast<FloquetMfWhich>(w);
   PetscFunctionReturn(0);
 }

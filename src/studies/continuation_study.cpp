@@ -354,7 +354,8 @@ PetscErrorCode ReadStudyChoices(MPI_Comm comm, StudyChoices *c)
                                "points; branches it lacks start afresh",
                                NULL, c->resume_file, c->resume_file, sizeof(c->resume_file), &c->resume));
   PetscOptionsEnd();
-  PetscCheck(c->checkpoint_seconds >= 0, comm, PETSC_ERR_USER, "-cont_checkpoint_seconds must be >= 0, got %g", (double)c->checkpoint_seconds);
+  PetscCheck(c->checkpoint_seconds >= 0 && c->checkpoint_seconds <= 1e7, comm, PETSC_ERR_USER, "-cont_checkpoint_seconds must lie in [0, 1e7], got %g",
+             (double)c->checkpoint_seconds);
   if (!set) {
     PetscCall(PetscStrallocpy("insulated", &c->names[0]));
     c->nb = 1;

@@ -3,6 +3,11 @@
 
 namespace nltopo {
 
+// Axis values are frequencies or energies: a sane physical range. The size
+// bound keeps a grid (and its output) to what a run can hold.
+static const PetscReal kAxisMin = 1e-12, kAxisMax = 1e12;
+static const PetscInt kAxisMaxPoints = 100000;
+
 // An axis from -<name>_min/_max/_n/_spacing, or an explicit -<name>_list.
 PetscErrorCode ReadAxis(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char *prefix, const char *name, PetscReal lo, PetscReal hi, PetscInt n, bool log_default, std::vector<PetscReal> *axis)
 {
@@ -32,12 +37,16 @@ PetscErrorCode ReadAxis(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, con
   if (set) {
     PetscCheck(nlist > 0, comm, PETSC_ERR_USER, "-%s%s_list is empty", prefix, name);
     axis->assign(list, list + nlist);
-    for (PetscReal v : *axis) PetscCheck(std::isfinite(v) && v > 0, comm, PETSC_ERR_USER, "-%s%s_list: values must be positive, got %g", prefix, name, (double)v);
+    for (PetscReal v : *axis)
+      PetscCheck(std::isfinite(v) && v >= kAxisMin && v <= kAxisMax, comm, PETSC_ERR_USER, "-%s%s_list: values must lie in [%g, %g], got %g", prefix, name,
+                 (double)kAxisMin, (double)kAxisMax, (double)v);
     PetscFunctionReturn(0);
   }
-  PetscCheck(n >= 1, comm, PETSC_ERR_USER, "-%s%s_n must be >= 1, got %" PetscInt_FMT, prefix, name, n);
+  PetscCheck(n >= 1 && n <= kAxisMaxPoints, comm, PETSC_ERR_USER, "-%s%s_n must lie in [1, %d], got %" PetscInt_FMT, prefix, name, (int)kAxisMaxPoints, n);
   PetscCheck(std::isfinite(lo) && std::isfinite(hi) && lo > 0 && hi >= lo, comm, PETSC_ERR_USER,
              "-%s%s_min/_max must satisfy 0 < min <= max, got %g, %g", prefix, name, (double)lo, (double)hi);
+  PetscCheck(lo >= kAxisMin && hi <= kAxisMax, comm, PETSC_ERR_USER, "-%s%s_min/_max must lie in [%g, %g], got %g, %g", prefix, name, (double)kAxisMin,
+             (double)kAxisMax, (double)lo, (double)hi);
   for (PetscInt i = 0; i < n; i++) {
     const PetscReal s = n > 1 ? (PetscReal)i / (n - 1) : 0;
     axis->push_back(spacing ? lo * std::pow(hi / lo, s) : lo + s * (hi - lo));

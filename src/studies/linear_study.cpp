@@ -20,7 +20,7 @@ static PetscErrorCode BlochOptionsFromOptions(MPI_Comm comm, PetscInt *nq)
   PetscOptionsBegin(comm, "linear_", "Linear study", NULL);
   PetscCall(PetscOptionsInt("-nq", "Wavenumbers for the Bloch bands; the Zak loop uses 2 nq points", NULL, *nq, nq, NULL));
   PetscOptionsEnd();
-  PetscCheck(*nq >= 4 && *nq <= 100000000, comm, PETSC_ERR_USER, "-linear_nq must lie in [4, 1e8], got %" PetscInt_FMT, *nq);
+  PetscCheck(*nq >= 4 && *nq <= 1000000, comm, PETSC_ERR_USER, "-linear_nq must lie in [4, 1e6], got %" PetscInt_FMT, *nq);
   PetscFunctionReturn(0);
 }
 

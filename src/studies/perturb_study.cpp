@@ -81,8 +81,10 @@ static PetscErrorCode PerturbOptionsFromOptions(MPI_Comm comm, PerturbOptions *p
     char *kinds[2];
     PetscOptionsBegin(comm, "perturb_", "Perturbation ensembles", NULL);
     PetscCall(PetscOptionsRealArray("-delta_list", "Perturbation levels delta (mean |relative spring change|)", NULL, dl, &nd, &set));
+    PetscCheck(!set || nd > 0, comm, PETSC_ERR_USER, "-perturb_delta_list is empty");
     if (set) po->delta.assign(dl, dl + nd);
     PetscCall(PetscOptionsStringArray("-kinds", "Perturbation kinds: chiral, achiral", NULL, kinds, &nk, &set));
+    PetscCheck(!set || nk > 0, comm, PETSC_ERR_USER, "-perturb_kinds is empty (chiral, achiral)");
     if (set) {
       po->kinds.clear();
       for (PetscInt k = 0; k < nk; k++) {
@@ -101,7 +103,7 @@ static PetscErrorCode PerturbOptionsFromOptions(MPI_Comm comm, PerturbOptions *p
                                  po->fep, sizeof(po->fep), NULL));
     PetscOptionsEnd();
   }
-  PetscCheck(po->ensemble >= 1, comm, PETSC_ERR_USER, "-perturb_ensemble must be >= 1, got %" PetscInt_FMT, po->ensemble);
+  PetscCheck(po->ensemble >= 1 && po->ensemble <= 100000, comm, PETSC_ERR_USER, "-perturb_ensemble must lie in [1, 100000], got %" PetscInt_FMT, po->ensemble);
   for (PetscReal d : po->delta) PetscCheck(d >= 0 && d < 0.5, comm, PETSC_ERR_USER, "-perturb_delta_list: values must lie in [0, 0.5), got %g", (double)d);
   PetscFunctionReturn(0);
 }

@@ -54,7 +54,7 @@ private:
   PetscInt col0_ = 0, ncols_ = 0;
 };
 
-PetscErrorCode StoreOptionsFromOptions(MPI_Comm comm, PetscBool *store_u, PetscInt *stride)
+PetscErrorCode StoreOptionsFromOptions(MPI_Comm comm, const LatticeParams &lp, const SimulationOptions &so, PetscBool *store_u, PetscInt *stride)
 {
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "sim_", "Simulate study output", NULL);
@@ -62,6 +62,10 @@ PetscErrorCode StoreOptionsFromOptions(MPI_Comm comm, PetscBool *store_u, PetscI
   PetscCall(PetscOptionsInt("-store_u_stride", "Store u at every this many sites (0-based index divisible by it; long lattices)", NULL, *stride, stride, NULL));
   PetscOptionsEnd();
   PetscCheck(*stride >= 1, comm, PETSC_ERR_USER, "-sim_store_u_stride must be >= 1, got %" PetscInt_FMT, *stride);
+  // /simulate/u is held in memory and written at the end: at most 2.5e8 values (2 GB)
+  const double samples = so.sample_dt > 0 ? std::floor(so.t_final / so.sample_dt) + 1 : 0, cols = std::ceil((double)lp.N() / (double)*stride);
+  PetscCheck(!*store_u || samples * cols <= 2.5e8, comm, PETSC_ERR_USER,
+             "-sim_store_u: %g samples x %g sites is more than 2.5e8 values; raise -sim_sample_dt or -sim_store_u_stride, or give -sim_store_u 0", samples, cols);
   PetscFunctionReturn(0);
 }
 
@@ -79,7 +83,7 @@ PetscErrorCode SimulateStudyOptions(MPI_Comm comm)
   PetscCall(LatticeParamsFromOptions(comm, &lp));
   PetscCall(ToneBurstOptionsFromOptions(comm, lp, &fo));
   PetscCall(SimulationOptionsFromOptions(comm, &so));
-  PetscCall(StoreOptionsFromOptions(comm, &store_u, &stride));
+  PetscCall(StoreOptionsFromOptions(comm, lp, so, &store_u, &stride));
   PetscCall(LinearModesOptionsFromOptions(comm, &mo)); // the mode profiles and the amplitude rule
   PetscCall(DeclareEPS(comm, "linear_"));
   PetscCall(DeclareTS(comm, "sim_"));
@@ -109,7 +113,7 @@ PetscErrorCode SimulateStudy(MPI_Comm comm)
   PetscCall(LatticeParamsFromOptions(comm, &lp));
   PetscCall(ToneBurstOptionsFromOptions(comm, lp, &fo));
   PetscCall(SimulationOptionsFromOptions(comm, &so));
-  PetscCall(StoreOptionsFromOptions(comm, &store_u, &stride));
+  PetscCall(StoreOptionsFromOptions(comm, lp, so, &store_u, &stride));
   const bool need_modes = fo.profile == ForceProfile::Mode || fo.profile == ForceProfile::Exponential || (fo.profile != ForceProfile::None && fo.amplitude < 0);
   if (need_modes) PetscCall(LinearModesOptionsFromOptions(comm, &mo));
   PetscCall(OutputPathFromOptions(comm, "simulate", &path));

@@ -116,7 +116,7 @@ static PetscErrorCode StabilityOptionsFromOptions(MPI_Comm comm, StabilityOption
   if (set) o->nw = nw;
   PetscCheck(o->nw >= 1, comm, PETSC_ERR_USER, "-stability_omega needs at least one frequency");
   for (PetscInt c = 0; c < o->nw; c++)
-    PetscCheck(o->omegas[c] > 0, comm, PETSC_ERR_USER, "-stability_omega: frequencies must be positive, got %g", (double)o->omegas[c]);
+    PetscCheck(o->omegas[c] > 0 && o->omegas[c] <= 1e3, comm, PETSC_ERR_USER, "-stability_omega: frequencies must lie in (0, 1e3], got %g", (double)o->omegas[c]);
   PetscCheck(o->periods >= 1 && o->periods <= 100000000 && o->sample_periods >= 1 && o->sample_periods <= o->periods, comm, PETSC_ERR_USER,
              "-stability_periods must lie in [1, 1e8] and -stability_sample_periods in [1, -stability_periods], got %" PetscInt_FMT " and %" PetscInt_FMT,
              o->periods, o->sample_periods);

@@ -53,8 +53,8 @@ PetscErrorCode SweepOptionsFromOptions(MPI_Comm comm, SweepOptions *o)
   PetscCall(PetscOptionsReal("-checkpoint", "Rewrite -output with the points done so far every this many wall seconds", NULL, o->checkpoint, &o->checkpoint, NULL));
   PetscCall(PetscOptionsReal("-progress", "Report progress every this many wall seconds (0: never)", NULL, o->progress, &o->progress, NULL));
   PetscOptionsEnd();
-  PetscCheck(o->checkpoint > 0, comm, PETSC_ERR_USER, "-sweep_checkpoint must be positive, got %g", (double)o->checkpoint);
-  PetscCheck(o->progress >= 0, comm, PETSC_ERR_USER, "-sweep_progress must be >= 0, got %g", (double)o->progress);
+  PetscCheck(o->checkpoint > 0 && o->checkpoint <= 1e7, comm, PETSC_ERR_USER, "-sweep_checkpoint must lie in (0, 1e7] seconds, got %g", (double)o->checkpoint);
+  PetscCheck(o->progress >= 0 && o->progress <= 1e7, comm, PETSC_ERR_USER, "-sweep_progress must lie in [0, 1e7] seconds, got %g", (double)o->progress);
   PetscOptionsBegin(comm, "kcorr_", "0-1 test for chaos (with -sweep_kcorr)", NULL);
   PetscCall(PetscOptionsInt("-nc", "Number of random frequencies c in (pi/5, 4 pi/5); K is the median over them", NULL, o->kcorr_nc, &o->kcorr_nc, NULL));
   PetscCall(PetscOptionsInt("-seed", "Seed of the c draw (the same c for every run)", NULL, o->kcorr_seed, &o->kcorr_seed, NULL));
@@ -68,12 +68,16 @@ PetscErrorCode SweepOptionsFromOptions(MPI_Comm comm, SweepOptions *o)
   PetscCall(PetscOptionsInt("-site_stride", "Test every this many sites (1: all; the score is the max over tested sites)", NULL, o->kcorr_site_stride,
                             &o->kcorr_site_stride, NULL));
   PetscOptionsEnd();
-  PetscCheck(o->kcorr_nc >= 1, comm, PETSC_ERR_USER, "-kcorr_nc must be >= 1, got %" PetscInt_FMT, o->kcorr_nc);
-  PetscCheck(o->kcorr_sample_dt >= 0, comm, PETSC_ERR_USER, "-kcorr_sample_dt must be >= 0, got %g", (double)o->kcorr_sample_dt);
+  PetscCheck(o->kcorr_nc >= 1 && o->kcorr_nc <= 10000, comm, PETSC_ERR_USER, "-kcorr_nc must lie in [1, 10000], got %" PetscInt_FMT, o->kcorr_nc);
+  PetscCheck(o->kcorr_sample_dt >= 0 && o->kcorr_sample_dt <= 1e6, comm, PETSC_ERR_USER, "-kcorr_sample_dt must lie in [0, 1e6], got %g", (double)o->kcorr_sample_dt);
   PetscCheck(o->kcorr_rms_fraction >= 0 && o->kcorr_rms_fraction <= 1, comm, PETSC_ERR_USER, "-kcorr_rms_fraction must lie in [0, 1], got %g",
              (double)o->kcorr_rms_fraction);
-  PetscCheck(o->kcorr_record > 0, comm, PETSC_ERR_USER, "-kcorr_record must be positive, got %g", (double)o->kcorr_record);
-  PetscCheck(o->kcorr_lags == 0 || o->kcorr_lags >= 3, comm, PETSC_ERR_USER, "-kcorr_lags must be 0 (all) or >= 3, got %" PetscInt_FMT, o->kcorr_lags);
+  PetscCheck(o->kcorr_record > 0 && o->kcorr_record <= 1e6, comm, PETSC_ERR_USER, "-kcorr_record must lie in (0, 1e6], got %g", (double)o->kcorr_record);
+  // the record is kept as samples per tested site: at most 2e6 of them
+  PetscCheck(o->kcorr_sample_dt == 0 || o->kcorr_record / o->kcorr_sample_dt <= 2e6, comm, PETSC_ERR_USER,
+             "-kcorr_record / -kcorr_sample_dt must be at most 2e6 samples, got %g / %g", (double)o->kcorr_record, (double)o->kcorr_sample_dt);
+  PetscCheck(o->kcorr_lags == 0 || (o->kcorr_lags >= 3 && o->kcorr_lags <= 100000), comm, PETSC_ERR_USER,
+             "-kcorr_lags must be 0 (all) or lie in [3, 100000], got %" PetscInt_FMT, o->kcorr_lags);
   PetscCheck(o->kcorr_site_stride >= 1, comm, PETSC_ERR_USER, "-kcorr_site_stride must be >= 1, got %" PetscInt_FMT, o->kcorr_site_stride);
   PetscCall(RejectGivenOptions(comm, {"-force_omega", "-force_energy"}, "the sweep axes (-sweep_omega_*, -sweep_energy_*) per point"));
   PetscFunctionReturn(0);

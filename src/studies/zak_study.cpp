@@ -125,8 +125,9 @@ static PetscErrorCode ZakOptionsFromOptions(MPI_Comm comm, LatticeParams *lp, Za
   PetscCall(PetscOptionsReal("-theta_tol", "Threshold rule: phi_0 and phi_pi are distinct while theta = phi_pi - phi_0 (of the means and of the medians) is within this of pi",
                              NULL, zo->theta_tol, &zo->theta_tol, NULL));
   PetscOptionsEnd();
-  PetscCheck(zo->windows >= 1, comm, PETSC_ERR_USER, "-zak_windows must be >= 1, got %" PetscInt_FMT, zo->windows);
-  PetscCheck(zo->samples_per_period >= 4, comm, PETSC_ERR_USER, "-zak_samples_per_period must be >= 4, got %" PetscInt_FMT, zo->samples_per_period);
+  PetscCheck(zo->windows >= 1 && zo->windows <= 1000, comm, PETSC_ERR_USER, "-zak_windows must lie in [1, 1000], got %" PetscInt_FMT, zo->windows);
+  PetscCheck(zo->samples_per_period >= 4 && zo->samples_per_period <= 10000, comm, PETSC_ERR_USER, "-zak_samples_per_period must lie in [4, 10000], got %" PetscInt_FMT,
+             zo->samples_per_period);
   PetscCheck(zo->theta_tol > 0 && zo->theta_tol < PETSC_PI, comm, PETSC_ERR_USER, "-zak_theta_tol must lie in (0, pi), got %g", (double)zo->theta_tol);
   PetscFunctionReturn(0);
 }

@@ -17,8 +17,12 @@ PetscErrorCode SimulationOptionsFromOptions(MPI_Comm comm, SimulationOptions *o)
   PetscCall(PetscOptionsReal("-progress", "Print a progress line every this many wall seconds (0: never)", NULL, o->progress, &o->progress, NULL));
   PetscOptionsEnd();
   PetscCheck(std::isfinite(o->t_final) && o->t_final > 0, comm, PETSC_ERR_USER, "-sim_t_final must be positive, got %g", (double)o->t_final);
-  PetscCheck(o->progress >= 0, comm, PETSC_ERR_USER, "-sim_progress must be >= 0, got %g", (double)o->progress);
-  PetscCheck(o->sample_dt >= 0, comm, PETSC_ERR_USER, "-sim_sample_dt must be >= 0, got %g", (double)o->sample_dt);
+  PetscCheck(o->t_final >= 1e-6 && o->t_final <= 1e9, comm, PETSC_ERR_USER, "-sim_t_final must lie in [1e-6, 1e9], got %g", (double)o->t_final);
+  PetscCheck(o->progress >= 0 && o->progress <= 1e7, comm, PETSC_ERR_USER, "-sim_progress must lie in [0, 1e7] seconds, got %g", (double)o->progress);
+  PetscCheck(o->sample_dt >= 0 && o->sample_dt <= 1e9, comm, PETSC_ERR_USER, "-sim_sample_dt must lie in [0, 1e9], got %g", (double)o->sample_dt);
+  // every sample is kept in memory (E, and u in the simulate study)
+  PetscCheck(o->sample_dt == 0 || o->t_final / o->sample_dt <= 1e7, comm, PETSC_ERR_USER,
+             "-sim_t_final / -sim_sample_dt must be at most 1e7 samples, got %g / %g", (double)o->t_final, (double)o->sample_dt);
   PetscFunctionReturn(0);
 }
 

@@ -1,0 +1,351 @@
+#!/usr/bin/python3
+"""Seeded option fuzzer for nltopo (README.md "Tests", the error contract).
+
+Every case runs one study on a small base scene (about a second of work) with
+1-3 of nltopo's own options set to a random value drawn from the option's type
+and range, an extreme (0, -1, 2^31, 1e300, 1e-300, ...), a wrong type ("abc",
+"1.5" for an integer, "", ",,"), or a non-finite number, at 1 or 2 ranks
+(alternating), under a timeout. A case passes when the run either
+
+  * exits 0 with a complete output (HDF5 root attribute complete = 1), no
+    temporary <out>.tmp.* and no sweep journal left, or
+  * exits non-zero with exactly one non-empty line on stderr (both ranks),
+    "nltopo: error: ...", and no output, temporary or journal left;
+    when the case has a single mutation and it is a non-finite or unparsable
+    value, the line must name that option;
+
+and never hangs, dies of a signal, aborts, calls MPI_Abort or prints a PETSc
+traceback. Unparsable and non-finite values must never be accepted.
+
+The option table below is nltopo's own options with a type and a range that
+keeps an accepted run small; the fuzzer checks it against the -help listing
+of every study, so an option added to nltopo without an entry here fails the
+test (add it with its type and range).
+
+Usage: fuzz.py NLTOPO WORKDIR [--cases N] [--seed S] [--jobs J] [--only CASE]
+                               [--timeout SEC] [--mpiexec MPIEXEC]
+A failure prints its case number and the full command; "--only CASE" (same
+--seed) reruns just that case.
+"""
+import argparse
+import glob
+import os
+import random
+import re
+import shlex
+import shutil
+import signal
+import subprocess
+import sys
+import threading
+import time
+from concurrent.futures import ThreadPoolExecutor
+
+STUDIES = ["linear", "simulate", "continuation", "sweep", "zak", "perturb", "stability"]
+
+# A forced burst of a few periods on a tiny lattice: every forced study stays ~1 s.
+FAST_BURST = ["-sim_t_final", "50", "-force_tau_periods", "2", "-force_t0_taus", "1"]
+BASE = {
+    "linear": ["-lattice_cells", "5", "-linear_nq", "8"],
+    "simulate": ["-lattice_cells", "5", "-force_site", "12", "-sim_progress", "0"] + FAST_BURST,
+    "continuation": ["-lattice_cells", "5", "-cont_branch", "insulated", "-cont_energy_max", "1e-3", "-cont_max_points", "3",
+                     "-cont_verbose", "0", "-nnm_steps_per_period", "32"],
+    "sweep": ["-lattice_cells", "5", "-force_site", "12", "-sweep_omega_n", "2", "-sweep_energy_n", "1", "-sweep_energy_min", "0.1",
+              "-sweep_energy_max", "0.1", "-sweep_progress", "0", "-kcorr_record", "50", "-kcorr_nc", "4"] + FAST_BURST,
+    "zak": ["-lattice_cells", "5", "-zak_energy_list", "0.01", "-sim_t_final", "100", "-force_tau_periods", "2", "-force_t0_taus", "1"],
+    "perturb": ["-lattice_cells", "5", "-perturb_delta_list", "0,0.05", "-perturb_ensemble", "2", "-perturb_energy_list", "1e-3",
+                "-cont_verbose", "0", "-nnm_steps_per_period", "32"] + FAST_BURST,
+    "stability": ["-lattice_cells", "5", "-stability_omega", "1.75", "-stability_periods", "20", "-stability_sample_periods", "2",
+                  "-cont_verbose", "0", "-nnm_steps_per_period", "32"],
+}
+
+# name: (type, lo, hi, extra) -- lo..hi is the range random in-range draws come
+# from: one that keeps an accepted run small, not the option's allowed range.
+# type: real, int, bool, enum (extra: choices), reals / strings (lists; extra:
+# choices for strings), path.
+T = {
+    "lattice_k": ("real", 0.5, 2.0), "lattice_gamma": ("real", -0.6, 0.6), "lattice_gamma0": ("real", 0.0, 2.0),
+    "lattice_cubic": ("real", -1.0, 1.0), "lattice_cells": ("int", 2, 10),
+    "lattice_layout": ("enum", 0, 0, ["interface", "left", "right"]),
+    "lattice_perturbation": ("enum", 0, 0, ["none", "chiral", "achiral"]),
+    "lattice_delta": ("real", 0.0, 0.3), "lattice_seed": ("int", 0, 1000),
+    "linear_dense_max": ("int", 0, 60), "linear_nev": ("int", 1, 8), "linear_target_offset": ("real", 1e-8, 0.05),
+    "linear_nq": ("int", 4, 40),
+    "force_profile": ("enum", 0, 0, ["site", "mode", "none", "exponential"]),
+    "force_omega": ("real", 0.5, 3.0), "force_energy": ("real", 1e-3, 1.0), "force_amplitude": ("real", 0.0, 2.0),
+    "force_amplitude_safety": ("real", 0.5, 4.0), "force_amplitude_retries": ("int", 0, 8),
+    "force_tau_periods": ("real", 1.0, 4.0), "force_t0_taus": ("real", 0.0, 2.0), "force_site": ("int", 1, 22),
+    "force_mode_index": ("int", 0, 21),
+    "sim_t_final": ("real", 10.0, 100.0), "sim_sample_dt": ("real", 0.0, 5.0), "sim_progress": ("real", 0.0, 5.0),
+    "sim_store_u": ("bool",), "sim_store_u_stride": ("int", 1, 5),
+    "sweep_omega_min": ("real", 0.8, 2.6), "sweep_omega_max": ("real", 0.8, 2.6), "sweep_omega_n": ("int", 1, 3),
+    "sweep_omega_spacing": ("enum", 0, 0, ["linear", "log"]), "sweep_omega_list": ("reals", 0.8, 2.6),
+    "sweep_energy_min": ("real", 1e-3, 1.0), "sweep_energy_max": ("real", 1e-3, 1.0), "sweep_energy_n": ("int", 1, 2),
+    "sweep_energy_spacing": ("enum", 0, 0, ["linear", "log"]), "sweep_energy_list": ("reals", 1e-3, 1.0),
+    "sweep_resume": ("bool",), "sweep_kcorr": ("bool",), "sweep_checkpoint": ("real", 0.1, 10.0), "sweep_progress": ("real", 0.0, 5.0),
+    "kcorr_nc": ("int", 1, 16), "kcorr_seed": ("int", 0, 1000), "kcorr_sample_dt": ("real", 0.0, 2.0),
+    "kcorr_rms_fraction": ("real", 0.0, 1.0), "kcorr_record": ("real", 10.0, 100.0), "kcorr_lags": ("int", 3, 20),
+    "kcorr_site_stride": ("int", 1, 5),
+    "zak_energy_min": ("real", 1e-3, 0.1), "zak_energy_max": ("real", 1e-3, 0.1), "zak_energy_n": ("int", 1, 2),
+    "zak_energy_spacing": ("enum", 0, 0, ["linear", "log"]), "zak_energy_list": ("reals", 1e-3, 0.1),
+    "zak_windows": ("int", 1, 4), "zak_samples_per_period": ("int", 4, 32), "zak_theta_tol": ("real", 0.1, 3.0),
+    "perturb_delta_list": ("reals", 0.0, 0.3), "perturb_kinds": ("strings", 0, 0, ["chiral", "achiral"]),
+    "perturb_ensemble": ("int", 1, 3), "perturb_seed": ("int", 0, 1000),
+    "perturb_energy_min": ("real", 1e-4, 1e-3), "perturb_energy_max": ("real", 1e-4, 1e-3), "perturb_energy_n": ("int", 1, 2),
+    "perturb_energy_spacing": ("enum", 0, 0, ["linear", "log"]), "perturb_energy_list": ("reals", 1e-4, 1e-3),
+    "perturb_fep": ("path",),
+    "stability_omega": ("reals", 1.733, 1.8), "stability_periods": ("int", 2, 40), "stability_sample_periods": ("int", 1, 5),
+    "stability_perturbation": ("real", 0.0, 0.1), "stability_seed": ("int", 0, 1000), "stability_corr_min": ("real", 0.1, 1.0),
+    "cont_energy_min": ("real", 1e-6, 1e-4), "cont_energy_max": ("real", 1e-4, 1e-2), "cont_max_points": ("int", 1, 5),
+    "cont_omega_max": ("real", 0.0, 2.5), "cont_mcr_min": ("real", 0.0, 0.5), "cont_max_change": ("real", 0.01, 0.5),
+    "cont_ds_min": ("real", 1e-12, 1e-6), "cont_newton_target": ("int", 1, 8), "cont_interaction_corr": ("real", 0.0, 1.0),
+    "cont_verbose": ("bool",), "cont_checkpoint_seconds": ("real", 0.0, 5.0), "cont_resume": ("path",),
+    "cont_branch": ("strings", 0, 0, ["insulated", "interface", "acoustic_top", "optical_bottom", "optical_top", "mode3", "7"]),
+    "nnm_steps_per_period": ("int", 8, 64), "nnm_monodromy": ("enum", 0, 0, ["variational", "tsforward"]),
+    "nnm_jacobian": ("enum", 0, 0, ["dense", "mf"]), "nnm_start_dense_max": ("int", 0, 100),
+    "nnm_mf_pc": ("enum", 0, 0, ["none", "linear", "averaged", "parametric"]), "nnm_mf_pc_parametric_weight": ("real", 0.1, 1.0),
+    "nnm_orbit_rtol": ("real", 0.0, 1e-3),
+    "floquet": ("bool",), "floquet_mf": ("bool",), "floquet_tol": ("real", 1e-9, 1e-3), "floquet_krein_tol": ("real", 1e-9, 1e-3),
+    "floquet_edge_sites": ("int", 0, 10), "floquet_edge_weight": ("real", 0.55, 0.95), "floquet_mf_nev": ("int", 1, 4),
+    "floquet_mf_which": ("enum", 0, 0, ["largest", "critical"]), "floquet_mf_circle_tol": ("real", 1e-12, 1e-6),
+    "floquet_mf_deflate": ("bool",),
+}
+NOT_FUZZED = {"study", "output"}  # the scene itself
+
+OWN = re.compile(r"^(lattice_|force_|sim_|sweep_|kcorr_|zak_|perturb_|stability_|cont_|nnm_|floquet|linear_)")
+SOLVER = re.compile(r"^(sim_|nnm_start_|nnm_|linear_|floquet_mf_|floquet_)(ts|snes|ksp|pc|eps|st|bv|ds|rg|fn|mat|dm|tao|sf)_")
+
+EXTREME_REAL = ["0", "-1", "-0.5", "1e300", "-1e300", "1e-300", "2147483648", "1e20", "4.9e-324", "-1e-300"]
+EXTREME_INT = ["0", "-1", "-2147483648", "2147483647", "2147483648", "99999999999", "1000000000", "-7"]
+GARBAGE_REAL = ["abc", "1.2.3", "1e", "--1", "0x1p", "1,5", "one", "1e5x"]
+GARBAGE_INT = ["abc", "1.5", "1e3", "0x10", "2.0", "7abc", "one"]
+NONFINITE = ["nan", "inf", "-inf", "NaN", "Infinity", "1e999"]
+
+
+def fmt(x):
+    return repr(float(x)) if isinstance(x, float) else str(x)
+
+
+def draw_in_range(rng, typ):
+    kind = typ[0]
+    if kind == "real":
+        lo, hi = typ[1], typ[2]
+        if lo > 0 and hi / lo > 100 and rng.random() < 0.7:  # log-uniform over decades
+            return "%.6g" % (lo * (hi / lo) ** rng.random())
+        return "%.6g" % rng.uniform(lo, hi)
+    if kind == "int":
+        return str(rng.randint(typ[1], typ[2]))
+    if kind == "bool":
+        return rng.choice(["0", "1", "true", "false", "yes", "no"])
+    if kind == "enum":
+        return rng.choice(typ[3])
+    if kind == "reals":
+        return ",".join("%.6g" % rng.uniform(typ[1], typ[2]) for _ in range(rng.randint(1, 3)))
+    if kind == "strings":
+        return ",".join(rng.sample(typ[3], rng.randint(1, min(2, len(typ[3])))))
+    if kind == "path":
+        return "no_such_file.h5"
+    raise ValueError(kind)
+
+
+def mutate(rng, name):
+    """One option setting: (args, class). class says what the contract demands."""
+    typ = T[name]
+    kind = typ[0]
+    r = rng.random()
+    opt = "-" + name
+    if r < 0.45:
+        return [opt, draw_in_range(rng, typ)], "in_range"
+    if r < 0.65:  # extremes
+        if kind == "real":
+            return [opt, rng.choice(EXTREME_REAL)], "extreme"
+        if kind == "int":
+            return [opt, rng.choice(EXTREME_INT)], "extreme"
+        if kind == "reals":
+            return [opt, rng.choice(["0", "-1", "1e300", "1e-300", "0,1", "-1,1", ",".join(["1"] * 70), "1e300,1"])], "extreme"
+        if kind == "strings":
+            return [opt, rng.choice(["insulated,insulated", ",".join(["chiral"] * 40), "mode999", "-1", "mode-1"])], "extreme"
+        if kind == "bool":
+            return [opt], "in_range"  # a bare flag means true
+        if kind == "path":
+            return [opt, rng.choice(["", "/", "/dev/null", "no/such/dir/f.h5"])], "extreme"
+        return [opt, rng.choice(typ[3]).upper()], "extreme"
+    if r < 0.85:  # wrong type
+        if kind == "real":
+            return [opt, rng.choice(GARBAGE_REAL)], "garbage"
+        if kind == "int":
+            return [opt, rng.choice(GARBAGE_INT)], "garbage"
+        if kind == "reals":
+            return [opt, rng.choice(["abc", "1,abc", "1;2", "1 2"])], "garbage"
+        if kind == "bool":
+            return [opt, rng.choice(["maybe", "2", "-1", "abc"])], "garbage"
+        if kind in ("enum", "strings"):
+            return [opt, rng.choice(["nope", "1.5", "abc"])], "garbage"
+        return [opt, "abc"], "extreme"
+    if r < 0.93:  # empty: an empty argument, a bare option, an empty list
+        choice = rng.choice(["empty", "bare", "commas"])
+        if choice == "empty":
+            return [opt, ""], "empty"
+        if choice == "bare":
+            return [opt], "empty"
+        return [opt, rng.choice([",,", ",", ", ,"])], "empty"
+    if kind in ("real", "int", "reals"):
+        v = rng.choice(NONFINITE)
+        if kind == "reals" and rng.random() < 0.5:
+            v = "1," + v
+        return [opt, v], "nonfinite"
+    return [opt, draw_in_range(rng, typ)], "in_range"
+
+
+def study_options(nltopo):
+    """nltopo's own options of every study, from its -help listing."""
+    out = {}
+    for s in STUDIES:
+        p = subprocess.run([nltopo, "-study", s, "-help"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=120)
+        text = p.stdout.decode(errors="replace")
+        names = set()
+        for line in text.splitlines():
+            m = re.match(r"^  -([a-z][a-z0-9_]*)", line)
+            if m and OWN.match(m.group(1)) and not SOLVER.match(m.group(1)):
+                names.add(m.group(1))
+        if p.returncode != 0 or not names:
+            raise SystemExit("fuzz: %s -study %s -help failed (exit %d):\n%s" % (nltopo, s, p.returncode, text[-2000:]))
+        out[s] = sorted(names)
+    return out
+
+
+def make_case(seed, i, options):
+    rng = random.Random("%d:%d" % (seed, i))
+    study = STUDIES[i % len(STUDIES)]
+    ranks = 1 + i % 2  # 7 studies: each study alternates between 1 and 2 ranks too
+    names = rng.sample(options[study], rng.randint(1, 3))
+    muts = [mutate(rng, n) for n in names]
+    return dict(i=i, study=study, ranks=ranks, names=names, muts=muts)
+
+
+CRASH = re.compile(r"PETSC ERROR|MPI_ABORT|MPI_Abort|Caught signal|Segmentation|Aborted|core dumped|terminate called|"
+                   r"mpiexec noticed|exited on signal|mpiexec has exited|Assertion|double free|corrupted|std::bad_alloc")
+
+
+def run_case(case, args, workroot):
+    d = os.path.join(workroot, "c%04d" % case["i"])
+    shutil.rmtree(d, ignore_errors=True)
+    os.makedirs(d)
+    out = "out.h5"
+    cmd = ["-study", case["study"]] + BASE[case["study"]]
+    for a, _ in case["muts"]:
+        cmd += a
+    cmd += ["-output", out]
+    full = ([args.mpiexec, "-q", "-n", "2"] if case["ranks"] == 2 else []) + [args.nltopo] + cmd
+    t0 = time.time()
+    p = subprocess.Popen(full, cwd=d, stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True)
+    try:
+        so, se = p.communicate(timeout=args.timeout)
+        hung = False
+    except subprocess.TimeoutExpired:
+        hung = True
+        try:
+            os.killpg(p.pid, signal.SIGKILL)  # the whole session: mpiexec and its ranks
+        except ProcessLookupError:
+            pass
+        so, se = p.communicate()
+    rc = None if hung else p.returncode
+    so, se = so.decode(errors="replace"), se.decode(errors="replace")
+    dt = time.time() - t0
+    problems = []
+    left = sorted(f for f in os.listdir(d) if f.startswith(out) and f != out)
+    lines = [l for l in se.splitlines() if l.strip()]
+    classes = [c for _, c in case["muts"]]
+    if hung:
+        problems.append("hang: no exit within %g s" % args.timeout)
+    elif rc < 0 or rc >= 128:
+        problems.append("crash: exit status %d (signal)" % rc)
+    if CRASH.search(se):
+        problems.append("crash: stderr shows a signal, abort or PETSc traceback")
+    if left:
+        problems.append("left behind: %s" % " ".join(left))
+    if not hung and rc == 0:
+        if not os.path.exists(os.path.join(d, out)):
+            problems.append("exit 0 without %s" % out)
+        else:
+            try:
+                import h5py
+                with h5py.File(os.path.join(d, out), "r") as f:
+                    if int(f.attrs.get("complete", -1)) != 1:
+                        problems.append("exit 0 with root attribute complete = %s" % f.attrs.get("complete"))
+            except Exception as e:  # noqa: BLE001
+                problems.append("exit 0 with an unreadable %s: %s" % (out, e))
+        for c, (a, _) in zip(classes, case["muts"]):
+            if c in ("garbage", "nonfinite"):
+                problems.append("accepted a %s value: %s" % (c, " ".join(shlex.quote(x) for x in a)))
+    elif not hung and rc > 0:
+        if os.path.exists(os.path.join(d, out)):
+            problems.append("exit %d but %s exists" % (rc, out))
+        if len(lines) != 1 or not lines[0].startswith("nltopo: error: "):
+            problems.append("not a one-line 'nltopo: error:' message (%d non-empty stderr lines)" % len(lines))
+        elif len(case["muts"]) == 1 and classes[0] in ("garbage", "nonfinite"):
+            if "-" + case["names"][0] not in lines[0].lower():
+                problems.append("the error does not name -%s" % case["names"][0])
+    if not problems:
+        shutil.rmtree(d, ignore_errors=True)
+    verdict = "ok" if rc == 0 else ("error" if rc is not None else "hang")
+    return dict(case=case, problems=problems, rc=rc, seconds=dt, stderr=se, stdout=so, cmd=full, verdict=verdict,
+                first=lines[0] if lines else "")
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("nltopo")
+    ap.add_argument("work")
+    ap.add_argument("--cases", type=int, default=210)
+    ap.add_argument("--seed", type=int, default=20261122)
+    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--only", type=int, default=None)
+    ap.add_argument("--timeout", type=float, default=60)
+    ap.add_argument("--mpiexec", default=os.environ.get("MPIEXEC", "mpiexec"))
+    ap.add_argument("--verbose", action="store_true")
+    args = ap.parse_args()
+    args.nltopo = os.path.abspath(args.nltopo)
+    os.makedirs(args.work, exist_ok=True)
+    t0 = time.time()
+    options = study_options(args.nltopo)
+    missing = sorted({n for s in options.values() for n in s} - set(T) - NOT_FUZZED)
+    if missing:
+        print("fuzz: options without an entry in the fuzz table (tests/fuzz/fuzz.py T): " + " ".join("-" + m for m in missing))
+        return 1
+    for s in options:
+        options[s] = [n for n in options[s] if n not in NOT_FUZZED]
+    ids = [args.only] if args.only is not None else list(range(args.cases))
+    cases = [make_case(args.seed, i, options) for i in ids]
+    lock = threading.Lock()
+    results = []
+
+    def one(c):
+        r = run_case(c, args, args.work)
+        with lock:
+            results.append(r)
+            if args.verbose or r["problems"]:
+                print("case %d %s np%d %-5s %5.1fs %s | %s" % (c["i"], c["study"], c["ranks"], r["verdict"], r["seconds"],
+                      " ".join(" ".join(a) if len(a) == 1 else "%s %r" % (a[0], a[1]) for a, _ in c["muts"]), r["first"]))
+                sys.stdout.flush()
+        return r
+
+    with ThreadPoolExecutor(max_workers=max(1, args.jobs)) as ex:
+        list(ex.map(one, cases))
+    results.sort(key=lambda r: r["case"]["i"])
+    failed = [r for r in results if r["problems"]]
+    for r in failed:
+        c = r["case"]
+        print("FAIL case %d (--seed %d --only %d): %s" % (c["i"], args.seed, c["i"], "; ".join(r["problems"])))
+        print("  command: " + " ".join(shlex.quote(x) for x in r["cmd"]))
+        for l in r["stderr"].splitlines()[:12]:
+            print("  stderr: " + l)
+    n_ok = sum(1 for r in results if r["verdict"] == "ok")
+    n_err = sum(1 for r in results if r["verdict"] == "error")
+    print("fuzz: %d cases (%d completed, %d refused with one line), seed %d, %.0f s" % (len(results), n_ok, n_err, args.seed, time.time() - t0))
+    print("fuzz: %d passed, %d failed" % (len(results) - len(failed), len(failed)))
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
