@@ -3,6 +3,7 @@
 #include <slepceps.h>
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
@@ -109,8 +110,10 @@ PetscErrorCode CaptureVFPrintf(FILE *fd, const char format[], va_list ap)
   return 0;
 }
 
-// "  -name <...>: help" lines of PETSc's -help output.
-void ParseHelp(const std::string &text, std::set<std::string> *names)
+// "  -name <...>: help" lines of PETSc's -help output. The text after the name
+// tells the kind: "-x: <TRUE : TRUE>" a flag, "-x <now 25 : formerly 25>" an
+// integer (a real prints "<1. : 1.>", a string or list "<now abc : ...>").
+void ParseHelp(const std::string &text, std::set<std::string> *names, std::map<std::string, OptionKind> *kinds)
 {
   size_t pos = 0;
   while (pos < text.size()) {
@@ -125,6 +128,19 @@ void ParseHelp(const std::string &text, std::set<std::string> *names)
         std::string n = text.substr(i + 1, j - i - 1);
         std::transform(n.begin(), n.end(), n.begin(), [](unsigned char c) { return (char)std::tolower(c); });
         names->insert(n);
+        if (kinds) {
+          const std::string rest = text.substr(j, end - j);
+          OptionKind k = OptionKind::Other;
+          if (!rest.compare(0, 7, ": <TRUE") || !rest.compare(0, 8, ": <FALSE")) k = OptionKind::Flag;
+          else if (!rest.compare(0, 6, " <now ")) {
+            size_t d = 6;
+            if (d < rest.size() && rest[d] == '-') d++;
+            const size_t digits = d;
+            while (d < rest.size() && std::isdigit((unsigned char)rest[d])) d++;
+            if (d > digits && !rest.compare(d, 11, " : formerly")) k = OptionKind::Integer;
+          }
+          kinds->emplace(n, k);
+        }
       }
     }
     pos = end + 1;
@@ -159,13 +175,12 @@ std::string ClosestOption(const std::string &name, const std::set<std::string> &
   return best;
 }
 
-PetscErrorCode CheckFiniteOptionValues(MPI_Comm comm)
+PetscErrorCode CheckFiniteOptionValues(MPI_Comm comm, const OptionList &given, bool solvers_only)
 {
-  Unused u;
   PetscFunctionBeginUser;
-  PetscCall(UnusedOptions(&u)); // before the study runs: every option the user set
-  for (size_t i = 0; i < u.names.size(); i++) {
-    const std::string &v = u.values[i];
+  for (const auto &o : given) {
+    const std::string &name = o.first, &v = o.second;
+    if (solvers_only && OwnComponent(name)) continue;
     size_t pos = 0;
     while (pos <= v.size()) {
       size_t end = v.find(',', pos);
@@ -178,8 +193,8 @@ PetscErrorCode CheckFiniteOptionValues(MPI_Comm comm)
         const double x = std::strtod(tok.c_str(), &stop);
         std::string low = tok;
         std::transform(low.begin(), low.end(), low.begin(), [](unsigned char c) { return (char)std::tolower(c); });
-        const bool norm_name = low == "infinity" && !OwnComponent(u.names[i]); // PETSc's norm type names (-ts_adapt_wnormtype infinity)
-        PetscCheck(*stop || std::isfinite(x) || norm_name, comm, PETSC_ERR_USER, "-%s %s: the value must be a finite number", u.names[i].c_str(), v.c_str());
+        const bool norm_name = low == "infinity" && !OwnComponent(name); // PETSc's norm type names (-ts_adapt_wnormtype infinity)
+        PetscCheck(*stop || std::isfinite(x) || norm_name, comm, PETSC_ERR_USER, "-%s %s: the value must be a finite number", name.c_str(), v.c_str());
       }
       pos = end + 1;
     }
@@ -187,7 +202,41 @@ PetscErrorCode CheckFiniteOptionValues(MPI_Comm comm)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode CollectKnownOptions(MPI_Comm comm, const std::map<std::string, OptionsFn> &studies, std::map<std::string, std::set<std::string>> *known)
+PetscErrorCode ListGivenOptions(OptionList *given)
+{
+  Unused u;
+  PetscFunctionBeginUser;
+  PetscCall(UnusedOptions(&u));
+  for (size_t i = 0; i < u.names.size(); i++) given->emplace_back(u.names[i], u.values[i]);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CheckOptionValueShapes(MPI_Comm comm, const char *study, OptionsFn options, const OptionList &given)
+{
+  std::map<std::string, std::set<std::string>> known;
+  std::map<std::string, OptionKind> kinds;
+  PetscFunctionBeginUser;
+  PetscCall(CollectKnownOptions(comm, {{study, options}}, &known, &kinds));
+  for (const auto &o : given) {
+    const std::string &n = o.first, &v = o.second;
+    const auto k = kinds.find(n);
+    if (k == kinds.end() || PetscOwn(n)) continue; // unknown names are the unused-options audit's
+    if (k->second != OptionKind::Flag && OwnComponent(n)) // solver options may take an optional value (-sim_ts_monitor)
+      PetscCheck(!v.empty(), comm, PETSC_ERR_USER, "-%s: no value given (-help shows its default and meaning)", n.c_str());
+    if (k->second == OptionKind::Integer && !v.empty()) {
+      errno = 0;
+      char *stop;
+      const long long x = std::strtoll(v.c_str(), &stop, 10);
+      const bool whole = *stop == '\0'; // anything else is PETSc's "not an integer"
+      PetscCheck(!whole || (errno != ERANGE && x >= -(long long)PETSC_MAX_INT && x <= (long long)PETSC_MAX_INT), comm, PETSC_ERR_USER,
+                 "-%s %s: out of the integer range [-%d, %d]", n.c_str(), v.c_str(), (int)PETSC_MAX_INT, (int)PETSC_MAX_INT);
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CollectKnownOptions(MPI_Comm comm, const std::map<std::string, OptionsFn> &studies, std::map<std::string, std::set<std::string>> *known,
+                                   std::map<std::string, OptionKind> *kinds)
 {
   PetscBool had_help;
   PetscFunctionBeginUser;
@@ -206,8 +255,9 @@ PetscErrorCode CollectKnownOptions(MPI_Comm comm, const std::map<std::string, Op
     g_capture = &text;
     (void)s.second(comm); // a validation error of another study's options stops its listing, nothing else
     g_capture = nullptr;
-    ParseHelp(text, &(*known)[s.first]);
+    ParseHelp(text, &(*known)[s.first], kinds);
   }
+  PetscCall(PetscOptionsHelpPrintedDestroy(&PetscOptionsHelpPrintedSingleton)); // a -help listing after this prints every block
   PetscCall(PetscPopErrorHandler());
   PetscHelpPrintf = saved;
   PetscVFPrintf = g_saved_vfprintf;

@@ -24,10 +24,8 @@ PetscErrorCode ContinuationOptionsFromOptions(MPI_Comm comm, ContinuationOptions
                              o->interaction_corr, &o->interaction_corr, NULL));
   PetscCall(PetscOptionsBool("-verbose", "Print one line per continuation point", NULL, o->verbose, &o->verbose, NULL));
   PetscOptionsEnd();
-  PetscCheck(o->energy_min > 0 && o->energy_max > o->energy_min, comm, PETSC_ERR_USER,
-             "-cont_energy_min must be positive and below -cont_energy_max, got %g and %g", (double)o->energy_min, (double)o->energy_max);
-  PetscCheck(o->energy_min >= 1e-12 && o->energy_max <= 1e12, comm, PETSC_ERR_USER,
-             "-cont_energy_min and -cont_energy_max must lie in [1e-12, 1e12], got %g and %g", (double)o->energy_min, (double)o->energy_max);
+  PetscCheck(o->energy_min >= 1e-12 && o->energy_max <= 1e12 && o->energy_min < o->energy_max, comm, PETSC_ERR_USER,
+             "-cont_energy_min and -cont_energy_max must satisfy 1e-12 <= min < max <= 1e12, got %g and %g", (double)o->energy_min, (double)o->energy_max);
   PetscCheck(o->max_points >= 1 && o->max_points <= 1000000, comm, PETSC_ERR_USER, "-cont_max_points must lie in [1, 1e6], got %" PetscInt_FMT, o->max_points);
   PetscCheck(o->omega_max >= 0 && o->omega_max <= 1e3, comm, PETSC_ERR_USER, "-cont_omega_max must lie in [0, 1e3] (0: no limit), got %g", (double)o->omega_max);
   PetscCheck(o->ds_min > 0 && o->ds_min < 1, comm, PETSC_ERR_USER, "-cont_ds_min must lie in (0, 1), got %g", (double)o->ds_min);

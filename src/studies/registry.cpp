@@ -54,9 +54,13 @@ PetscErrorCode RunStudyFromOptions(MPI_Comm comm)
     if (match) entry = &s;
   }
   PetscCheck(entry, comm, PETSC_ERR_USER, "unknown -study %s (available: %s)", name, known.c_str());
-  PetscCall(CheckFiniteOptionValues(comm));
+  OptionList given;
+  PetscCall(ListGivenOptions(&given));
+  PetscCall(CheckFiniteOptionValues(comm, given, true)); // nan/inf in solver options, whose own checks do not name them
+  PetscCall(CheckOptionValueShapes(comm, name, entry->options, given)); // a missing value, an integer PETSc would wrap
   PetscCall(PetscOptionsHasHelp(NULL, &list_help));
-  PetscCall(entry->options(comm)); // -help: prints them all; otherwise marks them read
+  PetscCall(entry->options(comm)); // -help: prints them all; otherwise marks them read and checks their ranges
+  PetscCall(CheckFiniteOptionValues(comm, given, false)); // nan/inf that no range check of nltopo's caught
   if (list_help) {
     PetscCall(PetscPrintf(comm, "nltopo: -help listed the options of -study %s; nothing was computed\n", name));
     PetscFunctionReturn(0);

@@ -16,7 +16,6 @@ PetscErrorCode SimulationOptionsFromOptions(MPI_Comm comm, SimulationOptions *o)
   PetscCall(PetscOptionsReal("-sample_dt", "Spacing of stored samples of u and E (0: none)", NULL, o->sample_dt, &o->sample_dt, NULL));
   PetscCall(PetscOptionsReal("-progress", "Print a progress line every this many wall seconds (0: never)", NULL, o->progress, &o->progress, NULL));
   PetscOptionsEnd();
-  PetscCheck(std::isfinite(o->t_final) && o->t_final > 0, comm, PETSC_ERR_USER, "-sim_t_final must be positive, got %g", (double)o->t_final);
   PetscCheck(o->t_final >= 1e-6 && o->t_final <= 1e9, comm, PETSC_ERR_USER, "-sim_t_final must lie in [1e-6, 1e9], got %g", (double)o->t_final);
   PetscCheck(o->progress >= 0 && o->progress <= 1e7, comm, PETSC_ERR_USER, "-sim_progress must lie in [0, 1e7] seconds, got %g", (double)o->progress);
   PetscCheck(o->sample_dt >= 0 && o->sample_dt <= 1e9, comm, PETSC_ERR_USER, "-sim_sample_dt must lie in [0, 1e9], got %g", (double)o->sample_dt);

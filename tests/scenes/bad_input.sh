@@ -65,12 +65,18 @@ expect_error "-force_omega abc: not a real number" o.h5 $S -force_omega abc
 expect_error "-lattice_cells 2.5: not an integer" o.h5 -study linear -lattice_cells 2.5
 expect_error "-sim_store_u maybe: not a boolean" o.h5 $S -sim_store_u maybe
 expect_error "-sim_ts_type foo" o.h5 $S -sim_ts_type foo
-expect_error "-kcorr_record inf: the value must be a finite number" o.h5 $W -sweep_kcorr -kcorr_record inf
-expect_error "-floquet_tol inf: the value must be a finite number" o.h5 $C -floquet -floquet_tol inf
-expect_error "-sim_t_final nan: the value must be a finite number" o.h5 -study simulate -sim_t_final nan
-expect_error "-force_omega -inf: the value must be a finite number" o.h5 $S -force_omega -inf
-expect_error "-sweep_energy_list 1,nan: the value must be a finite number" o.h5 $W -sweep_energy_list 1,nan
+expect_error "-kcorr_record must lie in (0, 1e6], got inf" o.h5 $W -sweep_kcorr -kcorr_record inf
+expect_error "-floquet_tol must lie in (0, 1), got inf" o.h5 $C -floquet -floquet_tol inf
+expect_error "-sim_t_final must lie in \[1e-6, 1e9\], got nan" o.h5 -study simulate -sim_t_final nan
+expect_error "-force_omega must lie in \[1e-6, 1e3\], got -inf" o.h5 $S -force_omega -inf
+expect_error "-sweep_energy_list: values must lie in \[1e-12, 1e+12\], got nan" o.h5 $W -sweep_energy_list 1,nan
 expect_error "-sim_ts_rtol 1e999: the value must be a finite number" o.h5 $S -sim_ts_rtol 1e999
+expect_error "-linear_bv_orthog_eta inf: the value must be a finite number" o.h5 -study linear -lattice_cells 5 -linear_bv_orthog_eta inf
+# values PETSc would silently drop or wrap: a missing value, an integer beyond 32 bits
+expect_error "-lattice_k: no value given" o.h5 -study linear -lattice_cells 5 -lattice_k ""
+expect_error "-perturb_delta_list: no value given" o.h5 -study perturb -lattice_cells 5 -perturb_delta_list
+expect_error "-lattice_cells 4294967301: out of the integer range" o.h5 -study linear -lattice_cells 4294967301
+expect_error "-sim_ts_max_steps 99999999999: out of the integer range" o.h5 $S -sim_ts_max_steps 99999999999
 # ranges
 expect_error "-linear_nq" o.h5 -study linear -lattice_cells 5 -linear_nq 2
 expect_error "-kcorr_nc" o.h5 $W -sweep_kcorr -kcorr_nc 0
@@ -81,8 +87,10 @@ expect_error "-sim_store_u_stride" o.h5 $S -sim_store_u_stride 0
 expect_error "-nnm_mf_pc_parametric_weight 0" o.h5 -study continuation -lattice_cells 5 -nnm_jacobian mf -nnm_mf_pc parametric -nnm_mf_pc_parametric_weight 0
 expect_error "-nnm_orbit_rtol -1" o.h5 -study continuation -lattice_cells 5 -nnm_orbit_rtol -1
 # resource guard: the estimate is named before anything is allocated
-expect_error "more than this machine's" o.h5 -study simulate -lattice_cells 20000000 -sim_t_final 1000
-expect_error "more than this machine's" o.h5 -study linear -lattice_cells 40000 -linear_dense_max 1000000
+expect_error "-lattice_cells must lie in 1..2500000, got 20000000" o.h5 -study simulate -lattice_cells 20000000 -sim_t_final 1000
+expect_error "-linear_dense_max must lie in \[0, 10000\], got 1000000" o.h5 -study linear -lattice_cells 40000 -linear_dense_max 1000000
+expect_error "dense shooting Jacobian .* more than this machine's" o.h5 -study continuation -lattice_cells 100000
+expect_error "-sim_store_u: .* more than 2.5e8 values" o.h5 -study simulate -lattice_cells 100000 -sim_store_u -sim_sample_dt 0.01 -sim_t_final 1000
 # files that cannot be read: missing, truncated, not HDF5, another lattice
 "$NLTOPO" $C -lattice_layout interface -output small.h5 > /dev/null
 head -c 3000 small.h5 > truncated.h5
@@ -111,10 +119,12 @@ fi
 for np in 1 2 3; do
   rm -rf vanish && mkdir -p vanish/d
   set +e
-  tf=$([ $np = 1 ] && echo 20000 || echo 3000) # a few seconds of run, so the directory goes first
+  # 2-9 s of run on an idle machine (3 ranks share 2 cores); the directory
+  # goes as soon as the run has opened its temporary there
+  tf=$(case $np in 1) echo 30000 ;; 2) echo 3000 ;; *) echo 1000 ;; esac)
   timeout 120 "$MPIEXEC" -q -n $np "$NLTOPO" -study simulate -sim_t_final $tf -sim_store_u 0 -output "$WORK/vanish/d/x.h5" > stdout.txt 2> stderr.txt &
   pid=$!
-  sleep 1.5
+  for _ in $(seq 200); do ls vanish/d/x.h5.tmp.* > /dev/null 2>&1 && break; sleep 0.05; done
   rm -rf vanish/d
   wait $pid
   rc=$?
