@@ -18,65 +18,7 @@
 #include <cstring>
 #include <string>
 #include <vector>
-
-struct Params {
-  int Nc = 25;
-  double omega = std::sqrt(3.0), Estar = 1.0, S = NAN, t_final = 1000.0;
-  double rtol = 1e-8, atol = 1e-8, Gamma = 0.5;
-  int repeat = 5;
-};
-
-// Lattice + forcing (model.md "Bonds", "Linear stiffness K", "Equations of motion").
-struct Lattice {
-  int N, fsite;                 // number of sites; forced site (0-based 2Nc+1 = 1-based m+1)
-  double khat;                  // uniform diagonal k1+k2+gamma0 (every site)
-  std::vector<double> kb, gb;   // per bond b (joins b, b+1): linear k_b, cubic coeff (Gamma or 0)
-  double S, w, tau, t0;         // F(t) = S cos(w t) exp(-((t-t0)/tau)^2) on fsite
-  bool forcing_on = true;
-
-  Lattice(const Params& p) {
-    const double k = 1.0, gamma = 0.4, gamma0 = 1.0;
-    const double k1 = k * (1 + gamma), k2 = k * (1 - gamma);
-    N = 4 * p.Nc + 2; fsite = 2 * p.Nc + 1; khat = k1 + k2 + gamma0;
-    kb.resize(N - 1); gb.resize(N - 1);
-    for (int b = 0; b < N - 1; ++b) {
-      const int i = b + 1;      // 1-based bond index of model.md
-      const bool stiff = (i <= 2 * p.Nc) ? (i % 2 == 0) : (i % 2 == 1);
-      kb[b] = stiff ? k1 : k2;
-      gb[b] = stiff ? p.Gamma : 0.0;  // cubic force only on stiff (k1) bonds
-    }
-    S = p.S; w = p.omega; tau = 25.0 * 2.0 * M_PI / w; t0 = 5.0 * tau;
-  }
-  double force(double t) const {
-    if (!forcing_on) return 0.0;
-    const double s = (t - t0) / tau;
-    return S * std::cos(w * t) * std::exp(-s * s);
-  }
-  // z = [u, v] (length 2N); dz = [v, -K u - f_NL(u) + F(t) eta]. No allocation.
-  void rhs(double t, const double* z, double* dz) const {
-    const double* u = z; const double* v = z + N;
-    double* du = dz; double* a = dz + N;
-    for (int i = 0; i < N; ++i) { du[i] = v[i]; a[i] = -khat * u[i]; }
-    for (int b = 0; b < N - 1; ++b) {      // off-diagonal -k_b, plus cubic bond force
-      const double d = u[b] - u[b + 1];
-      const double nl = gb[b] * d * d * d; // f_NL,b += Gamma d^3; f_NL,b+1 -= Gamma d^3
-      a[b]     += kb[b] * u[b + 1] - nl;
-      a[b + 1] += kb[b] * u[b] + nl;
-    }
-    a[fsite] += force(t);
-  }
-  // E = 1/2 v.v + 1/2 u.K u + sum_stiff Gamma d^4/4  (model.md "Equations of motion")
-  double energy(const double* z) const {
-    const double* u = z; const double* v = z + N;
-    double e = 0.0;
-    for (int i = 0; i < N; ++i) e += 0.5 * (v[i] * v[i] + khat * u[i] * u[i]);
-    for (int b = 0; b < N - 1; ++b) {
-      const double d = u[b] - u[b + 1];
-      e += -kb[b] * u[b] * u[b + 1] + 0.25 * gb[b] * d * d * d * d;
-    }
-    return e;
-  }
-};
+#include "plain_lattice.hpp"
 
 struct Result {
   long steps = 0, rejected = 0, rhs_evals = 0;
@@ -199,15 +141,10 @@ int main(int argc, char** argv) {
     std::string a = argv[i];
     if (i + 1 >= argc) { std::fprintf(stderr, "missing value for %s\n", a.c_str()); return 1; }
     const char* v = argv[++i];
-    if (a == "--cells") p.Nc = std::atoi(v);
-    else if (a == "--omega") p.omega = std::atof(v);
-    else if (a == "--energy") p.Estar = std::atof(v);
-    else if (a == "--amplitude") p.S = std::atof(v);
-    else if (a == "--t_final") p.t_final = std::atof(v);
-    else if (a == "--rtol") p.rtol = std::atof(v);
+    if (ParseCommon(a, v, p)) continue;
+    if (a == "--rtol") p.rtol = std::atof(v);
     else if (a == "--atol") p.atol = std::atof(v);
     else if (a == "--Gamma") p.Gamma = std::atof(v);
-    else if (a == "--repeat") p.repeat = std::max(1, std::atoi(v));
     else { std::fprintf(stderr, "unknown option %s\n", a.c_str()); return 1; }
   }
   if (std::isnan(p.S)) {  // model.md: S is the user's to set; no default rule here

@@ -56,6 +56,14 @@ PetscErrorCode Rhs::Evaluate(PetscReal t, Vec z, Vec f)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode Rhs::Acceleration(PetscReal t, Vec x, PetscScalar *a)
+{
+  PetscFunctionBeginUser;
+  count_.rhs++;
+  PetscCall(Accelerate(t, x, a - lat_.OwnedStart()));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Rhs::Momentum(PetscReal t, Vec q, Vec pdot)
 {
   PetscScalar *pa;

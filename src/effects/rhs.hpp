@@ -24,6 +24,9 @@ public:
   PetscErrorCode Evaluate(PetscReal t, Vec z, Vec f);
   // Split (symplectic) form, momentum part: pdot = -K q - f_NL(q) + F(t) (q, pdot: SiteDM layout).
   PetscErrorCode Momentum(PetscReal t, Vec q, Vec pdot);
+  // The same on raw arrays (the symsplit TS type): a[i] = acceleration of owned
+  // site i (local index) for the u part of x (a state or SiteDM vector).
+  PetscErrorCode Acceleration(PetscReal t, Vec x, PetscScalar *a);
 
   bool Forcing() const { return forcing_ != nullptr; }
   void DropForcing() { forcing_ = nullptr; }

@@ -151,19 +151,24 @@ PetscErrorCode Lattice::Energy(Vec z, EnergyParts *e) const
   PetscCall(GetGhostedU(z, &ul, &u));
   PetscCall(VecGetArrayRead(z, &zl));
   const PetscScalar *v = zl + xm_;
-  for (PetscInt i = xs_; i < xs_ + xm_; i++) {
-    const PetscScalar ui = u[i], vi = v[i - xs_];
-    loc.kinetic += 0.5 * vi * vi;
-    loc.linear += 0.5 * kd_[i - xs_] * ui * ui;
-    if (i < N - 1) { // bond i is owned by the rank owning site i
-      const PetscScalar un = u[i + 1];
-      loc.linear -= kb_[i - xs_ + 1] * ui * un; // the two off-diagonal entries of bond i in 1/2 u.K u
-      if (p_.Stiff(i)) {
-        const PetscScalar d = ui - un;
-        loc.quartic += 0.25 * G * d * d * d * d;
-      }
-    }
+  const PetscReal *kd = kd_.data() - xs_, *kb = kb_.data() - xs_ + 1; // kd[i]: K(i, i); kb[b]: bond b
+  const PetscInt lo = xs_, hi = xs_ + xm_, bhi = std::min(hi, N - 1); // bond b (b, b+1) belongs to the owner of site b
+  PetscReal kin = 0, lin = 0, quart = 0;
+  for (PetscInt i = lo; i < hi; i++) {
+    const PetscScalar ui = u[i], vi = v[i - lo];
+    kin += vi * vi;
+    lin += kd[i] * ui * ui;
   }
+  for (PetscInt b = lo; b < bhi; b++) lin -= 2 * kb[b] * u[b] * u[b + 1]; // the two off-diagonal entries of bond b in u.K u
+  if (G != 0)
+    for (const PetscInt b : stiff_)
+      if (b >= lo && b < bhi) {
+        const PetscScalar d = u[b] - u[b + 1], d2 = d * d;
+        quart += d2 * d2;
+      }
+  loc.kinetic = 0.5 * kin;
+  loc.linear = 0.5 * lin;
+  loc.quartic = 0.25 * G * quart;
   PetscCall(VecRestoreArrayRead(z, &zl));
   PetscCall(RestoreGhostedU(z, &ul, &u));
   if (size_ == 1) *e = loc;

@@ -1,4 +1,5 @@
 #include "studies/registry.hpp"
+#include "timeint/ts_symsplit.hpp"
 #include "core/options_audit.hpp"
 #include "io/output.hpp"
 #include <string>
@@ -40,6 +41,7 @@ PetscErrorCode RunStudyFromOptions(MPI_Comm comm)
   std::string known, help = "Study to run:";
   PetscBool list_help;
   PetscFunctionBeginUser;
+  PetscCall(TSSymSplitRegister()); // nltopo's TS types, before any -*ts_type is read
   for (const auto &s : kStudies) {
     known += std::string(known.empty() ? "" : ", ") + s.name;
     help += std::string(" ") + s.name + " (" + s.help + ");";

@@ -3,6 +3,7 @@
 #include "core/log.hpp"
 #include "core/signals.hpp"
 #include "diagnostics/mcr.hpp"
+#include "timeint/ts_symsplit.hpp"
 #include <cmath>
 #include <cstring>
 
@@ -33,6 +34,7 @@ struct Run {
   Rhs rhs;
   SampleSink *sink;
   bool event_mode = false, interpolate = true;
+  bool locate_in_step = false; // find the cut-off on the step's interpolant (fixed-step symsplit)
   PetscReal burst_end = PETSC_MAX_REAL; // abort_if_missed: stop here if E* was missed
   PetscReal estar = 0, t_final = 0, sample_dt = 0, window_default = 0, progress = 0;
   PetscLogDouble wall0 = 0, wall_last = 0;
@@ -63,6 +65,35 @@ struct Run {
       cache_state = st;
     }
     *e = cache_e;
+    PetscFunctionReturn(0);
+  }
+
+  // E crossed E* during the last step [t_prev, t]: the crossing time on the
+  // step's interpolant, by bisection to a relative energy tolerance of 1e-10
+  // (that of the event); zs holds the state there. A fixed-step method cannot
+  // use a TS event here: a shortened step is another discretisation, whose
+  // energy need not cross E* in the same interval (the event then shrinks the
+  // step forever).
+  PetscErrorCode LocateCutOff(TS ts, PetscReal *t_off, EnergyParts *e_off)
+  {
+    PetscReal lo, hi;
+    PetscFunctionBeginUser;
+    PetscCall(TSGetPrevTime(ts, &lo));
+    PetscCall(TSGetTime(ts, &hi));
+    for (int it = 0; it < 200 && hi - lo > 1e-14 * (1 + hi); it++) {
+      const PetscReal mid = 0.5 * (lo + hi);
+      PetscCall(TSInterpolate(ts, mid, zs));
+      PetscCall(lat->Energy(zs, e_off));
+      const PetscReal g = e_off->Total() / estar - 1;
+      if (std::abs(g) <= 1e-10) {
+        lo = hi = mid;
+        break;
+      }
+      (g < 0 ? lo : hi) = mid;
+    }
+    *t_off = hi;
+    PetscCall(TSInterpolate(ts, hi, zs));
+    PetscCall(lat->Energy(zs, e_off));
     PetscFunctionReturn(0);
   }
 
@@ -163,6 +194,13 @@ PetscErrorCode MomentumRate(TS ts, PetscReal t, Vec q, Vec pdot, void *ctx)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode RunAcceleration(TS ts, PetscReal t, Vec z, PetscScalar *a, void *ctx)
+{
+  PetscFunctionBeginUser;
+  PetscCall(static_cast<Run *>(ctx)->rhs.Acceleration(t, z, a));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode CutOffIndicator(TS ts, PetscReal t, Vec z, PetscScalar *fv, void *ctx)
 {
   Run *run = static_cast<Run *>(ctx);
@@ -208,6 +246,19 @@ PetscErrorCode PostStep(TS ts)
              "non-finite state at t = %g: the integration diverged (reduce -sim_ts_dt or tighten -sim_ts_rtol)", (double)t);
   if (run->rhs.Forcing()) run->r->energy_peak = std::max(run->r->energy_peak, e.Total());
   if (!run->event_mode && run->rhs.Forcing() && e.Total() >= run->estar) {
+    if (run->locate_in_step) {
+      // Samples before the crossing come from this step (forcing on); the run
+      // then goes on from the crossing state, free.
+      PetscReal t_off;
+      EnergyParts e_off;
+      PetscCall(run->LocateCutOff(ts, &t_off, &e_off));
+      PetscCall(run->Samples(ts, t_off, run->zs, e_off));
+      PetscCall(VecCopy(run->zs, z));
+      PetscCall(TSSetTime(ts, t_off));
+      PetscCall(TSRestartStep(ts));
+      t = t_off;
+      e = e_off;
+    }
     run->CutOff(t);
   }
   if (run->rhs.Forcing() && t >= run->burst_end) { // E* missed: the caller retries with a larger S
@@ -325,6 +376,7 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
   PetscCall(TSRKSetType(ts, TSRK5DP));
   PetscCall(TSSetRHSFunction(ts, NULL, RhsFunction, &run));
   PetscCall(TSSetRHSJacobian(ts, J, J, RhsJacobian, &run));
+  PetscCall(TSSetAcceleration(ts, RunAcceleration, &run)); // symsplit: raw-array kicks
   PetscCall(TSSetTolerances(ts, 1e-8, NULL, 1e-8, NULL));
   PetscCall(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP));
   PetscCall(TSSetMaxTime(ts, o.t_final));
@@ -335,7 +387,16 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
   PetscCall(TSSetFromOptions(ts));
   PetscCall(TSGetType(ts, &type));
 
-  const bool symplectic = !std::strcmp(type, TSBASICSYMPLECTIC);
+  const bool symplectic = !std::strcmp(type, TSBASICSYMPLECTIC), splitting = !std::strcmp(type, TSSYMSPLIT);
+  if (splitting) {
+    // Fixed step, shortened to divide the run into equal steps; the cut-off is
+    // located by the event below (symsplit rolls back) and samples interpolated.
+    PetscReal dt;
+    PetscCall(TSGetTimeStep(ts, &dt));
+    const PetscReal span = o.t_final - o.t_start;
+    PetscCheck(dt > 0 && dt <= span, comm, PETSC_ERR_USER, "-sim_ts_dt must lie in (0, -sim_t_final], got %g", (double)dt);
+    PetscCall(TSSetTimeStep(ts, span / std::ceil(span / dt - 1e-9)));
+  }
   if (symplectic) {
     // Fixed step dividing t_final (the type ignores MATCHSTEP), split RHS.
     PetscReal dt;
@@ -350,6 +411,8 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
     PetscCall(TSRHSSplitSetRHSFunction(ts, "position", NULL, PositionRate, &run));
     PetscCall(TSRHSSplitSetRHSFunction(ts, "momentum", NULL, MomentumRate, &run));
     run.interpolate = false;
+  } else if (run.rhs.Forcing() && splitting) {
+    run.locate_in_step = true;
   } else if (run.rhs.Forcing() && ts.get()->ops->rollback) {
     // Locate the cut-off E(t) = E* (relative tolerance 1e-10) with a TS event,
     // registered after the step size is final (guide, pitfall a). Types that
