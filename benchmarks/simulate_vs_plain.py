@@ -16,7 +16,8 @@ nltopo = os.path.join(build, "nltopo")
 plain = os.path.join(build, "benchmarks", "plain_dopri5")
 tmp = tempfile.mkdtemp()
 out = os.path.join(tmp, "bench.h5")
-base = [nltopo, "-options_file", os.path.join(root, "options", "simulate.opts"), "-sim_store_u", "0", "-output", out] + extra
+base = [nltopo, "-options_file", os.path.join(root, "options", "simulate.opts"), "-sim_store_u", "0", "-sim_ts_type", "rk", "-sim_ts_dt", "0.01",
+        "-output", out] + extra
 
 def run_nltopo():
     subprocess.run(base, check=True, capture_output=True)

@@ -16,6 +16,7 @@ configs = [c.split(":") for c in sys.argv[3:]] or [["verlet", "0.025"], ["yoshid
 root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 nltopo = os.path.join(build, "nltopo")
 plain = os.path.join(build, "benchmarks", "plain_splitting")
+dopri = os.path.join(build, "benchmarks", "plain_dopri5")
 tmp = tempfile.mkdtemp()
 
 def run_nltopo(scheme, dt, name="bench.h5"):
@@ -34,14 +35,23 @@ def run_plain(scheme, dt):
     kv = dict(re.findall(r"(\w+)=(\S+)", txt))
     return float(kv["median_ms"]) / 1e3, int(kv["steps"]), float(kv["mcr"])
 
+def run_dopri():
+    txt = subprocess.run([dopri, "--amplitude", repr(S), "--repeat", "1"], check=True, capture_output=True, text=True).stdout
+    kv = dict(re.findall(r"(\w+)=(\S+)", txt))
+    return float(kv["median_ms"]) / 1e3, float(kv["mcr"])
+
 print(f"reference: bm6 dt = 0.01, MCR = {mcr_ref:.12f}, S = {S:.6g}; medians of {reps} interleaved runs")
 print("| scheme | dt | steps | nltopo solve (ms) | plain loop (ms) | nltopo us/step | plain us/step | ratio | MCR rel. error (nltopo) |")
 print("|---|---|---|---|---|---|---|---|---|")
+td = []
 for scheme, dt in configs:
     tn, tp = [], []
     for _ in range(reps):
         t, steps, mcr, _ = run_nltopo(scheme, dt); tn.append(t)
         t, psteps, _ = run_plain(scheme, dt); tp.append(t)
+        t, mcr_dopri = run_dopri(); td.append(t)
     mn, mp = statistics.median(tn), statistics.median(tp)
     print(f"| {scheme} | {dt} | {steps} | {1e3 * mn:.2f} | {1e3 * mp:.2f} | {1e6 * mn / steps:.3f} | {1e6 * mp / psteps:.3f} | "
           f"{(mn / steps) / (mp / psteps):.2f} | {abs(mcr - mcr_ref) / mcr_ref:.1e} |")
+print(f"\nplain C++ dopri5, rtol = atol = 1e-8 (interleaved with every row above): median {1e3 * statistics.median(td):.2f} ms, "
+      f"MCR rel. error {abs(mcr_dopri - mcr_ref) / mcr_ref:.1e}")

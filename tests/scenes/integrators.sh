@@ -4,7 +4,7 @@
 # energy kept there to 1e-6 after it (rk 5dp 1e-8 drifts by 5e-5), the MCR within
 # 1e-5 of rk 5dp's, and the same run on 2 ranks.
 source "$(dirname "$0")/common.bash"
-run1 -options_file "$SRC/options/simulate.opts" -output rk.h5 -sim_store_u 0
+run1 -options_file "$SRC/options/simulate.opts" -output rk.h5 -sim_store_u 0 -sim_ts_type rk -sim_ts_dt 0.01
 run1 -options_file "$SRC/options/simulate.opts" -output sym.h5 -sim_store_u 0 \
      -sim_ts_type basicsymplectic -sim_ts_basicsymplectic_type 2 -sim_ts_dt 0.02
 run1 -options_file "$SRC/options/simulate.opts" -output cn.h5 -sim_store_u 0 \
