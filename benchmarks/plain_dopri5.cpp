@@ -128,10 +128,7 @@ static Result solve(Lattice& L, const Params& p, Work& W) {
   R.E_final = L.energy(y);
   if (R.cut) R.drift = (R.E_final - R.E_off) / R.E_off;
   // rms_i = sqrt(int u_i^2 / (t_final - t_start)); MCR = sum rms^4 / (sum rms^2)^2.
-  const double T = tf - t_start;
-  double s2 = 0.0, s4 = 0.0;
-  for (int i = 0; i < N; ++i) { const double r2 = usq[i] / T; s2 += r2; s4 += r2 * r2; }
-  R.mcr = T > 0 ? s4 / (s2 * s2) : NAN;
+  R.mcr = WindowMcr(usq, N, tf - t_start);
   return R;
 }
 

@@ -96,3 +96,10 @@ inline bool ParseCommon(const std::string& o, const char* v, Params& p) {
   else return false;
   return true;
 }
+
+// MCR = sum rms^4 / (sum rms^2)^2 with rms_i^2 = usq_i / T (usq: int u_i^2 dt over the window of length T).
+inline double WindowMcr(const double* usq, int N, double T) {
+  double s2 = 0.0, s4 = 0.0;
+  for (int i = 0; i < N; ++i) { const double r2 = usq[i] / T; s2 += r2; s4 += r2 * r2; }
+  return T > 0 ? s4 / (s2 * s2) : NAN;
+}

@@ -61,10 +61,7 @@ static Result solve(Lattice& L, const Params& p, const nltopo::symsplit::Scheme&
   }
   R.nl_ratio = acc_lin > 0 ? acc_nl / acc_lin : NAN;
   R.E_final = L.energy(u);
-  const double T = p.t_final - t_start;
-  double s2 = 0.0, s4 = 0.0;
-  for (int i = 0; i < N; ++i) { const double r2 = usq[i] / T; s2 += r2; s4 += r2 * r2; }
-  R.mcr = T > 0 ? s4 / (s2 * s2) : NAN;
+  R.mcr = WindowMcr(usq, N, p.t_final - t_start);
   return R;
 }
 

@@ -100,6 +100,18 @@ TS NewSymSplit(const char *scheme)
   return ts;
 }
 
+// The state [u0, v0] of one oscillator.
+Vec OscillatorState(PetscReal u0, PetscReal v0)
+{
+  Vec z;
+  PCHK(VecCreateSeq(PETSC_COMM_SELF, 2, &z));
+  PCHK(VecSetValue(z, 0, u0, INSERT_VALUES));
+  PCHK(VecSetValue(z, 1, v0, INSERT_VALUES));
+  PCHK(VecAssemblyBegin(z));
+  PCHK(VecAssemblyEnd(z));
+  return z;
+}
+
 struct RunSpec {
   const char *scheme;
   PetscReal h, t_final, eps, u0;
@@ -113,11 +125,7 @@ void Integrate(const RunSpec &s, PetscReal *u, PetscReal *v, PetscInt *calls = n
   Vec z;
   Oscillator osc;
   osc.eps = s.eps;
-  PCHK(VecCreateSeq(PETSC_COMM_SELF, 2, &z));
-  PCHK(VecSetValue(z, 0, s.u0, INSERT_VALUES));
-  PCHK(VecSetValue(z, 1, 0.0, INSERT_VALUES));
-  PCHK(VecAssemblyBegin(z));
-  PCHK(VecAssemblyEnd(z));
+  z = OscillatorState(s.u0, 0.0);
   ts = NewSymSplit(s.scheme);
   PCHK(TSSetRHSFunction(ts, NULL, OscRhs, &osc));
   if (!s.generic) PCHK(TSSetAcceleration(ts, OscAcceleration, &osc));
@@ -274,11 +282,7 @@ TEST_CASE("symsplit: 10^5 periods of Duffing keep the energy error bounded, with
   Oscillator osc;
   osc.eps = 1;
   std::vector<double> worst;
-  PCHK(VecCreateSeq(PETSC_COMM_SELF, 2, &z));
-  PCHK(VecSetValue(z, 0, 1.0, INSERT_VALUES));
-  PCHK(VecSetValue(z, 1, 0.0, INSERT_VALUES));
-  PCHK(VecAssemblyBegin(z));
-  PCHK(VecAssemblyEnd(z));
+  z = OscillatorState(1.0, 0.0);
   ts = NewSymSplit("verlet");
   PCHK(TSSetAcceleration(ts, OscAcceleration, &osc));
   PCHK(TSMonitorSet(ts, Monitor::Energy, &worst, NULL));
@@ -308,12 +312,8 @@ TEST_CASE("symsplit: the interpolant is accurate to O(h^6) inside a step", "[sym
     TS ts;
     Vec z, x;
     Oscillator osc;
-    PCHK(VecCreateSeq(PETSC_COMM_SELF, 2, &z));
+    z = OscillatorState(1.0, 0.0);
     PCHK(VecDuplicate(z, &x));
-    PCHK(VecSetValue(z, 0, 1.0, INSERT_VALUES));
-    PCHK(VecSetValue(z, 1, 0.0, INSERT_VALUES));
-    PCHK(VecAssemblyBegin(z));
-    PCHK(VecAssemblyEnd(z));
     ts = NewSymSplit("yoshida8");
     PCHK(TSSetAcceleration(ts, OscAcceleration, &osc));
     PCHK(TSSetTimeStep(ts, h));
