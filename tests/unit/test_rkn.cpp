@@ -390,3 +390,44 @@ TEST_CASE("rkn: an unknown pair is an error naming the option and the value", "[
     PCHK(TSDestroy(&ts));
   }
 }
+
+TEST_CASE("rkn: a forced lattice run cuts off at E* (TS event, rollback) and gives the same result on 1 and P ranks", "[rkn]")
+{
+  // The paper-default lattice forced at the insulated frequency to E* = 1; the
+  // simulation locates the cut-off with a TS event (the type rolls back).
+  SimulationResult r[2];
+  for (int j = 0; j < 2; j++) {
+    MPI_Comm comm = j ? PETSC_COMM_WORLD : PETSC_COMM_SELF;
+    LatticeParams p;
+    Lattice lat;
+    PCHK(lat.Setup(comm, p));
+    ToneBurstOptions fo;
+    fo.profile = ForceProfile::Site;
+    fo.omega = std::sqrt(3.0);
+    fo.site = 51;
+    fo.amplitude = 0.2;
+    fo.energy = 1;
+    fo.tau_periods = 5;
+    fo.t0_taus = 2;
+    ToneBurst burst;
+    PCHK(burst.Setup(lat, fo, nullptr));
+    SimulationOptions so;
+    so.t_final = 300;
+    so.sample_dt = 0;
+    so.progress = 0;
+    PCHK(PetscOptionsSetValue(NULL, "-sim_ts_type", "rkn"));
+    PCHK(PetscOptionsSetValue(NULL, "-sim_ts_rkn_scheme", "dep86"));
+    PCHK(PetscOptionsSetValue(NULL, "-sim_ts_rtol", "1e-10"));
+    PCHK(PetscOptionsSetValue(NULL, "-sim_ts_atol", "1e-10"));
+    PCHK(Simulate(lat, &burst, so, NULL, NULL, &r[j]));
+    for (const char *o : {"-sim_ts_type", "-sim_ts_rkn_scheme", "-sim_ts_rtol", "-sim_ts_atol"}) PCHK(PetscOptionsClearValue(NULL, o));
+    REQUIRE(r[j].reached);
+    INFO("t_off " << r[j].t_off << ", E_final " << r[j].energy_final << ", MCR " << r[j].mcr);
+    CHECK(std::abs(r[j].energy_final - 1) < 1e-8);
+    CHECK(r[j].counters.forcing < r[j].counters.rhs); // no forcing after the cut-off
+  }
+  INFO("1 rank: t_off " << r[0].t_off << ", MCR " << r[0].mcr << "; P ranks: t_off " << r[1].t_off << ", MCR " << r[1].mcr);
+  CHECK(std::abs(r[0].t_off - r[1].t_off) <= 1e-9 * r[0].t_off);
+  CHECK(std::abs(r[0].mcr - r[1].mcr) <= 1e-9 * r[0].mcr);
+  CHECK(std::abs(r[0].energy_final - r[1].energy_final) <= 1e-10);
+}
