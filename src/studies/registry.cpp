@@ -1,4 +1,5 @@
 #include "studies/registry.hpp"
+#include "timeint/ts_rkn.hpp"
 #include "timeint/ts_symsplit.hpp"
 #include "core/options_audit.hpp"
 #include "io/output.hpp"
@@ -42,6 +43,7 @@ PetscErrorCode RunStudyFromOptions(MPI_Comm comm)
   PetscBool list_help;
   PetscFunctionBeginUser;
   PetscCall(TSSymSplitRegister()); // nltopo's TS types, before any -*ts_type is read
+  PetscCall(TSRknRegister());
   for (const auto &s : kStudies) {
     known += std::string(known.empty() ? "" : ", ") + s.name;
     help += std::string(" ") + s.name + " (" + s.help + ");";

@@ -376,7 +376,7 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
   PetscCall(TSRKSetType(ts, TSRK5DP));
   PetscCall(TSSetRHSFunction(ts, NULL, RhsFunction, &run));
   PetscCall(TSSetRHSJacobian(ts, J, J, RhsJacobian, &run));
-  PetscCall(TSSetAcceleration(ts, RunAcceleration, &run)); // symsplit: raw-array kicks
+  PetscCall(TSSetAcceleration(ts, RunAcceleration, &run)); // symsplit, rkn: raw-array accelerations
   PetscCall(TSSetTolerances(ts, 1e-8, NULL, 1e-8, NULL));
   PetscCall(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP));
   PetscCall(TSSetMaxTime(ts, o.t_final));

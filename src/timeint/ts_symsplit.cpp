@@ -145,7 +145,6 @@ PetscErrorCode TSSetUp_SymSplit(TS ts)
   SymSplit *d = static_cast<SymSplit *>(ts->data);
   PetscInt nloc;
   PetscBool none;
-  PetscContainer c;
   PetscFunctionBegin;
   PetscCall(VecGetLocalSize(ts->vec_sol, &nloc));
   PetscCheck(nloc % 2 == 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_SIZ,
@@ -156,15 +155,8 @@ PetscErrorCode TSSetUp_SymSplit(TS ts)
   d->a1.assign(d->n, 0.0);
   d->fsal = false;
   PetscCall(VecDuplicate(ts->vec_sol, &d->z_prev));
-  PetscCall(PetscObjectQuery((PetscObject)ts, "nltopo_acceleration", (PetscObject *)&c));
-  d->acc = Acceleration();
-  if (c) {
-    void *p;
-    PetscCall(PetscContainerGetPointer(c, &p));
-    d->acc = *static_cast<Acceleration *>(p);
-  } else {
-    PetscCall(VecDuplicate(ts->vec_sol, &d->f));
-  }
+  PetscCall(TSGetAcceleration(ts, &d->acc.fn, &d->acc.ctx));
+  if (!d->acc.fn) PetscCall(VecDuplicate(ts->vec_sol, &d->f));
   PetscCall(TSGetAdapt(ts, &ts->adapt));
   PetscCall(PetscObjectTypeCompare((PetscObject)ts->adapt, TSADAPTNONE, &none));
   PetscCheck(none, PetscObjectComm((PetscObject)ts), PETSC_ERR_USER, "-%sts_adapt_type %s: symsplit is a fixed-step method (the step is -%sts_dt)",
@@ -240,12 +232,6 @@ PetscErrorCode TSCreate_SymSplit(TS ts)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode DestroyAcceleration(void *p)
-{
-  delete static_cast<Acceleration *>(p);
-  return 0;
-}
-
 } // namespace
 
 PetscErrorCode TSSymSplitRegister()
@@ -254,18 +240,6 @@ PetscErrorCode TSSymSplitRegister()
   PetscFunctionBegin;
   if (!done) PetscCall(TSRegister(TSSYMSPLIT, TSCreate_SymSplit));
   done = true;
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode TSSetAcceleration(TS ts, AccelerationFn f, void *ctx)
-{
-  PetscContainer c;
-  PetscFunctionBegin;
-  PetscCall(PetscContainerCreate(PetscObjectComm((PetscObject)ts), &c));
-  PetscCall(PetscContainerSetPointer(c, new Acceleration{f, ctx}));
-  PetscCall(PetscContainerSetUserDestroy(c, DestroyAcceleration));
-  PetscCall(PetscObjectCompose((PetscObject)ts, "nltopo_acceleration", (PetscObject)c));
-  PetscCall(PetscContainerDestroy(&c));
   PetscFunctionReturn(0);
 }
 

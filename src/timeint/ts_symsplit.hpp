@@ -13,20 +13,15 @@
 //
 // The acceleration comes from TSSetAcceleration (raw array, no Vec calls), or,
 // if none was set, from the v part of the TS right-hand side.
+#include "timeint/ts_acceleration.hpp" // AccelerationFn, TSSetAcceleration
 #include <petscts.h>
 
 namespace nltopo {
 
 #define TSSYMSPLIT "symsplit"
 
-// a[i] = acceleration of owned site i (0-based local index) at time t for the
-// u part of the state vector z.
-using AccelerationFn = PetscErrorCode (*)(TS ts, PetscReal t, Vec z, PetscScalar *a, void *ctx);
-
 // Registers "symsplit" once (safe to call repeatedly).
 PetscErrorCode TSSymSplitRegister();
-// The fast acceleration kernel used by symsplit (kept across TSSetType).
-PetscErrorCode TSSetAcceleration(TS ts, AccelerationFn f, void *ctx);
 
 // The schemes: name, order, accelerations per step (for tests and benchmarks).
 struct SymSplitSchemeInfo {

@@ -1,0 +1,372 @@
+#include "timeint/ts_rkn.hpp"
+#include "timeint/rkn_schemes.hpp"
+#include <petsc/private/tsimpl.h>
+#include <cstring>
+#include <utility>
+#include <vector>
+
+namespace nltopo {
+
+namespace {
+
+using rkn::Pair;
+using rkn::Pairs;
+
+struct Rkn {
+  PetscInt pair = 0;
+  Vec z_prev = NULL, stage = NULL, emb = NULL, f = NULL; // step start; stage state; embedded solution; RHS work vector
+  std::vector<std::vector<PetscScalar>> k; // stage accelerations k[i][site]
+  std::vector<PetscScalar> a_end;          // a(t + h, u1) of the last accepted step (pairs without FSAL)
+  bool end_ready = false;                  // the end acceleration of the last step is that of the current state
+  PetscInt n = 0;                          // owned positions
+  AccelerationFn fn = nullptr;
+  void *ctx = nullptr;
+  TSStepStatus status = TS_STEP_COMPLETE;
+  // per pair: nonzero A_ij of each row (j, A_ij); the four weight sets in one array per stage
+  std::vector<std::vector<std::pair<PetscInt, PetscReal>>> rows;
+  std::vector<PetscReal> dbar, db; // bbar - bhatbar, b - bhat (the error weights)
+
+  std::vector<PetscScalar> &End() { return Pairs()[pair].fsal ? k.back() : a_end; }
+};
+
+const char *Prefix(TS ts) { return ((PetscObject)ts)->prefix ? ((PetscObject)ts)->prefix : ""; }
+
+PetscErrorCode Accelerate(TS ts, Rkn *d, PetscReal t, Vec z, PetscScalar *a)
+{
+  PetscFunctionBegin;
+  if (d->fn) {
+    PetscCall(d->fn(ts, t, z, a, d->ctx));
+  } else { // generic problem: the v part of the right-hand side
+    const PetscScalar *f;
+    PetscCall(TSComputeRHSFunction(ts, t, z, d->f));
+    PetscCall(VecGetArrayRead(d->f, &f));
+    for (PetscInt i = 0; i < d->n; i++) a[i] = f[d->n + i];
+    PetscCall(VecRestoreArrayRead(d->f, &f));
+  }
+  PetscFunctionReturn(0);
+}
+
+// The stages 1..s-1 from the step-start state ts->vec_sol and k[0]; false in
+// *ok if TSAdaptCheckStage refuses a stage state.
+PetscErrorCode Stages(TS ts, Rkn *d, PetscReal t0, PetscReal h, PetscBool *ok)
+{
+  const Pair &P = Pairs()[d->pair];
+  const PetscInt n = d->n, s = P.stages;
+  const PetscReal h2 = h * h;
+  std::vector<const PetscScalar *> kp(s);
+  std::vector<PetscReal> w(s);
+  TSAdapt adapt;
+  PetscFunctionBegin;
+  *ok = PETSC_TRUE;
+  PetscCall(TSGetAdapt(ts, &adapt));
+  for (PetscInt i = 1; i < s; i++) {
+    const PetscReal ch = P.c[i] * h, ti = t0 + P.c[i] * h;
+    const PetscInt m = (PetscInt)d->rows[i].size();
+    for (PetscInt j = 0; j < m; j++) {
+      kp[j] = d->k[d->rows[i][j].first].data();
+      w[j] = d->rows[i][j].second;
+    }
+    const PetscScalar *z;
+    PetscScalar *y;
+    PetscCall(TSPreStage(ts, ti));
+    PetscCall(VecGetArrayRead(ts->vec_sol, &z));
+    PetscCall(VecGetArray(d->stage, &y));
+    const PetscScalar *u = z, *v = z + n;
+    for (PetscInt q = 0; q < n; q++) {
+      PetscScalar acc = 0;
+      for (PetscInt j = 0; j < m; j++) acc += w[j] * kp[j][q];
+      y[q] = u[q] + ch * v[q] + h2 * acc;
+      y[n + q] = v[q]; // not read by a(t, u); keeps the RHS fallback's input finite
+    }
+    PetscCall(VecRestoreArray(d->stage, &y));
+    PetscCall(VecRestoreArrayRead(ts->vec_sol, &z));
+    PetscCall(PetscLogFlops((2.0 * m + 4.0) * n));
+    PetscCall(TSAdaptCheckStage(adapt, ts, ti, d->stage, ok));
+    if (!*ok) PetscFunctionReturn(0);
+    PetscCall(Accelerate(ts, d, ti, d->stage, d->k[i].data()));
+  }
+  PetscFunctionReturn(0);
+}
+
+// ts->vec_sol <- (u1, v1), d->emb <- the embedded solution, d->z_prev <- the
+// step start, in one pass.
+PetscErrorCode Combine(TS ts, Rkn *d, PetscReal h)
+{
+  const Pair &P = Pairs()[d->pair];
+  const PetscInt n = d->n, s = P.stages;
+  const PetscReal h2 = h * h;
+  std::vector<const PetscScalar *> kp(s);
+  PetscScalar *z, *zp, *e;
+  PetscFunctionBegin;
+  for (PetscInt i = 0; i < s; i++) kp[i] = d->k[i].data();
+  PetscCall(VecGetArray(ts->vec_sol, &z));
+  PetscCall(VecGetArray(d->z_prev, &zp));
+  PetscCall(VecGetArray(d->emb, &e));
+  for (PetscInt q = 0; q < n; q++) {
+    PetscScalar sbar = 0, sb = 0, ebar = 0, eb = 0;
+    for (PetscInt i = 0; i < s; i++) {
+      const PetscScalar a = kp[i][q];
+      sbar += P.bbar[i] * a;
+      sb += P.b[i] * a;
+      ebar += d->dbar[i] * a;
+      eb += d->db[i] * a;
+    }
+    const PetscScalar u = z[q], v = z[n + q], u1 = u + h * v + h2 * sbar, v1 = v + h * sb;
+    zp[q] = u;
+    zp[n + q] = v;
+    z[q] = u1;
+    z[n + q] = v1;
+    e[q] = u1 - h2 * ebar;
+    e[n + q] = v1 - h * eb;
+  }
+  PetscCall(VecRestoreArray(d->emb, &e));
+  PetscCall(VecRestoreArray(d->z_prev, &zp));
+  PetscCall(VecRestoreArray(ts->vec_sol, &z));
+  PetscCall(PetscLogFlops((8.0 * s + 8.0) * n));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode TSRollBack_Rkn(TS ts)
+{
+  Rkn *d = static_cast<Rkn *>(ts->data);
+  PetscFunctionBegin;
+  PetscCall(VecCopy(d->z_prev, ts->vec_sol));
+  d->end_ready = false;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode TSStep_Rkn(TS ts)
+{
+  Rkn *d = static_cast<Rkn *>(ts->data);
+  const Pair &P = Pairs()[d->pair];
+  PetscInt rejections = 0;
+  PetscBool accept = PETSC_TRUE;
+  TSAdapt adapt;
+  PetscFunctionBegin;
+  // k[0] = a(t, u): the last step's end acceleration (FSAL / computed after
+  // acceptance), unless the state was rolled back or changed (restart).
+  if (ts->steprollback || ts->steprestart || !d->end_ready) PetscCall(Accelerate(ts, d, ts->ptime, ts->vec_sol, d->k[0].data()));
+  else std::swap(d->k[0], d->End());
+  d->end_ready = false;
+  d->status = TS_STEP_INCOMPLETE;
+  while (!ts->reason && d->status != TS_STEP_COMPLETE) {
+    const PetscReal t0 = ts->ptime, h = ts->time_step;
+    PetscReal next = h;
+    PetscBool ok;
+    PetscCall(Stages(ts, d, t0, h, &ok));
+    if (ok) {
+      PetscCall(Combine(ts, d, h));
+      d->status = TS_STEP_PENDING;
+      PetscCall(TSGetAdapt(ts, &adapt));
+      PetscCall(TSAdaptCandidatesClear(adapt));
+      PetscCall(TSAdaptCandidateAdd(adapt, P.label, P.order, 1, 1.0, (PetscReal)(P.fsal ? P.stages - 1 : P.stages), PETSC_TRUE));
+      PetscCall(TSAdaptChoose(adapt, ts, h, NULL, &next, &accept));
+      if (accept) {
+        if (!P.fsal) PetscCall(Accelerate(ts, d, t0 + h, ts->vec_sol, d->a_end.data()));
+        d->end_ready = true;
+        d->status = TS_STEP_COMPLETE;
+        ts->ptime += h;
+        ts->time_step = next;
+        break;
+      }
+      PetscCall(VecCopy(d->z_prev, ts->vec_sol)); // the step start again; k[0] still holds its acceleration
+      ts->time_step = next;
+      d->status = TS_STEP_INCOMPLETE;
+    }
+    // rejected (error estimate or stage check): retry with the new step
+    ts->reject++;
+    accept = PETSC_FALSE;
+    if (!ts->reason && ++rejections > ts->max_reject && ts->max_reject >= 0) {
+      ts->reason = TS_DIVERGED_STEP_REJECTED;
+      PetscCall(PetscInfo(ts, "Step %" PetscInt_FMT ": %" PetscInt_FMT " rejections, more than -%sts_max_reject %" PetscInt_FMT "\n", ts->steps, rejections, Prefix(ts), ts->max_reject));
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+// The weighted norm of (propagated - embedded) of the last attempted step; its
+// size goes as h^(q+1), q the embedded order.
+PetscErrorCode TSEvaluateWLTE_Rkn(TS ts, NormType wnormtype, PetscInt *order, PetscReal *wlte)
+{
+  Rkn *d = static_cast<Rkn *>(ts->data);
+  PetscReal wa, wr;
+  PetscFunctionBegin;
+  if (d->status != TS_STEP_PENDING && d->status != TS_STEP_COMPLETE) {
+    *wlte = -1;
+    PetscFunctionReturn(0);
+  }
+  PetscCall(TSErrorWeightedNorm(ts, ts->vec_sol, d->emb, wnormtype, wlte, &wa, &wr));
+  if (order) *order = Pairs()[d->pair].order_embedded + 1;
+  PetscFunctionReturn(0);
+}
+
+// Quintic Hermite interpolation on u from (u, v, a) at both ends of the last
+// step, v its derivative: exact for polynomials of degree 5 (error O(h^6)).
+PetscErrorCode TSInterpolate_Rkn(TS ts, PetscReal t, Vec X)
+{
+  Rkn *d = static_cast<Rkn *>(ts->data);
+  const PetscReal h = ts->ptime - ts->ptime_prev;
+  const PetscInt n = d->n;
+  const PetscScalar *z0, *z1;
+  PetscScalar *x;
+  PetscFunctionBegin;
+  if (h <= 0 || !d->end_ready) {
+    PetscCall(VecCopy(ts->vec_sol, X));
+    PetscFunctionReturn(0);
+  }
+  const PetscScalar *A0 = d->k[0].data(), *A1 = d->End().data();
+  const PetscReal s = (t - ts->ptime_prev) / h, s2 = s * s, s3 = s2 * s, s4 = s3 * s, s5 = s4 * s;
+  const PetscReal H0 = 1 - 10 * s3 + 15 * s4 - 6 * s5, H1 = s - 6 * s3 + 8 * s4 - 3 * s5, H2 = 0.5 * (s2 - 3 * s3 + 3 * s4 - s5);
+  const PetscReal H3 = 10 * s3 - 15 * s4 + 6 * s5, H4 = -4 * s3 + 7 * s4 - 3 * s5, H5 = 0.5 * (s3 - 2 * s4 + s5);
+  const PetscReal D0 = -30 * s2 + 60 * s3 - 30 * s4, D1 = 1 - 18 * s2 + 32 * s3 - 15 * s4, D2 = 0.5 * (2 * s - 9 * s2 + 12 * s3 - 5 * s4);
+  const PetscReal D4 = -12 * s2 + 28 * s3 - 15 * s4, D5 = 0.5 * (3 * s2 - 8 * s3 + 5 * s4);
+  PetscCall(VecGetArrayRead(d->z_prev, &z0));
+  PetscCall(VecGetArrayRead(ts->vec_sol, &z1));
+  PetscCall(VecGetArray(X, &x));
+  for (PetscInt i = 0; i < n; i++) {
+    const PetscReal u0 = z0[i], v0 = z0[n + i], u1 = z1[i], v1 = z1[n + i], a0 = A0[i], a1 = A1[i];
+    x[i] = H0 * u0 + H3 * u1 + h * (H1 * v0 + H4 * v1) + h * h * (H2 * a0 + H5 * a1);
+    x[n + i] = D0 * (u0 - u1) / h + D1 * v0 + D4 * v1 + h * (D2 * a0 + D5 * a1);
+  }
+  PetscCall(VecRestoreArray(X, &x));
+  PetscCall(VecRestoreArrayRead(ts->vec_sol, &z1));
+  PetscCall(VecRestoreArrayRead(d->z_prev, &z0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode TSReset_Rkn(TS ts)
+{
+  Rkn *d = static_cast<Rkn *>(ts->data);
+  PetscFunctionBegin;
+  PetscCall(VecDestroy(&d->z_prev));
+  PetscCall(VecDestroy(&d->stage));
+  PetscCall(VecDestroy(&d->emb));
+  PetscCall(VecDestroy(&d->f));
+  d->k.clear();
+  d->a_end.clear();
+  d->end_ready = false;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode TSSetUp_Rkn(TS ts)
+{
+  Rkn *d = static_cast<Rkn *>(ts->data);
+  const Pair &P = Pairs()[d->pair];
+  PetscInt nloc;
+  PetscFunctionBegin;
+  PetscCall(TSReset_Rkn(ts));
+  PetscCall(VecGetLocalSize(ts->vec_sol, &nloc));
+  PetscCheck(nloc % 2 == 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_SIZ,
+             "-%sts_type rkn needs a state [u, v] with both halves on every rank (local size %" PetscInt_FMT " is odd)", Prefix(ts), nloc);
+  d->n = nloc / 2;
+  d->k.assign(P.stages, std::vector<PetscScalar>(d->n, 0.0));
+  d->a_end.assign(P.fsal ? 0 : d->n, 0.0);
+  d->rows.assign(P.stages, {});
+  for (PetscInt i = 0; i < P.stages; i++)
+    for (PetscInt j = 0; j < i; j++)
+      if (P.A[i * P.stages + j] != 0) d->rows[i].push_back({j, P.A[i * P.stages + j]});
+  d->dbar.resize(P.stages);
+  d->db.resize(P.stages);
+  for (PetscInt i = 0; i < P.stages; i++) {
+    d->dbar[i] = P.bbar[i] - P.bhatbar[i];
+    d->db[i] = P.b[i] - P.bhat[i];
+  }
+  PetscCall(VecDuplicate(ts->vec_sol, &d->z_prev));
+  PetscCall(VecDuplicate(ts->vec_sol, &d->stage));
+  PetscCall(VecDuplicate(ts->vec_sol, &d->emb));
+  PetscCall(TSGetAcceleration(ts, &d->fn, &d->ctx));
+  if (!d->fn) PetscCall(VecDuplicate(ts->vec_sol, &d->f));
+  PetscCall(TSGetAdapt(ts, &ts->adapt));
+  PetscCall(TSAdaptCandidatesClear(ts->adapt));
+  d->status = TS_STEP_COMPLETE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode TSDestroy_Rkn(TS ts)
+{
+  PetscFunctionBegin;
+  PetscCall(TSReset_Rkn(ts));
+  delete static_cast<Rkn *>(ts->data);
+  ts->data = NULL;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode TSSetFromOptions_Rkn(TS ts, PetscOptionItems *PetscOptionsObject)
+{
+  Rkn *d = static_cast<Rkn *>(ts->data);
+  std::vector<const char *> names;
+  char value[64] = "";
+  PetscBool set;
+  PetscFunctionBegin;
+  for (const Pair &p : Pairs()) names.push_back(p.name);
+  PetscOptionsHeadBegin(PetscOptionsObject, "Embedded Runge-Kutta-Nystrom pairs (nltopo)");
+  PetscCall(PetscOptionsString("-ts_rkn_scheme", "Pair: dep64 = 6(4), dep86 = 8(6), dep1210 = 12(10) (Dormand, El-Mikkawy & Prince 1987)", "", names[d->pair], value,
+                               sizeof(value), &set));
+  PetscOptionsHeadEnd();
+  if (set) {
+    PetscInt found = -1;
+    const char *alias[] = {"6(4)", "8(6)", "12(10)"}; // the pairs' orders as names
+    for (PetscInt i = 0; i < (PetscInt)names.size(); i++)
+      if (!std::strcmp(value, names[i]) || !std::strcmp(value, alias[i])) found = i;
+    PetscCheck(found >= 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_USER,
+               "-%sts_rkn_scheme %s: unknown pair (dep64 or 6(4), dep86 or 8(6), dep1210 or 12(10))", Prefix(ts), value);
+    if (found != d->pair && ts->setupcalled) { // another pair: other work sizes
+      PetscCall(TSReset_Rkn(ts));
+      ts->setupcalled = PETSC_FALSE;
+    }
+    d->pair = found;
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode TSView_Rkn(TS ts, PetscViewer viewer)
+{
+  Rkn *d = static_cast<Rkn *>(ts->data);
+  const Pair &P = Pairs()[d->pair];
+  PetscBool ascii;
+  PetscFunctionBegin;
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
+  if (ascii)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  rkn pair %s (%s): order %d, embedded %d, %d accelerations per accepted step%s\n", P.name, P.label, P.order, P.order_embedded,
+                                     P.fsal ? P.stages - 1 : P.stages, P.fsal ? " (FSAL)" : ""));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode TSCreate_Rkn(TS ts)
+{
+  PetscFunctionBegin;
+  ts->data = new Rkn();
+  ts->ops->setup = TSSetUp_Rkn;
+  ts->ops->step = TSStep_Rkn;
+  ts->ops->reset = TSReset_Rkn;
+  ts->ops->destroy = TSDestroy_Rkn;
+  ts->ops->setfromoptions = TSSetFromOptions_Rkn;
+  ts->ops->view = TSView_Rkn;
+  ts->ops->interpolate = TSInterpolate_Rkn;
+  ts->ops->rollback = TSRollBack_Rkn;
+  ts->ops->evaluatewlte = TSEvaluateWLTE_Rkn;
+  ts->default_adapt_type = TSADAPTBASIC;
+  ts->usessnes = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode TSRknRegister()
+{
+  static bool done = false;
+  PetscFunctionBegin;
+  if (!done) PetscCall(TSRegister(TSRKN, TSCreate_Rkn));
+  done = true;
+  PetscFunctionReturn(0);
+}
+
+PetscInt RknPairCount() { return (PetscInt)Pairs().size(); }
+
+RknPairInfo RknPair(PetscInt i)
+{
+  const Pair &p = Pairs()[i];
+  return {p.name, p.label, p.order, p.order_embedded, p.fsal ? p.stages - 1 : p.stages, p.fsal ? PETSC_TRUE : PETSC_FALSE};
+}
+
+} // namespace nltopo
