@@ -249,7 +249,7 @@ PetscErrorCode PostStep(TS ts)
     if (run->locate_in_step) {
       // Samples before the crossing come from this step (forcing on); the run
       // then goes on from the crossing state, free.
-      PetscReal t_off;
+      PetscReal t_off = 0;
       EnergyParts e_off;
       PetscCall(run->LocateCutOff(ts, &t_off, &e_off));
       PetscCall(run->Samples(ts, t_off, run->zs, e_off));

@@ -1,4 +1,5 @@
 #include "timeint/ts_acceleration.hpp"
+#include <petsc/private/tsimpl.h>
 
 namespace nltopo {
 
@@ -42,6 +43,68 @@ PetscErrorCode TSGetAcceleration(TS ts, AccelerationFn *f, void **ctx)
     *f = static_cast<Acceleration *>(p)->fn;
     if (ctx) *ctx = static_cast<Acceleration *>(p)->ctx;
   }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SecondOrderProblem::Setup(TS ts, const char *type)
+{
+  PetscInt nloc;
+  PetscFunctionBegin;
+  PetscCall(VecGetLocalSize(ts->vec_sol, &nloc));
+  PetscCheck(nloc % 2 == 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_SIZ,
+             "-%sts_type %s needs a state [u, v] with both halves on every rank (local size %" PetscInt_FMT " is odd)",
+             ((PetscObject)ts)->prefix ? ((PetscObject)ts)->prefix : "", type, nloc);
+  n = nloc / 2;
+  PetscCall(TSGetAcceleration(ts, &fn, &ctx));
+  if (!fn) PetscCall(VecDuplicate(ts->vec_sol, &f));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SecondOrderProblem::Evaluate(TS ts, PetscReal t, Vec z, PetscScalar *a)
+{
+  PetscFunctionBegin;
+  if (fn) {
+    PetscCall(fn(ts, t, z, a, ctx));
+  } else { // generic problem: the v part of the right-hand side
+    const PetscScalar *y;
+    PetscCall(TSComputeRHSFunction(ts, t, z, f));
+    PetscCall(VecGetArrayRead(f, &y));
+    for (PetscInt i = 0; i < n; i++) a[i] = y[n + i];
+    PetscCall(VecRestoreArrayRead(f, &y));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SecondOrderProblem::Reset()
+{
+  PetscFunctionBegin;
+  PetscCall(VecDestroy(&f));
+  fn = nullptr;
+  ctx = nullptr;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode HermiteInterpolate(Vec z0v, Vec z1v, const PetscScalar *a0, const PetscScalar *a1, PetscInt n, PetscReal h, PetscReal s, Vec X)
+{
+  const PetscScalar *z0, *z1;
+  PetscScalar *x;
+  PetscFunctionBegin;
+  const PetscReal s2 = s * s, s3 = s2 * s, s4 = s3 * s, s5 = s4 * s;
+  const PetscReal H0 = 1 - 10 * s3 + 15 * s4 - 6 * s5, H1 = s - 6 * s3 + 8 * s4 - 3 * s5, H2 = 0.5 * (s2 - 3 * s3 + 3 * s4 - s5);
+  const PetscReal H3 = 10 * s3 - 15 * s4 + 6 * s5, H4 = -4 * s3 + 7 * s4 - 3 * s5, H5 = 0.5 * (s3 - 2 * s4 + s5);
+  const PetscReal D0 = -30 * s2 + 60 * s3 - 30 * s4, D1 = 1 - 18 * s2 + 32 * s3 - 15 * s4, D2 = 0.5 * (2 * s - 9 * s2 + 12 * s3 - 5 * s4);
+  const PetscReal D4 = -12 * s2 + 28 * s3 - 15 * s4, D5 = 0.5 * (3 * s2 - 8 * s3 + 5 * s4);
+  PetscCall(VecGetArrayRead(z0v, &z0));
+  PetscCall(VecGetArrayRead(z1v, &z1));
+  PetscCall(VecGetArray(X, &x));
+  for (PetscInt i = 0; i < n; i++) {
+    const PetscReal u0 = z0[i], v0 = z0[n + i], u1 = z1[i], v1 = z1[n + i];
+    x[i] = H0 * u0 + H3 * u1 + h * (H1 * v0 + H4 * v1) + h * h * (H2 * a0[i] + H5 * a1[i]);
+    x[n + i] = D0 * (u0 - u1) / h + D1 * v0 + D4 * v1 + h * (D2 * a0[i] + D5 * a1[i]);
+  }
+  PetscCall(VecRestoreArray(X, &x));
+  PetscCall(VecRestoreArrayRead(z1v, &z1));
+  PetscCall(VecRestoreArrayRead(z0v, &z0));
   PetscFunctionReturn(0);
 }
 

@@ -18,4 +18,23 @@ PetscErrorCode TSSetAcceleration(TS ts, AccelerationFn f, void *ctx);
 // part of the TS right-hand side).
 PetscErrorCode TSGetAcceleration(TS ts, AccelerationFn *f, void **ctx);
 
+// What both types need of the problem: the owned positions n (half the local
+// state, checked even) and the acceleration, from TSSetAcceleration or else the
+// v part of the TS right-hand side (work vector f).
+struct SecondOrderProblem {
+  PetscInt n = 0;
+  AccelerationFn fn = nullptr;
+  void *ctx = nullptr;
+  Vec f = NULL;
+  PetscErrorCode Setup(TS ts, const char *type); // at TSSetUp: -<prefix>ts_type <type> named in errors
+  PetscErrorCode Evaluate(TS ts, PetscReal t, Vec z, PetscScalar *a);
+  PetscErrorCode Reset();
+};
+
+// The quintic Hermite interpolant at s in [0, 1] of a step of length h from the
+// state z0 to z1 (layout [u | v], n owned positions) with accelerations a0, a1
+// at its ends: u exact for polynomials of degree 5 (error O(h^6)), v its
+// derivative.
+PetscErrorCode HermiteInterpolate(Vec z0, Vec z1, const PetscScalar *a0, const PetscScalar *a1, PetscInt n, PetscReal h, PetscReal s, Vec X);
+
 } // namespace nltopo

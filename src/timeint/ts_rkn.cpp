@@ -14,13 +14,11 @@ using rkn::Pairs;
 
 struct Rkn {
   PetscInt pair = 0;
-  Vec z_prev = NULL, stage = NULL, emb = NULL, f = NULL; // step start; stage state; embedded solution; RHS work vector
+  Vec z_prev = NULL, stage = NULL, emb = NULL; // step start; stage state; embedded solution
   std::vector<std::vector<PetscScalar>> k; // stage accelerations k[i][site]
   std::vector<PetscScalar> a_end;          // a(t + h, u1) of the last accepted step (pairs without FSAL)
   bool end_ready = false;                  // the end acceleration of the last step is that of the current state
-  PetscInt n = 0;                          // owned positions
-  AccelerationFn fn = nullptr;
-  void *ctx = nullptr;
+  SecondOrderProblem p;                    // owned positions, the acceleration
   TSStepStatus status = TS_STEP_COMPLETE;
   // per pair: nonzero A_ij of each row (j, A_ij); the four weight sets in one array per stage
   std::vector<std::vector<std::pair<PetscInt, PetscReal>>> rows;
@@ -31,27 +29,14 @@ struct Rkn {
 
 const char *Prefix(TS ts) { return ((PetscObject)ts)->prefix ? ((PetscObject)ts)->prefix : ""; }
 
-PetscErrorCode Accelerate(TS ts, Rkn *d, PetscReal t, Vec z, PetscScalar *a)
-{
-  PetscFunctionBegin;
-  if (d->fn) {
-    PetscCall(d->fn(ts, t, z, a, d->ctx));
-  } else { // generic problem: the v part of the right-hand side
-    const PetscScalar *f;
-    PetscCall(TSComputeRHSFunction(ts, t, z, d->f));
-    PetscCall(VecGetArrayRead(d->f, &f));
-    for (PetscInt i = 0; i < d->n; i++) a[i] = f[d->n + i];
-    PetscCall(VecRestoreArrayRead(d->f, &f));
-  }
-  PetscFunctionReturn(0);
-}
+PetscErrorCode Accelerate(TS ts, Rkn *d, PetscReal t, Vec z, PetscScalar *a) { return d->p.Evaluate(ts, t, z, a); }
 
 // The stages 1..s-1 from the step-start state ts->vec_sol and k[0]; false in
 // *ok if TSAdaptCheckStage refuses a stage state.
 PetscErrorCode Stages(TS ts, Rkn *d, PetscReal t0, PetscReal h, PetscBool *ok)
 {
   const Pair &P = Pairs()[d->pair];
-  const PetscInt n = d->n, s = P.stages;
+  const PetscInt n = d->p.n, s = P.stages;
   const PetscReal h2 = h * h;
   std::vector<const PetscScalar *> kp(s);
   std::vector<PetscReal> w(s);
@@ -93,7 +78,7 @@ PetscErrorCode Stages(TS ts, Rkn *d, PetscReal t0, PetscReal h, PetscBool *ok)
 PetscErrorCode Combine(TS ts, Rkn *d, PetscReal h)
 {
   const Pair &P = Pairs()[d->pair];
-  const PetscInt n = d->n, s = P.stages;
+  const PetscInt n = d->p.n, s = P.stages;
   const PetscReal h2 = h * h;
   std::vector<const PetscScalar *> kp(s);
   PetscScalar *z, *zp, *e;
@@ -206,31 +191,9 @@ PetscErrorCode TSInterpolate_Rkn(TS ts, PetscReal t, Vec X)
 {
   Rkn *d = static_cast<Rkn *>(ts->data);
   const PetscReal h = ts->ptime - ts->ptime_prev;
-  const PetscInt n = d->n;
-  const PetscScalar *z0, *z1;
-  PetscScalar *x;
   PetscFunctionBegin;
-  if (h <= 0 || !d->end_ready) {
-    PetscCall(VecCopy(ts->vec_sol, X));
-    PetscFunctionReturn(0);
-  }
-  const PetscScalar *A0 = d->k[0].data(), *A1 = d->End().data();
-  const PetscReal s = (t - ts->ptime_prev) / h, s2 = s * s, s3 = s2 * s, s4 = s3 * s, s5 = s4 * s;
-  const PetscReal H0 = 1 - 10 * s3 + 15 * s4 - 6 * s5, H1 = s - 6 * s3 + 8 * s4 - 3 * s5, H2 = 0.5 * (s2 - 3 * s3 + 3 * s4 - s5);
-  const PetscReal H3 = 10 * s3 - 15 * s4 + 6 * s5, H4 = -4 * s3 + 7 * s4 - 3 * s5, H5 = 0.5 * (s3 - 2 * s4 + s5);
-  const PetscReal D0 = -30 * s2 + 60 * s3 - 30 * s4, D1 = 1 - 18 * s2 + 32 * s3 - 15 * s4, D2 = 0.5 * (2 * s - 9 * s2 + 12 * s3 - 5 * s4);
-  const PetscReal D4 = -12 * s2 + 28 * s3 - 15 * s4, D5 = 0.5 * (3 * s2 - 8 * s3 + 5 * s4);
-  PetscCall(VecGetArrayRead(d->z_prev, &z0));
-  PetscCall(VecGetArrayRead(ts->vec_sol, &z1));
-  PetscCall(VecGetArray(X, &x));
-  for (PetscInt i = 0; i < n; i++) {
-    const PetscReal u0 = z0[i], v0 = z0[n + i], u1 = z1[i], v1 = z1[n + i], a0 = A0[i], a1 = A1[i];
-    x[i] = H0 * u0 + H3 * u1 + h * (H1 * v0 + H4 * v1) + h * h * (H2 * a0 + H5 * a1);
-    x[n + i] = D0 * (u0 - u1) / h + D1 * v0 + D4 * v1 + h * (D2 * a0 + D5 * a1);
-  }
-  PetscCall(VecRestoreArray(X, &x));
-  PetscCall(VecRestoreArrayRead(ts->vec_sol, &z1));
-  PetscCall(VecRestoreArrayRead(d->z_prev, &z0));
+  if (h <= 0 || !d->end_ready) PetscCall(VecCopy(ts->vec_sol, X));
+  else PetscCall(HermiteInterpolate(d->z_prev, ts->vec_sol, d->k[0].data(), d->End().data(), d->p.n, h, (t - ts->ptime_prev) / h, X));
   PetscFunctionReturn(0);
 }
 
@@ -241,7 +204,7 @@ PetscErrorCode TSReset_Rkn(TS ts)
   PetscCall(VecDestroy(&d->z_prev));
   PetscCall(VecDestroy(&d->stage));
   PetscCall(VecDestroy(&d->emb));
-  PetscCall(VecDestroy(&d->f));
+  PetscCall(d->p.Reset());
   d->k.clear();
   d->a_end.clear();
   d->end_ready = false;
@@ -252,15 +215,11 @@ PetscErrorCode TSSetUp_Rkn(TS ts)
 {
   Rkn *d = static_cast<Rkn *>(ts->data);
   const Pair &P = Pairs()[d->pair];
-  PetscInt nloc;
   PetscFunctionBegin;
   PetscCall(TSReset_Rkn(ts));
-  PetscCall(VecGetLocalSize(ts->vec_sol, &nloc));
-  PetscCheck(nloc % 2 == 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_SIZ,
-             "-%sts_type rkn needs a state [u, v] with both halves on every rank (local size %" PetscInt_FMT " is odd)", Prefix(ts), nloc);
-  d->n = nloc / 2;
-  d->k.assign(P.stages, std::vector<PetscScalar>(d->n, 0.0));
-  d->a_end.assign(P.fsal ? 0 : d->n, 0.0);
+  PetscCall(d->p.Setup(ts, TSRKN));
+  d->k.assign(P.stages, std::vector<PetscScalar>(d->p.n, 0.0));
+  d->a_end.assign(P.fsal ? 0 : d->p.n, 0.0);
   d->rows.assign(P.stages, {});
   for (PetscInt i = 0; i < P.stages; i++)
     for (PetscInt j = 0; j < i; j++)
@@ -274,8 +233,6 @@ PetscErrorCode TSSetUp_Rkn(TS ts)
   PetscCall(VecDuplicate(ts->vec_sol, &d->z_prev));
   PetscCall(VecDuplicate(ts->vec_sol, &d->stage));
   PetscCall(VecDuplicate(ts->vec_sol, &d->emb));
-  PetscCall(TSGetAcceleration(ts, &d->fn, &d->ctx));
-  if (!d->fn) PetscCall(VecDuplicate(ts->vec_sol, &d->f));
   PetscCall(TSGetAdapt(ts, &ts->adapt));
   PetscCall(TSAdaptCandidatesClear(ts->adapt));
   d->status = TS_STEP_COMPLETE;

@@ -13,42 +13,23 @@ namespace {
 using symsplit::Scheme;
 using symsplit::Schemes;
 
-struct Acceleration {
-  AccelerationFn fn = nullptr;
-  void *ctx = nullptr;
-};
-
 struct SymSplit {
   PetscInt scheme = 0;
-  Vec z_prev = NULL, f = NULL;             // state at the step start; RHS work vector (no TSSetAcceleration)
+  Vec z_prev = NULL;                       // state at the step start
   std::vector<PetscScalar> a0, a1;         // acceleration at the step start / end (a1: stages, then the end: FSAL)
   bool fsal = false;                       // a1 holds a(t, u) of the current state
   PetscReal h_nominal = 0;                 // the fixed step; events and the final time shorten single steps
-  PetscInt n = 0;                          // owned positions
-  Acceleration acc;
+  SecondOrderProblem p;                    // owned positions, the acceleration
 };
 
-PetscErrorCode Accelerate(TS ts, SymSplit *d, PetscReal t, Vec z, PetscScalar *a)
-{
-  PetscFunctionBegin;
-  if (d->acc.fn) {
-    PetscCall(d->acc.fn(ts, t, z, a, d->acc.ctx));
-  } else { // generic problem: the v part of the right-hand side
-    const PetscScalar *f;
-    PetscCall(TSComputeRHSFunction(ts, t, z, d->f));
-    PetscCall(VecGetArrayRead(d->f, &f));
-    for (PetscInt i = 0; i < d->n; i++) a[i] = f[d->n + i];
-    PetscCall(VecRestoreArrayRead(d->f, &f));
-  }
-  PetscFunctionReturn(0);
-}
+PetscErrorCode Accelerate(TS ts, SymSplit *d, PetscReal t, Vec z, PetscScalar *a) { return d->p.Evaluate(ts, t, z, a); }
 
 PetscErrorCode TSStep_SymSplit(TS ts)
 {
   SymSplit *d = static_cast<SymSplit *>(ts->data);
   const Scheme &s = Schemes()[d->scheme];
   const PetscReal h = ts->time_step, t0 = ts->ptime;
-  const PetscInt n = d->n, stages = (PetscInt)s.drift.size();
+  const PetscInt n = d->p.n, stages = (PetscInt)s.drift.size();
   PetscReal next = h;
   PetscBool accept = PETSC_TRUE;
   PetscFunctionBegin;
@@ -113,50 +94,22 @@ PetscErrorCode TSInterpolate_SymSplit(TS ts, PetscReal t, Vec X)
 {
   SymSplit *d = static_cast<SymSplit *>(ts->data);
   const PetscReal h = ts->ptime - ts->ptime_prev;
-  const PetscInt n = d->n;
-  const PetscScalar *z0, *z1;
-  PetscScalar *x;
   PetscFunctionBegin;
-  if (h <= 0) {
-    PetscCall(VecCopy(ts->vec_sol, X));
-    PetscFunctionReturn(0);
-  }
-  const PetscReal s = (t - ts->ptime_prev) / h, s2 = s * s, s3 = s2 * s, s4 = s3 * s, s5 = s4 * s;
-  const PetscReal H0 = 1 - 10 * s3 + 15 * s4 - 6 * s5, H1 = s - 6 * s3 + 8 * s4 - 3 * s5, H2 = 0.5 * (s2 - 3 * s3 + 3 * s4 - s5);
-  const PetscReal H3 = 10 * s3 - 15 * s4 + 6 * s5, H4 = -4 * s3 + 7 * s4 - 3 * s5, H5 = 0.5 * (s3 - 2 * s4 + s5);
-  const PetscReal D0 = -30 * s2 + 60 * s3 - 30 * s4, D1 = 1 - 18 * s2 + 32 * s3 - 15 * s4, D2 = 0.5 * (2 * s - 9 * s2 + 12 * s3 - 5 * s4);
-  const PetscReal D4 = -12 * s2 + 28 * s3 - 15 * s4, D5 = 0.5 * (3 * s2 - 8 * s3 + 5 * s4);
-  PetscCall(VecGetArrayRead(d->z_prev, &z0));
-  PetscCall(VecGetArrayRead(ts->vec_sol, &z1));
-  PetscCall(VecGetArray(X, &x));
-  for (PetscInt i = 0; i < n; i++) {
-    const PetscReal u0 = z0[i], v0 = z0[n + i], u1 = z1[i], v1 = z1[n + i], a0 = d->a0[i], a1 = d->a1[i];
-    x[i] = H0 * u0 + H3 * u1 + h * (H1 * v0 + H4 * v1) + h * h * (H2 * a0 + H5 * a1);
-    x[n + i] = D0 * (u0 - u1) / h + D1 * v0 + D4 * v1 + h * (D2 * a0 + D5 * a1);
-  }
-  PetscCall(VecRestoreArray(X, &x));
-  PetscCall(VecRestoreArrayRead(ts->vec_sol, &z1));
-  PetscCall(VecRestoreArrayRead(d->z_prev, &z0));
+  if (h <= 0) PetscCall(VecCopy(ts->vec_sol, X));
+  else PetscCall(HermiteInterpolate(d->z_prev, ts->vec_sol, d->a0.data(), d->a1.data(), d->p.n, h, (t - ts->ptime_prev) / h, X));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode TSSetUp_SymSplit(TS ts)
 {
   SymSplit *d = static_cast<SymSplit *>(ts->data);
-  PetscInt nloc;
   PetscBool none;
   PetscFunctionBegin;
-  PetscCall(VecGetLocalSize(ts->vec_sol, &nloc));
-  PetscCheck(nloc % 2 == 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_SIZ,
-             "-%sts_type symsplit needs a state [u, v] with both halves on every rank (local size %" PetscInt_FMT " is odd)",
-             ((PetscObject)ts)->prefix ? ((PetscObject)ts)->prefix : "", nloc);
-  d->n = nloc / 2;
-  d->a0.assign(d->n, 0.0);
-  d->a1.assign(d->n, 0.0);
+  PetscCall(d->p.Setup(ts, TSSYMSPLIT));
+  d->a0.assign(d->p.n, 0.0);
+  d->a1.assign(d->p.n, 0.0);
   d->fsal = false;
   PetscCall(VecDuplicate(ts->vec_sol, &d->z_prev));
-  PetscCall(TSGetAcceleration(ts, &d->acc.fn, &d->acc.ctx));
-  if (!d->acc.fn) PetscCall(VecDuplicate(ts->vec_sol, &d->f));
   PetscCall(TSGetAdapt(ts, &ts->adapt));
   PetscCall(PetscObjectTypeCompare((PetscObject)ts->adapt, TSADAPTNONE, &none));
   PetscCheck(none, PetscObjectComm((PetscObject)ts), PETSC_ERR_USER, "-%sts_adapt_type %s: symsplit is a fixed-step method (the step is -%sts_dt)",
@@ -171,7 +124,7 @@ PetscErrorCode TSReset_SymSplit(TS ts)
   SymSplit *d = static_cast<SymSplit *>(ts->data);
   PetscFunctionBegin;
   PetscCall(VecDestroy(&d->z_prev));
-  PetscCall(VecDestroy(&d->f));
+  PetscCall(d->p.Reset());
   d->a0.clear();
   d->a1.clear();
   PetscFunctionReturn(0);

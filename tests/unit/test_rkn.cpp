@@ -6,6 +6,7 @@
 // rollback, the Hermite interpolant, and the forced lattice run (TS event on
 // the energy cut-off) on 1 and 2 ranks.
 #include "helpers.hpp"
+#include "oscillators.hpp"
 #include "timeint/rkn_schemes.hpp"
 #include "timeint/simulation.hpp"
 #include "timeint/ts_rkn.hpp"
@@ -17,81 +18,6 @@ using namespace nltopo;
 using namespace nltopo::test;
 
 namespace {
-
-// u'' = -u - eps u^3 for every position of z = [u..., v...] (PETSC_COMM_SELF).
-struct Oscillator {
-  PetscReal eps = 0;
-  PetscInt calls = 0;
-};
-
-PetscErrorCode OscAcceleration(TS, PetscReal, Vec z, PetscScalar *a, void *ctx)
-{
-  auto *o = static_cast<Oscillator *>(ctx);
-  const PetscScalar *x;
-  PetscInt n;
-  PetscFunctionBeginUser;
-  PetscCall(VecGetLocalSize(z, &n));
-  PetscCall(VecGetArrayRead(z, &x));
-  for (PetscInt i = 0; i < n / 2; i++) a[i] = -x[i] - o->eps * x[i] * x[i] * x[i];
-  PetscCall(VecRestoreArrayRead(z, &x));
-  o->calls++;
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode OscRhs(TS, PetscReal, Vec z, Vec f, void *ctx)
-{
-  auto *o = static_cast<Oscillator *>(ctx);
-  const PetscScalar *x;
-  PetscScalar *y;
-  PetscInt n;
-  PetscFunctionBeginUser;
-  PetscCall(VecGetLocalSize(z, &n));
-  PetscCall(VecGetArrayRead(z, &x));
-  PetscCall(VecGetArray(f, &y));
-  for (PetscInt i = 0; i < n / 2; i++) {
-    y[i] = x[n / 2 + i];
-    y[n / 2 + i] = -x[i] - o->eps * x[i] * x[i] * x[i];
-  }
-  PetscCall(VecRestoreArray(f, &y));
-  PetscCall(VecRestoreArrayRead(z, &x));
-  PetscFunctionReturn(0);
-}
-
-// Jacobi sn, cn, dn (x | m) by the arithmetic-geometric mean (Abramowitz & Stegun 16.4).
-void JacobiSnCnDn(double x, double m, double *sn, double *cn, double *dn)
-{
-  double a[32], c[32], b = std::sqrt(1 - m), phi[32];
-  a[0] = 1;
-  c[0] = std::sqrt(m);
-  int n = 0;
-  while (std::abs(c[n]) > 1e-17 && n < 30) {
-    a[n + 1] = 0.5 * (a[n] + b);
-    c[n + 1] = 0.5 * (a[n] - b);
-    b = std::sqrt(a[n] * b);
-    n++;
-  }
-  phi[n] = std::ldexp(1.0, n) * a[n] * x;
-  for (int k = n; k > 0; k--) phi[k - 1] = 0.5 * (phi[k] + std::asin(c[k] / a[k] * std::sin(phi[k])));
-  *sn = std::sin(phi[0]);
-  *cn = std::cos(phi[0]);
-  *dn = n > 0 ? std::cos(phi[0]) / std::cos(phi[1] - phi[0]) : 1;
-}
-
-// u'' = -u - eps u^3, u(0) = A, v(0) = 0 (eps = 0 or 1): for eps = 1
-// u = A cn(w t | m), v = -A w sn dn, w^2 = 1 + A^2, m = A^2 / (2 (1 + A^2)).
-void Exact(double eps, double A, double t, double *u, double *v)
-{
-  if (eps == 0) {
-    *u = A * std::cos(t);
-    *v = -A * std::sin(t);
-    return;
-  }
-  const double w = std::sqrt(1 + A * A);
-  double sn, cn, dn;
-  JacobiSnCnDn(w * t, A * A / (2 * (1 + A * A)), &sn, &cn, &dn);
-  *u = A * cn;
-  *v = -A * w * sn * dn;
-}
 
 struct RunSpec {
   const char *pair;
@@ -123,23 +49,13 @@ TS NewRkn(const RunSpec &s)
   return ts;
 }
 
-Vec NewState(PetscReal u0)
-{
-  Vec z;
-  PCHK(VecCreateSeq(PETSC_COMM_SELF, 2, &z));
-  PCHK(VecSetValue(z, 0, u0, INSERT_VALUES));
-  PCHK(VecSetValue(z, 1, 0.0, INSERT_VALUES));
-  PCHK(VecAssemblyBegin(z));
-  PCHK(VecAssemblyEnd(z));
-  return z;
-}
 
 // Integrates one oscillator from t = 0 and returns the state at t_final.
 RunResult Integrate(const RunSpec &s)
 {
   Oscillator osc;
   osc.eps = s.eps;
-  Vec z = NewState(s.u0);
+  Vec z = OscillatorState(s.u0, 0.0);
   TS ts = NewRkn(s);
   PCHK(TSSetRHSFunction(ts, NULL, OscRhs, &osc));
   if (!s.generic) PCHK(TSSetAcceleration(ts, OscAcceleration, &osc));
@@ -171,7 +87,7 @@ TEST_CASE("rkn: every pair has its order with fixed steps on the harmonic and th
     for (PetscReal eps : {0.0, 1.0}) {
       const PetscReal A = 1, T = 10;
       double uT, vT;
-      Exact(eps, A, T, &uT, &vT);
+      OscillatorExact(eps, A, T, &uT, &vT);
       auto Err = [&](const RunResult &r) { return std::hypot(r.u - uT, r.v - vT); };
       // the coarsest n (steps over T, growing by 5/4) with an error below
       // 1e-10, then 5n/4: both errors stay above rounding (~1e-13) even at
@@ -224,12 +140,12 @@ TEST_CASE("rkn: the embedded estimate tracks the true local error of the embedde
         ve += h * P.bhat[a] * k[a];
       }
       double ux, vx;
-      Exact(1, 1, h, &ux, &vx);
+      OscillatorExact(1, 1, h, &ux, &vx);
       const double true_emb = std::max(std::abs(ue - ux), std::abs(ve - vx));
       // the TS step
       Oscillator osc;
       osc.eps = 1;
-      Vec z = NewState(1);
+      Vec z = OscillatorState(1, 0.0);
       TS ts = NewRkn({info.name, h, 10, 1, 1});
       PCHK(TSSetAcceleration(ts, OscAcceleration, &osc));
       PCHK(TSSetTolerances(ts, 1.0, NULL, 0.0, NULL));
@@ -268,7 +184,7 @@ TEST_CASE("rkn: adaptive runs reach their tolerance on Duffing", "[rkn]")
     for (const char *adapt : {"basic", "dsp"}) {
       const PetscReal A = 1.5, T = 20;
       double uT, vT;
-      Exact(1, A, T, &uT, &vT);
+      OscillatorExact(1, A, T, &uT, &vT);
       PetscReal err[2];
       RunResult r[2];
       for (int j = 0; j < 2; j++) {
@@ -311,7 +227,7 @@ TEST_CASE("rkn: rollback restores the step start; the interpolant is accurate to
     const RknPairInfo info = RknPair(i);
     Oscillator osc;
     osc.eps = 1;
-    Vec z = NewState(1);
+    Vec z = OscillatorState(1, 0.0);
     TS ts = NewRkn({info.name, 0.3, 10, 1, 1, false, 1e-6});
     PCHK(TSSetAcceleration(ts, OscAcceleration, &osc));
     PCHK(TSSetTimeStep(ts, 0.3));
@@ -346,7 +262,7 @@ TEST_CASE("rkn: rollback restores the step start; the interpolant is accurate to
   for (int j = 0; j < 2; j++) {
     const PetscReal h = j ? 0.25 : 0.5;
     Oscillator osc;
-    Vec z = NewState(1), x;
+    Vec z = OscillatorState(1, 0.0), x;
     PCHK(VecDuplicate(z, &x));
     TS ts = NewRkn({"dep1210", h, 100, 0, 1});
     PCHK(TSSetAcceleration(ts, OscAcceleration, &osc));
@@ -397,30 +313,7 @@ TEST_CASE("rkn: a forced lattice run cuts off at E* (TS event, rollback) and giv
   // simulation locates the cut-off with a TS event (the type rolls back).
   SimulationResult r[2];
   for (int j = 0; j < 2; j++) {
-    MPI_Comm comm = j ? PETSC_COMM_WORLD : PETSC_COMM_SELF;
-    LatticeParams p;
-    Lattice lat;
-    PCHK(lat.Setup(comm, p));
-    ToneBurstOptions fo;
-    fo.profile = ForceProfile::Site;
-    fo.omega = std::sqrt(3.0);
-    fo.site = 51;
-    fo.amplitude = 0.2;
-    fo.energy = 1;
-    fo.tau_periods = 5;
-    fo.t0_taus = 2;
-    ToneBurst burst;
-    PCHK(burst.Setup(lat, fo, nullptr));
-    SimulationOptions so;
-    so.t_final = 300;
-    so.sample_dt = 0;
-    so.progress = 0;
-    PCHK(PetscOptionsSetValue(NULL, "-sim_ts_type", "rkn"));
-    PCHK(PetscOptionsSetValue(NULL, "-sim_ts_rkn_scheme", "dep86"));
-    PCHK(PetscOptionsSetValue(NULL, "-sim_ts_rtol", "1e-10"));
-    PCHK(PetscOptionsSetValue(NULL, "-sim_ts_atol", "1e-10"));
-    PCHK(Simulate(lat, &burst, so, NULL, NULL, &r[j]));
-    for (const char *o : {"-sim_ts_type", "-sim_ts_rkn_scheme", "-sim_ts_rtol", "-sim_ts_atol"}) PCHK(PetscOptionsClearValue(NULL, o));
+    r[j] = ShortForcedRun(j ? PETSC_COMM_WORLD : PETSC_COMM_SELF, {{"-sim_ts_type", "rkn"}, {"-sim_ts_rkn_scheme", "dep86"}, {"-sim_ts_rtol", "1e-10"}, {"-sim_ts_atol", "1e-10"}});
     REQUIRE(r[j].reached);
     INFO("t_off " << r[j].t_off << ", E_final " << r[j].energy_final << ", MCR " << r[j].mcr);
     CHECK(std::abs(r[j].energy_final - 1) < 1e-8);

@@ -5,6 +5,7 @@
 // interpolant's order, the generic (RHS) path equal to the raw-array path, and
 // the forced lattice run: cut-off at E*, the same result on 1 and 2 ranks.
 #include "helpers.hpp"
+#include "oscillators.hpp"
 #include "timeint/simulation.hpp"
 #include "timeint/ts_symsplit.hpp"
 #include <cmath>
@@ -15,77 +16,6 @@ using namespace nltopo;
 using namespace nltopo::test;
 
 namespace {
-
-// u'' = -u - eps u^3 for every position of z = [u..., v...] (one rank: each
-// test builds its own small systems on PETSC_COMM_SELF).
-struct Oscillator {
-  PetscReal eps = 0;
-  PetscInt calls = 0;
-};
-
-PetscErrorCode OscAcceleration(TS, PetscReal, Vec z, PetscScalar *a, void *ctx)
-{
-  auto *o = static_cast<Oscillator *>(ctx);
-  const PetscScalar *x;
-  PetscInt n;
-  PetscFunctionBeginUser;
-  PetscCall(VecGetLocalSize(z, &n));
-  PetscCall(VecGetArrayRead(z, &x));
-  for (PetscInt i = 0; i < n / 2; i++) a[i] = -x[i] - o->eps * x[i] * x[i] * x[i];
-  PetscCall(VecRestoreArrayRead(z, &x));
-  o->calls++;
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode OscRhs(TS, PetscReal, Vec z, Vec f, void *ctx)
-{
-  auto *o = static_cast<Oscillator *>(ctx);
-  const PetscScalar *x;
-  PetscScalar *y;
-  PetscInt n;
-  PetscFunctionBeginUser;
-  PetscCall(VecGetLocalSize(z, &n));
-  PetscCall(VecGetArrayRead(z, &x));
-  PetscCall(VecGetArray(f, &y));
-  for (PetscInt i = 0; i < n / 2; i++) {
-    y[i] = x[n / 2 + i];
-    y[n / 2 + i] = -x[i] - o->eps * x[i] * x[i] * x[i];
-  }
-  PetscCall(VecRestoreArray(f, &y));
-  PetscCall(VecRestoreArrayRead(z, &x));
-  PetscFunctionReturn(0);
-}
-
-// Jacobi sn, cn, dn (x | m) by the arithmetic-geometric mean (Abramowitz & Stegun 16.4).
-void JacobiSnCnDn(double x, double m, double *sn, double *cn, double *dn)
-{
-  double a[32], c[32], b = std::sqrt(1 - m), phi[32];
-  a[0] = 1;
-  c[0] = std::sqrt(m);
-  int n = 0;
-  while (std::abs(c[n]) > 1e-17 && n < 30) {
-    a[n + 1] = 0.5 * (a[n] + b);
-    c[n + 1] = 0.5 * (a[n] - b);
-    b = std::sqrt(a[n] * b);
-    n++;
-  }
-  phi[n] = std::ldexp(1.0, n) * a[n] * x;
-  for (int k = n; k > 0; k--) phi[k - 1] = 0.5 * (phi[k] + std::asin(c[k] / a[k] * std::sin(phi[k])));
-  *sn = std::sin(phi[0]);
-  *cn = std::cos(phi[0]);
-  *dn = n > 0 ? std::cos(phi[0]) / std::cos(phi[1] - phi[0]) : 1;
-}
-
-// Duffing u'' = -u - u^3, u(0) = A, v(0) = 0: u = A cn(w t | m), v = -A w sn dn,
-// w^2 = 1 + A^2, m = A^2 / (2 (1 + A^2)).
-void DuffingExact(double A, double t, double *u, double *v)
-{
-  const double w = std::sqrt(1 + A * A);
-  double sn, cn, dn;
-  JacobiSnCnDn(w * t, A * A / (2 * (1 + A * A)), &sn, &cn, &dn);
-  *u = A * cn;
-  *v = -A * w * sn * dn;
-}
 
 // A symsplit TS on one rank with the given scheme (set through its option, as a user would).
 TS NewSymSplit(const char *scheme)
@@ -98,18 +28,6 @@ TS NewSymSplit(const char *scheme)
   PCHK(TSSetFromOptions(ts));
   PCHK(PetscOptionsClearValue(NULL, "-symsplit_unit_ts_symsplit_scheme"));
   return ts;
-}
-
-// The state [u0, v0] of one oscillator.
-Vec OscillatorState(PetscReal u0, PetscReal v0)
-{
-  Vec z;
-  PCHK(VecCreateSeq(PETSC_COMM_SELF, 2, &z));
-  PCHK(VecSetValue(z, 0, u0, INSERT_VALUES));
-  PCHK(VecSetValue(z, 1, v0, INSERT_VALUES));
-  PCHK(VecAssemblyBegin(z));
-  PCHK(VecAssemblyEnd(z));
-  return z;
 }
 
 struct RunSpec {
@@ -158,8 +76,8 @@ TEST_CASE("symsplit: every scheme has its order on the harmonic and the Duffing 
     const SymSplitSchemeInfo info = SymSplitScheme(i);
     for (PetscReal eps : {0.0, 1.0}) {
       const PetscReal A = 1, T = 10;
-      double uT = A * std::cos(T), vT = -A * std::sin(T);
-      if (eps != 0) DuffingExact(A, T, &uT, &vT);
+      double uT, vT;
+      OscillatorExact(eps, A, T, &uT, &vT);
       auto Err = [&](PetscReal u, PetscReal v) { return std::hypot(u - uT, v - vT); };
       // the largest h = 2^-k with an error below 1e-8 (asymptotic range), then h/2:
       // the errors stay far above rounding even at order 8
@@ -340,31 +258,7 @@ TEST_CASE("symsplit: a forced lattice run cuts off at E* and gives the same resu
   REQUIRE(SchemeIndex("yoshida6") >= 0);
   SimulationResult r[2];
   for (int j = 0; j < 2; j++) {
-    MPI_Comm comm = j ? PETSC_COMM_WORLD : PETSC_COMM_SELF;
-    LatticeParams p;
-    Lattice lat;
-    PCHK(lat.Setup(comm, p));
-    ToneBurstOptions fo;
-    fo.profile = ForceProfile::Site;
-    fo.omega = std::sqrt(3.0);
-    fo.site = 51;
-    fo.amplitude = 0.2;
-    fo.energy = 1;
-    fo.tau_periods = 5;
-    fo.t0_taus = 2;
-    ToneBurst burst;
-    PCHK(burst.Setup(lat, fo, nullptr));
-    SimulationOptions so;
-    so.t_final = 300;
-    so.sample_dt = 0;
-    so.progress = 0;
-    PCHK(PetscOptionsSetValue(NULL, "-sim_ts_type", "symsplit"));
-    PCHK(PetscOptionsSetValue(NULL, "-sim_ts_symsplit_scheme", "yoshida6"));
-    PCHK(PetscOptionsSetValue(NULL, "-sim_ts_dt", "0.05"));
-    PCHK(Simulate(lat, &burst, so, NULL, NULL, &r[j]));
-    PCHK(PetscOptionsClearValue(NULL, "-sim_ts_type"));
-    PCHK(PetscOptionsClearValue(NULL, "-sim_ts_symsplit_scheme"));
-    PCHK(PetscOptionsClearValue(NULL, "-sim_ts_dt"));
+    r[j] = ShortForcedRun(j ? PETSC_COMM_WORLD : PETSC_COMM_SELF, {{"-sim_ts_type", "symsplit"}, {"-sim_ts_symsplit_scheme", "yoshida6"}, {"-sim_ts_dt", "0.05"}});
     REQUIRE(r[j].reached);
     INFO("t_off " << r[j].t_off << ", E_final " << r[j].energy_final);
     CHECK(std::abs(r[j].energy_final - 1) < 1e-7);
