@@ -74,4 +74,13 @@ PetscErrorCode CheckInterruptAtStep(MPI_Comm comm, PetscInt step)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode TSInterruptPostStep(TS ts)
+{
+  PetscInt step;
+  PetscFunctionBeginUser;
+  PetscCall(TSGetStepNumber(ts, &step));
+  PetscCall(CheckInterruptAtStep(PetscObjectComm((PetscObject)ts), step));
+  PetscFunctionReturn(0);
+}
+
 } // namespace nltopo

@@ -5,7 +5,7 @@
 // is done, write that (root attribute complete = 0) and exit non-zero with
 //   nltopo: interrupted by SIGTERM at <safe point>; partial output <file> (complete = 0)
 // A second signal takes the default action: the process dies at once.
-#include <petscsys.h>
+#include <petscts.h>
 
 namespace nltopo {
 
@@ -36,6 +36,8 @@ PetscErrorCode CheckInterrupt(MPI_Comm comm);
 // step on one rank (a flag read), at every 16th step (the same steps on every
 // rank) across ranks. Collective on comm.
 PetscErrorCode CheckInterruptAtStep(MPI_Comm comm, PetscInt step);
+// The same as a TS post-step (TSSetPostStep): a stop signal ends the integration at a step.
+PetscErrorCode TSInterruptPostStep(TS ts);
 
 // Whether ierr is that error: the run was interrupted, not failed.
 inline bool IsInterrupt(PetscErrorCode ierr) { return ierr == PETSC_ERR_SIG; }

@@ -19,26 +19,29 @@ PetscErrorCode WorkQueue::Create(MPI_Comm comm, PetscInt count)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode WorkQueue::Next(PetscInt *item)
+PetscErrorCode WorkQueue::FetchAdd(long add, long *got)
 {
-  const long one = 1;
-  long got = 0;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Win_lock(MPI_LOCK_SHARED, 0, 0, win_));
-  PetscCallMPI(MPI_Fetch_and_op(&one, &got, MPI_LONG, 0, 0, MPI_SUM, win_));
+  PetscCallMPI(MPI_Fetch_and_op(&add, got, MPI_LONG, 0, 0, MPI_SUM, win_));
   PetscCallMPI(MPI_Win_unlock(0, win_));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode WorkQueue::Next(PetscInt *item)
+{
+  long got = 0;
+  PetscFunctionBeginUser;
+  PetscCall(FetchAdd(1, &got));
   *item = got < count_ ? (PetscInt)got : -1;
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode WorkQueue::Stop()
 {
-  const long all = 1L << 40; // far past any count: every later fetch-and-add gives -1
   long got = 0;
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Win_lock(MPI_LOCK_SHARED, 0, 0, win_));
-  PetscCallMPI(MPI_Fetch_and_op(&all, &got, MPI_LONG, 0, 0, MPI_SUM, win_));
-  PetscCallMPI(MPI_Win_unlock(0, win_));
+  PetscCall(FetchAdd(1L << 40, &got)); // far past any count: every later fetch-and-add gives -1
   PetscFunctionReturn(0);
 }
 

@@ -21,6 +21,7 @@ public:
   PetscErrorCode Stop();
 
 private:
+  PetscErrorCode FetchAdd(long add, long *got); // atomic add on rank 0's counter, its previous value in *got
   MPI_Win win_ = MPI_WIN_NULL;
   long *counter_ = nullptr;
   PetscInt count_ = 0;

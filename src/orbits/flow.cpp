@@ -46,15 +46,6 @@ PetscErrorCode FlowAverageMonitor(TS ts, PetscInt step, PetscReal t, Vec z, void
   PetscCall(static_cast<PeriodicFlow *>(ctx)->AccumulateStiffness(step, z));
   PetscFunctionReturn(0);
 }
-// A stop signal (core/signals.hpp) ends the integration at a step.
-PetscErrorCode InterruptPostStep(TS ts)
-{
-  PetscInt step;
-  PetscFunctionBeginUser;
-  PetscCall(TSGetStepNumber(ts, &step));
-  PetscCall(CheckInterruptAtStep(PetscObjectComm((PetscObject)ts), step));
-  PetscFunctionReturn(0);
-}
 } // namespace
 
 PeriodicFlow::~PeriodicFlow() { delete rhs_; }
@@ -93,7 +84,7 @@ PetscErrorCode PeriodicFlow::CreateTS(TS *ts, Mat jacp)
   PetscCall(TSSetRHSFunction(*ts, NULL, FlowRhs, this));
   PetscCall(TSSetRHSJacobian(*ts, J_, J_, FlowJacobian, this));
   if (jacp) PetscCall(TSSetRHSJacobianP(*ts, jacp, FlowJacobianP, this));
-  PetscCall(TSSetPostStep(*ts, InterruptPostStep));
+  PetscCall(TSSetPostStep(*ts, TSInterruptPostStep)); // a stop signal ends the integration at a step
   PetscCall(TSSetExactFinalTime(*ts, TS_EXACTFINALTIME_MATCHSTEP));
   PetscCall(TSSetFromOptions(*ts));
   PetscCall(TSGetAdapt(*ts, &adapt));

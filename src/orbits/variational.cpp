@@ -12,15 +12,6 @@ PetscErrorCode VarRhs(TS ts, PetscReal t, Vec Y, Vec F, void *ctx)
   PetscCall(static_cast<VariationalFlow *>(ctx)->Rhs(t, Y, F));
   PetscFunctionReturn(0);
 }
-// A stop signal (core/signals.hpp) ends the integration at a step.
-PetscErrorCode InterruptPostStep(TS ts)
-{
-  PetscInt step;
-  PetscFunctionBeginUser;
-  PetscCall(TSGetStepNumber(ts, &step));
-  PetscCall(CheckInterruptAtStep(PetscObjectComm((PetscObject)ts), step));
-  PetscFunctionReturn(0);
-}
 } // namespace
 
 PetscErrorCode VariationalFlow::Setup(const Lattice &lat, PetscInt ncol, PetscInt steps)
@@ -47,7 +38,7 @@ PetscErrorCode VariationalFlow::Setup(const Lattice &lat, PetscInt ncol, PetscIn
   PetscCall(TSGetAdapt(ts_, &adapt));
   PetscCall(TSAdaptSetType(adapt, TSADAPTNONE));
   PetscCall(TSSetRHSFunction(ts_, NULL, VarRhs, this));
-  PetscCall(TSSetPostStep(ts_, InterruptPostStep));
+  PetscCall(TSSetPostStep(ts_, TSInterruptPostStep)); // a stop signal ends the integration at a step
   PetscCall(TSSetExactFinalTime(ts_, TS_EXACTFINALTIME_MATCHSTEP));
   PetscCall(TSSetFromOptions(ts_));
   u_.assign(lat.N(), 0.0);
