@@ -12,7 +12,7 @@ run1 -options_file "$SRC/options/simulate.opts" -output cn.h5 -sim_store_u 0 \
 run1 -options_file "$SRC/options/simulate.opts" -output split.h5 -sim_store_u 0 -sim_ts_type symsplit -sim_ts_symsplit_scheme bm4 -sim_ts_dt 0.2
 run2 -options_file "$SRC/options/simulate.opts" -output split2.h5 -sim_store_u 0 -sim_ts_type symsplit -sim_ts_symsplit_scheme bm4 -sim_ts_dt 0.2
 # rkn 8(6) at 1e-8: ~0.4-long steps, the window integrals on the interpolant
-run1 -options_file "$SRC/options/simulate.opts" -output rkn.h5 -sim_store_u 0 -sim_ts_type rkn -sim_ts_rkn_scheme dep86 -sim_ts_dt 0.01
+run1 -options_file "$SRC/options/simulate_rkn.opts" -output rkn.h5 -sim_store_u 0
 $PY - <<'PYEOF'
 import h5py
 ref = h5py.File("rk.h5", "r")["simulate"].attrs
