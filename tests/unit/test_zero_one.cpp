@@ -3,6 +3,7 @@
 // Lyapunov exponent ln 2) and a chaotic continuous-time lattice run.
 #include "diagnostics/zero_one.hpp"
 #include "helpers.hpp"
+#include <algorithm>
 #include <cmath>
 
 using namespace nltopo;
@@ -50,4 +51,70 @@ TEST_CASE("0-1 test on a sub-grid of lags scores known series like the full test
   INFO("quasi-periodic " << kq << ", logistic " << kl);
   REQUIRE(std::abs(kq) < 0.1);
   REQUIRE(kl > 0.9);
+}
+
+namespace {
+// The test's definition, summed directly (O(n) per lag and c): K of x for the
+// frequencies c and the lags of the class under test.
+PetscReal DirectScore(const std::vector<PetscReal> &x, const std::vector<PetscReal> &cs, PetscInt lags)
+{
+  const PetscInt n = (PetscInt)x.size(), ncut = n / 10, len = n - ncut;
+  std::vector<PetscInt> lag;
+  if (lags > 0 && lags < ncut)
+    for (PetscInt i = 0; i < lags; i++) lag.push_back(1 + (PetscInt)std::llround((double)i * (ncut - 1) / (lags - 1)));
+  else
+    for (PetscInt m = 1; m <= ncut; m++) lag.push_back(m);
+  PetscReal mean = 0;
+  for (PetscReal v : x) mean += v / n;
+  std::vector<PetscReal> K;
+  for (PetscReal c : cs) {
+    std::vector<PetscReal> p(n), q(n), D;
+    PetscReal sp = 0, sq = 0;
+    for (PetscInt j = 0; j < n; j++) {
+      sp += x[j] * std::cos((j + 1) * c);
+      sq += x[j] * std::sin((j + 1) * c);
+      p[j] = sp, q[j] = sq;
+    }
+    for (PetscInt m : lag) {
+      PetscReal M = 0;
+      for (PetscInt j = 0; j < len; j++) M += (p[j + m] - p[j]) * (p[j + m] - p[j]) + (q[j + m] - q[j]) * (q[j + m] - q[j]);
+      D.push_back(M / len - mean * mean * (1 - std::cos(m * c)) / (1 - std::cos(c)));
+    }
+    PetscReal xm = 0, ym = 0, sxy = 0, sxx = 0, syy = 0;
+    for (size_t i = 0; i < D.size(); i++) xm += (PetscReal)lag[i] / D.size(), ym += D[i] / D.size();
+    for (size_t i = 0; i < D.size(); i++) sxy += (lag[i] - xm) * (D[i] - ym), sxx += (lag[i] - xm) * (lag[i] - xm), syy += (D[i] - ym) * (D[i] - ym);
+    K.push_back(sxy / std::sqrt(sxx * syy));
+  }
+  std::sort(K.begin(), K.end());
+  const size_t h = K.size() / 2;
+  return K.size() % 2 ? K[h] : 0.5 * (K[h - 1] + K[h]);
+}
+} // namespace
+
+TEST_CASE("0-1 test: the lag-correlation sums equal the direct definition", "[diagnostics]")
+{
+  // Series of every character the sweep meets: periodic with a mean,
+  // quasi-periodic, a resonant tone (c range contains its frequency: P grows
+  // linearly), chaotic (logistic) and a slow drift plus noise.
+  const PetscInt n = 1654; // the sweep's record: 1500 s at a quarter insulated period
+  std::vector<std::vector<PetscReal>> series(5, std::vector<PetscReal>(n));
+  const PetscReal g = 0.5 * (1 + std::sqrt(5.0));
+  series[3][0] = 0.3141592;
+  unsigned long s = 12345;
+  for (PetscInt j = 0; j < n; j++) {
+    series[0][j] = 0.4 + std::cos(0.9 * j);
+    series[1][j] = std::cos(j * 1.5) + 0.7 * std::sin(g * j * 1.5 + 0.3);
+    series[2][j] = 1e-3 * std::cos(1.2 * j + 0.1);
+    if (j) series[3][j] = 4 * series[3][j - 1] * (1 - series[3][j - 1]);
+    s = s * 6364136223846793005UL + 1442695040888963407UL;
+    series[4][j] = 5 + 1e-3 * j + (double)(s >> 11) / 9007199254740992.0;
+  }
+  for (PetscInt lags : {20, 0}) {
+    const ZeroOneTest test(32, 3, lags);
+    for (size_t i = 0; i < series.size(); i++) {
+      const PetscReal fast = test.Score(series[i].data(), n), direct = DirectScore(series[i], test.Frequencies(), lags);
+      INFO("series " << i << ", lags " << lags << ": K = " << fast << ", direct " << direct);
+      REQUIRE(std::abs(fast - direct) <= 1e-9);
+    }
+  }
 }
