@@ -85,6 +85,37 @@ bool OwnComponent(const std::string &n)
   return true;
 }
 
+// An option of one TS type's own block (-<prefix>ts_<family>_*) while the
+// prefix runs a TS of another family: unused whatever happens later, so it can
+// be refused before any work (PETSc reads a type's block only for that type).
+// Sets *line when n is such an option. Every nltopo TS defaults to rk.
+void TypeMismatch(const std::string &n, std::string *line)
+{
+  static const char *ts_prefixes[] = {"sim_", "nnm_"};
+  static const std::pair<const char *, const char *> families[] = {
+    {"rk", "rk"},           {"rkn", "rkn"},         {"symsplit", "symsplit"}, {"basicsymplectic", "basicsymplectic"}, {"theta", "theta"},
+    {"cn", "theta"},        {"beuler", "theta"},    {"arkimex", "arkimex"},   {"rosw", "rosw"},                       {"bdf", "bdf"},
+    {"alpha", "alpha"},     {"alpha2", "alpha"},    {"glee", "glee"},         {"glle", "glle"},                       {"ssp", "ssp"},
+    {"mprk", "mprk"},       {"eimex", "eimex"},     {"irk", "irk"}};
+  for (const char *p : ts_prefixes) {
+    const std::string head = std::string(p) + "ts_";
+    if (!StartsWith(n, head.c_str())) continue;
+    const char *option_family = nullptr;
+    for (const auto &f : families)
+      if (!std::strcmp(f.first, f.second) && StartsWith(n, (head + f.first + "_").c_str())) option_family = f.first;
+    if (!option_family) return;
+    char type[64] = "rk";
+    PetscBool set = PETSC_FALSE;
+    if (PetscOptionsGetString(NULL, NULL, ("-" + head + "type").c_str(), type, sizeof(type), &set)) return;
+    const char *selected = nullptr;
+    for (const auto &f : families)
+      if (!std::strcmp(f.first, type)) selected = f.second;
+    if (!selected || !std::strcmp(selected, option_family)) return; // a type of nltopo's list only
+    *line = ": not used by this run (-" + head + "type is " + type + (set ? "" : ", the default") + "; the option belongs to -" + head + "type " + option_family + ")";
+    return;
+  }
+}
+
 std::string *g_capture = nullptr;
 
 PetscErrorCode CapturePrintf(MPI_Comm, const char format[], ...)
@@ -276,8 +307,11 @@ PetscErrorCode AuditUnusedOptions(MPI_Comm comm, const char *study, const std::m
   // An option counts as used if any rank used it (sweep ranks run different
   // points): rank 0's candidates, kept only where every rank left them unused.
   std::string packed;
-  for (size_t i = 0; i < u.names.size(); i++)
-    if (!PetscOwn(u.names[i]) && (!early || OwnComponent(u.names[i]))) packed += u.names[i] + '\n';
+  for (size_t i = 0; i < u.names.size(); i++) {
+    std::string mismatch;
+    if (early) TypeMismatch(u.names[i], &mismatch);
+    if (!PetscOwn(u.names[i]) && (!early || OwnComponent(u.names[i]) || !mismatch.empty())) packed += u.names[i] + '\n';
+  }
   int len = (int)packed.size();
   PetscCallMPI(MPI_Bcast(&len, 1, MPI_INT, 0, comm));
   if (!len) PetscFunctionReturn(0);
@@ -316,8 +350,10 @@ PetscErrorCode AuditUnusedOptions(MPI_Comm comm, const char *study, const std::m
         owner = k.first;
         break;
       }
-    std::string line;
-    if (known[study].count(n)) line = shown + ": not used by this run (it applies only to other solver types or settings; remove it)";
+    std::string line, mismatch;
+    TypeMismatch(n, &mismatch);
+    if (!mismatch.empty()) line = shown + mismatch;
+    else if (known[study].count(n)) line = shown + ": not used by this run (it applies only to other solver types or settings; remove it)";
     else if (!owner.empty()) line = shown + ": not an option of -study " + study + " (it belongs to -study " + owner + "); remove it";
     else {
       // Early: nltopo's own blocks are complete, so the name is unknown. At the

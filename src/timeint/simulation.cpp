@@ -42,7 +42,8 @@ struct Run {
   PetscLogDouble wall0 = 0, wall_last = 0;
   PetscInt next_sample = 0;
   SimulationResult *r;
-  OwnedVec zs; // interpolated sample state
+  OwnedVec zs;   // interpolated sample state
+  OwnedVec zcut; // the state at a cut-off located inside a step
   // energy cache (the event indicator and the post-step see the same state)
   PetscObjectId cache_id = 0;
   PetscObjectState cache_state = -1;
@@ -76,12 +77,9 @@ struct Run {
   // use a TS event here: a shortened step is another discretisation, whose
   // energy need not cross E* in the same interval (the event then shrinks the
   // step forever).
-  PetscErrorCode LocateCutOff(TS ts, PetscReal *t_off, EnergyParts *e_off)
+  PetscErrorCode LocateCutOff(TS ts, PetscReal lo, PetscReal hi, PetscReal *t_off, EnergyParts *e_off)
   {
-    PetscReal lo, hi;
     PetscFunctionBeginUser;
-    PetscCall(TSGetPrevTime(ts, &lo));
-    PetscCall(TSGetTime(ts, &hi));
     for (int it = 0; it < 200 && hi - lo > 1e-14 * (1 + hi); it++) {
       const PetscReal mid = 0.5 * (lo + hi);
       PetscCall(TSInterpolate(ts, mid, zs));
@@ -96,6 +94,34 @@ struct Run {
     *t_off = hi;
     PetscCall(TSInterpolate(ts, hi, zs));
     PetscCall(lat->Energy(zs, e_off));
+    PetscFunctionReturn(0);
+  }
+
+  // The first time in the last step [t_prev, t] at which E reaches E*, looking
+  // also inside the step: the driven energy oscillates at 2 omega_ext, so a
+  // step longer than a fraction of pi / omega_ext (rkn's, at low E*) can hold a
+  // whole excursion above E* while E < E* at both ends, which a test at step
+  // ends (the TS event, the post-step check) misses. E is sampled on the
+  // step's interpolant every (pi / omega_ext) / 16 at most; *found is false
+  // when no sample reaches E*.
+  PetscErrorCode ScanStep(TS ts, PetscReal t_prev_step, PetscReal t, bool *found, PetscReal *t_off, EnergyParts *e_off)
+  {
+    PetscFunctionBeginUser;
+    *found = false;
+    const PetscReal spacing = PETSC_PI / (16 * forcing->Omega());
+    const PetscInt k = (PetscInt)std::floor((t - t_prev_step) / spacing);
+    PetscReal lo = t_prev_step;
+    for (PetscInt i = 1; i <= k; i++) {
+      const PetscReal ti = t_prev_step + i * (t - t_prev_step) / (k + 1);
+      PetscCall(TSInterpolate(ts, ti, zs));
+      PetscCall(lat->Energy(zs, e_off));
+      if (e_off->Total() >= estar) {
+        PetscCall(LocateCutOff(ts, lo, ti, t_off, e_off));
+        *found = true;
+        break;
+      }
+      lo = ti;
+    }
     PetscFunctionReturn(0);
   }
 
@@ -247,7 +273,7 @@ PetscErrorCode CutOffIndicator(TS ts, PetscReal t, Vec z, PetscScalar *fv, void 
     PetscCall(run->EnergyAt(z, &e));
     fv[0] = e.Total() / run->estar - 1; // relative, so the event tolerance means the same at any E*
   } else {
-    fv[0] = 1.0; // after the cut-off the event can never fire again
+    fv[0] = -1.0; // after the cut-off the event can never fire again (it fires on upward crossings only, and a cut-off found inside a step leaves a negative value behind)
   }
   PetscFunctionReturn(0);
 }
@@ -282,15 +308,23 @@ PetscErrorCode PostStep(TS ts)
   PetscCheck(std::isfinite(e.Total()), run->lat->Comm(), PETSC_ERR_FP,
              "non-finite state at t = %g: the integration diverged (reduce -sim_ts_dt or tighten -sim_ts_rtol)", (double)t);
   if (run->rhs.Forcing()) run->r->energy_peak = std::max(run->r->energy_peak, e.Total());
-  if (!run->event_mode && run->rhs.Forcing() && e.Total() >= run->estar) {
-    if (run->locate_in_step) {
+  bool inside = false; // E reached E* inside the step, below it at the step's end
+  PetscReal t_off = 0;
+  EnergyParts e_off;
+  if (run->rhs.Forcing() && run->interpolate) {
+    PetscReal tp;
+    PetscCall(TSGetPrevTime(ts, &tp));
+    PetscCall(run->ScanStep(ts, tp, t, &inside, &t_off, &e_off));
+    if (!inside && !run->event_mode && e.Total() >= run->estar && run->locate_in_step) PetscCall(run->LocateCutOff(ts, tp, t, &t_off, &e_off));
+  }
+  if (run->rhs.Forcing() && (inside || (!run->event_mode && e.Total() >= run->estar))) {
+    if (run->locate_in_step || inside) {
       // Samples before the crossing come from this step (forcing on); the run
       // then goes on from the crossing state, free.
-      PetscReal t_off = 0;
-      EnergyParts e_off;
-      PetscCall(run->LocateCutOff(ts, &t_off, &e_off));
-      PetscCall(run->Samples(ts, t_off, run->zs, e_off));
-      PetscCall(VecCopy(run->zs, z));
+      // (zs is the samples' scratch vector: the crossing state goes through zcut)
+      PetscCall(TSInterpolate(ts, t_off, run->zcut));
+      PetscCall(run->Samples(ts, t_off, run->zcut, e_off));
+      PetscCall(VecCopy(run->zcut, z));
       PetscCall(TSSetTime(ts, t_off));
       PetscCall(TSRestartStep(ts));
       t = t_off;
@@ -403,6 +437,7 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
   if (z0) PetscCall(VecCopy(z0, z));
   else PetscCall(VecZeroEntries(z));
   PetscCall(VecDuplicate(z, run.zs.out()));
+  PetscCall(VecDuplicate(z, run.zcut.out()));
   PetscCall(lat.CreateStateMatrix(J.out()));
 
   PetscCall(TSCreate(comm, ts.out()));
