@@ -102,13 +102,15 @@ struct Run {
   // step longer than a fraction of pi / omega_ext (rkn's, at low E*) can hold a
   // whole excursion above E* while E < E* at both ends, which a test at step
   // ends (the TS event, the post-step check) misses. E is sampled on the
-  // step's interpolant every (pi / omega_ext) / 16 at most; *found is false
-  // when no sample reaches E*.
+  // step's interpolant every (pi / omega_ext) / 8 at most, so a peak is seen
+  // to within 1 - cos(pi / 8) = 8 % of the oscillation's amplitude (steps
+  // shorter than that get no inner samples); *found is false when no sample
+  // reaches E*.
   PetscErrorCode ScanStep(TS ts, PetscReal t_prev_step, PetscReal t, bool *found, PetscReal *t_off, EnergyParts *e_off)
   {
     PetscFunctionBeginUser;
     *found = false;
-    const PetscReal spacing = PETSC_PI / (16 * forcing->Omega());
+    const PetscReal spacing = PETSC_PI / (8 * forcing->Omega());
     const PetscInt k = (PetscInt)std::floor((t - t_prev_step) / spacing);
     PetscReal lo = t_prev_step;
     for (PetscInt i = 1; i <= k; i++) {
