@@ -38,8 +38,6 @@ PetscErrorCode Stages(TS ts, Rkn *d, PetscReal t0, PetscReal h, PetscBool *ok)
   const Pair &P = Pairs()[d->pair];
   const PetscInt n = d->p.n, s = P.stages;
   const PetscReal h2 = h * h;
-  std::vector<const PetscScalar *> kp(s);
-  std::vector<PetscReal> w(s);
   TSAdapt adapt;
   PetscFunctionBegin;
   *ok = PETSC_TRUE;
@@ -47,21 +45,21 @@ PetscErrorCode Stages(TS ts, Rkn *d, PetscReal t0, PetscReal h, PetscBool *ok)
   for (PetscInt i = 1; i < s; i++) {
     const PetscReal ch = P.c[i] * h, ti = t0 + P.c[i] * h;
     const PetscInt m = (PetscInt)d->rows[i].size();
-    for (PetscInt j = 0; j < m; j++) {
-      kp[j] = d->k[d->rows[i][j].first].data();
-      w[j] = d->rows[i][j].second;
-    }
     const PetscScalar *z;
     PetscScalar *y;
     PetscCall(TSPreStage(ts, ti));
     PetscCall(VecGetArrayRead(ts->vec_sol, &z));
     PetscCall(VecGetArray(d->stage, &y));
     const PetscScalar *u = z, *v = z + n;
+    // y = u + c h v + h^2 sum_j A_ij k_j: one contiguous pass per term (vectorised)
     for (PetscInt q = 0; q < n; q++) {
-      PetscScalar acc = 0;
-      for (PetscInt j = 0; j < m; j++) acc += w[j] * kp[j][q];
-      y[q] = u[q] + ch * v[q] + h2 * acc;
+      y[q] = u[q] + ch * v[q];
       y[n + q] = v[q]; // not read by a(t, u); keeps the RHS fallback's input finite
+    }
+    for (PetscInt j = 0; j < m; j++) {
+      const PetscScalar *kj = d->k[d->rows[i][j].first].data();
+      const PetscReal wj = h2 * d->rows[i][j].second;
+      for (PetscInt q = 0; q < n; q++) y[q] += wj * kj[q];
     }
     PetscCall(VecRestoreArray(d->stage, &y));
     PetscCall(VecRestoreArrayRead(ts->vec_sol, &z));
@@ -80,29 +78,34 @@ PetscErrorCode Combine(TS ts, Rkn *d, PetscReal h)
   const Pair &P = Pairs()[d->pair];
   const PetscInt n = d->p.n, s = P.stages;
   const PetscReal h2 = h * h;
-  std::vector<const PetscScalar *> kp(s);
   PetscScalar *z, *zp, *e;
   PetscFunctionBegin;
-  for (PetscInt i = 0; i < s; i++) kp[i] = d->k[i].data();
   PetscCall(VecGetArray(ts->vec_sol, &z));
   PetscCall(VecGetArray(d->z_prev, &zp));
   PetscCall(VecGetArray(d->emb, &e));
-  for (PetscInt q = 0; q < n; q++) {
-    PetscScalar sbar = 0, sb = 0, ebar = 0, eb = 0;
-    for (PetscInt i = 0; i < s; i++) {
-      const PetscScalar a = kp[i][q];
-      sbar += P.bbar[i] * a;
-      sb += P.b[i] * a;
-      ebar += d->dbar[i] * a;
-      eb += d->db[i] * a;
+  // Stage by stage into the four sums (zp and e hold them until the end), so
+  // every pass is a contiguous, vectorised loop: zp <- sum bbar k, zp+n <- sum
+  // b k, e <- sum (bbar - bhatbar) k, e+n <- sum (b - bhat) k.
+  for (PetscInt q = 0; q < 2 * n; q++) zp[q] = e[q] = 0;
+  for (PetscInt i = 0; i < s; i++) {
+    const PetscScalar *a = d->k[i].data();
+    const PetscReal wb = P.bbar[i], wv = P.b[i], eb = d->dbar[i], ev = d->db[i];
+    for (PetscInt q = 0; q < n; q++) {
+      zp[q] += wb * a[q];
+      zp[n + q] += wv * a[q];
+      e[q] += eb * a[q];
+      e[n + q] += ev * a[q];
     }
-    const PetscScalar u = z[q], v = z[n + q], u1 = u + h * v + h2 * sbar, v1 = v + h * sb;
+  }
+  for (PetscInt q = 0; q < n; q++) {
+    const PetscScalar u = z[q], v = z[n + q], u1 = u + h * v + h2 * zp[q], v1 = v + h * zp[n + q];
+    const PetscScalar eu = u1 - h2 * e[q], ev = v1 - h * e[n + q];
     zp[q] = u;
     zp[n + q] = v;
     z[q] = u1;
     z[n + q] = v1;
-    e[q] = u1 - h2 * ebar;
-    e[n + q] = v1 - h * eb;
+    e[q] = eu;
+    e[n + q] = ev;
   }
   PetscCall(VecRestoreArray(d->emb, &e));
   PetscCall(VecRestoreArray(d->z_prev, &zp));

@@ -50,7 +50,9 @@ check_interrupted() {
 }
 
 # 1. A 2-rank sweep: SIGTERM to mpiexec once a few points are journaled.
-SW=(-options_file "$SRC/options/sweep_quick.opts" -sweep_omega_n 8 -sweep_energy_n 4 -sweep_energy_min 1e-1 -sweep_energy_max 1e2 -sweep_checkpoint 0.5)
+# (rk 5dp instead of the quick grid's symsplit: the grid must still be running when the signal arrives)
+SW=(-options_file "$SRC/options/sweep_quick.opts" -sweep_omega_n 8 -sweep_energy_n 4 -sweep_energy_min 1e-1 -sweep_energy_max 1e2 -sweep_checkpoint 0.5
+    -sim_ts_type rk -sim_ts_dt 0.01)
 timeout "$LIMIT" "${M2[@]}" "$NLTOPO" "${SW[@]}" -output sw_full.h5 -options_left > sw_full.txt
 "${M2[@]}" "$NLTOPO" "${SW[@]}" -output sw_int.h5 -options_left > sw_int.txt 2> sw_int.err &
 pid=$!
