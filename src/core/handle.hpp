@@ -45,5 +45,6 @@ using OwnedSNES = Owned<SNES, SNESDestroy>;
 using OwnedEPS = Owned<EPS, EPSDestroy>;
 using OwnedIS = Owned<IS, ISDestroy>;
 using OwnedViewer = Owned<PetscViewer, PetscViewerDestroy>;
+using OwnedVecScatter = Owned<VecScatter, VecScatterDestroy>;
 
 } // namespace nltopo

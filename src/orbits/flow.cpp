@@ -1,6 +1,7 @@
 #include "orbits/flow.hpp"
 #include "core/log.hpp"
 #include "core/signals.hpp"
+#include "timeint/ts_symsplit.hpp"
 #include <cmath>
 #include <cstring>
 
@@ -12,7 +13,7 @@ PetscErrorCode FlowOptionsFromOptions(MPI_Comm comm, FlowOptions *o)
   PetscOptionsBegin(comm, "nnm_", "Periodic-orbit flow (TS options: -nnm_ts_*)", NULL);
   static const char *const routes[] = {"variational", "tsforward"};
   PetscInt r = static_cast<PetscInt>(o->route);
-  PetscCall(PetscOptionsInt("-steps_per_period", "Fixed RK steps per period of the shooting integration", NULL, o->steps, &o->steps, NULL));
+  PetscCall(PetscOptionsInt("-steps_per_period", "Fixed steps per period of the shooting integration (rk or symsplit)", NULL, o->steps, &o->steps, NULL));
   PetscCall(PetscOptionsEList("-monodromy", "Monodromy: variational (state and variational equations in one structured TS) or tsforward (TSForwardSetSensitivities)",
                               NULL, routes, 2, routes[r], &r, NULL));
   o->route = static_cast<MonodromyRoute>(r);
@@ -40,6 +41,12 @@ PetscErrorCode FlowJacobianP(TS ts, PetscReal t, Vec z, Mat Jp, void *ctx)
   PetscCall(static_cast<PeriodicFlow *>(ctx)->EvalJacobianP(z, Jp));
   PetscFunctionReturn(0);
 }
+PetscErrorCode FlowAcceleration(TS, PetscReal t, Vec z, PetscScalar *a, void *ctx)
+{
+  PetscFunctionBeginUser;
+  PetscCall(static_cast<Rhs *>(ctx)->Acceleration(t, z, a));
+  PetscFunctionReturn(0);
+}
 PetscErrorCode FlowAverageMonitor(TS ts, PetscInt step, PetscReal t, Vec z, void *ctx)
 {
   PetscFunctionBeginUser;
@@ -63,7 +70,18 @@ PetscErrorCode PeriodicFlow::Setup(const Lattice &lat, const FlowOptions &o)
   PetscCall(MatCreateDense(lat.Comm(), nl, PETSC_DECIDE, n, 2, NULL, S_tlm_.out()));
   PetscCall(CreateTS(ts_.out(), NULL));
   PetscCall(TSMonitorSet(ts_, FlowAverageMonitor, this, NULL)); // acts only inside IntegrateAveragingStiffness
-  PetscCall(CreateTS(ts_tlm_.out(), Jp_tlm_));
+  {
+    TSType type;
+    PetscBool split;
+    PetscCall(TSGetType(ts_, &type));
+    PetscCall(PetscStrcmp(type, TSSYMSPLIT, &split));
+    symplectic_ = split;
+  }
+  if (symplectic_) {
+    PetscCheck(o.route == MonodromyRoute::Variational, lat.Comm(), PETSC_ERR_USER,
+               "-nnm_monodromy tsforward needs -nnm_ts_type rk (forward sensitivities); -nnm_ts_type symsplit has its own tangent map");
+    PetscCall(TSSetAcceleration(ts_, FlowAcceleration, rhs_)); // beta enters after the splitting (Unfold)
+  } else PetscCall(CreateTS(ts_tlm_.out(), Jp_tlm_));
   // the dense 2N x (2N + 1) TSForward set-up only when the dense monodromy is asked for (O(N^2) memory)
   PetscFunctionReturn(0);
 }
@@ -178,11 +196,22 @@ PetscErrorCode PeriodicFlow::Run(TS ts, Vec z0, PetscReal T, Vec zT)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode PeriodicFlow::Unfold(Vec zT, PetscReal T, PetscReal beta)
+{
+  PetscFunctionBeginUser;
+  if (!symplectic_ || beta == 0) PetscFunctionReturn(0);
+  if (!wb_) PetscCall(VecDuplicate(zT, wb_.out()));
+  PetscCall(GradEnergy(zT, wb_));
+  PetscCall(VecAXPY(zT, beta * T, wb_));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode PeriodicFlow::Integrate(Vec z0, PetscReal T, PetscReal beta, Vec zT)
 {
   PetscFunctionBeginUser;
   beta_ = beta;
   PetscCall(Run(ts_, z0, T, zT));
+  PetscCall(Unfold(zT, T, beta));
   PetscFunctionReturn(0);
 }
 
@@ -198,6 +227,7 @@ PetscErrorCode PeriodicFlow::IntegrateAveragingStiffness(Vec z0, PetscReal T, Pe
   const PetscErrorCode ierr = Run(ts_, z0, T, zT);
   harm_ = nullptr;
   PetscCall(ierr);
+  PetscCall(Unfold(zT, T, beta));
   PetscFunctionReturn(0);
 }
 
@@ -242,6 +272,14 @@ PetscErrorCode PeriodicFlow::IntegrateWithMonodromy(Vec z0, PetscReal T, PetscRe
 {
   PetscFunctionBeginUser;
   beta_ = beta;
+  if (symplectic_) {
+    if (!sym_dense_) {
+      sym_dense_ = std::make_unique<SymplecticVariationalFlow>();
+      PetscCall(sym_dense_->Setup(*lat_, 2 * lat_->N(), opt_.steps));
+    }
+    PetscCall(sym_dense_->Integrate(z0, T, beta, NULL, 1.0, 0.0, zT, S, NULL));
+    PetscFunctionReturn(0);
+  }
   if (opt_.route == MonodromyRoute::Variational) {
     if (!var_dense_) {
       var_dense_ = std::make_unique<VariationalFlow>();
@@ -267,6 +305,14 @@ PetscErrorCode PeriodicFlow::IntegrateWithTangent(Vec z0, PetscReal T, PetscReal
   Vec c;
   PetscFunctionBeginUser;
   beta_ = beta;
+  if (symplectic_) {
+    if (!sym_tlm_) {
+      sym_tlm_ = std::make_unique<SymplecticVariationalFlow>();
+      PetscCall(sym_tlm_->Setup(*lat_, 1, opt_.steps));
+    }
+    PetscCall(sym_tlm_->Integrate(z0, T, beta, dz, dbeta, dT, zT, NULL, w));
+    PetscFunctionReturn(0);
+  }
   if (opt_.route == MonodromyRoute::Variational) {
     if (!var_tlm_) { // one column: dbeta and dT enter as sources
       var_tlm_ = std::make_unique<VariationalFlow>();

@@ -6,14 +6,18 @@
 // exist only at beta = 0; as an unknown it makes the shooting system square and
 // regular along a family of orbits.
 //
-// Integration uses PETSc TS RK (prefix -nnm_ts_, default 5dp) with FIXED steps
+// Integration uses PETSc TS (prefix -nnm_ts_, default rk 5dp) with FIXED steps
 // dt = T / n: PETSc 3.18's forward sensitivities are wrong with adaptive RK
 // (guide section b), and fixed steps make the flow a smooth function of T.
+// With -nnm_ts_type symsplit the flow is a symplectic splitting and beta
+// enters as one map at the end (orbits/variational_symplectic.hpp): the
+// monodromy at beta = 0 is then symplectic to rounding.
 // The monodromy and the beta column come from TS forward sensitivities with
 // the assembled state Jacobian (the "dense" route), or one tangent direction at
 // a time (the "matrix-free" route).
 #include "effects/rhs.hpp"
 #include "orbits/variational.hpp"
+#include "orbits/variational_symplectic.hpp"
 #include <memory>
 #include <vector>
 
@@ -62,6 +66,13 @@ public:
   PetscErrorCode GradEnergy(Vec z, Vec g);
 
   const Lattice &Lat() const { return *lat_; }
+  // The symplectic route (-nnm_ts_type symsplit): Floquet multipliers are
+  // taken at beta = 0, where the discrete monodromy is exactly symplectic.
+  bool Symplectic() const { return symplectic_; }
+  // The beta the monodromy of a converged orbit is taken at: 0 on the
+  // symplectic route (Newton leaves |beta| ~ its tolerance, and B_beta's
+  // derivative would move det M off 1 by ~ beta T tr Hess E), else beta.
+  PetscReal FloquetBeta(PetscReal beta) const { return symplectic_ ? 0.0 : beta; }
 
   // TS callbacks (public for the C trampolines).
   PetscErrorCode EvalRhs(PetscReal t, Vec z, Vec f);
@@ -73,6 +84,7 @@ public:
 private:
   PetscErrorCode CreateTS(TS *ts, Mat jacp);
   PetscErrorCode Run(TS ts, Vec z0, PetscReal T, Vec zT);
+  PetscErrorCode Unfold(Vec zT, PetscReal T, PetscReal beta); // zT += beta T grad E(zT) (symplectic route)
 
   const Lattice *lat_ = nullptr;
   FlowOptions opt_;
@@ -80,6 +92,8 @@ private:
   OwnedTS ts_, ts_mono_, ts_tlm_;
   OwnedMat J_, Jp_mono_, Jp_tlm_, S_tlm_;
   std::unique_ptr<VariationalFlow> var_dense_, var_tlm_; // created on first use
+  std::unique_ptr<SymplecticVariationalFlow> sym_dense_, sym_tlm_;
+  bool symplectic_ = false;
   OwnedVec wb_;
   StiffnessHarmonics *harm_ = nullptr; // set while averaging K_T
 };

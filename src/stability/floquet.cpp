@@ -1,4 +1,5 @@
 #include "stability/floquet.hpp"
+#include "core/gather.hpp"
 #include "core/log.hpp"
 #include <algorithm>
 #include <cmath>
@@ -54,6 +55,49 @@ PetscErrorCode KreinAndEdge(const Lattice &lat, Vec xr, Vec xi, PetscInt e, Pets
   PetscFunctionReturn(0);
 }
 
+// |det M - 1| by LU with partial pivoting in long double on rank 0 (M is
+// 2N x 2N dense, small enough to gather where the dense route is used).
+PetscErrorCode DeterminantError(Mat M, PetscInt n, PetscReal *err)
+{
+  PetscMPIInt rank;
+  std::vector<long double> a;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(PetscObjectComm((PetscObject)M), &rank));
+  if (rank == 0) a.resize((size_t)n * n);
+  for (PetscInt c = 0; c < n; c++) {
+    Vec col;
+    std::vector<PetscReal> x;
+    PetscCall(MatDenseGetColumnVecRead(M, c, &col));
+    PetscCall(GatherVec(col, false, &x));
+    PetscCall(MatDenseRestoreColumnVecRead(M, c, &col));
+    if (rank == 0)
+      for (PetscInt r = 0; r < n; r++) a[(size_t)r * n + c] = x[r];
+  }
+  long double det = 1;
+  if (rank == 0) {
+    for (PetscInt k = 0; k < n; k++) {
+      PetscInt p = k;
+      for (PetscInt i = k + 1; i < n; i++)
+        if (std::fabs(a[(size_t)i * n + k]) > std::fabs(a[(size_t)p * n + k])) p = i;
+      if (p != k) {
+        for (PetscInt j = 0; j < n; j++) std::swap(a[(size_t)p * n + j], a[(size_t)k * n + j]);
+        det = -det;
+      }
+      const long double piv = a[(size_t)k * n + k];
+      det *= piv;
+      if (piv == 0) break;
+      for (PetscInt i = k + 1; i < n; i++) {
+        const long double l = a[(size_t)i * n + k] / piv;
+        for (PetscInt j = k + 1; j < n; j++) a[(size_t)i * n + j] -= l * a[(size_t)k * n + j];
+      }
+    }
+  }
+  PetscReal e = (PetscReal)std::fabs(det - 1); // a row permutation of the state layout does not change det
+  PetscCallMPI(MPI_Bcast(&e, 1, MPIU_REAL, 0, PetscObjectComm((PetscObject)M)));
+  *err = e;
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
 PetscErrorCode FloquetAnalysis(const Lattice &lat, Mat S, const FloquetOptions &o, FloquetResult *r)
@@ -82,6 +126,7 @@ PetscErrorCode FloquetAnalysis(const Lattice &lat, Mat S, const FloquetOptions &
   }
   PetscCall(MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY));
+  PetscCall(DeterminantError(M, n, &r->det_error));
   PetscCall(EPSCreate(lat.Comm(), eps.out()));
   PetscCall(EPSSetOptionsPrefix(eps, "floquet_"));
   PetscCall(EPSSetOperators(eps, M, NULL));

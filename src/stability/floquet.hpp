@@ -24,6 +24,9 @@ struct FloquetResult {
   bool stable = true;
   PetscInt instability = 0;      // 0 none, 1 bulk-bulk, 2 bulk-edge, 3 edge-edge
   PetscInt trivial = 0;          // multipliers within 1e-4 of 1 (2 for an isolated NNM)
+  PetscReal det_error = 0;       // |det M - 1| with det M from an LU factorisation in extended
+                                 // precision (the product of the computed multipliers carries
+                                 // their rounding, ~2N eps): Liouville's theorem says det M = 1
 };
 
 // M: the 2N x 2N monodromy in the state layout (columns 0..2N-1 of the

@@ -58,7 +58,7 @@ PetscErrorCode BranchStart(const Lattice &lat, const LinearModes &modes, const c
 // multipliers, krein and instability; matrix-free: the -floquet_mf_nev
 // leading ones, products and unconverged).
 struct FloquetColumns {
-  std::vector<PetscReal> re, im, max_modulus;
+  std::vector<PetscReal> re, im, max_modulus, det_error;
   std::vector<PetscInt> krein, stable, instability;
   PetscInt products = 0, unconverged = 0;
 };
@@ -75,12 +75,13 @@ public:
       PetscCall(flow_.CreateSensitivityMatrix(S_.out()));
       PetscCall(VecDuplicate(z0, zT_.out()));
     }
-    PetscCall(flow_.IntegrateWithMonodromy(z0, T, beta, zT_, S_)); // at the converged orbit
+    PetscCall(flow_.IntegrateWithMonodromy(z0, T, flow_.FloquetBeta(beta), zT_, S_)); // at the converged orbit
     PetscCall(FloquetAnalysis(flow_.Lat(), S_, opt_, &r));
     c.re.insert(c.re.end(), r.re.begin(), r.re.end());
     c.im.insert(c.im.end(), r.im.begin(), r.im.end());
     c.krein.insert(c.krein.end(), r.krein.begin(), r.krein.end());
     c.max_modulus.push_back(r.max_modulus);
+    c.det_error.push_back(r.det_error);
     c.stable.push_back(r.stable);
     c.instability.push_back(r.instability);
     PetscFunctionReturn(0);
@@ -104,7 +105,7 @@ public:
   {
     LeadingMultipliers r;
     PetscFunctionBeginUser;
-    PetscCall(FloquetLeading(flow_, z0, T, beta, mopt_, &r, &warm_, dz0));
+    PetscCall(FloquetLeading(flow_, z0, T, flow_.FloquetBeta(beta), mopt_, &r, &warm_, dz0));
     c.re.insert(c.re.end(), r.re.begin(), r.re.end());
     c.im.insert(c.im.end(), r.im.begin(), r.im.end());
     c.max_modulus.push_back(r.max_modulus);
@@ -176,6 +177,7 @@ PetscErrorCode WriteRecord(PetscViewer v, const BranchRecord &r, FloquetKind fk,
     PetscCall(WriteArray(v, g.c_str(), "multipliers_im", f.im, n2));
     PetscCall(WriteIntArray(v, g.c_str(), "krein", f.krein, n2));
     PetscCall(WriteArray(v, g.c_str(), "max_modulus", f.max_modulus));
+    PetscCall(WriteArray(v, g.c_str(), "det_error", f.det_error));
     PetscCall(WriteIntArray(v, g.c_str(), "stable", f.stable));
     PetscCall(WriteIntArray(v, g.c_str(), "instability", f.instability));
   }
@@ -261,6 +263,7 @@ PetscErrorCode ReadResume(MPI_Comm comm, const std::string &file, const std::str
         PetscCall(ReadInts(file, (g + "krein").c_str(), &f->krein));
         PetscCall(ReadInts(file, (g + "instability").c_str(), &f->instability));
       }
+      if (fk == FloquetKind::Dense && has("det_error")) PetscCall(reals("det_error", &f->det_error));
     }
     if (fk != FloquetKind::None && f->re.size() != np * per) { // absent, or another -floquet_mf_nev / route: not comparable
       f->re.assign(np * per, NAN);
@@ -269,10 +272,12 @@ PetscErrorCode ReadResume(MPI_Comm comm, const std::string &file, const std::str
       f->stable.assign(np, 0);
       f->krein.clear();
       f->instability.clear();
+      f->det_error.clear();
     }
     if (fk == FloquetKind::Dense) {
       f->krein.resize(np * per, 0);
       f->instability.resize(np, 0);
+      f->det_error.resize(np, NAN); // files written before det_error was stored
     }
   }
   PetscCallMPI(MPI_Bcast(&rowlen, 1, MPIU_INT, 0, comm));
@@ -520,6 +525,11 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
       PetscCall(PetscPrintf(comm, "  [%s] Floquet%s: %" PetscInt_FMT " of %zu orbits stable (|mu| <= 1 + %g)", label.c_str(),
                             fk == FloquetKind::MatrixFree ? " (matrix-free, leading pairs)" : "", ns, f.stable.size(), (double)flo.tol));
       if (fk == FloquetKind::MatrixFree) PetscCall(PetscPrintf(comm, ", %" PetscInt_FMT " monodromy products", f.products));
+      else {
+        PetscReal dmax = 0;
+        for (PetscReal d : f.det_error) dmax = std::max(dmax, d); // NaN (resumed from an older file) ignored
+        PetscCall(PetscPrintf(comm, ", max |det M - 1| = %.1e", (double)dmax));
+      }
       PetscCall(PetscPrintf(comm, "\n"));
     }
     const size_t nnew = npts - (resumed ? rb.energy.size() : 0); // seconds and costs cover this run's points

@@ -209,7 +209,7 @@ PetscErrorCode StabilityStudy(MPI_Comm comm)
       EnergyParts e;
       FloquetResult fr;
       PetscCall(lat.Energy(z, &e));
-      PetscCall(flow.IntegrateWithMonodromy(z, T, beta, zT, S));
+      PetscCall(flow.IntegrateWithMonodromy(z, T, flow.FloquetBeta(beta), zT, S));
       PetscCall(FloquetAnalysis(lat, S, flo, &fr));
       // Perturbation: z0 + eps ||z0|| / sqrt(2N) xi, xi uniform in (-1, 1) per entry,
       // drawn by global index from the seed (the same on any number of ranks).

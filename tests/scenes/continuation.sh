@@ -28,6 +28,9 @@ for name, w_lin in expect.items():
         assert b[d].shape == (n, 2 * N), (name, d)
     assert b["krein"].dtype.kind == "i" and b["stable"].dtype.kind == "i" and b["instability"].dtype.kind == "i"
     assert b["stable"][0] == 1 and abs(b["max_modulus"][0] - 1) < 1e-6, name   # the linear limit is stable
+    # fep.opts shoots with the symplectic splitting: det M = 1 to rounding (Liouville), on 1 and 2 ranks
+    for h in (b, g["continuation/" + name]):
+        assert h["det_error"].shape == (n,) and h["det_error"][:].max() < 1e-12, (name, h["det_error"][:].max())
     c = g["continuation/" + name]
     assert c["energy"].shape == (n,), name
     assert np.abs(c["omega"][:] - b["omega"][:]).max() < 1e-9, name

@@ -3,6 +3,9 @@
 #include "lattice/lattice.hpp"
 #include <catch2/catch.hpp>
 #include <petscsys.h>
+#include <initializer_list>
+#include <string>
+#include <utility>
 #include <vector>
 
 #define PCHK(...) REQUIRE((__VA_ARGS__) == 0)
@@ -81,5 +84,21 @@ inline std::vector<PetscReal> Pseudo(size_t n, unsigned seed)
   }
   return v;
 }
+
+// Sets PETSc options for the duration of a scope.
+struct ScopedOptions {
+  std::vector<std::string> names;
+  ScopedOptions(std::initializer_list<std::pair<const char *, const char *>> kv)
+  {
+    for (auto &p : kv) {
+      PetscOptionsSetValue(NULL, p.first, p.second);
+      names.push_back(p.first);
+    }
+  }
+  ~ScopedOptions()
+  {
+    for (auto &n : names) PetscOptionsClearValue(NULL, n.c_str());
+  }
+};
 
 } // namespace nltopo::test

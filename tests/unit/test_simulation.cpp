@@ -8,22 +8,6 @@
 using namespace nltopo;
 using namespace nltopo::test;
 
-// Sets PETSc options for the duration of a scope.
-struct ScopedOptions {
-  std::vector<std::string> names;
-  ScopedOptions(std::initializer_list<std::pair<const char *, const char *>> kv)
-  {
-    for (auto &p : kv) {
-      PetscOptionsSetValue(NULL, p.first, p.second);
-      names.push_back(p.first);
-    }
-  }
-  ~ScopedOptions()
-  {
-    for (auto &n : names) PetscOptionsClearValue(NULL, n.c_str());
-  }
-};
-
 static ToneBurstOptions SiteBurst(PetscReal S, PetscReal estar)
 {
   ToneBurstOptions o;
