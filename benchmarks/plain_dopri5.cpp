@@ -3,7 +3,7 @@
 // lattice of /work/shared/spec/model.md with a hand-written Dormand-Prince 5(4)
 // (Hairer's classic dopri5) and reports step statistics, energy and the MCR.
 //
-// Build:  g++ -O2 -std=c++17 -o plain_dopri5 plain_dopri5.cpp
+// Build:  g++ -O3 -std=c++17 -o plain_dopri5 plain_dopri5.cpp
 // Run:    ./plain_dopri5 --amplitude 0.05 [--cells 25] [--omega 1.7320508]
 //           [--energy 1] [--t_final 1000] [--rtol 1e-8] [--atol 1e-8]
 //           [--Gamma 0.5] [--repeat 5]
