@@ -84,7 +84,7 @@ PetscErrorCode SecondOrderProblem::Reset()
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode HermiteInterpolate(Vec z0v, Vec z1v, const PetscScalar *a0, const PetscScalar *a1, PetscInt n, PetscReal h, PetscReal s, Vec X)
+PetscErrorCode HermiteInterpolate(Vec z0v, Vec z1v, const PetscScalar *a0, const PetscScalar *a1, PetscInt n, PetscReal h, PetscReal s, Vec X, bool positions_only)
 {
   const PetscScalar *z0, *z1;
   PetscScalar *x;
@@ -97,10 +97,11 @@ PetscErrorCode HermiteInterpolate(Vec z0v, Vec z1v, const PetscScalar *a0, const
   PetscCall(VecGetArrayRead(z0v, &z0));
   PetscCall(VecGetArrayRead(z1v, &z1));
   PetscCall(VecGetArray(X, &x));
-  for (PetscInt i = 0; i < n; i++) {
-    const PetscReal u0 = z0[i], v0 = z0[n + i], u1 = z1[i], v1 = z1[n + i];
-    x[i] = H0 * u0 + H3 * u1 + h * (H1 * v0 + H4 * v1) + h * h * (H2 * a0[i] + H5 * a1[i]);
-    x[n + i] = D0 * (u0 - u1) / h + D1 * v0 + D4 * v1 + h * (D2 * a0[i] + D5 * a1[i]);
+  const PetscReal hH1 = h * H1, hH4 = h * H4, h2H2 = h * h * H2, h2H5 = h * h * H5;
+  for (PetscInt i = 0; i < n; i++) x[i] = H0 * z0[i] + H3 * z1[i] + hH1 * z0[n + i] + hH4 * z1[n + i] + h2H2 * a0[i] + h2H5 * a1[i];
+  if (!positions_only) {
+    const PetscReal D0h = D0 / h, hD2 = h * D2, hD5 = h * D5;
+    for (PetscInt i = 0; i < n; i++) x[n + i] = D0h * (z0[i] - z1[i]) + D1 * z0[n + i] + D4 * z1[n + i] + hD2 * a0[i] + hD5 * a1[i];
   }
   PetscCall(VecRestoreArray(X, &x));
   PetscCall(VecRestoreArrayRead(z1v, &z1));

@@ -35,6 +35,8 @@ struct SecondOrderProblem {
 // state z0 to z1 (layout [u | v], n owned positions) with accelerations a0, a1
 // at its ends: u exact for polynomials of degree 5 (error O(h^6)), v its
 // derivative.
-PetscErrorCode HermiteInterpolate(Vec z0, Vec z1, const PetscScalar *a0, const PetscScalar *a1, PetscInt n, PetscReal h, PetscReal s, Vec X);
+// positions_only: X's v part is left as it was (callers that need u alone).
+PetscErrorCode HermiteInterpolate(Vec z0, Vec z1, const PetscScalar *a0, const PetscScalar *a1, PetscInt n, PetscReal h, PetscReal s, Vec X,
+                                  bool positions_only = false);
 
 } // namespace nltopo

@@ -27,6 +27,11 @@ struct Rkn {
   // per pair: nonzero A_ij of each row (j, A_ij); the four weight sets in one array per stage
   std::vector<std::vector<std::pair<PetscInt, PetscReal>>> rows;
   std::vector<PetscReal> dbar, db; // bbar - bhatbar, b - bhat (the error weights)
+  std::vector<PetscInt> weighted;  // the stages Combine reads (e.g. dep86's stage 1 has four zero weights)
+  // The weighted 2-norm of (propagated - embedded), computed in Combine's last
+  // pass when the tolerances are scalars (else TSErrorWeightedNorm).
+  bool fused_norm = false;
+  PetscReal wlte2 = -1;
 
   std::vector<PetscScalar> &End() { return Pairs()[pair].fsal ? k.back() : a_end; }
 };
@@ -59,13 +64,27 @@ PetscErrorCode Stages(TS ts, Rkn *d, PetscReal t0, PetscReal h, PetscBool *ok)
     // term over blocks that stay in cache on long lattices
     for (PetscInt q0 = 0; q0 < n; q0 += kBlock) {
       const PetscInt q1 = std::min(n, q0 + kBlock);
-      for (PetscInt q = q0; q < q1; q++) {
-        y[q] = u[q] + ch * v[q];
-        y[n + q] = v[q]; // not read by a(t, u); keeps the RHS fallback's input finite
+      for (PetscInt q = q0; q < q1; q++) y[q] = u[q] + ch * v[q];
+      if (!d->p.fn) // the RHS fallback's input: v finite (a(t, u) does not read it)
+        for (PetscInt q = q0; q < q1; q++) y[n + q] = v[q];
+      // the terms four at a time: y is loaded and stored once per four (the
+      // loop is bound by those loads and stores, not by the multiply-adds)
+      const auto &row = d->rows[i];
+      PetscInt j = 0;
+      for (; j + 4 <= m; j += 4) {
+        const PetscScalar *k0 = d->k[row[j].first].data(), *k1 = d->k[row[j + 1].first].data(), *k2 = d->k[row[j + 2].first].data(),
+                          *k3 = d->k[row[j + 3].first].data();
+        const PetscReal w0 = h2 * row[j].second, w1 = h2 * row[j + 1].second, w2 = h2 * row[j + 2].second, w3 = h2 * row[j + 3].second;
+        for (PetscInt q = q0; q < q1; q++) y[q] += w0 * k0[q] + w1 * k1[q] + w2 * k2[q] + w3 * k3[q];
       }
-      for (PetscInt j = 0; j < m; j++) {
-        const PetscScalar *kj = d->k[d->rows[i][j].first].data();
-        const PetscReal wj = h2 * d->rows[i][j].second;
+      for (; j + 2 <= m; j += 2) {
+        const PetscScalar *k0 = d->k[row[j].first].data(), *k1 = d->k[row[j + 1].first].data();
+        const PetscReal w0 = h2 * row[j].second, w1 = h2 * row[j + 1].second;
+        for (PetscInt q = q0; q < q1; q++) y[q] += w0 * k0[q] + w1 * k1[q];
+      }
+      for (; j < m; j++) {
+        const PetscScalar *kj = d->k[row[j].first].data();
+        const PetscReal wj = h2 * row[j].second;
         for (PetscInt q = q0; q < q1; q++) y[q] += wj * kj[q];
       }
     }
@@ -97,7 +116,24 @@ PetscErrorCode Combine(TS ts, Rkn *d, PetscReal h)
   for (PetscInt q0 = 0; q0 < n; q0 += kBlock) {
     const PetscInt q1 = std::min(n, q0 + kBlock);
     for (PetscInt q = q0; q < q1; q++) zp[q] = zp[n + q] = e[q] = e[n + q] = 0;
-    for (PetscInt i = 0; i < s; i++) {
+    // stages with a nonzero weight in one of the four sums, two per pass (the
+    // four sums are loaded and stored once per two stages)
+    const std::vector<PetscInt> &w = d->weighted;
+    size_t j = 0;
+    for (; j + 2 <= w.size(); j += 2) {
+      const PetscInt i0 = w[j], i1 = w[j + 1];
+      const PetscScalar *a = d->k[i0].data(), *c = d->k[i1].data();
+      const PetscReal wb0 = P.bbar[i0], wv0 = P.b[i0], eb0 = d->dbar[i0], ev0 = d->db[i0];
+      const PetscReal wb1 = P.bbar[i1], wv1 = P.b[i1], eb1 = d->dbar[i1], ev1 = d->db[i1];
+      for (PetscInt q = q0; q < q1; q++) {
+        zp[q] += wb0 * a[q] + wb1 * c[q];
+        zp[n + q] += wv0 * a[q] + wv1 * c[q];
+        e[q] += eb0 * a[q] + eb1 * c[q];
+        e[n + q] += ev0 * a[q] + ev1 * c[q];
+      }
+    }
+    for (; j < w.size(); j++) {
+      const PetscInt i = w[j];
       const PetscScalar *a = d->k[i].data();
       const PetscReal wb = P.bbar[i], wv = P.b[i], eb = d->dbar[i], ev = d->db[i];
       for (PetscInt q = q0; q < q1; q++) {
@@ -108,6 +144,12 @@ PetscErrorCode Combine(TS ts, Rkn *d, PetscReal h)
       }
     }
   }
+  // The error norm as TSErrorWeightedNorm2 (PETSc 3.18) defines it, in the same
+  // pass: the mean over the entries with tol > 0 of (|y - yhat| / tol)^2,
+  // tol = atol + rtol max(|y|, |yhat|).
+  const PetscReal atol = ts->atol, rtol = ts->rtol;
+  PetscReal sum = 0, cnt = 0;
+  d->fused_norm = !ts->vatol && !ts->vrtol && ts->adapt && ts->adapt->wnormtype == NORM_2 && ts->adapt->ignore_max <= 0;
   for (PetscInt q = 0; q < n; q++) {
     const PetscScalar u = z[q], v = z[n + q], u1 = u + h * v + h2 * zp[q], v1 = v + h * zp[n + q];
     const PetscScalar eu = u1 - h2 * e[q], ev = v1 - h * e[n + q];
@@ -115,8 +157,18 @@ PetscErrorCode Combine(TS ts, Rkn *d, PetscReal h)
     zp[n + q] = v;
     z[q] = u1;
     z[n + q] = v1;
-    e[q] = eu;
+    e[q] = eu; // read only by TSErrorWeightedNorm (not fused)
     e[n + q] = ev;
+    if (d->fused_norm) {
+      const PetscReal tu = atol + rtol * std::max(std::abs(u1), std::abs(eu)), tv = atol + rtol * std::max(std::abs(v1), std::abs(ev));
+      if (tu > 0) sum += (std::abs(u1 - eu) / tu) * (std::abs(u1 - eu) / tu), cnt += 1;
+      if (tv > 0) sum += (std::abs(v1 - ev) / tv) * (std::abs(v1 - ev) / tv), cnt += 1;
+    }
+  }
+  if (d->fused_norm) {
+    PetscReal loc[2] = {sum, cnt}, glob[2];
+    PetscCall(MPIU_Allreduce(loc, glob, 2, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)ts)));
+    d->wlte2 = glob[1] > 0 ? std::sqrt(glob[0] / glob[1]) : 0;
   }
   PetscCall(VecRestoreArray(d->emb, &e));
   PetscCall(VecRestoreArray(d->z_prev, &zp));
@@ -194,7 +246,8 @@ PetscErrorCode TSEvaluateWLTE_Rkn(TS ts, NormType wnormtype, PetscInt *order, Pe
     *wlte = -1;
     PetscFunctionReturn(0);
   }
-  PetscCall(TSErrorWeightedNorm(ts, ts->vec_sol, d->emb, wnormtype, wlte, &wa, &wr));
+  if (d->fused_norm && wnormtype == NORM_2) *wlte = d->wlte2;
+  else PetscCall(TSErrorWeightedNorm(ts, ts->vec_sol, d->emb, wnormtype, wlte, &wa, &wr));
   if (order) *order = Pairs()[d->pair].order_embedded + 1;
   PetscFunctionReturn(0);
 }
@@ -208,6 +261,16 @@ PetscErrorCode TSInterpolate_Rkn(TS ts, PetscReal t, Vec X)
   PetscFunctionBegin;
   if (h <= 0 || !d->end_ready) PetscCall(VecCopy(ts->vec_sol, X));
   else PetscCall(HermiteInterpolate(d->z_prev, ts->vec_sol, d->k[0].data(), d->End().data(), d->p.n, h, (t - ts->ptime_prev) / h, X));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode RknInterpolate(TS ts, PetscReal t, Vec X, bool positions_only)
+{
+  Rkn *d = static_cast<Rkn *>(ts->data);
+  const PetscReal h = ts->ptime - ts->ptime_prev;
+  PetscFunctionBegin;
+  if (h <= 0 || !d->end_ready) PetscCall(VecCopy(ts->vec_sol, X));
+  else PetscCall(HermiteInterpolate(d->z_prev, ts->vec_sol, d->k[0].data(), d->End().data(), d->p.n, h, (t - ts->ptime_prev) / h, X, positions_only));
   PetscFunctionReturn(0);
 }
 
@@ -240,9 +303,11 @@ PetscErrorCode TSSetUp_Rkn(TS ts)
       if (P.A[i * P.stages + j] != 0) d->rows[i].push_back({j, P.A[i * P.stages + j]});
   d->dbar.resize(P.stages);
   d->db.resize(P.stages);
+  d->weighted.clear();
   for (PetscInt i = 0; i < P.stages; i++) {
     d->dbar[i] = P.bbar[i] - P.bhatbar[i];
     d->db[i] = P.b[i] - P.bhat[i];
+    if (P.bbar[i] != 0 || P.b[i] != 0 || d->dbar[i] != 0 || d->db[i] != 0) d->weighted.push_back(i);
   }
   PetscCall(VecDuplicate(ts->vec_sol, &d->z_prev));
   PetscCall(VecDuplicate(ts->vec_sol, &d->stage));
@@ -322,6 +387,16 @@ PetscErrorCode TSCreate_Rkn(TS ts)
 }
 
 } // namespace
+
+PetscErrorCode TSRknInterpolatePositions(TS ts, PetscReal t, Vec X)
+{
+  PetscBool rkn;
+  PetscFunctionBegin;
+  PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSRKN, &rkn));
+  if (rkn) PetscCall(RknInterpolate(ts, t, X, true));
+  else PetscCall(TSInterpolate(ts, t, X));
+  PetscFunctionReturn(0);
+}
 
 PetscErrorCode TSRknRegister()
 {

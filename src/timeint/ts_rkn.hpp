@@ -33,6 +33,10 @@ namespace nltopo {
 // Registers "rkn" once (safe to call repeatedly).
 PetscErrorCode TSRknRegister();
 
+// TSInterpolate for the positions only (X's v part is left as it was): the
+// window quadrature needs u alone at its Gauss nodes.
+PetscErrorCode TSRknInterpolatePositions(TS ts, PetscReal t, Vec X);
+
 // The pairs: option name, orders, accelerations per accepted step (for tests
 // and benchmarks).
 struct RknPairInfo {

@@ -26,6 +26,7 @@ struct RunSpec {
   PetscReal tol = 0;       // > 0: adaptive (rtol = atol = tol, -ts_adapt_type from adapt); 0: fixed step h
   const char *adapt = "basic";
   PetscInt max_steps = -1; // > 0: stop after this many steps
+  bool vector_tol = false;  // tolerances as Vecs: the error norm by PETSc's TSErrorWeightedNorm (else rkn's fused one)
 };
 
 struct RunResult {
@@ -45,7 +46,16 @@ TS NewRkn(const RunSpec &s)
   PCHK(TSSetFromOptions(ts));
   PCHK(PetscOptionsClearValue(NULL, "-rkn_unit_ts_rkn_scheme"));
   PCHK(PetscOptionsClearValue(NULL, "-rkn_unit_ts_adapt_type"));
-  if (s.tol > 0) PCHK(TSSetTolerances(ts, s.tol, NULL, s.tol, NULL));
+  if (s.tol > 0 && s.vector_tol) {
+    Vec va, vr;
+    PCHK(VecCreateSeq(PETSC_COMM_SELF, 2, &va));
+    PCHK(VecSet(va, s.tol));
+    PCHK(VecDuplicate(va, &vr));
+    PCHK(VecSet(vr, s.tol));
+    PCHK(TSSetTolerances(ts, PETSC_DECIDE, va, PETSC_DECIDE, vr));
+    PCHK(VecDestroy(&va));
+    PCHK(VecDestroy(&vr));
+  } else if (s.tol > 0) PCHK(TSSetTolerances(ts, s.tol, NULL, s.tol, NULL));
   return ts;
 }
 
@@ -199,6 +209,27 @@ TEST_CASE("rkn: adaptive runs reach their tolerance on Duffing", "[rkn]")
       INFO(info.name << " " << adapt << ": errors " << err[0] << ", " << err[1]);
       CHECK(err[1] < err[0]);
       CHECK(r[1].steps > r[0].steps);
+    }
+  }
+}
+
+// rkn computes the weighted 2-norm of its error estimate in the pass that forms
+// the step (scalar tolerances); with Vec tolerances PETSc's TSErrorWeightedNorm
+// computes it. The two must take the same steps.
+TEST_CASE("rkn: the fused error norm takes the steps of PETSc's TSErrorWeightedNorm", "[rkn]")
+{
+  for (PetscInt i = 0; i < RknPairCount(); i++) {
+    const RknPairInfo info = RknPair(i);
+    for (PetscReal tol : {1e-6, 1e-10}) {
+      RunSpec s{info.name, 0.01, 20, 1, 1.5, false, tol};
+      const RunResult a = Integrate(s);
+      s.vector_tol = true;
+      const RunResult b = Integrate(s);
+      INFO(info.name << " tol " << tol << ": " << a.steps << " / " << b.steps << " steps, " << a.rejects << " / " << b.rejects << " rejected");
+      CHECK(a.steps == b.steps);
+      CHECK(a.rejects == b.rejects);
+      CHECK(std::abs(a.u - b.u) <= 1e-13);
+      CHECK(std::abs(a.v - b.v) <= 1e-13);
     }
   }
 }
