@@ -26,7 +26,7 @@ tmp = tempfile.mkdtemp()
 def run_nltopo(pair, tol, name="bench.h5", extra=()):
     out = os.path.join(tmp, name)
     subprocess.run([nltopo, "-options_file", os.path.join(root, "options", "simulate.opts"), "-sim_store_u", "0", "-sim_progress", "0",
-                    "-sim_ts_type", "rkn", "-sim_ts_rkn_scheme", pair, "-sim_ts_rtol", tol, "-sim_ts_atol", tol, *extra,
+                    "-sim_ts_type", "rkn", "-sim_ts_rkn_scheme", pair, "-sim_ts_rtol", tol, "-sim_ts_atol", tol, "-sim_ts_dt", "0.2", *extra,
                     "-output", out, "-output_overwrite"], check=True, capture_output=True)
     a = h5py.File(out, "r")["simulate"].attrs
     return (float(a["solve_seconds"]), int(a["steps"]), int(a["rejected_steps"]), float(a["mcr"]), float(a["amplitude"]),
@@ -35,7 +35,7 @@ def run_nltopo(pair, tol, name="bench.h5", extra=()):
 _, _, _, mcr_ref, S, toff_ref = run_nltopo("dep1210", "1e-13", "ref.h5", ["-sim_ts_adapt_dt_max", "0.05"])
 
 def run_plain(pair, tol):
-    # the first step as nltopo's (-sim_ts_dt of options/simulate.opts), E(t) sampled as nltopo's -sim_sample_dt
+    # the first step as nltopo's (-sim_ts_dt 0.2, given to both), E(t) sampled as nltopo's -sim_sample_dt
     txt = subprocess.run([plain, "--amplitude", repr(S), "--scheme", pair, "--rtol", tol, "--atol", tol, "--dt", "0.2", "--sample_dt", "1",
                           "--repeat", "1"], check=True, capture_output=True, text=True).stdout
     kv = dict(re.findall(r"(\w+)=(\S+)", txt))
