@@ -150,22 +150,12 @@ int main(int argc, char** argv) {
   }
   Lattice L(p);
   Work W(2 * L.N);
-  std::vector<double> ms;
-  Result R;
-  for (int r = 0; r < p.repeat; ++r) {
-    const auto t0 = std::chrono::steady_clock::now();
-    R = solve(L, p, W);
-    const auto t1 = std::chrono::steady_clock::now();
-    ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
-  }
-  std::vector<double> s = ms;
-  std::sort(s.begin(), s.end());
-  const size_t m = s.size();
-  const double med = m % 2 ? s[m / 2] : 0.5 * (s[m / 2 - 1] + s[m / 2]);
+  double med, min_ms;
+  const Result R = TimeRepeats(p.repeat, [&] { return solve(L, p, W); }, &med, &min_ms);
   // cutoff=no means the burst ended before E >= E* (model.md: must be said).
   std::printf("N=%d S=%.6g S_rule=user steps=%ld rejected=%ld rhs_evals=%ld cutoff=%s "
               "t_off=%.10g energy_final=%.12g drift=%.3e mcr=%.10g median_ms=%.3f min_ms=%.3f\n",
               L.N, p.S, R.steps, R.rejected, R.rhs_evals, R.cut ? "yes" : "no", R.t_off,
-              R.E_final, R.drift, R.mcr, med, s[0]);
+              R.E_final, R.drift, R.mcr, med, min_ms);
   return 0;
 }

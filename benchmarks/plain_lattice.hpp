@@ -4,6 +4,7 @@
 // here (model.md is 1-based). Fixed: k=1, gamma=0.4, gamma0=1, layout=interface,
 // forcing profile eta=`site` (model.md "Forcing").
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <string>
@@ -84,6 +85,25 @@ struct Lattice {
   }
 };
 
+
+// Runs solve() `repeat` times; returns the last result, and the median and
+// minimum wall time in ms.
+template <class Solve>
+auto TimeRepeats(int repeat, Solve solve, double* median_ms, double* min_ms) {
+  std::vector<double> ms;
+  decltype(solve()) R{};
+  for (int r = 0; r < repeat; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    R = solve();
+    const auto t1 = std::chrono::steady_clock::now();
+    ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+  }
+  std::sort(ms.begin(), ms.end());
+  const size_t m = ms.size();
+  *median_ms = m % 2 ? ms[m / 2] : 0.5 * (ms[m / 2 - 1] + ms[m / 2]);
+  *min_ms = ms[0];
+  return R;
+}
 
 // The command-line options both baselines share; false if o is not one of them.
 inline bool ParseCommon(const std::string& o, const char* v, Params& p) {

@@ -320,17 +320,8 @@ int main(int argc, char** argv) {
   Lattice L(p);
   Work W(L.N, *P);
   W.E.reserve(sample_dt > 0 ? (size_t)(p.t_final / sample_dt) + 2 : 0);
-  std::vector<double> ms;
-  Result R;
-  for (int r = 0; r < p.repeat; ++r) {
-    const auto t0 = std::chrono::steady_clock::now();
-    R = solve(L, p, *P, sample_dt, W);
-    const auto t1 = std::chrono::steady_clock::now();
-    ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
-  }
-  std::sort(ms.begin(), ms.end());
-  const size_t m = ms.size();
-  const double med = m % 2 ? ms[m / 2] : 0.5 * (ms[m / 2 - 1] + ms[m / 2]);
+  double med, min_ms;
+  const Result R = TimeRepeats(p.repeat, [&] { return solve(L, p, *P, sample_dt, W); }, &med, &min_ms);
   std::printf("N=%d S=%.6g scheme=%s rtol=%.3g atol=%.3g steps=%ld rejected=%ld rhs_evals=%ld cutoff=%s t_off=%.10g energy_final=%.12g mcr=%.10g "
               "nl_ratio=%.8g samples=%ld median_ms=%.3f us_per_step=%.4f\n",
               L.N, p.S, P->name, p.rtol, p.atol, R.steps, R.rejected, R.accels, std::isnan(R.t_off) ? "no" : "yes", R.t_off, R.E_final, R.mcr,

@@ -83,17 +83,8 @@ int main(int argc, char** argv) {
   if (!s) { std::fprintf(stderr, "unknown --scheme %s\n", scheme.c_str()); return 1; }
   Lattice L(p);
   std::vector<double> work(4 * L.N);
-  std::vector<double> ms;
-  Result R;
-  for (int r = 0; r < p.repeat; ++r) {
-    const auto t0 = std::chrono::steady_clock::now();
-    R = solve(L, p, *s, work);
-    const auto t1 = std::chrono::steady_clock::now();
-    ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
-  }
-  std::sort(ms.begin(), ms.end());
-  const size_t m = ms.size();
-  const double med = m % 2 ? ms[m / 2] : 0.5 * (ms[m / 2 - 1] + ms[m / 2]);
+  double med, min_ms;
+  const Result R = TimeRepeats(p.repeat, [&] { return solve(L, p, *s, work); }, &med, &min_ms);
   std::printf("N=%d S=%.6g scheme=%s steps=%ld rhs_evals=%ld cutoff=%s t_off=%.10g energy_final=%.12g mcr=%.10g nl_ratio=%.8g median_ms=%.3f "
               "us_per_step=%.4f\n",
               L.N, p.S, s->name, R.steps, R.accels, std::isnan(R.t_off) ? "no" : "yes", R.t_off, R.E_final, R.mcr, R.nl_ratio, med,

@@ -34,13 +34,9 @@ PetscErrorCode Lattice::Setup(MPI_Comm comm, const LatticeParams &p)
       if (b >= 0 && b < N - 1) kb_[b - xs_ + 1] = bonds[b];
     kd_.assign(diag.begin() + xs_, diag.begin() + xs_ + xm_);
   }
-  stiff_.clear();
   gb_.assign(xm_ + 1, 0.0);
   for (PetscInt b = std::max<PetscInt>(xs_ - 1, 0); b < std::min(xs_ + xm_, N - 1); b++)
-    if (p.Stiff(b)) {
-      stiff_.push_back(b);
-      gb_[b - xs_ + 1] = p.Gamma;
-    }
+    if (p.Stiff(b)) gb_[b - xs_ + 1] = p.Gamma;
   PetscCall(ISCreateStride(comm, xm_, 2 * xs_, 1, is_u_.out()));
   PetscCall(ISCreateStride(comm, xm_, 2 * xs_ + xm_, 1, is_v_.out()));
 

@@ -81,7 +81,6 @@ private:
   OwnedIS is_u_, is_v_;
   PetscInt xs_ = 0, xm_ = 0;
   std::vector<PetscInt> starts_; // first site of every rank, plus N
-  std::vector<PetscInt> stiff_;  // stiff bonds touching an owned site (bond b joins b, b+1)
   std::vector<PetscReal> kb_;    // k of bonds xs-1 .. xs+xm-1 (0 outside the chain): kb_[b - xs + 1]
   std::vector<PetscReal> gb_;    // Gamma of bonds xs-1 .. xs+xm-1 (0 if not stiff or outside): gb_[b - xs + 1]
   std::vector<PetscReal> kd_;    // diagonal of K at the owned sites: kd_[i - xs] (k_hat unless perturbed)

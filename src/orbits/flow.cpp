@@ -1,6 +1,6 @@
 #include "orbits/flow.hpp"
 #include "core/log.hpp"
-#include "core/signals.hpp"
+#include "orbits/period_ts.hpp"
 #include "timeint/ts_symsplit.hpp"
 #include <cmath>
 #include <cstring>
@@ -92,18 +92,9 @@ PetscErrorCode PeriodicFlow::CreateTS(TS *ts, Mat jacp)
   TSAdaptType atype;
   PetscBool none;
   PetscFunctionBeginUser;
-  PetscCall(TSCreate(lat_->Comm(), ts));
-  PetscCall(TSSetOptionsPrefix(*ts, "nnm_"));
-  PetscCall(TSSetProblemType(*ts, TS_NONLINEAR));
-  PetscCall(TSSetType(*ts, TSRK));
-  PetscCall(TSRKSetType(*ts, TSRK5DP));
-  PetscCall(TSGetAdapt(*ts, &adapt));
-  PetscCall(TSAdaptSetType(adapt, TSADAPTNONE));
-  PetscCall(TSSetRHSFunction(*ts, NULL, FlowRhs, this));
+  PetscCall(CreatePeriodTS(lat_->Comm(), TSRK, FlowRhs, this, ts));
   PetscCall(TSSetRHSJacobian(*ts, J_, J_, FlowJacobian, this));
   if (jacp) PetscCall(TSSetRHSJacobianP(*ts, jacp, FlowJacobianP, this));
-  PetscCall(TSSetPostStep(*ts, TSInterruptPostStep)); // a stop signal ends the integration at a step
-  PetscCall(TSSetExactFinalTime(*ts, TS_EXACTFINALTIME_MATCHSTEP));
   PetscCall(TSSetFromOptions(*ts));
   PetscCall(TSGetAdapt(*ts, &adapt));
   PetscCall(TSAdaptGetType(adapt, &atype));
@@ -182,17 +173,9 @@ PetscErrorCode PeriodicFlow::EvalJacobianP(Vec z, Mat Jp)
 
 PetscErrorCode PeriodicFlow::Run(TS ts, Vec z0, PetscReal T, Vec zT)
 {
-  TSConvergedReason reason;
   PetscFunctionBeginUser;
   PetscCall(VecCopy(z0, zT));
-  PetscCall(TSSetTime(ts, 0.0));
-  PetscCall(TSSetStepNumber(ts, 0));
-  PetscCall(TSSetTimeStep(ts, T / opt_.steps));
-  PetscCall(TSSetMaxTime(ts, T));
-  PetscCall(TSSetMaxSteps(ts, opt_.steps));
-  PetscCall(TSSolve(ts, zT));
-  PetscCall(TSGetConvergedReason(ts, &reason));
-  PetscCheck(reason >= 0, lat_->Comm(), PETSC_ERR_NOT_CONVERGED, "periodic-orbit integration failed: %s", TSConvergedReasons[reason]);
+  PetscCall(SolvePeriod(ts, zT, T, opt_.steps, "periodic-orbit"));
   PetscFunctionReturn(0);
 }
 

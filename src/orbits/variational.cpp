@@ -1,6 +1,6 @@
 #include "orbits/variational.hpp"
+#include "orbits/period_ts.hpp"
 #include "core/log.hpp"
-#include "core/signals.hpp"
 #include <petscdmda.h>
 
 namespace nltopo {
@@ -18,7 +18,6 @@ PetscErrorCode VariationalFlow::Setup(const Lattice &lat, PetscInt ncol, PetscIn
 {
   const PetscInt *lx;
   PetscMPIInt size;
-  TSAdapt adapt;
   PetscFunctionBeginUser;
   lat_ = &lat;
   ncol_ = ncol;
@@ -30,16 +29,7 @@ PetscErrorCode VariationalFlow::Setup(const Lattice &lat, PetscInt ncol, PetscIn
   PetscCall(DMDACreate1d(lat.Comm(), DM_BOUNDARY_NONE, lat.N(), dof_, 1, l.data(), da_.out()));
   PetscCall(DMSetUp(da_));
   PetscCall(DMCreateGlobalVector(da_, Y_.out()));
-  PetscCall(TSCreate(lat.Comm(), ts_.out()));
-  PetscCall(TSSetOptionsPrefix(ts_, "nnm_"));
-  PetscCall(TSSetProblemType(ts_, TS_NONLINEAR));
-  PetscCall(TSSetType(ts_, TSRK));
-  PetscCall(TSRKSetType(ts_, TSRK5DP));
-  PetscCall(TSGetAdapt(ts_, &adapt));
-  PetscCall(TSAdaptSetType(adapt, TSADAPTNONE));
-  PetscCall(TSSetRHSFunction(ts_, NULL, VarRhs, this));
-  PetscCall(TSSetPostStep(ts_, TSInterruptPostStep)); // a stop signal ends the integration at a step
-  PetscCall(TSSetExactFinalTime(ts_, TS_EXACTFINALTIME_MATCHSTEP));
+  PetscCall(CreatePeriodTS(lat.Comm(), TSRK, VarRhs, this, ts_.out()));
   PetscCall(TSSetFromOptions(ts_));
   u_.assign(lat.N(), 0.0);
   a_.assign(lat.N(), 0.0);
@@ -106,7 +96,6 @@ PetscErrorCode VariationalFlow::Integrate(Vec z0, PetscReal T, PetscReal beta, V
   const PetscScalar *z, *dza = NULL;
   PetscScalar *y;
   const PetscInt xs = lat_->OwnedStart(), xm = lat_->OwnedCount(), nc = ncol_, d = dof_;
-  TSConvergedReason reason;
   PetscFunctionBeginUser;
   PetscCheck(dz ? nc == 1 : (s_beta == 1 && s_T == 0), lat_->Comm(), PETSC_ERR_PLIB, "variational flow: %" PetscInt_FMT " columns for this use", nc);
   beta_ = beta;
@@ -133,14 +122,7 @@ PetscErrorCode VariationalFlow::Integrate(Vec z0, PetscReal T, PetscReal beta, V
   if (dz) PetscCall(VecRestoreArrayRead(dz, &dza));
   PetscCall(VecRestoreArrayRead(z0, &z));
 
-  PetscCall(TSSetTime(ts_, 0.0));
-  PetscCall(TSSetStepNumber(ts_, 0));
-  PetscCall(TSSetTimeStep(ts_, T / steps_));
-  PetscCall(TSSetMaxTime(ts_, T));
-  PetscCall(TSSetMaxSteps(ts_, steps_));
-  PetscCall(TSSolve(ts_, Y_));
-  PetscCall(TSGetConvergedReason(ts_, &reason));
-  PetscCheck(reason >= 0, lat_->Comm(), PETSC_ERR_NOT_CONVERGED, "variational integration failed: %s", TSConvergedReasons[reason]);
+  PetscCall(SolvePeriod(ts_, Y_, T, steps_, "variational"));
 
   const PetscScalar *ya;
   PetscScalar *zt;

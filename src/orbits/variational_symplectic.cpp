@@ -1,6 +1,6 @@
 #include "orbits/variational_symplectic.hpp"
 #include "core/log.hpp"
-#include "core/signals.hpp"
+#include "orbits/period_ts.hpp"
 #include "timeint/ts_symsplit.hpp"
 
 namespace nltopo {
@@ -35,7 +35,6 @@ PetscErrorCode SymVarRhs(TS ts, PetscReal, Vec Y, Vec F, void *ctx)
 PetscErrorCode SymplecticVariationalFlow::Setup(const Lattice &lat, PetscInt ncol, PetscInt steps)
 {
   const PetscInt xs = lat.OwnedStart(), xm = lat.OwnedCount();
-  TSAdapt adapt;
   PetscFunctionBeginUser;
   lat_ = &lat;
   ncol_ = ncol;
@@ -63,16 +62,8 @@ PetscErrorCode SymplecticVariationalFlow::Setup(const Lattice &lat, PetscInt nco
     PetscCall(ISDestroy(&isf));
     PetscCall(ISDestroy(&ist));
   }
-  PetscCall(TSCreate(lat.Comm(), ts_.out()));
-  PetscCall(TSSetOptionsPrefix(ts_, "nnm_"));
-  PetscCall(TSSetProblemType(ts_, TS_NONLINEAR));
-  PetscCall(TSSetType(ts_, TSSYMSPLIT));
-  PetscCall(TSGetAdapt(ts_, &adapt));
-  PetscCall(TSAdaptSetType(adapt, TSADAPTNONE));
-  PetscCall(TSSetRHSFunction(ts_, NULL, SymVarRhs, this));
+  PetscCall(CreatePeriodTS(lat.Comm(), TSSYMSPLIT, SymVarRhs, this, ts_.out()));
   PetscCall(TSSetAcceleration(ts_, SymVarAcceleration, this));
-  PetscCall(TSSetPostStep(ts_, TSInterruptPostStep)); // a stop signal ends the integration at a step
-  PetscCall(TSSetExactFinalTime(ts_, TS_EXACTFINALTIME_MATCHSTEP));
   PetscCall(TSSetFromOptions(ts_));
   u_.assign(lat.N(), 0.0);
   a_.assign(lat.N(), 0.0);
@@ -124,7 +115,6 @@ PetscErrorCode SymplecticVariationalFlow::Integrate(Vec z0, PetscReal T, PetscRe
   const PetscScalar *z, *dza = NULL;
   PetscScalar *y;
   const PetscInt xs = lat_->OwnedStart(), xm = lat_->OwnedCount(), nc = ncol_, bs = bs_, half = bs_ * xm;
-  TSConvergedReason reason;
   PetscFunctionBeginUser;
   PetscCheck(dz ? nc == 1 : (s_beta == 1 && s_T == 0), lat_->Comm(), PETSC_ERR_PLIB, "symplectic variational flow: %" PetscInt_FMT " columns for this use", nc);
   s_ = dz ? s_T / T : 0.0;
@@ -148,14 +138,7 @@ PetscErrorCode SymplecticVariationalFlow::Integrate(Vec z0, PetscReal T, PetscRe
   if (dz) PetscCall(VecRestoreArrayRead(dz, &dza));
   PetscCall(VecRestoreArrayRead(z0, &z));
 
-  PetscCall(TSSetTime(ts_, 0.0));
-  PetscCall(TSSetStepNumber(ts_, 0));
-  PetscCall(TSSetTimeStep(ts_, T / steps_));
-  PetscCall(TSSetMaxTime(ts_, T));
-  PetscCall(TSSetMaxSteps(ts_, steps_));
-  PetscCall(TSSolve(ts_, Y_));
-  PetscCall(TSGetConvergedReason(ts_, &reason));
-  PetscCheck(reason >= 0, lat_->Comm(), PETSC_ERR_NOT_CONVERGED, "variational integration failed: %s", TSConvergedReasons[reason]);
+  PetscCall(SolvePeriod(ts_, Y_, T, steps_, "variational"));
 
   // B_beta at the end: z + beta T grad E(z), derivative I + beta T Hess E, Hess E = diag(K_T(u), I).
   const PetscReal sT = s_;

@@ -2,6 +2,7 @@
 // sensitivities against central finite differences of the flow; the
 // tangent-linear action against the dense monodromy.
 #include "helpers.hpp"
+#include "monodromy_fd.hpp"
 #include "bands/linear_modes.hpp"
 #include "orbits/flow.hpp"
 #include "orbits/linear_monodromy_pc.hpp"
@@ -25,44 +26,18 @@ TEST_CASE("monodromy (variational TS and TSForward routes) equals central differ
   fo.steps = 400;
   fo.route = route;
   PCHK(flow.Setup(lat, fo));
-  OwnedVec z0, zT, zp, zm, w;
+  OwnedVec z0, zT, w;
   OwnedMat S;
   PCHK(lat.CreateStateVector(z0.out()));
   PCHK(VecDuplicate(z0, zT.out()));
-  PCHK(VecDuplicate(z0, zp.out()));
-  PCHK(VecDuplicate(z0, zm.out()));
   PCHK(VecDuplicate(z0, w.out()));
   auto u = Pseudo(N, 5), v = Pseudo(N, 6); // amplitude ~1: strongly nonlinear
   SetState(lat, u, v, z0);
   const PetscReal T = 3.3, beta = 0.01;
   PCHK(flow.CreateSensitivityMatrix(S.out()));
   PCHK(flow.IntegrateWithMonodromy(z0, T, beta, zT, S));
-  const PetscReal h = 1e-6;
-  PetscReal maxerr = 0, maxval = 0;
-  for (PetscInt j = 0; j <= n; j++) { // columns: initial conditions, then beta
-    std::vector<PetscReal> up = u, um = u, vp = v, vm = v;
-    PetscReal bp = beta, bm = beta;
-    if (j < N) { up[j] += h; um[j] -= h; }
-    else if (j < n) { vp[j - N] += h; vm[j - N] -= h; }
-    else { bp += h; bm -= h; }
-    SetState(lat, up, vp, zp);
-    SetState(lat, um, vm, zm);
-    PCHK(flow.Integrate(zp, T, bp, zp));
-    PCHK(flow.Integrate(zm, T, bm, zm));
-    PCHK(VecAXPY(zp, -1.0, zm));
-    PCHK(VecScale(zp, 0.5 / h));
-    const auto fd = Gather(zp);
-    // column j of S in state ordering: column index = state index of the perturbed entry
-    const PetscInt col = j < N ? lat.StateIndexU(j) : (j < n ? lat.StateIndexV(j - N) : n);
-    Vec c;
-    PCHK(MatDenseGetColumnVecRead(S, col, &c));
-    const auto sc = Gather(c);
-    PCHK(MatDenseRestoreColumnVecRead(S, col, &c));
-    for (PetscInt i = 0; i < n; i++) {
-      maxerr = std::max(maxerr, std::abs(sc[i] - fd[i]));
-      maxval = std::max(maxval, std::abs(sc[i]));
-    }
-  }
+  PetscReal maxerr, maxval;
+  MonodromyAgainstFD(lat, flow, u, v, T, beta, S, 1e-6, &maxerr, &maxval);
   INFO("max |S - FD| = " << maxerr << ", max |S| = " << maxval);
   REQUIRE(maxerr < 1e-6 * std::max<PetscReal>(1, maxval));
 
