@@ -17,7 +17,13 @@ PetscErrorCode SimulationOptionsFromOptions(MPI_Comm comm, SimulationOptions *o)
   PetscCall(PetscOptionsReal("-t_final", "Simulated time", NULL, o->t_final, &o->t_final, NULL));
   PetscCall(PetscOptionsReal("-sample_dt", "Spacing of stored samples of u and E (0: none)", NULL, o->sample_dt, &o->sample_dt, NULL));
   PetscCall(PetscOptionsReal("-progress", "Print a progress line every this many wall seconds (0: never)", NULL, o->progress, &o->progress, NULL));
+  PetscCall(PetscOptionsReal("-dt_quartic_energy",
+                             "Fixed-step types (symsplit, basicsymplectic): at a run energy E above this, -sim_ts_dt is scaled by (this / E)^(1/4), "
+                             "as the hardened bonds' frequencies grow (E: E* of a forced run, else the initial energy; 0: off)",
+                             NULL, o->dt_quartic_energy, &o->dt_quartic_energy, NULL));
   PetscOptionsEnd();
+  PetscCheck(o->dt_quartic_energy >= 0 && o->dt_quartic_energy <= 1e12, comm, PETSC_ERR_USER, "-sim_dt_quartic_energy must lie in [0, 1e12], got %g",
+             (double)o->dt_quartic_energy);
   PetscCheck(o->t_final >= 1e-6 && o->t_final <= 1e9, comm, PETSC_ERR_USER, "-sim_t_final must lie in [1e-6, 1e9], got %g", (double)o->t_final);
   PetscCheck(o->progress >= 0 && o->progress <= 1e7, comm, PETSC_ERR_USER, "-sim_progress must lie in [0, 1e7] seconds, got %g", (double)o->progress);
   PetscCheck(o->sample_dt >= 0 && o->sample_dt <= 1e9, comm, PETSC_ERR_USER, "-sim_sample_dt must lie in [0, 1e9], got %g", (double)o->sample_dt);
@@ -462,6 +468,22 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
   PetscCall(TSGetType(ts, &type));
 
   const bool symplectic = !std::strcmp(type, TSBASICSYMPLECTIC), splitting = !std::strcmp(type, TSSYMSPLIT);
+  if ((symplectic || splitting) && o.dt_quartic_energy > 0) {
+    // In the quartic regime a bond's frequency grows as E^(1/4) (V ~ Gamma d^4 / 4
+    // at amplitude d ~ E^(1/4)): scaling the fixed step by (E_q / E)^(1/4) keeps
+    // h omega, and so a fixed-step scheme's error per period, at its E_q level.
+    PetscReal E = 0, dt;
+    if (forcing && forcing->Present()) E = forcing->EnergyStar();
+    else {
+      EnergyParts e;
+      PetscCall(lat.Energy(z, &e));
+      E = e.Total();
+    }
+    if (E > o.dt_quartic_energy) {
+      PetscCall(TSGetTimeStep(ts, &dt));
+      PetscCall(TSSetTimeStep(ts, dt * std::pow(o.dt_quartic_energy / E, 0.25)));
+    }
+  }
   if (splitting) {
     // Fixed step, shortened to divide the run into equal steps; the cut-off is
     // located by the event below (symsplit rolls back) and samples interpolated.

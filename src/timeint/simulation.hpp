@@ -14,6 +14,7 @@ struct SimulationOptions {
   PetscReal t_start = 0;     // the run starts here (continuing an earlier run from its final state)
   PetscReal sample_dt = 1.0; // spacing of the stored samples (0: store none)
   PetscReal progress = 10;   // wall seconds between progress lines (0: none)
+  PetscReal dt_quartic_energy = 0; // fixed-step types: above this energy the step shrinks as (this / E)^(1/4) (0: off)
   bool abort_if_missed = false; // end the run at the end of the burst (t0 + 3 tau) if E* was not reached
 };
 PetscErrorCode SimulationOptionsFromOptions(MPI_Comm comm, SimulationOptions *o);

@@ -49,7 +49,7 @@ grep -q "resuming killed.h5" resumed.txt
 W=$($PY -c "import h5py; print(repr(float(h5py.File('full1.h5','r')['sweep/omega'][2])))")
 E=$($PY -c "import h5py; print(repr(float(h5py.File('full1.h5','r')['sweep/energy'][3])))")
 run1 -study simulate -options_file "$SRC/options/simulate.opts" -sim_t_final 1000 -force_omega "$W" -force_energy "$E" -sim_store_u 0 \
-     -sim_sample_dt 0 -sim_progress 0 -sim_ts_type symsplit -sim_ts_dt 0.1 -output point.h5 > point.txt  # the sweep's integrator
+     -sim_sample_dt 0 -sim_progress 0 -sim_ts_type symsplit -sim_ts_dt 0.1 -sim_dt_quartic_energy 100 -output point.h5 > point.txt  # the sweep's integrator
 # The 0-1 test at two points of known character (sweep_quick.opts settings, -kcorr_record 1500):
 # the insulated mode forced at its linear frequency at E* = 1e-2 (a periodic, localised response)
 # and omega = 2.1 inside the optical band at E* = 200 (chaotic, README "The 0-1 test").

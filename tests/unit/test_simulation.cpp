@@ -201,3 +201,48 @@ TEST_CASE("a cut-off inside a long step is found: E reaches E* between two step 
   REQUIRE(std::abs(rkn.t_off - ref.t_off) < 0.02); // the same crossing: the next one is ~1.9 later
   REQUIRE(500.0 / rkn.steps > 0.3);                 // the steps are long against the energy's period
 }
+
+TEST_CASE("-sim_dt_quartic_energy: the fixed step shrinks as E^(-1/4) and keeps the energy error of the E_q level", "[simulation]")
+{
+  // In the quartic regime a bond's frequency grows as E^(1/4), so a fixed-step
+  // scheme of order p has an energy error ~ (h omega)^p that grows with E at a
+  // fixed h; h = dt (E_q / E)^(1/4) holds h omega, and the error, at its E_q
+  // level. Free runs from the insulated mode's shape, symsplit bm4 (order 4).
+  LatticeParams p;
+  Lattice lat;
+  PCHK(lat.Setup(PETSC_COMM_WORLD, p));
+  LinearModes modes;
+  PCHK(modes.Compute(lat, LinearModesOptions()));
+  auto run = [&](PetscReal E, PetscReal eq, PetscReal *err, PetscInt *steps) {
+    OwnedVec z0;
+    PCHK(lat.CreateStateVector(z0.out()));
+    auto v0 = Gather(modes.Insulated());
+    for (auto &x : v0) x *= std::sqrt(2 * E);
+    SetState(lat, std::vector<PetscReal>(lat.N(), 0.0), v0, z0);
+    SimulationOptions so;
+    so.t_final = 100;
+    so.sample_dt = 0.5;
+    so.dt_quartic_energy = eq;
+    SimulationResult r;
+    EnergyTrace tr;
+    ScopedOptions o({{"-sim_ts_type", "symsplit"}, {"-sim_ts_dt", "0.4"}});
+    PCHK(Simulate(lat, nullptr, so, z0, &tr, &r));
+    PetscReal d = 0;
+    for (PetscReal e : tr.e) d = std::max(d, std::abs(e - E) / E);
+    *err = d;
+    *steps = r.steps;
+  };
+  PetscReal e1, e100, e100_fixed, e_below;
+  PetscInt s1, s100, s100_fixed, s_below;
+  run(1, 1, &e1, &s1);                 // at E_q: the step as given
+  run(100, 1, &e100, &s100);           // E = 100 E_q: h = 0.4 / 100^(1/4)
+  run(100, 0, &e100_fixed, &s100_fixed); // the rule off
+  run(100, 1000, &e_below, &s_below);  // E below E_q: the step as given
+  INFO("max relative energy error: E = 1, h = 0.4: " << e1 << "; E = 100, h = 0.4 / 100^(1/4): " << e100 << "; E = 100, h = 0.4: " << e100_fixed);
+  REQUIRE(s1 == 250);
+  REQUIRE(s100_fixed == 250);
+  REQUIRE(s_below == 250);
+  REQUIRE(s100 == (PetscInt)std::ceil(100 / (0.4 / std::pow(100.0, 0.25)) - 1e-9)); // 791 equal steps
+  REQUIRE(e100_fixed > 100 * e100); // without the rule: (omega h)^4 is ~100x larger, and more as the step nears stability
+  REQUIRE(e100 < 3 * e1);           // with it: the E_q level (the linear part makes E = 1 not purely quartic)
+}
