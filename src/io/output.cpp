@@ -284,6 +284,45 @@ PetscErrorCode WriteIntArray(PetscViewer v, const char *group, const char *name,
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode WriteStringArray(PetscViewer v, const char *group, const char *name, const std::vector<std::string> &data)
+{
+  hid_t file, grp, space, dset, xfer, type;
+  PetscMPIInt rank, size;
+  MPI_Comm comm = PetscObjectComm((PetscObject)v);
+  PetscInt n = (PetscInt)data.size(), width = 1;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  for (const auto &s : data) width = std::max(width, (PetscInt)s.size() + 1);
+  PetscCallMPI(MPI_Bcast(&n, 1, MPIU_INT, 0, comm));
+  PetscCallMPI(MPI_Bcast(&width, 1, MPIU_INT, 0, comm));
+  PetscCheck(n > 0, comm, PETSC_ERR_ARG_SIZ, "string dataset %s/%s: no values", group, name);
+  std::vector<char> buf(rank ? 1 : (size_t)(n * width), '\0');
+  if (!rank)
+    for (PetscInt i = 0; i < n; i++) std::copy(data[i].begin(), data[i].end(), buf.begin() + i * width);
+  PetscCall(PetscViewerHDF5WriteGroup(v, group));
+  PetscCall(PetscViewerHDF5GetFileId(v, &file));
+  const hsize_t dims[1] = {(hsize_t)n};
+  H5CHK(type = H5Tcopy(H5T_C_S1));
+  H5CHK(H5Tset_size(type, (size_t)width));
+  H5CHK(H5Tset_strpad(type, H5T_STR_NULLTERM));
+  H5CHK(grp = H5Gopen2(file, group, H5P_DEFAULT));
+  H5CHK(space = H5Screate_simple(1, dims, NULL));
+  H5CHK(dset = H5Dcreate2(grp, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  if (rank) H5CHK(H5Sselect_none(space));
+  H5CHK(xfer = H5Pcreate(H5P_DATASET_XFER));
+#if defined(H5_HAVE_PARALLEL)
+  if (size > 1) H5CHK(H5Pset_dxpl_mpio(xfer, H5FD_MPIO_COLLECTIVE));
+#endif
+  H5CHK(H5Dwrite(dset, type, rank ? space : H5S_ALL, space, xfer, buf.data()));
+  H5CHK(H5Pclose(xfer));
+  H5CHK(H5Dclose(dset));
+  H5CHK(H5Sclose(space));
+  H5CHK(H5Gclose(grp));
+  H5CHK(H5Tclose(type));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode WriteDistributed(PetscViewer v, const char *group, const char *name, Vec x)
 {
   PetscInt N, lo, hi;

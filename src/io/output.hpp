@@ -57,6 +57,9 @@ PetscErrorCode WriteColumnBlock(PetscViewer v, const char *group, const char *na
 PetscErrorCode WriteArrayND(PetscViewer v, const char *group, const char *name, const std::vector<PetscReal> &data, const std::vector<PetscInt> &dims);
 // An integer dataset (bs = 1: 1-D; else n/bs x bs) whose values are given on rank 0.
 PetscErrorCode WriteIntArray(PetscViewer v, const char *group, const char *name, const std::vector<PetscInt> &data, PetscInt bs = 1);
+// A 1-D dataset of fixed-length strings (the longest + 1; h5py reads bytes)
+// whose values are given on rank 0.
+PetscErrorCode WriteStringArray(PetscViewer v, const char *group, const char *name, const std::vector<std::string> &data);
 // A distributed 1-D vector as a contiguous float64 dataset (N), each rank
 // writing its block collectively with raw HDF5 (VecView's chunked parallel
 // write needed GBs per rank at N = 10^6).

@@ -14,6 +14,7 @@ static const StudyEntry kStudies[] = {
   {"sweep", "a grid of forced runs (omega_ext x E*) scored by MCR, 0-1 test and energy ratio; parallel, resumable", SweepStudy, SweepStudyOptions},
   {"zak", "the half-lattice phase experiment: phi_0, phi_pi and the energy where they stop being distinct", ZakStudy, ZakStudyOptions},
   {"perturb", "chiral and achiral spring-perturbation ensembles: insulated frequency and MCR along the insulated NNM", PerturbStudy, PerturbStudyOptions},
+  {"workprecision", "what accuracy costs for one forced run: integrator configurations timed and scored against a converged reference, and the predictability floor", WorkprecisionStudy, WorkprecisionStudyOptions},
   {"stability", "perturbed insulated-branch NNMs integrated for many periods: does the standing wave persist", StabilityStudy, StabilityStudyOptions},
 };
 

@@ -24,6 +24,7 @@ NLTOPO_STUDY(Stability);
 NLTOPO_STUDY(Sweep);
 NLTOPO_STUDY(Zak);
 NLTOPO_STUDY(Perturb);
+NLTOPO_STUDY(Workprecision);
 #undef NLTOPO_STUDY
 
 // Reads -study (default linear), checks the options (finite values, no option

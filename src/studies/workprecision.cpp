@@ -1,0 +1,413 @@
+#include "studies/workprecision.hpp"
+#include "core/log.hpp"
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <sstream>
+
+namespace nltopo {
+
+const char *const kWpObservables[5] = {"mcr", "t_off", "nl_ratio", "energy", "state"};
+
+std::vector<std::string> DefaultWorkPrecisionConfigs()
+{
+  // The shipped integrators (README.md "Integrators by study") at three
+  // accuracies each: the splitting at three fixed steps, the adaptive pairs
+  // (and the paper's ode45 analogue, rk 5dp) at three tolerances.
+  std::vector<std::string> c;
+  for (const char *dt : {"0.4", "0.2", "0.1"}) c.push_back(std::string("-sim_ts_type symsplit -sim_ts_symsplit_scheme bm4 -sim_ts_dt ") + dt);
+  for (const char *dt : {"0.4", "0.2", "0.1"}) c.push_back(std::string("-sim_ts_type symsplit -sim_ts_symsplit_scheme bm6 -sim_ts_dt ") + dt);
+  for (const char *tol : {"1e-6", "1e-8", "1e-10"})
+    c.push_back(std::string("-sim_ts_type rkn -sim_ts_rkn_scheme dep86 -sim_ts_rtol ") + tol + " -sim_ts_atol " + tol);
+  for (const char *tol : {"1e-6", "1e-8", "1e-10"})
+    c.push_back(std::string("-sim_ts_type rk -sim_ts_rk_type 5dp -sim_ts_rtol ") + tol + " -sim_ts_atol " + tol);
+  return c;
+}
+
+namespace {
+
+using OptionPairs = std::vector<std::pair<std::string, std::string>>;
+
+std::string Join(const std::vector<std::string> &v, const char *sep)
+{
+  std::string s;
+  for (const auto &x : v) s += (s.empty() ? "" : sep) + x;
+  return s;
+}
+
+std::vector<std::string> SplitList(const std::string &s, char sep)
+{
+  std::vector<std::string> out;
+  std::string item;
+  std::istringstream in(s);
+  while (std::getline(in, item, sep)) {
+    const size_t a = item.find_first_not_of(" \t"), b = item.find_last_not_of(" \t");
+    out.push_back(a == std::string::npos ? "" : item.substr(a, b - a + 1));
+  }
+  return out;
+}
+
+bool LooksLikeValue(const std::string &tok)
+{
+  if (tok.empty()) return false;
+  if (tok[0] != '-') return true;
+  return tok.size() > 1 && (std::isdigit((unsigned char)tok[1]) || tok[1] == '.'); // a negative number
+}
+
+// "-a 1 -b -c x" -> (-a, 1), (-b, ""), (-c, x); only integrator options.
+PetscErrorCode ParseConfig(MPI_Comm comm, const char *what, const std::string &cfg, OptionPairs *out)
+{
+  std::istringstream in(cfg);
+  std::vector<std::string> tok;
+  for (std::string t; in >> t;) tok.push_back(t);
+  PetscFunctionBeginUser;
+  out->clear();
+  PetscCheck(!tok.empty(), comm, PETSC_ERR_USER, "%s: an empty configuration (two commas in a row?)", what);
+  for (size_t i = 0; i < tok.size(); i++) {
+    const std::string &name = tok[i];
+    PetscCheck(name.size() > 1 && name[0] == '-' && !LooksLikeValue(name), comm, PETSC_ERR_USER, "%s \"%s\": %s is not an option name", what, cfg.c_str(),
+               name.c_str());
+    PetscCheck(name.rfind("-sim_ts_", 0) == 0 || name == "-sim_dt_quartic_energy", comm, PETSC_ERR_USER,
+               "%s \"%s\": %s is not an integrator option (configurations take -sim_ts_* and -sim_dt_quartic_energy; the scene's options go outside)",
+               what, cfg.c_str(), name.c_str());
+    std::string value;
+    if (i + 1 < tok.size() && LooksLikeValue(tok[i + 1])) value = tok[++i];
+    out->push_back({name, value});
+  }
+  PetscFunctionReturn(0);
+}
+
+// Sets a configuration's options for one scope and restores the database
+// after: options the scene had are given their old values back (and marked
+// used: the study read them), new ones are removed.
+class ScopedConfig {
+public:
+  PetscErrorCode Apply(const OptionPairs &opts)
+  {
+    PetscFunctionBeginUser;
+    for (const auto &[name, value] : opts) {
+      const char *old;
+      PetscBool found;
+      PetscCall(PetscOptionsFindPair(NULL, NULL, name.c_str(), &old, &found));
+      saved_.push_back({name, found ? (old ? old : "") : std::string("\x01")});
+      PetscCall(PetscOptionsSetValue(NULL, name.c_str(), value.empty() ? NULL : value.c_str()));
+    }
+    PetscFunctionReturn(0);
+  }
+  // One line for the first option of the configuration that the run did not read.
+  PetscErrorCode CheckUsed(MPI_Comm comm, const char *what, const std::string &cfg) const
+  {
+    PetscFunctionBeginUser;
+    for (const auto &[name, old] : saved_) {
+      PetscBool used;
+      PetscCall(PetscOptionsUsed(NULL, name.c_str() + 1, &used)); // the database holds names without the dash
+      if (old != "\x01") continue; // an option the scene also sets keeps the scene's "used" mark: not checkable
+      PetscCheck(used, comm, PETSC_ERR_USER, "%s \"%s\": %s was not used by that run (an option of another TS type, or misspelt)", what, cfg.c_str(),
+                 name.c_str());
+    }
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode Restore()
+  {
+    PetscFunctionBeginUser;
+    for (auto it = saved_.rbegin(); it != saved_.rend(); ++it) {
+      if (it->second == "\x01") PetscCall(PetscOptionsClearValue(NULL, it->first.c_str()));
+      else {
+        PetscBool set;
+        PetscCall(PetscOptionsSetValue(NULL, it->first.c_str(), it->second.empty() ? NULL : it->second.c_str()));
+        PetscCall(PetscOptionsHasName(NULL, NULL, it->first.c_str(), &set)); // the scene's option stays "used"
+      }
+    }
+    saved_.clear();
+    PetscFunctionReturn(0);
+  }
+  ~ScopedConfig() { (void)Restore(); }
+
+private:
+  std::vector<std::pair<std::string, std::string>> saved_; // "\x01": was not set
+};
+
+struct Outcome {
+  PetscReal obs[kWpNumObservables - 1] = {0}; // the scalars (mcr, t_off, nl_ratio, energy)
+  OwnedVec z;                                  // final state
+  PetscReal t_final = 0;
+  SimulationResult r;
+};
+
+// Every entry of x on every rank (small lattices: the tests' exact solutions).
+PetscErrorCode GatherAll(Vec x, std::vector<PetscReal> *out)
+{
+  VecScatter sc;
+  Vec all;
+  const PetscScalar *a;
+  PetscInt n;
+  PetscFunctionBeginUser;
+  PetscCall(VecScatterCreateToAll(x, &sc, &all));
+  PetscCall(VecScatterBegin(sc, x, all, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(sc, x, all, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGetSize(all, &n));
+  PetscCall(VecGetArrayRead(all, &a));
+  out->assign(a, a + n);
+  PetscCall(VecRestoreArrayRead(all, &a));
+  PetscCall(VecScatterDestroy(&sc));
+  PetscCall(VecDestroy(&all));
+  PetscFunctionReturn(0);
+}
+
+PetscReal Rel(PetscReal a, PetscReal b) { return b != 0 ? std::abs(a - b) / std::abs(b) : std::abs(a - b); }
+
+PetscErrorCode StateDistance(Vec a, Vec b, PetscReal *d)
+{
+  OwnedVec w;
+  PetscReal nb;
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(a, w.out()));
+  PetscCall(VecWAXPY(w, -1.0, b, a));
+  PetscCall(VecNorm(w, NORM_2, d));
+  PetscCall(VecNorm(b, NORM_2, &nb));
+  if (nb > 0) *d /= nb;
+  PetscFunctionReturn(0);
+}
+
+// Errors of every observable of x against y (the state: relative 2-norm).
+PetscErrorCode Errors(const Outcome &x, const Outcome &y, PetscReal err[kWpNumObservables])
+{
+  PetscFunctionBeginUser;
+  for (int k = 0; k < kWpNumObservables - 1; k++) err[k] = Rel(x.obs[k], y.obs[k]);
+  PetscCall(StateDistance(x.z, y.z, &err[kWpNumObservables - 1]));
+  PetscFunctionReturn(0);
+}
+
+// One run of the scene with the options as they stand; wall = max over ranks.
+// rule: the first run applies the amplitude rule (and fixes S for the rest).
+PetscErrorCode RunScene(const Lattice &lat, ToneBurst *burst, bool rule, Outcome *out, PetscReal *wall)
+{
+  MPI_Comm comm = lat.Comm();
+  SimulationOptions so;
+  PetscLogDouble t0, t1;
+  PetscFunctionBeginUser;
+  PetscCall(SimulationOptionsFromOptions(comm, &so)); // a configuration may set -sim_dt_quartic_energy
+  so.sample_dt = 0;
+  so.progress = 0;
+  PetscCallMPI(MPI_Barrier(comm));
+  PetscCall(PetscTime(&t0));
+  if (rule) {
+    PetscInt rescalings;
+    PetscCall(SimulateForced(lat, burst, so, NULL, &out->r, &rescalings));
+  } else PetscCall(Simulate(lat, burst, so, NULL, NULL, &out->r));
+  PetscCall(PetscTime(&t1));
+  double w = t1 - t0;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &w, 1, MPI_DOUBLE, MPI_MAX, comm));
+  *wall = w;
+  const SimulationResult &r = out->r;
+  out->obs[0] = r.mcr;
+  out->obs[1] = r.t_off;
+  out->obs[2] = r.nl_ratio;
+  out->obs[3] = r.energy_final;
+  out->z.reset();
+  PetscCall(VecDuplicate(r.z_final, out->z.out()));
+  PetscCall(VecCopy(r.z_final, out->z));
+  out->t_final = so.t_final;
+  PetscFunctionReturn(0);
+}
+
+bool EndsWith(const std::string &s, const std::string &end) { return s.size() >= end.size() && s.compare(s.size() - end.size(), end.size(), end) == 0; }
+
+void Label(const OptionPairs &opts, std::string *method, std::string *accuracy)
+{
+  std::vector<std::string> m, a;
+  std::string rtol, atol, dt;
+  for (const auto &[name, value] : opts) {
+    if (name == "-sim_ts_rtol") rtol = value;
+    else if (name == "-sim_ts_atol") atol = value;
+    else if (name == "-sim_ts_dt") dt = value;
+    else if (EndsWith(name, "_type") || EndsWith(name, "_scheme")) m.push_back(value);
+    else m.push_back(name.substr(1) + "=" + value);
+  }
+  if (!rtol.empty()) a.push_back("tol " + rtol + (atol.empty() || atol == rtol ? "" : "/" + atol));
+  if (!dt.empty() && rtol.empty()) a.push_back("dt " + dt);
+  *method = m.empty() ? "(scene)" : Join(m, " ");
+  *accuracy = a.empty() ? "(scene)" : Join(a, " ");
+}
+
+} // namespace
+
+PetscErrorCode WorkPrecisionOptionsFromOptions(MPI_Comm comm, WorkPrecisionOptions *o)
+{
+  char configs[16384], reference[1024];
+  PetscBool given, given_ref;
+  PetscFunctionBeginUser;
+  if (o->configs.empty()) o->configs = DefaultWorkPrecisionConfigs();
+  if (o->reference.empty()) o->reference = "-sim_ts_type rkn -sim_ts_rkn_scheme dep1210";
+  PetscCall(PetscStrncpy(configs, Join(o->configs, ",").c_str(), sizeof(configs)));
+  PetscCall(PetscStrncpy(reference, o->reference.c_str(), sizeof(reference)));
+  PetscOptionsBegin(comm, "wp_", "Work-precision study (-study workprecision)", NULL);
+  PetscCall(PetscOptionsString("-configs", "Comma-separated integrator configurations, each a space-separated list of -sim_ts_* options (begin the list with a space)", NULL, configs, configs,
+                               sizeof(configs), &given));
+  PetscCall(PetscOptionsString("-reference", "Reference integrator (without tolerance; steps capped: the interpolant's window integrals)", NULL, reference,
+                               reference, sizeof(reference), &given_ref));
+  PetscCall(PetscOptionsReal("-reference_tol", "First reference tolerance (rtol = atol); tightened 10x until two successive references agree", NULL,
+                             o->reference_tol, &o->reference_tol, NULL));
+  PetscCall(PetscOptionsReal("-reference_dt_max", "Step cap of the first reference (halved with each tightening: the window integrals on the interpolant converge with the step)", NULL,
+                             o->reference_dt_max, &o->reference_dt_max, NULL));
+  PetscCall(PetscOptionsReal("-reference_tol_min", "Tightest reference tolerance", NULL, o->reference_tol_min, &o->reference_tol_min, NULL));
+  PetscCall(PetscOptionsReal("-reference_agreement", "Two successive references agree to this (relative, every observable): converged", NULL,
+                             o->reference_agreement, &o->reference_agreement, NULL));
+  PetscCall(PetscOptionsInt("-repeats", "Wall time of a configuration: the median of this many runs", NULL, o->repeats, &o->repeats, NULL));
+  PetscCall(PetscOptionsInt("-twins", "Predictability floor: this many reference runs with S x (1 + k eps), k = 1, -1, 2, -2, ...", NULL, o->twins, &o->twins,
+                            NULL));
+  PetscCall(PetscOptionsReal("-twin_eps", "Relative change of S of the twins", NULL, o->twin_eps, &o->twin_eps, NULL));
+  PetscOptionsEnd();
+  // PETSc takes a value that begins with "-x" for the next option (command line
+  // and options files alike), leaving -wp_configs empty: say how to write it.
+  PetscCheck(!given || configs[0], comm, PETSC_ERR_USER,
+             "-wp_configs has no value: PETSc reads a value that begins with '-' as the next option; begin the list with a space, "
+             "-wp_configs \" -sim_ts_type rk -sim_ts_rtol 1e-8 -sim_ts_atol 1e-8, -sim_ts_type symsplit -sim_ts_dt 0.1\"");
+  PetscCheck(!given_ref || reference[0], comm, PETSC_ERR_USER,
+             "-wp_reference has no value: PETSc reads a value that begins with '-' as the next option; begin it with a space, "
+             "-wp_reference \" -sim_ts_type rkn -sim_ts_rkn_scheme dep1210\"");
+  if (given) {
+    o->configs = SplitList(configs, ',');
+    PetscCheck(std::strlen(configs) < sizeof(configs) - 1, comm, PETSC_ERR_USER, "-wp_configs: longer than %zu characters", sizeof(configs) - 2);
+  }
+  o->reference = SplitList(reference, ',').empty() ? "" : SplitList(reference, ',')[0];
+  PetscCheck(!o->configs.empty() && o->configs.size() <= 200, comm, PETSC_ERR_USER, "-wp_configs must hold 1 to 200 configurations, got %zu",
+             o->configs.size());
+  OptionPairs p;
+  for (size_t k = 0; k < o->configs.size(); k++) PetscCall(ParseConfig(comm, "-wp_configs: configuration", o->configs[k], &p));
+  PetscCall(ParseConfig(comm, "-wp_reference", o->reference, &p));
+  for (const auto &pr : p)
+    PetscCheck(pr.first != "-sim_ts_rtol" && pr.first != "-sim_ts_atol" && pr.first != "-sim_ts_adapt_dt_max", comm, PETSC_ERR_USER,
+               "-wp_reference \"%s\": leave out %s (the study sets the reference tolerance and step cap: -wp_reference_tol, -wp_reference_dt_max)",
+               o->reference.c_str(), pr.first.c_str());
+  PetscCheck(o->reference_dt_max > 0 && o->reference_dt_max <= 1e3, comm, PETSC_ERR_USER, "-wp_reference_dt_max must lie in (0, 1e3], got %g",
+             (double)o->reference_dt_max);
+  PetscCheck(o->reference_tol_min >= 1e-16 && o->reference_tol_min <= o->reference_tol && o->reference_tol <= 1e-4, comm, PETSC_ERR_USER,
+             "-wp_reference_tol_min and -wp_reference_tol must satisfy 1e-16 <= min <= tol <= 1e-4, got %g and %g", (double)o->reference_tol_min,
+             (double)o->reference_tol);
+  PetscCheck(o->reference_agreement > 0 && o->reference_agreement < 1, comm, PETSC_ERR_USER, "-wp_reference_agreement must lie in (0, 1), got %g",
+             (double)o->reference_agreement);
+  PetscCheck(o->repeats >= 1 && o->repeats <= 100, comm, PETSC_ERR_USER, "-wp_repeats must lie in [1, 100], got %" PetscInt_FMT, o->repeats);
+  PetscCheck(o->twins >= 1 && o->twins <= 100, comm, PETSC_ERR_USER, "-wp_twins must lie in [1, 100], got %" PetscInt_FMT, o->twins);
+  PetscCheck(o->twin_eps >= 1e-15 && o->twin_eps <= 1e-2, comm, PETSC_ERR_USER, "-wp_twin_eps must lie in [1e-15, 1e-2], got %g", (double)o->twin_eps);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode RunWorkPrecision(const Lattice &lat, ToneBurst *burst, const WorkPrecisionOptions &o, WorkPrecisionResult *res)
+{
+  MPI_Comm comm = lat.Comm();
+  OptionPairs ref_opts;
+  PetscFunctionBeginUser;
+  *res = WorkPrecisionResult();
+  PetscCall(ParseConfig(comm, "-wp_reference", o.reference, &ref_opts));
+
+  // The converged reference: the reference integrator at rtol = atol = tol,
+  // tol / 10, ... until two successive runs agree in every observable.
+  Outcome ref, prev;
+  bool have_prev = false;
+  PetscReal tol = o.reference_tol, cap = o.reference_dt_max;
+  char tol_s[32], cap_s[32];
+  for (;;) {
+    PetscCall(PetscSNPrintf(tol_s, sizeof(tol_s), "%g", (double)tol));
+    PetscCall(PetscSNPrintf(cap_s, sizeof(cap_s), "%.17g", (double)cap));
+    OptionPairs opts = ref_opts;
+    opts.push_back({"-sim_ts_rtol", tol_s});
+    opts.push_back({"-sim_ts_atol", tol_s});
+    opts.push_back({"-sim_ts_adapt_dt_max", cap_s});
+    ScopedConfig sc;
+    PetscCall(sc.Apply(opts));
+    PetscCall(RunScene(lat, burst, !have_prev, &ref, &res->reference_wall));
+    PetscCall(sc.Restore());
+    PetscCall(PetscSNPrintf(cap_s, sizeof(cap_s), "%g", (double)cap));
+    res->reference = o.reference + " -sim_ts_rtol " + tol_s + " -sim_ts_atol " + tol_s + " -sim_ts_adapt_dt_max " + cap_s;
+    if (have_prev) {
+      PetscCall(Errors(prev, ref, res->reference_change));
+      PetscReal worst = 0;
+      for (PetscReal c : res->reference_change) worst = std::max(worst, c);
+      PetscCall(PetscInfo(NULL, "work-precision reference at %s: largest change %g\n", tol_s, (double)worst));
+      if (worst <= o.reference_agreement) {
+        res->reference_converged = true;
+        break;
+      }
+    }
+    if (tol * 0.1 < o.reference_tol_min * (1 - 1e-9)) break;
+    tol *= 0.1;
+    cap *= 0.5;
+    std::swap(prev, ref);
+    have_prev = true;
+  }
+  res->amplitude = burst->Amplitude();
+  for (int k = 0; k < kWpNumObservables - 1; k++) res->reference_value[k] = ref.obs[k];
+  PetscCall(VecNorm(ref.z, NORM_2, &res->reference_value[kWpNumObservables - 1]));
+  PetscCall(GatherAll(ref.z, &res->reference_z));
+
+  // The predictability floor: twins of the reference with S x (1 + k eps).
+  {
+    PetscCall(PetscSNPrintf(tol_s, sizeof(tol_s), "%g", (double)tol));
+    PetscCall(PetscSNPrintf(cap_s, sizeof(cap_s), "%.17g", (double)cap));
+    OptionPairs opts = ref_opts;
+    opts.push_back({"-sim_ts_rtol", tol_s});
+    opts.push_back({"-sim_ts_atol", tol_s});
+    opts.push_back({"-sim_ts_adapt_dt_max", cap_s});
+    ScopedConfig sc;
+    PetscCall(sc.Apply(opts));
+    std::vector<PetscReal> lo(ref.obs, ref.obs + kWpNumObservables - 1), hi = lo, lyap;
+    PetscReal state_spread = 0;
+    for (PetscInt j = 0; j < o.twins; j++) {
+      const PetscReal k = (j % 2 ? -1.0 : 1.0) * (PetscReal)(j / 2 + 1);
+      ToneBurst twin = *burst;
+      twin.ScaleAmplitude(1 + k * o.twin_eps);
+      Outcome t;
+      PetscReal wall, d;
+      PetscCall(RunScene(lat, &twin, false, &t, &wall));
+      for (int q = 0; q < kWpNumObservables - 1; q++) lo[q] = std::min(lo[q], t.obs[q]), hi[q] = std::max(hi[q], t.obs[q]);
+      PetscCall(StateDistance(t.z, ref.z, &d));
+      state_spread = std::max(state_spread, d);
+      // ln(|dz(T)| / (eps |k| |z(T)|)) over the free motion after the cut-off:
+      // the difference a change of S leaves is ~ eps |k| |z| when the forcing stops.
+      const PetscReal t_free = t.t_final - (ref.obs[1] > 0 ? ref.obs[1] : 0);
+      if (d > 0 && t_free > 0) lyap.push_back(std::log(d / (o.twin_eps * std::abs(k))) / t_free);
+    }
+    PetscCall(sc.Restore());
+    for (int q = 0; q < kWpNumObservables - 1; q++) res->spread[q] = (hi[q] - lo[q]) / (ref.obs[q] != 0 ? std::abs(ref.obs[q]) : 1);
+    res->spread[kWpNumObservables - 1] = state_spread;
+    if (!lyap.empty()) {
+      std::sort(lyap.begin(), lyap.end());
+      res->lyapunov = lyap[lyap.size() / 2];
+    }
+  }
+
+  // Every configuration: median wall of o.repeats runs, work counters, errors.
+  for (size_t c = 0; c < o.configs.size(); c++) {
+    OptionPairs opts;
+    PetscCall(ParseConfig(comm, "-wp_configs: configuration", o.configs[c], &opts));
+    WorkPrecisionRow row;
+    row.config = o.configs[c];
+    Label(opts, &row.method, &row.accuracy);
+    ScopedConfig sc;
+    PetscCall(sc.Apply(opts));
+    std::vector<PetscReal> walls;
+    Outcome out;
+    for (PetscInt k = 0; k < o.repeats; k++) {
+      PetscReal w;
+      PetscCall(RunScene(lat, burst, false, &out, &w));
+      walls.push_back(w);
+    }
+    PetscCall(sc.CheckUsed(comm, "-wp_configs: configuration", o.configs[c]));
+    PetscCall(sc.Restore());
+    std::sort(walls.begin(), walls.end());
+    row.wall = walls.size() % 2 ? walls[walls.size() / 2] : 0.5 * (walls[walls.size() / 2 - 1] + walls[walls.size() / 2]);
+    row.rhs_evals = out.r.counters.rhs;
+    row.steps = out.r.steps;
+    row.rejected = out.r.rejected;
+    PetscCall(Errors(out, ref, row.error));
+    for (int q = 0; q < kWpNumObservables - 1; q++) row.value[q] = out.obs[q];
+    PetscCall(GatherAll(out.z, &row.z_final));
+    PetscCall(PetscPrintf(comm, "  %-40s %-10s %9.4f s %9" PetscInt_FMT " RHS  MCR error %.2e  state error %.2e\n", row.method.c_str(), row.accuracy.c_str(),
+                          (double)row.wall, row.rhs_evals, (double)row.error[0], (double)row.error[kWpNumObservables - 1]));
+    res->rows.push_back(row);
+  }
+  PetscFunctionReturn(0);
+}
+
+} // namespace nltopo
