@@ -32,6 +32,14 @@ S="-study simulate -sim_t_final 5"
 C="-study continuation -lattice_cells 5 -cont_energy_max 1e-4 -cont_max_points 3 -cont_verbose 0"
 W="-study sweep -sweep_omega_n 2 -sweep_energy_n 1 -sim_t_final 20"
 
+# -study workprecision: configurations hold integrator options only, each used by its run
+P="-study workprecision -sim_t_final 5 -wp_twins 1 -wp_repeats 1"
+expect_error "-lattice_k is not an integrator option" o.h5 $P -wp_configs " -sim_ts_type rk -lattice_k 2"
+expect_error "-sim_ts_symsplit_scheme was not used by that run" o.h5 $P -wp_configs " -sim_ts_type rk -sim_ts_symsplit_scheme bm4"
+expect_error "-wp_configs has no value" o.h5 $P -wp_configs "-sim_ts_type rk"
+expect_error "-wp_repeats" o.h5 $P -wp_repeats 0
+expect_error "leave out -sim_ts_rtol" o.h5 $P -wp_reference " -sim_ts_type rkn -sim_ts_rtol 1e-9"
+
 # the study, the lattice and the files
 expect_error "unknown -study nope" o.h5 -study nope
 expect_error "-lattice_cells" o.h5 -study linear -lattice_cells 0
