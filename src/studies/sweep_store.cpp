@@ -1,16 +1,23 @@
 #include "studies/sweep_store.hpp"
 #include "io/input.hpp"
+#include <cstdlib>
 #include <cstring>
 #include <dirent.h>
 
 namespace nltopo {
 
-const SweepRealField kSweepRealFields[7] = {{"mcr", &SweepPoint::mcr},         {"t_off", &SweepPoint::t_off},
-                                            {"kcorr", &SweepPoint::kcorr},     {"nl_ratio", &SweepPoint::nl_ratio},
-                                            {"amplitude", &SweepPoint::amplitude}, {"energy_final", &SweepPoint::energy_final},
-                                            {"seconds", &SweepPoint::seconds}};
-const SweepIntField kSweepIntFields[5] = {{"reached", &SweepPoint::reached}, {"rescalings", &SweepPoint::rescalings}, {"rhs_evals", &SweepPoint::rhs},
-                                          {"steps", &SweepPoint::steps},     {"failed", &SweepPoint::failed}};
+const SweepRealField kSweepRealFields[9] = {{"mcr", &SweepPoint::mcr},
+                                            {"t_off", &SweepPoint::t_off},
+                                            {"kcorr", &SweepPoint::kcorr},
+                                            {"nl_ratio", &SweepPoint::nl_ratio},
+                                            {"amplitude", &SweepPoint::amplitude},
+                                            {"energy_final", &SweepPoint::energy_final},
+                                            {"seconds", &SweepPoint::seconds},
+                                            {"mcr_error", &SweepPoint::mcr_error},
+                                            {"mcr_spread", &SweepPoint::mcr_spread}};
+const SweepIntField kSweepIntFields[7] = {{"reached", &SweepPoint::reached}, {"rescalings", &SweepPoint::rescalings}, {"rhs_evals", &SweepPoint::rhs},
+                                          {"steps", &SweepPoint::steps},     {"failed", &SweepPoint::failed},         {"predictable", &SweepPoint::predictable},
+                                          {"mcr_runs", &SweepPoint::runs}};
 
 PetscInt SweepGrid::Done() const
 {
@@ -72,7 +79,8 @@ std::vector<std::string> JournalFiles(const std::string &path)
   return files;
 }
 
-// Line format: index mcr t_off kcorr nl_ratio amplitude energy_final seconds reached rescalings rhs steps failed
+// Line format: the index, then every field of kSweepRealFields (hex floats:
+// exact) and of kSweepIntFields, in that order.
 PetscErrorCode SweepGrid::MergeJournals(const std::string &path, PetscInt *lines)
 {
   PetscFunctionBeginUser;
@@ -80,18 +88,27 @@ PetscErrorCode SweepGrid::MergeJournals(const std::string &path, PetscInt *lines
   for (const std::string &name : JournalFiles(path)) {
     FILE *f = std::fopen(name.c_str(), "r");
     if (!f) continue;
-    char buf[1024];
+    char buf[2048];
     while (std::fgets(buf, sizeof(buf), f)) {
       if (!std::strchr(buf, '\n')) break; // a line cut by a kill: ignored, the point is recomputed
-      long idx, reached, resc, rhs, steps, failed;
-      SweepPoint p;
-      double v[7];
-      if (std::sscanf(buf, "%ld %la %la %la %la %la %la %la %ld %ld %ld %ld %ld", &idx, &v[0], &v[1], &v[2], &v[3], &v[4], &v[5], &v[6], &reached, &resc, &rhs,
-                      &steps, &failed) != 13 || idx < 0 || (size_t)idx >= Size())
-        continue;
-      p.mcr = v[0], p.t_off = v[1], p.kcorr = v[2], p.nl_ratio = v[3], p.amplitude = v[4], p.energy_final = v[5], p.seconds = v[6];
-      p.reached = reached, p.rescalings = resc, p.rhs = rhs, p.steps = steps, p.failed = failed;
-      pts[idx] = p;
+      char *p = buf, *end;
+      const long idx = std::strtol(p, &end, 10);
+      bool ok = end != p && idx >= 0 && (size_t)idx < Size();
+      SweepPoint pt;
+      for (const auto &fd : kSweepRealFields) {
+        if (!ok) break;
+        p = end;
+        pt.*fd.field = std::strtod(p, &end);
+        ok = end != p;
+      }
+      for (const auto &fd : kSweepIntFields) {
+        if (!ok) break;
+        p = end;
+        pt.*fd.field = (PetscInt)std::strtol(p, &end, 10);
+        ok = end != p;
+      }
+      if (!ok) continue;
+      pts[idx] = pt;
       done[idx] = 1;
       (*lines)++;
     }
@@ -112,8 +129,11 @@ PetscErrorCode Journal::Open(const std::string &path, PetscMPIInt rank)
 PetscErrorCode Journal::Append(size_t index, const SweepPoint &p)
 {
   PetscFunctionBeginUser;
-  std::fprintf(f_, "%zu %a %a %a %a %a %a %a %ld %ld %ld %ld %ld\n", index, (double)p.mcr, (double)p.t_off, (double)p.kcorr, (double)p.nl_ratio, (double)p.amplitude,
-               (double)p.energy_final, (double)p.seconds, (long)p.reached, (long)p.rescalings, (long)p.rhs, (long)p.steps, (long)p.failed);
+  std::string line = std::to_string(index);
+  char v[64];
+  for (const auto &fd : kSweepRealFields) std::snprintf(v, sizeof(v), " %a", (double)(p.*fd.field)), line += v;
+  for (const auto &fd : kSweepIntFields) line += " " + std::to_string((long)(p.*fd.field));
+  std::fprintf(f_, "%s\n", line.c_str());
   PetscCheck(std::fflush(f_) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "cannot write the sweep journal (disk full?)");
   PetscFunctionReturn(0);
 }

@@ -8,6 +8,7 @@
 //  - -sweep_resume reads <output> and any journals left by a killed run.
 #include <petscsys.h>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -16,16 +17,22 @@ namespace nltopo {
 // What a sweep stores per grid point (outputs.md /sweep, plus additions).
 struct SweepPoint {
   PetscReal mcr = 0, t_off = -1, kcorr = 0, nl_ratio = 0, amplitude = 0, energy_final = 0, seconds = 0;
+  // -sweep_mcr_tol (README.md "Accuracy-aware sweep"): the MCR's estimated relative
+  // error (NaN without the mode or where unpredictable), the spread (max - min) of
+  // the twins' MCRs where the point is unpredictable (0 where it is predictable),
+  // whether it is (1, 0; -1 without the mode), and the integrations spent on it.
+  PetscReal mcr_error = std::numeric_limits<PetscReal>::quiet_NaN(), mcr_spread = 0;
   PetscInt reached = 0, rescalings = 0, rhs = 0, steps = 0;
   PetscInt failed = 0; // the run stopped with an error (e.g. diverged); its numbers are NaN
+  PetscInt predictable = -1, runs = 1;
 };
 
 // The per-point datasets of /sweep and the SweepPoint fields behind them (read
 // back by SweepGrid::Load, written by the sweep study).
 struct SweepRealField { const char *name; PetscReal SweepPoint::*field; };
 struct SweepIntField { const char *name; PetscInt SweepPoint::*field; };
-extern const SweepRealField kSweepRealFields[7];
-extern const SweepIntField kSweepIntFields[5];
+extern const SweepRealField kSweepRealFields[9];
+extern const SweepIntField kSweepIntFields[7];
 
 // Rank 0's picture of the grid: energy rows x omega columns, row-major.
 struct SweepGrid {

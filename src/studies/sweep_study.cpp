@@ -15,6 +15,7 @@
 #include "io/run_options.hpp"
 #include "studies/grid_axis.hpp"
 #include "studies/registry.hpp"
+#include "studies/sweep_accuracy.hpp"
 #include "studies/sweep_store.hpp"
 #include "timeint/simulation.hpp"
 #include <algorithm>
@@ -39,6 +40,7 @@ struct SweepOptions {
   PetscInt kcorr_lags = 20;
   PetscInt kcorr_seed = 1;
   PetscReal kcorr_sample_dt = 0; // 0: a quarter of the insulated period, pi / (2 sqrt(k_hat))
+  McrAccuracyOptions mcr;        // -sweep_mcr_tol
 };
 
 PetscErrorCode SweepOptionsFromOptions(MPI_Comm comm, SweepOptions *o)
@@ -53,6 +55,7 @@ PetscErrorCode SweepOptionsFromOptions(MPI_Comm comm, SweepOptions *o)
   PetscCall(PetscOptionsReal("-checkpoint", "Rewrite -output with the points done so far every this many wall seconds", NULL, o->checkpoint, &o->checkpoint, NULL));
   PetscCall(PetscOptionsReal("-progress", "Report progress every this many wall seconds (0: never)", NULL, o->progress, &o->progress, NULL));
   PetscOptionsEnd();
+  PetscCall(McrAccuracyOptionsFromOptions(comm, &o->mcr));
   PetscCheck(o->checkpoint > 0 && o->checkpoint <= 1e7, comm, PETSC_ERR_USER, "-sweep_checkpoint must lie in (0, 1e7] seconds, got %g", (double)o->checkpoint);
   PetscCheck(o->progress >= 0 && o->progress <= 1e7, comm, PETSC_ERR_USER, "-sweep_progress must lie in [0, 1e7] seconds, got %g", (double)o->progress);
   PetscOptionsBegin(comm, "kcorr_", "0-1 test for chaos (with -sweep_kcorr)", NULL);
@@ -117,6 +120,7 @@ PetscErrorCode WriteSweep(const std::string &path, const SweepGrid &g, const Swe
   PetscCall(WriteAttr(w, grp, "points_done", g.Done()));
   PetscCall(WriteAttr(w, grp, "points_computed", computed)); // by this invocation (a resume computes only the missing ones)
   PetscCall(WriteAttr(w, grp, "kcorr_computed", (PetscInt)so.kcorr));
+  PetscCall(WriteAttr(w, grp, "mcr_tol", so.mcr.tol)); // 0: the scene's own integration, one run per point
   PetscCall(WriteAttr(w, grp, "kcorr_nc", so.kcorr_nc));
   PetscCall(WriteAttr(w, grp, "kcorr_sample_dt", so.kcorr_sample_dt));
   PetscCall(WriteAttr(w, grp, "kcorr_rms_fraction", so.kcorr_rms_fraction));
@@ -181,9 +185,11 @@ PetscErrorCode ComputePoint(const Lattice &lat, const LinearModes &modes, const 
   } else {
     pt->kcorr = std::numeric_limits<PetscReal>::quiet_NaN();
   }
-  PetscCall(PetscTime(&p1));
   pt->mcr = r.mcr, pt->t_off = r.t_off, pt->nl_ratio = r.nl_ratio, pt->amplitude = burst.Amplitude(), pt->energy_final = r.energy_final;
-  pt->seconds = p1 - p0, pt->reached = r.reached, pt->rescalings = rescalings, pt->steps = r.steps;
+  pt->reached = r.reached, pt->rescalings = rescalings, pt->steps = r.steps;
+  if (so.mcr.tol > 0) PetscCall(RefineMcr(lat, burst, sim, so.mcr, r, pt)); // the scene's options, S as the rule left it
+  PetscCall(PetscTime(&p1));
+  pt->seconds = p1 - p0;
   PetscFunctionReturn(0);
 }
 
@@ -235,6 +241,7 @@ PetscErrorCode SweepStudy(MPI_Comm comm)
   PetscCall(ToneBurstOptionsFromOptions(comm, lp, &fo));
   PetscCheck(fo.profile != ForceProfile::None, comm, PETSC_ERR_USER, "-force_profile none: a sweep needs a forcing");
   PetscCall(SimulationOptionsFromOptions(comm, &sim));
+  PetscCall(CheckMcrAccuracyIntegrator(comm, so.mcr));
   PetscCall(LinearModesOptionsFromOptions(comm, &mo));
   PetscCall(OutputPathFromOptions(comm, "sweep", &path, [&](const std::string &) { return (bool)so.resume; }));
   if (so.resume) PetscCall(CheckResumeOptions(comm, path, "sweep", "-sweep_resume")); // the same physics and numerics, or one line naming the first difference
@@ -410,9 +417,23 @@ PetscErrorCode SweepStudy(MPI_Comm comm)
         missed += grid.done[i] && !grid.pts[i].reached && !grid.pts[i].failed;
         nfailed += grid.done[i] && grid.pts[i].failed;
       }
-      PetscCall(PetscPrintf(PETSC_COMM_SELF, "%s  computed %" PetscInt_FMT " points in %.2f s (%.2f points/s on %d ranks); %" PetscInt_FMT
+      if (tty) PetscCall(PetscPrintf(PETSC_COMM_SELF, "\n")); // end the updating progress line
+      if (so.mcr.tol > 0) {
+        PetscInt unpredictable = 0, short_of_tol = 0, runs = 0;
+        for (size_t i = 0; i < grid.Size(); i++) {
+          if (!grid.done[i] || grid.pts[i].failed) continue;
+          unpredictable += grid.pts[i].predictable == 0;
+          short_of_tol += grid.pts[i].predictable == 1 && !(grid.pts[i].mcr_error <= so.mcr.tol);
+          runs += grid.pts[i].runs;
+        }
+        PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                              "  -sweep_mcr_tol %g: %" PetscInt_FMT " integrations; %" PetscInt_FMT " point(s) unpredictable (predictable = 0: mcr is the twins' mean, mcr_spread their spread), %" PetscInt_FMT
+                              " predictable but short of the tolerance after %" PetscInt_FMT " halvings (mcr_error > tol)\n",
+                              (double)so.mcr.tol, runs, unpredictable, short_of_tol, so.mcr.levels));
+      }
+      PetscCall(PetscPrintf(PETSC_COMM_SELF, "  computed %" PetscInt_FMT " points in %.2f s (%.2f points/s on %d ranks); %" PetscInt_FMT
                                              " point(s) never reached E* (reached = 0), %" PetscInt_FMT " failed (failed = 1)\n  wrote %s\n",
-                            tty ? "\n" : "", total_computed, (double)(now - t_loop), total_computed / std::max(1e-9, (double)(now - t_loop)), size, missed,
+                            total_computed, (double)(now - t_loop), total_computed / std::max(1e-9, (double)(now - t_loop)), size, missed,
                             nfailed, path.c_str()));
     }
   }

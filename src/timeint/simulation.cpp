@@ -468,6 +468,11 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
   PetscCall(TSGetType(ts, &type));
 
   const bool symplectic = !std::strcmp(type, TSBASICSYMPLECTIC), splitting = !std::strcmp(type, TSSYMSPLIT);
+  if ((symplectic || splitting) && o.dt_scale != 1) {
+    PetscReal dt;
+    PetscCall(TSGetTimeStep(ts, &dt));
+    PetscCall(TSSetTimeStep(ts, dt * o.dt_scale));
+  }
   if ((symplectic || splitting) && o.dt_quartic_energy > 0) {
     // In the quartic regime a bond's frequency grows as E^(1/4) (V ~ Gamma d^4 / 4
     // at amplitude d ~ E^(1/4)): scaling the fixed step by (E_q / E)^(1/4) keeps

@@ -15,6 +15,7 @@ struct SimulationOptions {
   PetscReal sample_dt = 1.0; // spacing of the stored samples (0: store none)
   PetscReal progress = 10;   // wall seconds between progress lines (0: none)
   PetscReal dt_quartic_energy = 0; // fixed-step types: above this energy the step shrinks as (this / E)^(1/4) (0: off)
+  PetscReal dt_scale = 1;          // fixed-step types: the step times this (set by code: the sweep's accuracy ladder)
   bool abort_if_missed = false; // end the run at the end of the burst (t0 + 3 tau) if E* was not reached
 };
 PetscErrorCode SimulationOptionsFromOptions(MPI_Comm comm, SimulationOptions *o);
