@@ -40,6 +40,9 @@ expect_error "-wp_configs has no value" o.h5 $P -wp_configs "-sim_ts_type rk"
 expect_error "-wp_repeats" o.h5 $P -wp_repeats 0
 expect_error "leave out -sim_ts_rtol" o.h5 $P -wp_reference " -sim_ts_type rkn -sim_ts_rtol 1e-9"
 
+expect_error "-sweep_mcr_tol needs a fixed-step integrator" o.h5 $W -sweep_mcr_tol 1e-3 -sim_ts_type rk
+expect_error "-sweep_mcr_tol" o.h5 $W -sweep_mcr_tol 2
+
 # the study, the lattice and the files
 expect_error "unknown -study nope" o.h5 -study nope
 expect_error "-lattice_cells" o.h5 -study linear -lattice_cells 0
