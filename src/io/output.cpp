@@ -1,4 +1,5 @@
 #include "io/output.hpp"
+#include "core/cost.hpp"
 #include "core/errors.hpp"
 #include "core/log.hpp"
 #include "io/run_options.hpp"
@@ -133,6 +134,7 @@ PetscErrorCode OutputFile::Commit(const char *study, PetscReal wall_seconds, boo
     PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &world));
     if (size == world) PetscCall(g_commit_guard(comm_)); // a rank-local commit (sweep) audits collectively itself
   }
+  PetscCall(WriteCostCard(viewer_, wall_seconds)); // /cost: integrators, work, accuracy
   PetscCall(PetscOptionsGetAll(NULL, &opts));
   PetscCall(WriteAttr(viewer_, "/", "study", study));
   PetscCall(WriteAttr(viewer_, "/", "version", NLTOPO_VERSION));

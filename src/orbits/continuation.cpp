@@ -219,6 +219,7 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
     PetscScalar *a;
     const PetscScalar *u;
     EnergyParts e;
+    PetscCheck(u_guess, comm, PETSC_ERR_USER, "continuation %s: no starting shape (the linear lattice has no such mode)", name);
     PetscCall(VecZeroEntries(z));
     PetscCall(VecGetArray(z, &a));
     PetscCall(VecGetArrayRead(u_guess, &u));

@@ -1,4 +1,5 @@
 #include "orbits/flow.hpp"
+#include "core/cost.hpp"
 #include "core/log.hpp"
 #include "orbits/period_ts.hpp"
 #include "timeint/ts_symsplit.hpp"
@@ -26,6 +27,7 @@ namespace {
 PetscErrorCode FlowRhs(TS ts, PetscReal t, Vec z, Vec f, void *ctx)
 {
   PetscFunctionBeginUser;
+  CostCountEvaluations(1);
   PetscCall(static_cast<PeriodicFlow *>(ctx)->EvalRhs(t, z, f));
   PetscFunctionReturn(0);
 }
@@ -44,6 +46,7 @@ PetscErrorCode FlowJacobianP(TS ts, PetscReal t, Vec z, Mat Jp, void *ctx)
 PetscErrorCode FlowAcceleration(TS, PetscReal t, Vec z, PetscScalar *a, void *ctx)
 {
   PetscFunctionBeginUser;
+  CostCountEvaluations(1);
   PetscCall(static_cast<Rhs *>(ctx)->Acceleration(t, z, a));
   PetscFunctionReturn(0);
 }

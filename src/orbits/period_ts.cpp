@@ -1,4 +1,5 @@
 #include "orbits/period_ts.hpp"
+#include "core/cost.hpp"
 #include "core/signals.hpp"
 #include <cstring>
 
@@ -31,6 +32,7 @@ PetscErrorCode SolvePeriod(TS ts, Vec y, PetscReal T, PetscInt n, const char *wh
   PetscCall(TSSetMaxTime(ts, T));
   PetscCall(TSSetMaxSteps(ts, n));
   PetscCall(TSSolve(ts, y));
+  PetscCall(CostRecordSolve(ts, -1));
   PetscCall(TSGetConvergedReason(ts, &reason));
   PetscCheck(reason >= 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_NOT_CONVERGED, "%s integration failed: %s", what, TSConvergedReasons[reason]);
   PetscFunctionReturn(0);

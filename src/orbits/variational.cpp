@@ -1,4 +1,5 @@
 #include "orbits/variational.hpp"
+#include "core/cost.hpp"
 #include "orbits/period_ts.hpp"
 #include "core/log.hpp"
 #include <petscdmda.h>
@@ -9,6 +10,7 @@ namespace {
 PetscErrorCode VarRhs(TS ts, PetscReal t, Vec Y, Vec F, void *ctx)
 {
   PetscFunctionBeginUser;
+  CostCountEvaluations(1);
   PetscCall(static_cast<VariationalFlow *>(ctx)->Rhs(t, Y, F));
   PetscFunctionReturn(0);
 }

@@ -1,4 +1,5 @@
 #include "orbits/variational_symplectic.hpp"
+#include "core/cost.hpp"
 #include "core/log.hpp"
 #include "orbits/period_ts.hpp"
 #include "timeint/ts_symsplit.hpp"
@@ -9,6 +10,7 @@ namespace {
 PetscErrorCode SymVarAcceleration(TS, PetscReal, Vec Y, PetscScalar *A, void *ctx)
 {
   PetscFunctionBeginUser;
+  CostCountEvaluations(1);
   PetscCall(static_cast<SymplecticVariationalFlow *>(ctx)->Acceleration(Y, A));
   PetscFunctionReturn(0);
 }

@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """Paper-style forced-response map of -study sweep: the MCR over (E*, omega_ext)
 with the linear bands marked, the 0-1 test's kcorr = 0.7 contour (chaos), points
-that never reached E* crossed out, and, when a continuation file is given, its
+that never reached E* crossed out, points an accuracy-aware sweep
+(-sweep_mcr_tol) found unpredictable dotted (their MCR is a twins' mean), and,
+when a continuation file is given, its
 NNM branches (the frequency-energy plot) overlaid.
 usage: plot_sweep.py sweep.h5 [fep.h5] [out.png]"""
 import sys
@@ -37,13 +39,17 @@ for lo, hi in bands:
     for a in ax:
         a.axhline(lo, color="0.6", lw=0.6, ls=":")
         a.axhline(hi, color="0.6", lw=0.6, ls=":")
+unpredictable = done & (s["predictable"][:] == 0) if "predictable" in s else np.zeros_like(done)
+if unpredictable.any():
+    ee, ww = np.meshgrid(E, w, indexing="ij")
+    ax[0].plot(ee[unpredictable], ww[unpredictable], ".", color="0.85", ms=2.5, label="unpredictable (twins' mean)")
 if fep is not None:
     for name, grp in fep["continuation"].items():
         ax[0].plot(grp["energy"][:], grp["omega"][:], "-", lw=1.4, label=name)
 ax[0].axvline(12, color="k", ls="--", lw=0.8)
 ax[0].set(xscale="log", xlabel="E*", ylabel=r"$\omega_{ext}$ (rad/s)", title="MCR of the forced response (white: kcorr = 0.7; dotted: bands)",
           ylim=(w.min(), w.max()), xlim=(E.min(), E.max()))
-if fep is not None or missed.any():
+if fep is not None or missed.any() or unpredictable.any():
     ax[0].legend(fontsize=7, loc="upper left")
 pk = ax[1].pcolormesh(E, w, kc.T, shading="nearest", cmap="magma", vmin=0, vmax=1)
 fig.colorbar(pk, ax=ax[1], label="kcorr (0-1 test, max over sites)")

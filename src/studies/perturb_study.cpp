@@ -182,6 +182,8 @@ PetscErrorCode PerturbStudy(MPI_Comm comm)
     PetscCallMPI(MPI_Bcast(bw.data(), n, MPIU_REAL, 0, comm));
   } else {
     PetscCall(nnm.Build(comm));
+    PetscCheck(nnm.modes.Insulated(), comm, PETSC_ERR_USER,
+               "-study perturb follows the insulated mode, and this lattice has none (-lattice_gamma %g: no isolated mode in the gap)", (double)nnm.lp.gamma);
     nnm.co.verbose = PETSC_FALSE;
     nnm.co.energy_max = 1.2 * Emax;
     Branch b;

@@ -5,6 +5,7 @@
 // whole runs on PETSC_COMM_SELF, most expensive first), journaled as they
 // finish and resumable (-sweep_resume). Output: /sweep of outputs.md.
 #include "bands/linear_modes.hpp"
+#include "core/cost.hpp"
 #include "core/errors.hpp"
 #include "core/log.hpp"
 #include "core/options_audit.hpp"
@@ -394,6 +395,7 @@ PetscErrorCode SweepStudy(MPI_Comm comm)
   int sig;
   PetscCall(InterruptRequested(comm, &sig));
   PetscCallMPI(MPI_Reduce(&computed, &total_computed, 1, MPIU_INT, MPI_SUM, 0, comm));
+  PetscCall(CostReduceWorld()); // rank 0 writes the card of every rank's integrations
   PetscInt done_now = 0;
   if (!rank) {
     // The journals hold every point done; merged into -output they are no
@@ -404,6 +406,12 @@ PetscErrorCode SweepStudy(MPI_Comm comm)
         PetscInt lines;
         PetscFunctionBeginUser;
         PetscCall(grid.MergeJournals(path, &lines));
+        if (so.mcr.tol > 0) {
+          PetscReal worst = 0;
+          for (size_t i = 0; i < grid.Size(); i++)
+            if (grid.done[i] && grid.pts[i].predictable == 1 && grid.pts[i].mcr_error <= so.mcr.tol) worst = std::max(worst, grid.pts[i].mcr_error);
+          CostSetErrorEstimate(worst, "the largest mcr_error of the points converged to -sweep_mcr_tol (relative)");
+        }
         PetscCall(PetscTime(&now));
         done_now = grid.Done();
         PetscCall(WriteSweep(path, grid, so, total_computed, now - t_start, done_now == (PetscInt)grid.Size()));

@@ -1,4 +1,5 @@
 #include "timeint/simulation.hpp"
+#include "core/cost.hpp"
 #include <petsc/private/tsimpl.h> // ts->ops->rollback: can the type locate events?
 #include "core/log.hpp"
 #include "core/signals.hpp"
@@ -544,6 +545,7 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
     PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
     const PetscErrorCode ierr = TSSolve(ts, z);
     PetscCall(PetscPopErrorHandler());
+    PetscCall(CostRecordSolve(ts, run.rhs.Counters().rhs)); // the work, also of a failed solve
     PetscCheck(!IsInterrupt(ierr), comm, PETSC_ERR_SIG, "%s", ""); // stopped by a signal: passed on, silent
     if (ierr) {
       const char *text = NULL;

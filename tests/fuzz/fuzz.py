@@ -41,7 +41,7 @@ import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
 
-STUDIES = ["linear", "simulate", "continuation", "sweep", "zak", "perturb", "stability"]
+STUDIES = ["linear", "simulate", "continuation", "sweep", "zak", "perturb", "stability", "workprecision"]
 
 # A forced burst of a few periods on a tiny lattice: every forced study stays ~1 s.
 FAST_BURST = ["-sim_t_final", "50", "-force_tau_periods", "2", "-force_t0_taus", "1"]
@@ -57,6 +57,8 @@ BASE = {
                 "-cont_verbose", "0", "-nnm_steps_per_period", "32"] + FAST_BURST,
     "stability": ["-lattice_cells", "5", "-stability_omega", "1.75", "-stability_periods", "20", "-stability_sample_periods", "2",
                   "-cont_verbose", "0", "-nnm_steps_per_period", "32"],
+    "workprecision": ["-lattice_cells", "5", "-force_site", "12", "-wp_configs", " -sim_ts_type symsplit -sim_ts_dt 0.2", "-wp_repeats", "1",
+                      "-wp_twins", "1", "-wp_reference_tol", "1e-8", "-wp_reference_tol_min", "1e-9"] + FAST_BURST,
 }
 
 # name: (type, lo, hi, extra) -- lo..hi is the range random in-range draws come
@@ -109,10 +111,18 @@ T = {
     "floquet_edge_sites": ("int", 0, 10), "floquet_edge_weight": ("real", 0.55, 0.95), "floquet_mf_nev": ("int", 1, 4),
     "floquet_mf_which": ("enum", 0, 0, ["largest", "critical"]), "floquet_mf_circle_tol": ("real", 1e-12, 1e-6),
     "floquet_mf_deflate": ("bool",),
+    "sim_dt_quartic_energy": ("real", 0.0, 10.0),
+    "sweep_mcr_tol": ("real", 0.0, 0.1), "sweep_mcr_levels": ("int", 0, 2), "sweep_mcr_twins": ("int", 1, 3),
+    "sweep_mcr_twin_eps": ("real", 1e-12, 1e-6),
+    "wp_configs": ("strings", 0, 0, [" -sim_ts_type symsplit -sim_ts_dt 0.2", " -sim_ts_type rk -sim_ts_rtol 1e-6 -sim_ts_atol 1e-6",
+                                      " -sim_ts_type rkn -sim_ts_rtol 1e-6 -sim_ts_atol 1e-6"]),
+    "wp_reference": ("strings", 0, 0, [" -sim_ts_type rkn -sim_ts_rkn_scheme dep1210", " -sim_ts_type rkn -sim_ts_rkn_scheme dep86"]),
+    "wp_reference_tol": ("real", 1e-9, 1e-7), "wp_reference_tol_min": ("real", 1e-10, 1e-9), "wp_reference_dt_max": ("real", 0.05, 1.0),
+    "wp_reference_agreement": ("real", 1e-9, 1e-3), "wp_repeats": ("int", 1, 2), "wp_twins": ("int", 1, 2), "wp_twin_eps": ("real", 1e-12, 1e-6),
 }
 NOT_FUZZED = {"study", "output"}  # the scene itself
 
-OWN = re.compile(r"^(lattice_|force_|sim_|sweep_|kcorr_|zak_|perturb_|stability_|cont_|nnm_|floquet|linear_)")
+OWN = re.compile(r"^(lattice_|force_|sim_|sweep_|kcorr_|zak_|perturb_|stability_|cont_|nnm_|floquet|linear_|wp_)")
 SOLVER = re.compile(r"^(sim_|nnm_start_|nnm_|linear_|floquet_mf_|floquet_)(ts|snes|ksp|pc|eps|st|bv|ds|rg|fn|mat|dm|tao|sf)_")
 
 EXTREME_REAL = ["0", "-1", "-0.5", "1e300", "-1e300", "1e-300", "2147483648", "1e20", "4.9e-324", "-1e-300"]
