@@ -94,6 +94,12 @@ PetscErrorCode CostRecordSolve(TS ts, PetscInt evals)
   PetscFunctionReturn(0);
 }
 
+void CostTotals(PetscInt *steps, PetscInt *evals)
+{
+  *steps = g.e[0].steps + g.e[1].steps;
+  *evals = g.e[0].evals + g.e[1].evals;
+}
+
 void CostSetErrorEstimate(PetscReal value, const char *what)
 {
   g.error = value;

@@ -17,6 +17,9 @@ void CostCountEvaluations(PetscInt n);
 // the ones counted since the last record). Counted once per TS communicator
 // (its rank 0), so that a sum over all ranks is the work done.
 PetscErrorCode CostRecordSolve(TS ts, PetscInt evals);
+// Steps and force evaluations recorded on this rank so far (the work of a
+// stretch of a study: the difference of two calls; rank 0 of each TS counts).
+void CostTotals(PetscInt *steps, PetscInt *evals);
 // The study's own accuracy statement, written with the card (NaN: none).
 void CostSetErrorEstimate(PetscReal value, const char *what);
 // Sums every rank's ledger onto rank 0 of PETSC_COMM_WORLD (collective); for a

@@ -13,7 +13,14 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
-PANELS = (("mcr", "MCR"), ("state", "final state z(t_final)"), ("t_off", "cut-off time t_off"), ("energy", "energy after the cut-off"))
+# the panels of each scene (/workprecision attribute scene), in order
+PANELS = {"simulate": (("mcr", "MCR"), ("state", "final state z(t_final)"), ("t_off", "cut-off time t_off"), ("energy", "energy after the cut-off")),
+          "shooting": (("omega", "orbit frequency omega"), ("closure", "orbit closure |z(T) - z0| / |z0|"), ("max_modulus", "largest Floquet modulus"),
+                       ("det", "|det M - 1| (the method's own)"))}
+
+
+def panels(f):
+    return PANELS[text(f["workprecision"].attrs.get("scene", "simulate"))]
 
 
 def text(x):
@@ -26,7 +33,7 @@ def figure(f):
     method = [text(m) for m in g["method"][:]]
     wall = g["wall_seconds"][:]
     fig, axes = plt.subplots(2, 2, figsize=(11, 8))
-    for ax, (obs, name) in zip(axes.flat, PANELS):
+    for ax, (obs, name) in zip(axes.flat, panels(f)):
         err = g["error_" + obs][:]
         floor = float(a["spread_" + obs])
         shown = np.maximum(err, 1e-17)  # an exact 0 (a run equal to the reference) at the bottom of the axis
@@ -40,13 +47,16 @@ def figure(f):
         ax.set_ylim(wall.min() / 1.5, wall.max() * 1.5)
         if floor > 0:
             ax.axvspan(lo, floor, color="0.85", zorder=0, label="predictability floor")
-        ax.set(xlabel=f"relative error of the {name}", ylabel="wall time (s, median)")
+        ax.set(xlabel=name if obs == "det" else f"relative error of the {name}", ylabel="wall time (s, median)")
         ax.grid(True, which="major", alpha=0.3)
     axes.flat[0].legend(fontsize=7)
     ref = text(a["reference"])
-    fig.suptitle(f"work-precision at E* = {a['energy_star']:g}, omega_ext = {a['omega_ext']:.4f}\nreference: {ref}"
-                 f" ({'converged' if a['reference_converged'] else 'NOT converged'}); finite-time Lyapunov {a['lyapunov']:.3g} /s",
-                 fontsize=8)
+    conv = "converged" if a["reference_converged"] else "NOT converged"
+    if text(a.get("scene", "simulate")) == "shooting":
+        fig.suptitle(f"work-precision of the insulated NNM at E = {a['nnm_energy']:g} (Newton and monodromy)\nreference: {ref} ({conv})", fontsize=8)
+    else:
+        fig.suptitle(f"work-precision at E* = {a['energy_star']:g}, omega_ext = {a['omega_ext']:.4f}\nreference: {ref}"
+                     f" ({conv}); finite-time Lyapunov {a['lyapunov']:.3g} /s", fontsize=8)
     fig.tight_layout()
     return fig
 

@@ -1,5 +1,6 @@
 #include "studies/workprecision.hpp"
 #include "core/log.hpp"
+#include "studies/wp_configs.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -9,8 +10,16 @@ namespace nltopo {
 
 const char *const kWpObservables[5] = {"mcr", "t_off", "nl_ratio", "energy", "state"};
 
-std::vector<std::string> DefaultWorkPrecisionConfigs()
+std::vector<std::string> DefaultWorkPrecisionConfigs(bool shooting)
 {
+  if (shooting) {
+    // the shooting integrators (README.md "Integrators by study") at three steps per period each
+    std::vector<std::string> c;
+    for (const char *n : {"32", "64", "128"}) c.push_back(std::string("-nnm_ts_type symsplit -nnm_ts_symsplit_scheme bm4 -nnm_steps_per_period ") + n);
+    for (const char *n : {"32", "64", "128"}) c.push_back(std::string("-nnm_ts_type symsplit -nnm_ts_symsplit_scheme bm6 -nnm_steps_per_period ") + n);
+    for (const char *n : {"64", "128", "256"}) c.push_back(std::string("-nnm_ts_type rk -nnm_ts_rk_type 5dp -nnm_steps_per_period ") + n);
+    return c;
+  }
   // The shipped integrators (README.md "Integrators by study") at three
   // accuracies each: the splitting at three fixed steps, the adaptive pairs
   // (and the paper's ode45 analogue, rk 5dp) at three tolerances.
@@ -26,106 +35,7 @@ std::vector<std::string> DefaultWorkPrecisionConfigs()
 
 namespace {
 
-using OptionPairs = std::vector<std::pair<std::string, std::string>>;
-
-std::string Join(const std::vector<std::string> &v, const char *sep)
-{
-  std::string s;
-  for (const auto &x : v) s += (s.empty() ? "" : sep) + x;
-  return s;
-}
-
-std::vector<std::string> SplitList(const std::string &s, char sep)
-{
-  std::vector<std::string> out;
-  std::string item;
-  std::istringstream in(s);
-  while (std::getline(in, item, sep)) {
-    const size_t a = item.find_first_not_of(" \t"), b = item.find_last_not_of(" \t");
-    out.push_back(a == std::string::npos ? "" : item.substr(a, b - a + 1));
-  }
-  return out;
-}
-
-bool LooksLikeValue(const std::string &tok)
-{
-  if (tok.empty()) return false;
-  if (tok[0] != '-') return true;
-  return tok.size() > 1 && (std::isdigit((unsigned char)tok[1]) || tok[1] == '.'); // a negative number
-}
-
-// "-a 1 -b -c x" -> (-a, 1), (-b, ""), (-c, x); only integrator options.
-PetscErrorCode ParseConfig(MPI_Comm comm, const char *what, const std::string &cfg, OptionPairs *out)
-{
-  std::istringstream in(cfg);
-  std::vector<std::string> tok;
-  for (std::string t; in >> t;) tok.push_back(t);
-  PetscFunctionBeginUser;
-  out->clear();
-  PetscCheck(!tok.empty(), comm, PETSC_ERR_USER, "%s: an empty configuration (two commas in a row?)", what);
-  for (size_t i = 0; i < tok.size(); i++) {
-    const std::string &name = tok[i];
-    PetscCheck(name.size() > 1 && name[0] == '-' && !LooksLikeValue(name), comm, PETSC_ERR_USER, "%s \"%s\": %s is not an option name", what, cfg.c_str(),
-               name.c_str());
-    PetscCheck(name.rfind("-sim_ts_", 0) == 0 || name == "-sim_dt_quartic_energy", comm, PETSC_ERR_USER,
-               "%s \"%s\": %s is not an integrator option (configurations take -sim_ts_* and -sim_dt_quartic_energy; the scene's options go outside)",
-               what, cfg.c_str(), name.c_str());
-    std::string value;
-    if (i + 1 < tok.size() && LooksLikeValue(tok[i + 1])) value = tok[++i];
-    out->push_back({name, value});
-  }
-  PetscFunctionReturn(0);
-}
-
-// Sets a configuration's options for one scope and restores the database
-// after: options the scene had are given their old values back (and marked
-// used: the study read them), new ones are removed.
-class ScopedConfig {
-public:
-  PetscErrorCode Apply(const OptionPairs &opts)
-  {
-    PetscFunctionBeginUser;
-    for (const auto &[name, value] : opts) {
-      const char *old;
-      PetscBool found;
-      PetscCall(PetscOptionsFindPair(NULL, NULL, name.c_str(), &old, &found));
-      saved_.push_back({name, found ? (old ? old : "") : std::string("\x01")});
-      PetscCall(PetscOptionsSetValue(NULL, name.c_str(), value.empty() ? NULL : value.c_str()));
-    }
-    PetscFunctionReturn(0);
-  }
-  // One line for the first option of the configuration that the run did not read.
-  PetscErrorCode CheckUsed(MPI_Comm comm, const char *what, const std::string &cfg) const
-  {
-    PetscFunctionBeginUser;
-    for (const auto &[name, old] : saved_) {
-      PetscBool used;
-      PetscCall(PetscOptionsUsed(NULL, name.c_str() + 1, &used)); // the database holds names without the dash
-      if (old != "\x01") continue; // an option the scene also sets keeps the scene's "used" mark: not checkable
-      PetscCheck(used, comm, PETSC_ERR_USER, "%s \"%s\": %s was not used by that run (an option of another TS type, or misspelt)", what, cfg.c_str(),
-                 name.c_str());
-    }
-    PetscFunctionReturn(0);
-  }
-  PetscErrorCode Restore()
-  {
-    PetscFunctionBeginUser;
-    for (auto it = saved_.rbegin(); it != saved_.rend(); ++it) {
-      if (it->second == "\x01") PetscCall(PetscOptionsClearValue(NULL, it->first.c_str()));
-      else {
-        PetscBool set;
-        PetscCall(PetscOptionsSetValue(NULL, it->first.c_str(), it->second.empty() ? NULL : it->second.c_str()));
-        PetscCall(PetscOptionsHasName(NULL, NULL, it->first.c_str(), &set)); // the scene's option stays "used"
-      }
-    }
-    saved_.clear();
-    PetscFunctionReturn(0);
-  }
-  ~ScopedConfig() { (void)Restore(); }
-
-private:
-  std::vector<std::pair<std::string, std::string>> saved_; // "\x01": was not set
-};
+using namespace wp;
 
 struct Outcome {
   PetscReal obs[kWpNumObservables - 1] = {0}; // the scalars (mcr, t_off, nl_ratio, energy)
@@ -134,45 +44,12 @@ struct Outcome {
   SimulationResult r;
 };
 
-// Every entry of x on every rank (small lattices: the tests' exact solutions).
-PetscErrorCode GatherAll(Vec x, std::vector<PetscReal> *out)
-{
-  VecScatter sc;
-  Vec all;
-  const PetscScalar *a;
-  PetscInt n;
-  PetscFunctionBeginUser;
-  PetscCall(VecScatterCreateToAll(x, &sc, &all));
-  PetscCall(VecScatterBegin(sc, x, all, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(sc, x, all, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGetSize(all, &n));
-  PetscCall(VecGetArrayRead(all, &a));
-  out->assign(a, a + n);
-  PetscCall(VecRestoreArrayRead(all, &a));
-  PetscCall(VecScatterDestroy(&sc));
-  PetscCall(VecDestroy(&all));
-  PetscFunctionReturn(0);
-}
-
-PetscReal Rel(PetscReal a, PetscReal b) { return b != 0 ? std::abs(a - b) / std::abs(b) : std::abs(a - b); }
-
-PetscErrorCode StateDistance(Vec a, Vec b, PetscReal *d)
-{
-  OwnedVec w;
-  PetscReal nb;
-  PetscFunctionBeginUser;
-  PetscCall(VecDuplicate(a, w.out()));
-  PetscCall(VecWAXPY(w, -1.0, b, a));
-  PetscCall(VecNorm(w, NORM_2, d));
-  PetscCall(VecNorm(b, NORM_2, &nb));
-  if (nb > 0) *d /= nb;
-  PetscFunctionReturn(0);
-}
-
 // Errors of every observable of x against y (the state: relative 2-norm).
-PetscErrorCode Errors(const Outcome &x, const Outcome &y, PetscReal err[kWpNumObservables])
+PetscErrorCode Errors(const Outcome &x, const Outcome &y, std::vector<PetscReal> *e)
 {
   PetscFunctionBeginUser;
+  e->assign(kWpNumObservables, 0.0);
+  PetscReal *err = e->data();
   for (int k = 0; k < kWpNumObservables - 1; k++) err[k] = Rel(x.obs[k], y.obs[k]);
   PetscCall(StateDistance(x.z, y.z, &err[kWpNumObservables - 1]));
   PetscFunctionReturn(0);
@@ -211,34 +88,24 @@ PetscErrorCode RunScene(const Lattice &lat, ToneBurst *burst, bool rule, Outcome
   PetscFunctionReturn(0);
 }
 
-bool EndsWith(const std::string &s, const std::string &end) { return s.size() >= end.size() && s.compare(s.size() - end.size(), end.size(), end) == 0; }
-
-void Label(const OptionPairs &opts, std::string *method, std::string *accuracy)
-{
-  std::vector<std::string> m, a;
-  std::string rtol, atol, dt;
-  for (const auto &[name, value] : opts) {
-    if (name == "-sim_ts_rtol") rtol = value;
-    else if (name == "-sim_ts_atol") atol = value;
-    else if (name == "-sim_ts_dt") dt = value;
-    else if (EndsWith(name, "_type") || EndsWith(name, "_scheme")) m.push_back(value);
-    else m.push_back(name.substr(1) + "=" + value);
-  }
-  if (!rtol.empty()) a.push_back("tol " + rtol + (atol.empty() || atol == rtol ? "" : "/" + atol));
-  if (!dt.empty() && rtol.empty()) a.push_back("dt " + dt);
-  *method = m.empty() ? "(scene)" : Join(m, " ");
-  *accuracy = a.empty() ? "(scene)" : Join(a, " ");
-}
-
 } // namespace
 
 PetscErrorCode WorkPrecisionOptionsFromOptions(MPI_Comm comm, WorkPrecisionOptions *o)
 {
-  char configs[16384], reference[1024];
-  PetscBool given, given_ref;
+  char configs[16384], reference[1024], nnm_reference[1024];
+  PetscBool given, given_ref, given_nnm_ref;
+  const char *scenes[] = {"simulate", "shooting"};
+  PetscInt scene = o->shooting ? 1 : 0;
   PetscFunctionBeginUser;
-  if (o->configs.empty()) o->configs = DefaultWorkPrecisionConfigs();
+  PetscOptionsBegin(comm, "wp_", "Work-precision study (-study workprecision)", NULL);
+  PetscCall(PetscOptionsEList("-scene", "What is integrated: simulate (one forced run of the scene) or shooting (one orbit of the insulated NNM branch)", NULL,
+                              scenes, 2, scenes[scene], &scene, NULL));
+  PetscOptionsEnd();
+  o->shooting = scene == 1;
+  if (o->configs.empty()) o->configs = DefaultWorkPrecisionConfigs(o->shooting);
   if (o->reference.empty()) o->reference = "-sim_ts_type rkn -sim_ts_rkn_scheme dep1210";
+  if (o->nnm_reference.empty()) o->nnm_reference = "-nnm_ts_type rk -nnm_ts_rk_type 5dp";
+  PetscCall(PetscStrncpy(nnm_reference, o->nnm_reference.c_str(), sizeof(nnm_reference)));
   PetscCall(PetscStrncpy(configs, Join(o->configs, ",").c_str(), sizeof(configs)));
   PetscCall(PetscStrncpy(reference, o->reference.c_str(), sizeof(reference)));
   PetscOptionsBegin(comm, "wp_", "Work-precision study (-study workprecision)", NULL);
@@ -250,6 +117,11 @@ PetscErrorCode WorkPrecisionOptionsFromOptions(MPI_Comm comm, WorkPrecisionOptio
                              o->reference_tol, &o->reference_tol, NULL));
   PetscCall(PetscOptionsReal("-reference_dt_max", "Step cap of the first reference (halved with each tightening: the window integrals on the interpolant converge with the step)", NULL,
                              o->reference_dt_max, &o->reference_dt_max, NULL));
+  PetscCall(PetscOptionsReal("-nnm_energy", "-wp_scene shooting: energy of the orbit of the insulated branch", NULL, o->nnm_energy, &o->nnm_energy, NULL));
+  PetscCall(PetscOptionsString("-nnm_reference", "-wp_scene shooting: reference integrator (without -nnm_steps_per_period; begin it with a space)", NULL,
+                               nnm_reference, nnm_reference, sizeof(nnm_reference), &given_nnm_ref));
+  PetscCall(PetscOptionsInt("-nnm_reference_steps", "-wp_scene shooting: steps per period of the first reference, doubled until two successive references agree", NULL,
+                            o->nnm_reference_steps, &o->nnm_reference_steps, NULL));
   PetscCall(PetscOptionsReal("-reference_tol_min", "Tightest reference tolerance", NULL, o->reference_tol_min, &o->reference_tol_min, NULL));
   PetscCall(PetscOptionsReal("-reference_agreement", "Two successive references agree to this (relative, every observable): converged", NULL,
                              o->reference_agreement, &o->reference_agreement, NULL));
@@ -266,6 +138,12 @@ PetscErrorCode WorkPrecisionOptionsFromOptions(MPI_Comm comm, WorkPrecisionOptio
   PetscCheck(!given_ref || reference[0], comm, PETSC_ERR_USER,
              "-wp_reference has no value: PETSc reads a value that begins with '-' as the next option; begin it with a space, "
              "-wp_reference \" -sim_ts_type rkn -sim_ts_rkn_scheme dep1210\"");
+  PetscCheck(!given_nnm_ref || nnm_reference[0], comm, PETSC_ERR_USER,
+             "-wp_nnm_reference has no value: PETSc reads a value that begins with '-' as the next option; begin it with a space");
+  o->nnm_reference = SplitList(nnm_reference, ',').empty() ? "" : SplitList(nnm_reference, ',')[0];
+  PetscCheck(o->nnm_energy > 0 && o->nnm_energy <= 1e6, comm, PETSC_ERR_USER, "-wp_nnm_energy must lie in (0, 1e6], got %g", (double)o->nnm_energy);
+  PetscCheck(o->nnm_reference_steps >= 8 && o->nnm_reference_steps <= 100000, comm, PETSC_ERR_USER, "-wp_nnm_reference_steps must lie in [8, 1e5], got %" PetscInt_FMT,
+             o->nnm_reference_steps);
   if (given) {
     o->configs = SplitList(configs, ',');
     PetscCheck(std::strlen(configs) < sizeof(configs) - 1, comm, PETSC_ERR_USER, "-wp_configs: longer than %zu characters", sizeof(configs) - 2);
@@ -274,7 +152,10 @@ PetscErrorCode WorkPrecisionOptionsFromOptions(MPI_Comm comm, WorkPrecisionOptio
   PetscCheck(!o->configs.empty() && o->configs.size() <= 200, comm, PETSC_ERR_USER, "-wp_configs must hold 1 to 200 configurations, got %zu",
              o->configs.size());
   OptionPairs p;
-  for (size_t k = 0; k < o->configs.size(); k++) PetscCall(ParseConfig(comm, "-wp_configs: configuration", o->configs[k], &p));
+  for (size_t k = 0; k < o->configs.size(); k++) PetscCall(ParseConfig(comm, "-wp_configs: configuration", o->configs[k], &p, o->shooting));
+  PetscCall(ParseConfig(comm, "-wp_nnm_reference", o->nnm_reference, &p, true));
+  for (const auto &pr : p)
+    PetscCheck(pr.first != "-nnm_steps_per_period", comm, PETSC_ERR_USER, "-wp_nnm_reference: leave out -nnm_steps_per_period (-wp_nnm_reference_steps sets it)");
   PetscCall(ParseConfig(comm, "-wp_reference", o->reference, &p));
   for (const auto &pr : p)
     PetscCheck(pr.first != "-sim_ts_rtol" && pr.first != "-sim_ts_atol" && pr.first != "-sim_ts_adapt_dt_max", comm, PETSC_ERR_USER,
@@ -299,6 +180,10 @@ PetscErrorCode RunWorkPrecision(const Lattice &lat, ToneBurst *burst, const Work
   OptionPairs ref_opts;
   PetscFunctionBeginUser;
   *res = WorkPrecisionResult();
+  res->observables.assign(kWpObservables, kWpObservables + kWpNumObservables);
+  res->reference_change.assign(kWpNumObservables, 0.0);
+  res->reference_value.assign(kWpNumObservables, 0.0);
+  res->spread.assign(kWpNumObservables, 0.0);
   PetscCall(ParseConfig(comm, "-wp_reference", o.reference, &ref_opts));
 
   // The converged reference: the reference integrator at rtol = atol = tol,
@@ -321,7 +206,7 @@ PetscErrorCode RunWorkPrecision(const Lattice &lat, ToneBurst *burst, const Work
     PetscCall(PetscSNPrintf(cap_s, sizeof(cap_s), "%g", (double)cap));
     res->reference = o.reference + " -sim_ts_rtol " + tol_s + " -sim_ts_atol " + tol_s + " -sim_ts_adapt_dt_max " + cap_s;
     if (have_prev) {
-      PetscCall(Errors(prev, ref, res->reference_change));
+      PetscCall(Errors(prev, ref, &res->reference_change));
       PetscReal worst = 0;
       for (PetscReal c : res->reference_change) worst = std::max(worst, c);
       PetscCall(PetscInfo(NULL, "work-precision reference at %s: largest change %g\n", tol_s, (double)worst));
@@ -400,8 +285,8 @@ PetscErrorCode RunWorkPrecision(const Lattice &lat, ToneBurst *burst, const Work
     row.rhs_evals = out.r.counters.rhs;
     row.steps = out.r.steps;
     row.rejected = out.r.rejected;
-    PetscCall(Errors(out, ref, row.error));
-    for (int q = 0; q < kWpNumObservables - 1; q++) row.value[q] = out.obs[q];
+    PetscCall(Errors(out, ref, &row.error));
+    row.value.assign(out.obs, out.obs + kWpNumObservables - 1);
     PetscCall(GatherAll(out.z, &row.z_final));
     PetscCall(PetscPrintf(comm, "  %-40s %-10s %9.4f s %9" PetscInt_FMT " RHS  MCR error %.2e  state error %.2e\n", row.method.c_str(), row.accuracy.c_str(),
                           (double)row.wall, row.rhs_evals, (double)row.error[0], (double)row.error[kWpNumObservables - 1]));

@@ -28,28 +28,34 @@ struct WorkPrecisionOptions {
   PetscInt repeats = 3;               // wall time: median of this many runs
   PetscInt twins = 3;                 // predictability floor: S x (1 + k eps), k = 1, -1, 2, -2, ...
   PetscReal twin_eps = 1e-10;
+  // -wp_scene shooting: one orbit of the insulated NNM branch at energy nnm_energy
+  bool shooting = false;
+  PetscReal nnm_energy = 1;
+  std::string nnm_reference;          // the reference shooting integrator without its steps per period
+  PetscInt nnm_reference_steps = 512; // doubled until two successive references agree (at most 16x)
 };
 PetscErrorCode WorkPrecisionOptionsFromOptions(MPI_Comm comm, WorkPrecisionOptions *o);
 // The default configuration list: the shipped integrators at three accuracies each.
-std::vector<std::string> DefaultWorkPrecisionConfigs();
+std::vector<std::string> DefaultWorkPrecisionConfigs(bool shooting = false);
 
 struct WorkPrecisionRow {
   std::string config, method, accuracy; // accuracy: the config's -sim_ts_rtol / -sim_ts_dt; method: the rest
   PetscReal wall = 0;                   // median wall seconds of the solve (max over ranks)
   PetscInt rhs_evals = 0, steps = 0, rejected = 0;
-  PetscReal error[kWpNumObservables] = {0};
-  PetscReal value[kWpNumObservables - 1] = {0}; // the run's scalar observables (mcr, t_off, nl_ratio, energy)
+  std::vector<PetscReal> error;                 // per observable (WorkPrecisionResult::observables)
+  std::vector<PetscReal> value;                 // the run's scalar observables (simulate: mcr, t_off, nl_ratio, energy)
   std::vector<PetscReal> z_final;               // the run's final state, gathered on every rank (tests)
 };
 
 struct WorkPrecisionResult {
+  std::vector<std::string> observables;          // error_<name>, spread_<name> of outputs.md
   std::vector<WorkPrecisionRow> rows;
   std::string reference;                         // the reference configuration, with its final tolerance
   bool reference_converged = false;
-  PetscReal reference_change[kWpNumObservables] = {0}; // between the last two references (relative)
-  PetscReal reference_value[kWpNumObservables] = {0};  // the reference's observables (the state: its norm)
+  std::vector<PetscReal> reference_change;       // between the last two references (relative)
+  std::vector<PetscReal> reference_value;        // the reference's observables (the state: its norm)
   PetscReal reference_wall = 0;
-  PetscReal spread[kWpNumObservables] = {0};     // the predictability floor
+  std::vector<PetscReal> spread;                 // the predictability floor
   PetscReal lyapunov = 0;                        // finite-time estimate from the twins (1/s); 0 without cut-off
   PetscReal amplitude = 0;                       // the S every run used
   std::vector<PetscReal> reference_z;            // the reference's final state, gathered on every rank
@@ -59,5 +65,14 @@ struct WorkPrecisionResult {
 // amplitude rule at the first reference, then fixed; base: the scene's
 // simulation options). The options database is restored after each run.
 PetscErrorCode RunWorkPrecision(const Lattice &lat, ToneBurst *burst, const WorkPrecisionOptions &o, WorkPrecisionResult *res);
+
+// -wp_scene shooting: the orbit of the insulated branch at o.nnm_energy (the
+// scene's lattice and -nnm_* options; the branch is continued to it first),
+// solved by shooting with each configuration from the same guess and timed
+// (Newton and the monodromy). Observables: omega (relative error), closure
+// (the configuration's orbit integrated by the reference flow: |z(T) - z0| /
+// |z0|), max_modulus (the largest Floquet multiplier modulus, relative
+// error), det (|det M - 1| of the configuration's own monodromy).
+PetscErrorCode RunWorkPrecisionShooting(MPI_Comm comm, const WorkPrecisionOptions &o, WorkPrecisionResult *res);
 
 } // namespace nltopo

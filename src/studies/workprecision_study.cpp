@@ -5,6 +5,8 @@
 #include "core/log.hpp"
 #include "core/options_audit.hpp"
 #include "io/output.hpp"
+#include "stability/floquet.hpp"
+#include "studies/nnm_setup.hpp"
 #include "studies/registry.hpp"
 #include "studies/workprecision.hpp"
 
@@ -31,6 +33,12 @@ PetscErrorCode WorkprecisionStudyOptions(MPI_Comm comm)
   PetscOptionsEnd();
   PetscCall(LinearModesOptionsFromOptions(comm, &mo));
   PetscCall(WorkPrecisionOptionsFromOptions(comm, &wo));
+  if (wo.shooting) { // the insulated NNM: lattice, modes, flow, shooting, continuation, Floquet
+    NnmSetup nnm;
+    FloquetOptions flo;
+    PetscCall(nnm.DeclareOptions(comm));
+    PetscCall(FloquetOptionsFromOptions(comm, &flo));
+  }
   PetscCall(DeclareEPS(comm, "linear_"));
   PetscCall(DeclareTS(comm, "sim_"));
   PetscCall(DeclareOutputOptions(comm, "workprecision"));
@@ -55,33 +63,49 @@ PetscErrorCode WorkprecisionStudy(MPI_Comm comm)
   PetscCall(PetscTime(&t_start));
   PetscCall(LogRegister());
   PetscCall(PetscLogStagePush(Log().setup));
-  PetscCall(LatticeParamsFromOptions(comm, &lp));
-  PetscCall(ToneBurstOptionsFromOptions(comm, lp, &fo));
-  PetscCheck(fo.profile != ForceProfile::None, comm, PETSC_ERR_USER, "-force_profile none: -study workprecision scores a forced run (MCR after the cut-off)");
-  PetscCall(SimulationOptionsFromOptions(comm, &so));
-  PetscCall(LinearModesOptionsFromOptions(comm, &mo));
   PetscCall(WorkPrecisionOptionsFromOptions(comm, &wo));
   PetscCall(OutputPathFromOptions(comm, "workprecision", &path));
-  PetscCall(out.Open(comm, path));
-  PetscCall(lat.Setup(comm, lp));
-  const bool need_modes = fo.profile == ForceProfile::Mode || fo.profile == ForceProfile::Exponential || fo.amplitude < 0;
-  if (need_modes) PetscCall(modes.Compute(lat, mo));
-  PetscCall(burst.Setup(lat, fo, need_modes ? &modes : NULL));
-  PetscCall(PetscLogStagePop());
+  if (wo.shooting) {
+    NnmSetup nnm;
+    PetscCall(nnm.ReadOptions(comm)); // bad options fail before the output file exists
+    PetscCall(out.Open(comm, path));
+    PetscCall(PetscLogStagePop());
+    PetscCall(PetscPrintf(comm, "nltopo workprecision: the insulated NNM at E = %g, N = %" PetscInt_FMT "; %zu shooting configurations x %" PetscInt_FMT
+                                " repeats, reference %s from %" PetscInt_FMT " steps per period\n",
+                          (double)wo.nnm_energy, nnm.lp.N(), wo.configs.size(), wo.repeats, wo.nnm_reference.c_str(), wo.nnm_reference_steps));
+    PetscCall(PetscLogStagePush(Log().solve));
+    PetscCall(RunWorkPrecisionShooting(comm, wo, &res));
+    PetscCall(PetscLogStagePop());
+    PetscCall(PetscPrintf(comm, "  reference: %s (%s; last change: omega %.1e, max|mu| %.1e), omega = %.12f, max|mu| = %.10f\n", res.reference.c_str(),
+                          res.reference_converged ? "converged" : "NOT converged", (double)res.reference_change[0], (double)res.reference_change[2],
+                          (double)res.reference_value[0], (double)res.reference_value[2]));
+  } else {
+    PetscCall(LatticeParamsFromOptions(comm, &lp));
+    PetscCall(ToneBurstOptionsFromOptions(comm, lp, &fo));
+    PetscCheck(fo.profile != ForceProfile::None, comm, PETSC_ERR_USER, "-force_profile none: -study workprecision scores a forced run (MCR after the cut-off)");
+    PetscCall(SimulationOptionsFromOptions(comm, &so));
+    PetscCall(LinearModesOptionsFromOptions(comm, &mo));
+    PetscCall(out.Open(comm, path));
+    PetscCall(lat.Setup(comm, lp));
+    const bool need_modes = fo.profile == ForceProfile::Mode || fo.profile == ForceProfile::Exponential || fo.amplitude < 0;
+    if (need_modes) PetscCall(modes.Compute(lat, mo));
+    PetscCall(burst.Setup(lat, fo, need_modes ? &modes : NULL));
+    PetscCall(PetscLogStagePop());
 
-  PetscCall(PetscPrintf(comm, "nltopo workprecision: N = %" PetscInt_FMT ", omega_ext = %.6f, E* = %g, t_final = %g; %zu configurations x %" PetscInt_FMT
-                              " repeats, reference %s from rtol = atol = %g, %" PetscInt_FMT " twins at S x (1 +- %g)\n",
-                        lat.N(), (double)burst.Omega(), (double)burst.EnergyStar(), (double)so.t_final, wo.configs.size(), wo.repeats, wo.reference.c_str(),
-                        (double)wo.reference_tol, wo.twins, (double)wo.twin_eps));
-  PetscCall(PetscLogStagePush(Log().solve));
-  PetscCall(RunWorkPrecision(lat, &burst, wo, &res));
-  PetscCall(PetscLogStagePop());
-  PetscCall(PetscPrintf(comm, "  reference: %s (%s; last change: MCR %.1e, state %.1e), MCR = %.10f, t_off = %.6f\n", res.reference.c_str(),
-                        res.reference_converged ? "converged" : "NOT converged", (double)res.reference_change[0],
-                        (double)res.reference_change[kWpNumObservables - 1], (double)res.reference_value[0], (double)res.reference_value[1]));
-  PetscCall(PetscPrintf(comm, "  predictability floor (%" PetscInt_FMT " twins, S x (1 + k %g)): MCR %.1e, t_off %.1e, state %.1e; finite-time Lyapunov %.3g /s%s\n",
-                        wo.twins, (double)wo.twin_eps, (double)res.spread[0], (double)res.spread[1], (double)res.spread[kWpNumObservables - 1],
-                        (double)res.lyapunov, res.spread[0] > 1e-3 ? " (chaotic: single-run MCRs are samples)" : ""));
+    PetscCall(PetscPrintf(comm, "nltopo workprecision: N = %" PetscInt_FMT ", omega_ext = %.6f, E* = %g, t_final = %g; %zu configurations x %" PetscInt_FMT
+                                " repeats, reference %s from rtol = atol = %g, %" PetscInt_FMT " twins at S x (1 +- %g)\n",
+                          lat.N(), (double)burst.Omega(), (double)burst.EnergyStar(), (double)so.t_final, wo.configs.size(), wo.repeats, wo.reference.c_str(),
+                          (double)wo.reference_tol, wo.twins, (double)wo.twin_eps));
+    PetscCall(PetscLogStagePush(Log().solve));
+    PetscCall(RunWorkPrecision(lat, &burst, wo, &res));
+    PetscCall(PetscLogStagePop());
+    PetscCall(PetscPrintf(comm, "  reference: %s (%s; last change: MCR %.1e, state %.1e), MCR = %.10f, t_off = %.6f\n", res.reference.c_str(),
+                          res.reference_converged ? "converged" : "NOT converged", (double)res.reference_change[0],
+                          (double)res.reference_change[kWpNumObservables - 1], (double)res.reference_value[0], (double)res.reference_value[1]));
+    PetscCall(PetscPrintf(comm, "  predictability floor (%" PetscInt_FMT " twins, S x (1 + k %g)): MCR %.1e, t_off %.1e, state %.1e; finite-time Lyapunov %.3g /s%s\n",
+                          wo.twins, (double)wo.twin_eps, (double)res.spread[0], (double)res.spread[1], (double)res.spread[kWpNumObservables - 1],
+                          (double)res.lyapunov, res.spread[0] > 1e-3 ? " (chaotic: single-run MCRs are samples)" : ""));
+  }
 
   PetscCall(PetscLogStagePush(Log().write));
   PetscViewer v = out.Viewer();
@@ -100,14 +124,16 @@ PetscErrorCode WorkprecisionStudy(MPI_Comm comm)
   PetscCall(WriteIntArray(v, g, "rhs_evals", rhs));
   PetscCall(WriteIntArray(v, g, "steps", steps));
   PetscCall(WriteIntArray(v, g, "rejected_steps", rejected));
-  for (int q = 0; q < kWpNumObservables; q++) {
+  for (size_t q = 0; q < res.observables.size(); q++) {
     std::vector<PetscReal> e;
     for (const auto &r : res.rows) e.push_back(r.error[q]);
-    PetscCall(WriteArray(v, g, (std::string("error_") + kWpObservables[q]).c_str(), e));
-    PetscCall(WriteAttr(v, g, (std::string("spread_") + kWpObservables[q]).c_str(), res.spread[q]));
-    PetscCall(WriteAttr(v, g, (std::string("reference_change_") + kWpObservables[q]).c_str(), res.reference_change[q]));
-    PetscCall(WriteAttr(v, g, (std::string("reference_") + kWpObservables[q]).c_str(), res.reference_value[q]));
+    const std::string &name = res.observables[q];
+    PetscCall(WriteArray(v, g, ("error_" + name).c_str(), e));
+    PetscCall(WriteAttr(v, g, ("spread_" + name).c_str(), res.spread[q]));
+    PetscCall(WriteAttr(v, g, ("reference_change_" + name).c_str(), res.reference_change[q]));
+    PetscCall(WriteAttr(v, g, ("reference_" + name).c_str(), res.reference_value[q]));
   }
+  PetscCall(WriteAttr(v, g, "scene", wo.shooting ? "shooting" : "simulate"));
   PetscCall(WriteAttr(v, g, "reference", res.reference.c_str()));
   PetscCall(WriteAttr(v, g, "reference_converged", (PetscInt)res.reference_converged));
   PetscCall(WriteAttr(v, g, "reference_wall_seconds", res.reference_wall));
@@ -115,9 +141,12 @@ PetscErrorCode WorkprecisionStudy(MPI_Comm comm)
   PetscCall(WriteAttr(v, g, "twins", wo.twins));
   PetscCall(WriteAttr(v, g, "twin_eps", wo.twin_eps));
   PetscCall(WriteAttr(v, g, "repeats", wo.repeats));
-  PetscCall(WriteAttr(v, g, "amplitude", res.amplitude));
-  PetscCall(WriteAttr(v, g, "omega_ext", burst.Omega()));
-  PetscCall(WriteAttr(v, g, "energy_star", burst.EnergyStar()));
+  if (wo.shooting) PetscCall(WriteAttr(v, g, "nnm_energy", wo.nnm_energy));
+  else {
+    PetscCall(WriteAttr(v, g, "amplitude", res.amplitude));
+    PetscCall(WriteAttr(v, g, "omega_ext", burst.Omega()));
+    PetscCall(WriteAttr(v, g, "energy_star", burst.EnergyStar()));
+  }
   PetscCall(PetscTime(&t_end));
   PetscCall(out.Commit("workprecision", t_end - t_start));
   PetscCall(PetscLogStagePop());

@@ -57,7 +57,7 @@ pw = importlib.util.module_from_spec(spec)
 spec.loader.exec_module(pw)
 fig = pw.figure(h5py.File("wp1.h5", "r"))
 wall = g1["wall_seconds"][:]
-for ax, (o, _) in zip(fig.axes, pw.PANELS):
+for ax, (o, _) in zip(fig.axes, pw.PANELS["simulate"]):
     err = np.maximum(g1["error_" + o][:], 1e-17)
     lines = [l for l in ax.get_lines() if l.get_label() in acc]
     assert sorted(l.get_label() for l in lines) == sorted(acc), (o, [l.get_label() for l in lines])
