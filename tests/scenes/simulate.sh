@@ -32,6 +32,11 @@ b = g["simulate"].attrs
 assert abs(a["mcr"] - b["mcr"]) < 1e-8, (a["mcr"], b["mcr"])
 assert abs(a["t_off"] - b["t_off"]) < 1e-8
 assert np.abs(g["simulate/u"][:] - u).max() < 1e-8
+# the cost card: one solve, the run's own step and evaluation counts
+for n in ("sim1.h5", "sim2.h5"):
+    c, r = h5py.File(n, "r")["cost"].attrs, h5py.File(n, "r")["simulate"].attrs
+    assert c["sim_solves"] == 1 and c["sim_steps"] == r["steps"] and c["sim_force_evaluations"] == r["rhs_evals"], (n, dict(c))
+    assert c["sim_integrator"] in (b"symsplit bm4", "symsplit bm4") and c["sim_dt_max"] == 0.25 and c["wall_seconds"] > 0
 print("simulate scene OK: MCR", a["mcr"], "np2 diff", abs(a["mcr"] - b["mcr"]))
 PYEOF
 # Strongly nonlinear E* = 10: the linear amplitude rule misses E* (the lattice

@@ -63,5 +63,11 @@ for i in range(2):
                   f"({spread:.2e}); one run at reference accuracy: {ref:.6f}")
             assert abs(m - np.mean(twins)) <= 1e-12 * abs(m), (m, np.mean(twins))
             assert abs(a1["mcr_spread"][i, j] - spread) <= 1e-12 and spread > tol * m, (a1["mcr_spread"][i, j], spread)
+# the cost card: every rank's integrations summed (np2 too), the same work as the per-point counts
+for name, g in (("a1.h5", a1), ("a2.h5", a2)):
+    c = h5py.File(name, "r")["cost"].attrs
+    assert c["sim_force_evaluations"] == g["rhs_evals"][:].sum(), (name, c["sim_force_evaluations"], g["rhs_evals"][:].sum())
+    assert c["sim_integrator"] in (b"symsplit bm4", "symsplit bm4") and c["sim_rejected_steps"] == 0
+    assert 0 < c["error_estimate"] <= tol, c["error_estimate"]
 print("accuracy-aware sweep OK")
 PYEOF
