@@ -22,6 +22,15 @@ PetscErrorCode WorkprecisionStudyOptions(MPI_Comm comm)
   PetscBool store_u = PETSC_FALSE;
   PetscInt stride = 1;
   PetscFunctionBeginUser;
+  PetscCall(WorkPrecisionOptionsFromOptions(comm, &wo));
+  if (wo.shooting) { // the insulated NNM: lattice, modes, flow, shooting, continuation, Floquet
+    NnmSetup nnm;
+    FloquetOptions flo;
+    PetscCall(nnm.DeclareOptions(comm));
+    PetscCall(FloquetOptionsFromOptions(comm, &flo));
+    PetscCall(DeclareOutputOptions(comm, "workprecision"));
+    PetscFunctionReturn(0);
+  }
   PetscCall(LatticeParamsFromOptions(comm, &lp));
   PetscCall(ToneBurstOptionsFromOptions(comm, lp, &fo));
   PetscCall(SimulationOptionsFromOptions(comm, &so));
@@ -32,13 +41,6 @@ PetscErrorCode WorkprecisionStudyOptions(MPI_Comm comm)
   PetscCall(PetscOptionsInt("-store_u_stride", "Ignored here (a simulate scene's option)", NULL, stride, &stride, NULL));
   PetscOptionsEnd();
   PetscCall(LinearModesOptionsFromOptions(comm, &mo));
-  PetscCall(WorkPrecisionOptionsFromOptions(comm, &wo));
-  if (wo.shooting) { // the insulated NNM: lattice, modes, flow, shooting, continuation, Floquet
-    NnmSetup nnm;
-    FloquetOptions flo;
-    PetscCall(nnm.DeclareOptions(comm));
-    PetscCall(FloquetOptionsFromOptions(comm, &flo));
-  }
   PetscCall(DeclareEPS(comm, "linear_"));
   PetscCall(DeclareTS(comm, "sim_"));
   PetscCall(DeclareOutputOptions(comm, "workprecision"));
