@@ -117,6 +117,7 @@ T = {
     "wp_configs": ("strings", 0, 0, [" -sim_ts_type symsplit -sim_ts_dt 0.2", " -sim_ts_type rk -sim_ts_rtol 1e-6 -sim_ts_atol 1e-6",
                                       " -sim_ts_type rkn -sim_ts_rtol 1e-6 -sim_ts_atol 1e-6"]),
     "wp_reference": ("strings", 0, 0, [" -sim_ts_type rkn -sim_ts_rkn_scheme dep1210", " -sim_ts_type rkn -sim_ts_rkn_scheme dep86"]),
+    "wp_scene": ("enum", 0, 0, ["simulate", "shooting"]),
     "wp_reference_tol": ("real", 1e-9, 1e-7), "wp_reference_tol_min": ("real", 1e-10, 1e-9), "wp_reference_dt_max": ("real", 0.05, 1.0),
     "wp_reference_agreement": ("real", 1e-9, 1e-3), "wp_repeats": ("int", 1, 2), "wp_twins": ("int", 1, 2), "wp_twin_eps": ("real", 1e-12, 1e-6),
 }
