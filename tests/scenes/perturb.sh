@@ -28,7 +28,7 @@ assert (np.abs(wa[1] - np.sqrt(3)) > 1e-4).all(), wa[1] - np.sqrt(3)
 assert np.array_equal(f1["chiral/mcr"][0], f1["achiral/mcr"][0])
 print("perturb scene OK: chiral omega - sqrt 3", np.abs(w - np.sqrt(3)).max(), "achiral", wa[1] - np.sqrt(3))
 PYEOF
-$PY "$SRC/src/plots/plot_perturb.py" p1.h5 p.png
+$PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_perturb.py" p1.h5 p.png
 set +e; "$NLTOPO" "${OPTS[@]}" -lattice_perturbation chiral -output bad.h5 > so.txt 2> se.txt; rc=$?; set -e
 [ $rc -ne 0 ] && [ "$(grep -c . se.txt)" -eq 1 ] && grep -q -- "-lattice_perturbation is set by -study perturb" se.txt || { cat se.txt; exit 1; }
 [ ! -e bad.h5 ]
