@@ -44,7 +44,7 @@ PetscErrorCode CostRecordSolve(TS ts, PetscInt evals)
   TSAdapt adapt;
   TSAdaptType atype;
   PetscInt steps, rejected;
-  PetscReal t0 = 0, t1, rtol, atol;
+  PetscReal rtol, atol;
   PetscMPIInt rank;
   PetscFunctionBeginUser;
   const PetscInt counted = g.pending;
@@ -60,7 +60,6 @@ PetscErrorCode CostRecordSolve(TS ts, PetscInt evals)
   PetscCall(TSGetType(ts, &type));
   PetscCall(TSGetStepNumber(ts, &steps));
   PetscCall(TSGetStepRejections(ts, &rejected));
-  PetscCall(TSGetTime(ts, &t1));
   PetscCall(TSGetAdapt(ts, &adapt));
   PetscCall(TSAdaptGetType(adapt, &atype));
   std::string integrator = type, accuracy;
@@ -81,7 +80,6 @@ PetscErrorCode CostRecordSolve(TS ts, PetscInt evals)
   }
   if (!e.solves) e.integrator = integrator, e.accuracy = accuracy;
   else if (e.integrator != integrator || e.accuracy != accuracy) e.integrator = "(several)", e.accuracy = "(several)";
-  (void)t0;
   if (fixed && steps > 0) {
     PetscReal dt;
     PetscCall(TSGetTimeStep(ts, &dt));

@@ -1,8 +1,10 @@
 #include "studies/workprecision.hpp"
 #include "core/log.hpp"
+#include "core/gather.hpp"
 #include "studies/wp_configs.hpp"
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <sstream>
 
@@ -192,17 +194,23 @@ PetscErrorCode RunWorkPrecision(const Lattice &lat, ToneBurst *burst, const Work
   bool have_prev = false;
   PetscReal tol = o.reference_tol, cap = o.reference_dt_max;
   char tol_s[32], cap_s[32];
-  for (;;) {
-    PetscCall(PetscSNPrintf(tol_s, sizeof(tol_s), "%g", (double)tol));
-    PetscCall(PetscSNPrintf(cap_s, sizeof(cap_s), "%.17g", (double)cap));
+  // the reference integrator at rtol = atol = t with the steps capped at h
+  auto reference = [&ref_opts](PetscReal t, PetscReal h) {
+    char ts[32], hs[32];
     OptionPairs opts = ref_opts;
-    opts.push_back({"-sim_ts_rtol", tol_s});
-    opts.push_back({"-sim_ts_atol", tol_s});
-    opts.push_back({"-sim_ts_adapt_dt_max", cap_s});
+    std::snprintf(ts, sizeof(ts), "%g", (double)t);
+    std::snprintf(hs, sizeof(hs), "%.17g", (double)h);
+    opts.push_back({"-sim_ts_rtol", ts});
+    opts.push_back({"-sim_ts_atol", ts});
+    opts.push_back({"-sim_ts_adapt_dt_max", hs});
+    return opts;
+  };
+  for (;;) {
     ScopedConfig sc;
-    PetscCall(sc.Apply(opts));
+    PetscCall(sc.Apply(reference(tol, cap)));
     PetscCall(RunScene(lat, burst, !have_prev, &ref, &res->reference_wall));
     PetscCall(sc.Restore());
+    PetscCall(PetscSNPrintf(tol_s, sizeof(tol_s), "%g", (double)tol));
     PetscCall(PetscSNPrintf(cap_s, sizeof(cap_s), "%g", (double)cap));
     res->reference = o.reference + " -sim_ts_rtol " + tol_s + " -sim_ts_atol " + tol_s + " -sim_ts_adapt_dt_max " + cap_s;
     if (have_prev) {
@@ -224,18 +232,12 @@ PetscErrorCode RunWorkPrecision(const Lattice &lat, ToneBurst *burst, const Work
   res->amplitude = burst->Amplitude();
   for (int k = 0; k < kWpNumObservables - 1; k++) res->reference_value[k] = ref.obs[k];
   PetscCall(VecNorm(ref.z, NORM_2, &res->reference_value[kWpNumObservables - 1]));
-  PetscCall(GatherAll(ref.z, &res->reference_z));
+  PetscCall(GatherVec(ref.z, true, &res->reference_z));
 
   // The predictability floor: twins of the reference with S x (1 + k eps).
   {
-    PetscCall(PetscSNPrintf(tol_s, sizeof(tol_s), "%g", (double)tol));
-    PetscCall(PetscSNPrintf(cap_s, sizeof(cap_s), "%.17g", (double)cap));
-    OptionPairs opts = ref_opts;
-    opts.push_back({"-sim_ts_rtol", tol_s});
-    opts.push_back({"-sim_ts_atol", tol_s});
-    opts.push_back({"-sim_ts_adapt_dt_max", cap_s});
     ScopedConfig sc;
-    PetscCall(sc.Apply(opts));
+    PetscCall(sc.Apply(reference(tol, cap)));
     std::vector<PetscReal> lo(ref.obs, ref.obs + kWpNumObservables - 1), hi = lo, lyap;
     PetscReal state_spread = 0;
     for (PetscInt j = 0; j < o.twins; j++) {
@@ -264,30 +266,15 @@ PetscErrorCode RunWorkPrecision(const Lattice &lat, ToneBurst *burst, const Work
 
   // Every configuration: median wall of o.repeats runs, work counters, errors.
   for (size_t c = 0; c < o.configs.size(); c++) {
-    OptionPairs opts;
-    PetscCall(ParseConfig(comm, "-wp_configs: configuration", o.configs[c], &opts));
     WorkPrecisionRow row;
-    row.config = o.configs[c];
-    Label(opts, &row.method, &row.accuracy);
-    ScopedConfig sc;
-    PetscCall(sc.Apply(opts));
-    std::vector<PetscReal> walls;
     Outcome out;
-    for (PetscInt k = 0; k < o.repeats; k++) {
-      PetscReal w;
-      PetscCall(RunScene(lat, burst, false, &out, &w));
-      walls.push_back(w);
-    }
-    PetscCall(sc.CheckUsed(comm, "-wp_configs: configuration", o.configs[c]));
-    PetscCall(sc.Restore());
-    std::sort(walls.begin(), walls.end());
-    row.wall = walls.size() % 2 ? walls[walls.size() / 2] : 0.5 * (walls[walls.size() / 2 - 1] + walls[walls.size() / 2]);
+    PetscCall(TimeConfiguration(comm, o.configs[c], false, o.repeats, [&](PetscReal *w) { return RunScene(lat, burst, false, &out, w); }, &row));
     row.rhs_evals = out.r.counters.rhs;
     row.steps = out.r.steps;
     row.rejected = out.r.rejected;
     PetscCall(Errors(out, ref, &row.error));
     row.value.assign(out.obs, out.obs + kWpNumObservables - 1);
-    PetscCall(GatherAll(out.z, &row.z_final));
+    PetscCall(GatherVec(out.z, true, &row.z_final));
     PetscCall(PetscPrintf(comm, "  %-40s %-10s %9.4f s %9" PetscInt_FMT " RHS  MCR error %.2e  state error %.2e\n", row.method.c_str(), row.accuracy.c_str(),
                           (double)row.wall, row.rhs_evals, (double)row.error[0], (double)row.error[kWpNumObservables - 1]));
     res->rows.push_back(row);

@@ -3,6 +3,7 @@
 #include "stability/floquet.hpp"
 #include "studies/nnm_setup.hpp"
 #include "studies/workprecision.hpp"
+#include "core/gather.hpp"
 #include "studies/wp_configs.hpp"
 #include "core/cost.hpp"
 #include <memory>
@@ -154,7 +155,7 @@ PetscErrorCode RunWorkPrecisionShooting(MPI_Comm comm, const WorkPrecisionOption
   }
   res->reference_value = {ref.omega, 0, ref.max_modulus, ref.det};
   PetscCall(Closure(*ref_flow, ref, &res->reference_value[1]));
-  PetscCall(GatherAll(ref.z0, &res->reference_z));
+  PetscCall(GatherVec(ref.z0, true, &res->reference_z));
   // The floor: an isolated periodic orbit at a given energy is a well-posed
   // problem (nothing amplifies a perturbation), so below the reference's own
   // last change an error means nothing.
@@ -162,35 +163,29 @@ PetscErrorCode RunWorkPrecisionShooting(MPI_Comm comm, const WorkPrecisionOption
 
   // Every configuration from the same guess.
   for (size_t c = 0; c < o.configs.size(); c++) {
-    OptionPairs opts;
-    PetscCall(ParseConfig(comm, "-wp_configs: configuration", o.configs[c], &opts, true));
     WorkPrecisionRow row;
-    row.config = o.configs[c];
-    Label(opts, &row.method, &row.accuracy);
-    ScopedConfig sc;
-    PetscCall(sc.Apply(opts));
-    std::vector<PetscReal> walls;
     Orbit orb;
-    PetscInt s0, e0, s1, e1;
-    for (PetscInt k = 0; k < o.repeats; k++) {
-      CostTotals(&s0, &e0);
-      PetscCall(SolveOrbit(lat, last.z, last.period, o.nnm_energy, &orb));
-      CostTotals(&s1, &e1);
-      walls.push_back(orb.wall);
-    }
+    PetscInt s0 = 0, e0 = 0, s1 = 0, e1 = 0;
+    PetscCall(TimeConfiguration(
+      comm, o.configs[c], true, o.repeats,
+      [&](PetscReal *w) -> PetscErrorCode {
+        PetscFunctionBeginUser;
+        CostTotals(&s0, &e0);
+        PetscCall(SolveOrbit(lat, last.z, last.period, o.nnm_energy, &orb));
+        CostTotals(&s1, &e1);
+        *w = orb.wall;
+        PetscFunctionReturn(0);
+      },
+      &row));
     PetscInt work[2] = {s1 - s0, e1 - e0}; // one solve's integration steps and force evaluations (rank 0 counts them)
     PetscCallMPI(MPI_Bcast(work, 2, MPIU_INT, 0, comm));
-    PetscCall(sc.CheckUsed(comm, "-wp_configs: configuration", o.configs[c]));
-    PetscCall(sc.Restore());
-    std::sort(walls.begin(), walls.end());
-    row.wall = walls.size() % 2 ? walls[walls.size() / 2] : 0.5 * (walls[walls.size() / 2 - 1] + walls[walls.size() / 2]);
     row.steps = work[0];
     row.rhs_evals = work[1];
     PetscReal closure;
     PetscCall(Closure(*ref_flow, orb, &closure));
     row.error = {Rel(orb.omega, ref.omega), closure, Rel(orb.max_modulus, ref.max_modulus), orb.det};
     row.value = {orb.omega, closure, orb.max_modulus, orb.det};
-    PetscCall(GatherAll(orb.z0, &row.z_final));
+    PetscCall(GatherVec(orb.z0, true, &row.z_final));
     PetscCall(PetscPrintf(comm, "  %-40s %-12s %9.4f s  omega error %.2e  closure %.2e  max|mu| error %.2e  |det M - 1| %.1e\n", row.method.c_str(),
                           row.accuracy.c_str(), (double)row.wall, (double)row.error[0], (double)row.error[1], (double)row.error[2], (double)row.error[3]));
     res->rows.push_back(row);

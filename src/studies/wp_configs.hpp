@@ -3,6 +3,7 @@
 // validated, applied to the options database for one scope and restored),
 // their labels, and the error measures.
 #include "core/handle.hpp"
+#include "studies/workprecision.hpp"
 #include <petscvec.h>
 #include <algorithm>
 #include <cctype>
@@ -140,23 +141,31 @@ inline void Label(const OptionPairs &opts, std::string *method, std::string *acc
 }
 
 
-// Every entry of x on every rank (small lattices: the tests' exact solutions).
-inline PetscErrorCode GatherAll(Vec x, std::vector<PetscReal> *out)
+// One configuration of a study: parsed, labelled, applied for its runs
+// (run(&wall) o.repeats times; it keeps the last run's results itself),
+// checked that every option of it was read, the database restored; the row
+// gets the configuration, its labels and the median wall time.
+template <class RunFn>
+inline PetscErrorCode TimeConfiguration(MPI_Comm comm, const std::string &cfg, bool shooting, PetscInt repeats, RunFn run, WorkPrecisionRow *row)
 {
-  VecScatter sc;
-  Vec all;
-  const PetscScalar *a;
-  PetscInt n;
+  OptionPairs opts;
+  ScopedConfig sc;
+  std::vector<PetscReal> walls;
   PetscFunctionBeginUser;
-  PetscCall(VecScatterCreateToAll(x, &sc, &all));
-  PetscCall(VecScatterBegin(sc, x, all, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(sc, x, all, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGetSize(all, &n));
-  PetscCall(VecGetArrayRead(all, &a));
-  out->assign(a, a + n);
-  PetscCall(VecRestoreArrayRead(all, &a));
-  PetscCall(VecScatterDestroy(&sc));
-  PetscCall(VecDestroy(&all));
+  PetscCall(ParseConfig(comm, "-wp_configs: configuration", cfg, &opts, shooting));
+  row->config = cfg;
+  Label(opts, &row->method, &row->accuracy);
+  PetscCall(sc.Apply(opts));
+  for (PetscInt k = 0; k < repeats; k++) {
+    PetscReal w;
+    PetscCall(run(&w));
+    walls.push_back(w);
+  }
+  PetscCall(sc.CheckUsed(comm, "-wp_configs: configuration", cfg));
+  PetscCall(sc.Restore());
+  std::sort(walls.begin(), walls.end());
+  const size_t m = walls.size() / 2;
+  row->wall = walls.size() % 2 ? walls[m] : 0.5 * (walls[m - 1] + walls[m]);
   PetscFunctionReturn(0);
 }
 

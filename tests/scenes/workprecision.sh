@@ -16,7 +16,6 @@ run1 "${SIM[@]}" -sim_ts_type rkn -sim_ts_rkn_scheme dep86 -sim_ts_rtol 1e-8 -si
 $PY "$SRC/src/plots/plot_workprecision.py" wp1.h5 wp.png > /dev/null
 
 $PY - "$SRC" <<'PYEOF'
-import sys, importlib.util
 import h5py, numpy as np
 g1, g2 = (h5py.File(n, "r")["workprecision"] for n in ("wp1.h5", "wp2.h5"))
 nc = g1["config"].shape[0]
@@ -51,26 +50,6 @@ for name, key in (("c_bm4.h5", "-sim_ts_symsplit_scheme bm4 -sim_ts_dt 0.4"), ("
         reported = g1["error_" + o][i]
         print(f"{cfg[i]}: {o} error reported {reported:.3e}, independent {independent:.3e}")
         assert abs(reported / independent - 1) < 0.1, (cfg[i], o, reported, independent)
-# the figure: one curve per method in each panel, holding that method's (error, wall) pairs; limits cover them and the floor
-spec = importlib.util.spec_from_file_location("pw", sys.argv[1] + "/src/plots/plot_workprecision.py")
-pw = importlib.util.module_from_spec(spec)
-spec.loader.exec_module(pw)
-fig = pw.figure(h5py.File("wp1.h5", "r"))
-wall = g1["wall_seconds"][:]
-for ax, (o, _) in zip(fig.axes, pw.PANELS["simulate"]):
-    err = np.maximum(g1["error_" + o][:], 1e-17)
-    lines = [l for l in ax.get_lines() if l.get_label() in acc]
-    assert sorted(l.get_label() for l in lines) == sorted(acc), (o, [l.get_label() for l in lines])
-    for l in lines:
-        idx = [k for k, m in enumerate(method) if m == l.get_label()]
-        assert sorted(zip(l.get_xdata(), l.get_ydata())) == sorted(zip(err[idx], wall[idx])), (o, l.get_label())
-    x0, x1 = ax.get_xlim()
-    y0, y1 = ax.get_ylim()
-    assert x0 <= err.min() and x1 >= err.max() and y0 <= wall.min() and y1 >= wall.max(), (o, ax.get_xlim(), ax.get_ylim())
-    floor = g1.attrs["spread_" + o]
-    if floor > 0:
-        band = [p for p in ax.patches if p.get_label() == "predictability floor"]
-        assert len(band) == 1 and abs(band[0].get_xy()[:, 0].max() - floor) <= 1e-12 * floor, (o, floor)
-        assert x0 <= floor, (o, x0, floor)
 print("workprecision scene OK:", nc, "configurations,", len(acc), "methods, floor", g1.attrs["spread_mcr"])
 PYEOF
+$PY "$SRC/tests/scenes/wp_figure_check.py" "$SRC" wp1.h5

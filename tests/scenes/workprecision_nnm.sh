@@ -3,14 +3,14 @@
 # the reference frequency is the eigenfrequency of K (from -study linear), every
 # multiplier lies on the unit circle, and the errors fall at each method's order
 # (bm4 4, bm6 6) as the steps per period double; the splitting's monodromy is
-# symplectic (det M = 1 to rounding); 1 and 2 ranks agree; the figure holds it.
+# symplectic (det M = 1 to rounding); 1 and 2 ranks agree; the figure holds it
+# (wp_figure_check.py).
 source "$(dirname "$0")/common.bash"
 L=(-lattice_cubic 0 -lattice_cells 5)
 run1 -study linear "${L[@]}" -output lin.h5 > /dev/null
 run1 -options_file "$SRC/options/workprecision_nnm.opts" "${L[@]}" -wp_repeats 1 -output s1.h5 | tee s1.txt
 run2 -options_file "$SRC/options/workprecision_nnm.opts" "${L[@]}" -wp_repeats 1 -output s2.h5 > s2.txt
 $PY - "$SRC" <<'PYEOF'
-import sys, importlib.util
 import h5py, numpy as np
 w = h5py.File("lin.h5", "r")["linear/omega"][:]
 g1, g2 = (h5py.File(n, "r")["workprecision"] for n in ("s1.h5", "s2.h5"))
@@ -37,19 +37,6 @@ for k, m in enumerate(method):
 for o in ("omega", "closure", "max_modulus", "det"):
     x, y = g1["error_" + o][:], g2["error_" + o][:]
     assert np.all(np.abs(x - y) <= 1e-6 * np.abs(x) + 1e-13), (o, x, y)
-spec = importlib.util.spec_from_file_location("pw", sys.argv[1] + "/src/plots/plot_workprecision.py")
-pw = importlib.util.module_from_spec(spec)
-spec.loader.exec_module(pw)
-fig = pw.figure(h5py.File("s1.h5", "r"))
-wall = g1["wall_seconds"][:]
-for ax, (o, _) in zip(fig.axes, pw.PANELS["shooting"]):
-    ex = np.maximum(g1["error_" + o][:], 1e-17)
-    lines = [l for l in ax.get_lines() if l.get_label() in set(method)]
-    assert sorted(l.get_label() for l in lines) == sorted(set(method)), o
-    for l in lines:
-        idx = [k for k, m in enumerate(method) if m == l.get_label()]
-        assert sorted(zip(l.get_xdata(), l.get_ydata())) == sorted(zip(ex[idx], wall[idx])), (o, l.get_label())
-    x0, x1 = ax.get_xlim()
-    assert x0 <= ex.min() and x1 >= ex.max(), (o, ax.get_xlim())
 print("workprecision shooting scene OK")
 PYEOF
+$PY "$SRC/tests/scenes/wp_figure_check.py" "$SRC" s1.h5
