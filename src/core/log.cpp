@@ -7,13 +7,10 @@ static bool g_registered = false;
 
 PetscErrorCode LogRegister()
 {
-  PetscClassId cid;
   PetscFunctionBeginUser;
   if (g_registered) PetscFunctionReturn(0);
-  PetscCall(PetscClassIdRegister("nltopo", &cid));
-  PetscCall(PetscLogEventRegister("RhsLinear", cid, &g_log.rhs_linear));
-  PetscCall(PetscLogEventRegister("RhsCubic", cid, &g_log.rhs_cubic));
-  PetscCall(PetscLogEventRegister("RhsForcing", cid, &g_log.rhs_forcing));
+  PetscCall(PetscClassIdRegister("nltopo", &g_log.classid));
+  const PetscClassId cid = g_log.classid;
   PetscCall(PetscLogEventRegister("Energy", cid, &g_log.energy));
   PetscCall(PetscLogEventRegister("StateJacobian", cid, &g_log.jacobian));
   PetscCall(PetscLogEventRegister("LinearModes", cid, &g_log.eigen));

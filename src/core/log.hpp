@@ -6,7 +6,8 @@
 namespace nltopo {
 
 struct LogEvents {
-  PetscLogEvent rhs_linear, rhs_cubic, rhs_forcing, energy, jacobian, eigen, bloch, output, diagnostics, variational, floquet, mf_pc;
+  PetscClassId classid; // the effects register their own events (RhsLinear, RhsCubic, ...) with it
+  PetscLogEvent energy, jacobian, eigen, bloch, output, diagnostics, variational, floquet, mf_pc;
   PetscLogStage setup, solve, analysis, write;
 };
 

@@ -2,7 +2,7 @@
 // The Gaussian tone burst of model.md ("Forcing"):
 //   F(t) = eta * S * cos(omega t) * exp(-((t - t0)/tau)^2),  tau = tau_periods * 2 pi/omega, t0 = t0_taus * tau,
 // switched off for good the first time E(t) >= E*. eta is a profile vector.
-#include "lattice/lattice.hpp"
+#include "effects/effect.hpp"
 #include <vector>
 
 namespace nltopo {
@@ -59,6 +59,22 @@ private:
   bool from_rule_ = false;
   std::vector<PetscInt> idx_;     // owned sites with eta != 0 (global index)
   std::vector<PetscScalar> eta_;
+};
+
+// The tone burst as an effect: a[i] += eta_i S g(t), non-conservative, no
+// tangent. The simulation switches it off at the cut-off (effects/rhs.hpp).
+class ForcingEffect : public Effect {
+public:
+  explicit ForcingEffect(ToneBurst *b) : b_(b) {}
+  const char *Name() const override { return "forcing"; }
+  const char *LogName() const override { return "RhsForcing"; }
+  std::string EnabledBy() const override { return "-force_profile"; }
+  bool Conservative() const override { return false; }
+  void AddAcceleration(PetscReal t, const PetscScalar *, const PetscScalar *, PetscScalar *a) const override { b_->Add(t, a); }
+  ToneBurst *Burst() const { return b_; }
+
+private:
+  ToneBurst *b_;
 };
 
 // Amplitude rule (README.md "Amplitude rule"): the energy a unit-amplitude

@@ -1,52 +1,53 @@
 #include "effects/rhs.hpp"
-#include "core/log.hpp"
+#include <cstring>
 
 namespace nltopo {
 
-Rhs::Rhs(const Lattice &lat, const ToneBurst *forcing) : lat_(lat), forcing_(forcing && forcing->Present() ? forcing : nullptr), cubic_(lat.HasCubic()) {}
-
-PetscErrorCode Rhs::AddLocalEffects(PetscReal t, const PetscScalar *u, PetscScalar *a)
+Rhs::Rhs(const EffectList &fx) : fx_(fx), calls_(fx.AllOn()), needs_v_(fx.VelocityDependent())
 {
-  PetscFunctionBeginUser;
-  if (cubic_) {
-    PetscCall(PetscLogEventBegin(Log().rhs_cubic, 0, 0, 0, 0));
-    count_.cubic++;
-    lat_.AddCubicAcceleration(u, a);
-    PetscCall(PetscLogFlops(10.0 * lat_.OwnedCount()));
-    PetscCall(PetscLogEventEnd(Log().rhs_cubic, 0, 0, 0, 0));
+  for (size_t k = 0; k < fx.Size(); k++)
+    if (!std::strcmp(fx.At(k).Name(), "forcing")) forcing_ = (PetscInt)k;
+}
+
+EffectCounters Rhs::Counters() const
+{
+  EffectCounters c;
+  c.rhs = rhs_;
+  for (size_t k = 0; k < fx_.Size(); k++) {
+    const char *n = fx_.At(k).Name();
+    PetscInt *slot = !std::strcmp(n, "linear") ? &c.linear : !std::strcmp(n, "cubic") ? &c.cubic : !std::strcmp(n, "forcing") ? &c.forcing : !std::strcmp(n, "damping") ? &c.damping : nullptr;
+    if (slot) *slot = calls_.count[k];
   }
-  if (forcing_) {
-    PetscCall(PetscLogEventBegin(Log().rhs_forcing, 0, 0, 0, 0));
-    count_.forcing++;
-    forcing_->Add(t, a);
-    PetscCall(PetscLogEventEnd(Log().rhs_forcing, 0, 0, 0, 0));
-  }
-  PetscFunctionReturn(0);
+  return c;
 }
 
 PetscErrorCode Rhs::Accelerate(PetscReal t, Vec x, PetscScalar *a)
 {
-  const PetscScalar *u;
+  const Lattice &lat = fx_.Lat();
+  const PetscScalar *u, *xa = NULL, *v = NULL;
   Vec ul;
   PetscFunctionBeginUser;
-  PetscCall(lat_.GetGhostedU(x, &ul, &u));
-  PetscCall(PetscLogEventBegin(Log().rhs_linear, 0, 0, 0, 0));
-  count_.linear++;
-  lat_.LinearAcceleration(u, a); // -K u as a stencil over the bond rule of K
-  PetscCall(PetscLogFlops(5.0 * lat_.OwnedCount()));
-  PetscCall(PetscLogEventEnd(Log().rhs_linear, 0, 0, 0, 0));
-  PetscCall(AddLocalEffects(t, u, a));
-  PetscCall(lat_.RestoreGhostedU(x, &ul, &u));
+  PetscCall(lat.GetGhostedU(x, &ul, &u));
+  if (needs_v_) { // the v half of the state x, by global site
+    PetscInt n;
+    PetscCall(VecGetLocalSize(x, &n));
+    PetscCheck(n == 2 * lat.OwnedCount(), lat.Comm(), PETSC_ERR_ARG_WRONG, "a velocity-dependent effect needs the whole state [u, v]");
+    PetscCall(VecGetArrayRead(x, &xa));
+    v = xa + lat.OwnedCount() - lat.OwnedStart();
+  }
+  PetscCall(fx_.Acceleration(t, u, v, a, &calls_));
+  if (xa) PetscCall(VecRestoreArrayRead(x, &xa));
+  PetscCall(lat.RestoreGhostedU(x, &ul, &u));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode Rhs::Evaluate(PetscReal t, Vec z, Vec f)
 {
-  const PetscInt xm = lat_.OwnedCount(), xs = lat_.OwnedStart();
+  const PetscInt xm = fx_.Lat().OwnedCount(), xs = fx_.Lat().OwnedStart();
   const PetscScalar *za;
   PetscScalar *fa;
   PetscFunctionBeginUser;
-  count_.rhs++;
+  rhs_++;
   PetscCall(VecGetArray(f, &fa));
   PetscCall(VecGetArrayRead(z, &za));
   PetscCall(PetscArraycpy(fa, za + xm, xm)); // u' = v
@@ -59,8 +60,8 @@ PetscErrorCode Rhs::Evaluate(PetscReal t, Vec z, Vec f)
 PetscErrorCode Rhs::Acceleration(PetscReal t, Vec x, PetscScalar *a)
 {
   PetscFunctionBeginUser;
-  count_.rhs++;
-  PetscCall(Accelerate(t, x, a - lat_.OwnedStart()));
+  rhs_++;
+  PetscCall(Accelerate(t, x, a - fx_.Lat().OwnedStart()));
   PetscFunctionReturn(0);
 }
 
@@ -68,9 +69,9 @@ PetscErrorCode Rhs::Momentum(PetscReal t, Vec q, Vec pdot)
 {
   PetscScalar *pa;
   PetscFunctionBeginUser;
-  count_.rhs++;
+  rhs_++;
   PetscCall(VecGetArray(pdot, &pa));
-  PetscCall(Accelerate(t, q, pa - lat_.OwnedStart()));
+  PetscCall(Accelerate(t, q, pa - fx_.Lat().OwnedStart()));
   PetscCall(VecRestoreArray(pdot, &pa));
   PetscFunctionReturn(0);
 }

@@ -34,18 +34,16 @@ PetscErrorCode Lattice::Setup(MPI_Comm comm, const LatticeParams &p)
       if (b >= 0 && b < N - 1) kb_[b - xs_ + 1] = bonds[b];
     kd_.assign(diag.begin() + xs_, diag.begin() + xs_ + xm_);
   }
-  gb_.assign(xm_ + 1, 0.0);
-  for (PetscInt b = std::max<PetscInt>(xs_ - 1, 0); b < std::min(xs_ + xm_, N - 1); b++)
-    if (p.Stiff(b)) gb_[b - xs_ + 1] = p.Gamma;
   PetscCall(ISCreateStride(comm, xm_, 2 * xs_, 1, is_u_.out()));
   PetscCall(ISCreateStride(comm, xm_, 2 * xs_ + xm_, 1, is_v_.out()));
 
   PetscCall(DMCreateMatrix(da_, K_.out()));
   PetscCall(PetscObjectSetName((PetscObject)K_.get(), "K"));
-  PetscCall(AssembleTangentStiffness(NULL, K_));
-  PetscCall(CreateStateMatrix(L_.out()));
-  PetscCall(PetscObjectSetName((PetscObject)L_.get(), "L"));
-  PetscCall(AssembleStateJacobian(NULL, L_));
+  {
+    std::vector<PetscScalar> kb(kb_.size());
+    for (size_t b = 0; b < kb_.size(); b++) kb[b] = -kb_[b]; // K(b, b+1) = -k_b
+    PetscCall(AssembleNearestNeighbour(kd_.data() - xs_, kb.data() - xs_ + 1, NULL, K_, true, 0));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -116,176 +114,52 @@ PetscErrorCode Lattice::RestoreGhostedU(Vec x, Vec *ul, const PetscScalar **u) c
   PetscFunctionReturn(0);
 }
 
-void Lattice::LinearAcceleration(const PetscScalar *u, PetscScalar *a) const
+void Lattice::KRow(PetscInt i, PetscScalar c[3]) const
 {
-  const PetscInt N = p_.N(), lo = std::max<PetscInt>(xs_, 1), hi = std::min(xs_ + xm_, N - 1);
-  const PetscReal *kb = kb_.data() - xs_ + 1; // kb[b]: bond b
-  const PetscReal *kd = kd_.data() - xs_;     // kd[i]: K(i, i)
-  for (PetscInt i = lo; i < hi; i++) a[i] = kb[i - 1] * u[i - 1] - kd[i] * u[i] + kb[i] * u[i + 1];
-  if (xs_ == 0) a[0] = -kd[0] * u[0] + (N > 1 ? kb[0] * u[1] : 0.0);
-  if (xs_ + xm_ == N && N > 1) a[N - 1] = kb[N - 2] * u[N - 2] - kd[N - 1] * u[N - 1];
-}
-
-void Lattice::AddCubicAcceleration(const PetscScalar *u, PetscScalar *a) const
-{
-  // Bond b pulls site b back and site b+1 forward with F_b = Gamma_b d^3,
-  // d = u_b - u_{b+1} (Gamma_b = 0 off the stiff bonds): a_i += F_{i-1} - F_i.
-  // Each bond's force is formed by both its sites, so the loop has no branch
-  // and vectorises (the bond list it replaced did not).
-  const PetscInt N = p_.N(), lo = std::max<PetscInt>(xs_, 1), hi = std::min(xs_ + xm_, N - 1);
-  const PetscReal *gb = gb_.data() - xs_ + 1; // gb[b]: bond b
-  for (PetscInt i = lo; i < hi; i++) {
-    const PetscScalar dl = u[i - 1] - u[i], dr = u[i] - u[i + 1];
-    a[i] += gb[i - 1] * dl * dl * dl - gb[i] * dr * dr * dr;
-  }
-  if (xs_ == 0 && N > 1) {
-    const PetscScalar d = u[0] - u[1];
-    a[0] -= gb[0] * d * d * d;
-  }
-  if (xs_ + xm_ == N && N > 1) {
-    const PetscScalar d = u[N - 2] - u[N - 1];
-    a[N - 1] += gb[N - 2] * d * d * d;
-  }
-}
-
-PetscErrorCode Lattice::Energy(Vec z, EnergyParts *e) const
-{
-  const PetscScalar *u, *zl;
-  Vec ul;
-  EnergyParts loc;
-  const PetscInt N = p_.N();
-  PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(Log().energy, 0, 0, 0, 0));
-  PetscCall(GetGhostedU(z, &ul, &u));
-  PetscCall(VecGetArrayRead(z, &zl));
-  const PetscScalar *v = zl + xm_;
-  const PetscReal *kd = kd_.data() - xs_, *kb = kb_.data() - xs_ + 1; // kd[i]: K(i, i); kb[b]: bond b
-  const PetscInt lo = xs_, hi = xs_ + xm_, bhi = std::min(hi, N - 1); // bond b (b, b+1) belongs to the owner of site b
-  PetscReal kin = 0, lin = 0, quart = 0;
-  // The sums in vector lanes (a scalar sum is bound by the add latency; the
-  // lanes reassociate it, a rounding-level change).
-#pragma omp simd reduction(+ : kin, lin)
-  for (PetscInt i = lo; i < hi; i++) {
-    const PetscScalar ui = u[i], vi = v[i - lo];
-    kin += vi * vi;
-    lin += kd[i] * ui * ui;
-  }
-  const PetscReal *gb = gb_.data() - xs_ + 1; // gb[b]: Gamma of bond b (0 off the stiff bonds)
-#pragma omp simd reduction(+ : lin, quart)
-  for (PetscInt b = lo; b < bhi; b++) {
-    const PetscScalar d = u[b] - u[b + 1], d2 = d * d;
-    lin -= 2 * kb[b] * u[b] * u[b + 1]; // the two off-diagonal entries of bond b in u.K u
-    quart += gb[b] * d2 * d2;
-  }
-  loc.kinetic = 0.5 * kin;
-  loc.linear = 0.5 * lin;
-  loc.quartic = 0.25 * quart;
-  PetscCall(VecRestoreArrayRead(z, &zl));
-  PetscCall(RestoreGhostedU(z, &ul, &u));
-  if (size_ == 1) *e = loc;
-  else {
-    PetscReal in[3] = {loc.kinetic, loc.linear, loc.quartic}, out[3];
-    PetscCall(MPIU_Allreduce(in, out, 3, MPIU_REAL, MPIU_SUM, comm_));
-    e->kinetic = out[0];
-    e->linear = out[1];
-    e->quartic = out[2];
-  }
-  PetscCall(PetscLogEventEnd(Log().energy, 0, 0, 0, 0));
-  PetscFunctionReturn(0);
-}
-
-void Lattice::TangentRow(PetscInt i, const PetscScalar *u, PetscScalar c[3]) const
-{
-  const PetscInt N = p_.N();
-  c[0] = c[2] = 0;
+  const PetscReal *kb = BondSprings(); // 0 outside the chain
+  c[0] = -kb[i - 1];
   c[1] = kd_[i - xs_];
-  if (i > 0) {
-    c[0] = -kb_[i - 1 - xs_ + 1];
-    if (u && p_.Stiff(i - 1)) {
-      const PetscScalar d = u[i - 1] - u[i], s = 3 * p_.Gamma * d * d;
-      c[0] -= s;
-      c[1] += s;
-    }
-  }
-  if (i < N - 1) {
-    c[2] = -kb_[i - xs_ + 1];
-    if (u && p_.Stiff(i)) {
-      const PetscScalar d = u[i] - u[i + 1], s = 3 * p_.Gamma * d * d;
-      c[2] -= s;
-      c[1] += s;
-    }
-  }
+  c[2] = -kb[i];
 }
 
-PetscErrorCode Lattice::FillStiffness(const PetscScalar *u, Mat M, bool state_form, PetscReal beta) const
+PetscErrorCode Lattice::AssembleNearestNeighbour(const PetscScalar *kd, const PetscScalar *kb, const PetscScalar *c, Mat M, bool site_form, PetscReal beta) const
 {
   const PetscInt N = p_.N();
   PetscFunctionBeginUser;
   PetscCall(MatZeroEntries(M));
   for (PetscInt i = xs_; i < xs_ + xm_; i++) {
-    PetscScalar c[3], ku[3];
+    const PetscScalar row[3] = {kb[i - 1], kd[i], kb[i]};
+    PetscScalar ku[3];
     PetscInt cols[4], nc = 0;
-    TangentRow(i, u, c);
     for (PetscInt o = -1; o <= 1; o++) {
       const PetscInt j = i + o;
       if (j < 0 || j >= N) continue;
-      cols[nc] = state_form ? StateIndexU(j) : j;
-      ku[nc++] = c[o + 1];
+      cols[nc] = site_form ? j : StateIndexU(j);
+      ku[nc++] = row[o + 1];
     }
-    if (!state_form) {
+    if (site_form) {
       PetscCall(MatSetValues(M, 1, &i, nc, cols, ku, INSERT_VALUES));
       continue;
     }
-    // Rows of (I + beta [[0, -I], [I, 0]]) [[0, I], [-K_T, 0]] over the columns
-    // (u_{i-1}, u_i, u_{i+1}, v_i); all four are always stored (zeros when
-    // beta = 0) so the pattern never changes:
-    //   u row: [ beta K_T | 1 ],   v row: [ -K_T | beta ].
+    // Rows of (I + beta J) [[0, I], [-K_T, -C]], J = [[0, -I], [I, 0]], over
+    // the columns (u_{i-1}, u_i, u_{i+1}, v_i); all four are always stored
+    // (zeros when beta = 0) so the pattern never changes:
+    //   u row: [ beta K_T | 1 + beta C ],   v row: [ -K_T | beta - C ].
     const PetscInt ru = StateIndexU(i), rv = StateIndexV(i);
+    const PetscScalar ci = c ? c[i] : 0.0;
     PetscScalar urow[4], vrow[4];
     for (PetscInt k = 0; k < nc; k++) {
       urow[k] = beta * ku[k];
       vrow[k] = -ku[k];
     }
     cols[nc] = rv;
-    urow[nc] = 1.0;
-    vrow[nc] = beta;
+    urow[nc] = 1.0 + beta * ci;
+    vrow[nc] = beta - ci;
     PetscCall(MatSetValues(M, 1, &ru, nc + 1, cols, urow, INSERT_VALUES));
     PetscCall(MatSetValues(M, 1, &rv, nc + 1, cols, vrow, INSERT_VALUES));
   }
   PetscCall(MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode Lattice::AssembleTangentStiffness(Vec u, Mat KT) const
-{
-  PetscFunctionBeginUser;
-  if (!u || !HasCubic()) {
-    PetscCall(FillStiffness(NULL, KT, false, 0));
-    PetscFunctionReturn(0);
-  }
-  const PetscScalar *a;
-  Vec ul;
-  PetscCall(GetGhostedU(u, &ul, &a));
-  PetscCall(FillStiffness(a, KT, false, 0));
-  PetscCall(RestoreGhostedU(u, &ul, &a));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode Lattice::AssembleStateJacobian(Vec z, Mat A, PetscReal beta) const
-{
-  PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(Log().jacobian, 0, 0, 0, 0));
-  if (!z || !HasCubic()) {
-    PetscCall(FillStiffness(NULL, A, true, beta));
-  } else {
-    const PetscScalar *a;
-    Vec ul;
-    PetscCall(GetGhostedU(z, &ul, &a));
-    PetscCall(FillStiffness(a, A, true, beta));
-    PetscCall(RestoreGhostedU(z, &ul, &a));
-  }
-  PetscCall(PetscLogEventEnd(Log().jacobian, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

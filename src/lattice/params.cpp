@@ -1,4 +1,5 @@
 #include "lattice/params.hpp"
+#include "effects/effect.hpp"
 #include <cmath>
 #include <random>
 
@@ -66,6 +67,7 @@ PetscErrorCode LatticeParamsFromOptions(MPI_Comm comm, LatticeParams *p)
   PetscCheck(std::isfinite(p->gamma0) && p->gamma0 >= 0, comm, PETSC_ERR_USER, "-lattice_gamma0 must be a non-negative stiffness, got %g", (double)p->gamma0);
   PetscCheck(p->gamma0 <= 1e6, comm, PETSC_ERR_USER, "-lattice_gamma0 must lie in [0, 1e6], got %g", (double)p->gamma0);
   PetscCheck(std::isfinite(p->Gamma) && std::abs(p->Gamma) <= 1e6, comm, PETSC_ERR_USER, "-lattice_cubic must lie in [-1e6, 1e6], got %g", (double)p->Gamma);
+  PetscCall(EffectOptionsFromOptions(comm)); // the optional effects' options (-lattice_damping, ...): every study reads them, so a conservative one can refuse them by name
   PetscFunctionReturn(0);
 }
 

@@ -226,7 +226,7 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
     PetscCall(PetscArraycpy(a, u, lat.OwnedCount()));
     PetscCall(VecRestoreArrayRead(u_guess, &u));
     PetscCall(VecRestoreArray(z, &a));
-    PetscCall(lat.Energy(z, &e));
+    PetscCall(flow.Effects().Energy(z, &e));
     PetscCheck(e.Total() > 0, comm, PETSC_ERR_USER, "continuation %s: the starting shape has zero energy", name);
     PetscCall(VecScale(z, std::sqrt(o.energy_min / e.Total())));
     // The first Newton starts just off the linear period: exactly on it, M - I
@@ -251,7 +251,7 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
     EnergyParts e;
     PetscReal mcr, corr = 1;
     PetscCall(shoot.Unpack(X, z, &T, &beta));
-    PetscCall(lat.Energy(z, &e));
+    PetscCall(flow.Effects().Energy(z, &e));
     PetscCall(DisplacementMcr(lat, z, &mcr));
     if (!b->energy.empty()) PetscCall(ShapeCorrelation(lat, zprev, z, &corr));
     std::vector<PetscReal> prev_tangent = b->next_tangent; // to drop this point again (below)

@@ -60,14 +60,17 @@ PetscErrorCode FlowAverageMonitor(TS ts, PetscInt step, PetscReal t, Vec z, void
 
 PeriodicFlow::~PeriodicFlow() { delete rhs_; }
 
-PetscErrorCode PeriodicFlow::Setup(const Lattice &lat, const FlowOptions &o)
+PetscErrorCode PeriodicFlow::Setup(const EffectList &fx, const FlowOptions &o)
 {
+  const Lattice &lat = fx.Lat();
   const PetscInt n = 2 * lat.N(), nl = 2 * lat.OwnedCount();
   PetscFunctionBeginUser;
+  PetscCall(fx.RequireConservative("the periodic-orbit flow (NNMs conserve the energy)"));
+  fx_ = &fx;
   lat_ = &lat;
   opt_ = o;
   delete rhs_;
-  rhs_ = new Rhs(lat, nullptr);
+  rhs_ = new Rhs(fx);
   PetscCall(lat.CreateStateMatrix(J_.out()));
   PetscCall(MatCreateDense(lat.Comm(), nl, PETSC_DECIDE, n, 2, NULL, Jp_tlm_.out()));
   PetscCall(MatCreateDense(lat.Comm(), nl, PETSC_DECIDE, n, 2, NULL, S_tlm_.out()));
@@ -128,7 +131,7 @@ PetscErrorCode PeriodicFlow::EvalRhs(PetscReal t, Vec z, Vec f)
 PetscErrorCode PeriodicFlow::EvalJacobian(Vec z, Mat A)
 {
   PetscFunctionBeginUser;
-  PetscCall(lat_->AssembleStateJacobian(z, A, beta_));
+  PetscCall(fx_->AssembleStateJacobian(z, A, beta_));
   PetscFunctionReturn(0);
 }
 
@@ -229,11 +232,12 @@ PetscErrorCode PeriodicFlow::AccumulateStiffness(PetscInt step, Vec z)
   const PetscReal phase = 4 * PETSC_PI * step / opt_.steps, wc = 2 * w * std::cos(phase), ws = 2 * w * std::sin(phase);
   const PetscInt xs = lat_->OwnedStart(), xm = lat_->OwnedCount();
   StiffnessHarmonics &h = *harm_;
+  std::vector<PetscScalar> kd(xm), kb(xm + 1); // K_T(u): owned diagonal, bonds xs-1 .. xs+xm-1
   PetscCall(lat_->GetGhostedU(z, &ul, &u));
+  fx_->Stiffness(u, kd.data() - xs, kb.data() + 1 - xs);
   for (PetscInt i = xs; i < xs + xm; i++) {
-    PetscScalar c[3];
-    lat_->TangentRow(i, u, c);
     const PetscInt k = i - xs;
+    const PetscScalar c[3] = {kb[k], kd[k], kb[k + 1]}; // row i of K_T
     h.d0[k] += w * c[1];
     h.o0[k] += w * c[2];
     if (h.parametric) {
@@ -261,7 +265,7 @@ PetscErrorCode PeriodicFlow::IntegrateWithMonodromy(Vec z0, PetscReal T, PetscRe
   if (symplectic_) {
     if (!sym_dense_) {
       sym_dense_ = std::make_unique<SymplecticVariationalFlow>();
-      PetscCall(sym_dense_->Setup(*lat_, 2 * lat_->N(), opt_.steps));
+      PetscCall(sym_dense_->Setup(*fx_, 2 * lat_->N(), opt_.steps));
     }
     PetscCall(sym_dense_->Integrate(z0, T, beta, NULL, 1.0, 0.0, zT, S, NULL));
     PetscFunctionReturn(0);
@@ -269,7 +273,7 @@ PetscErrorCode PeriodicFlow::IntegrateWithMonodromy(Vec z0, PetscReal T, PetscRe
   if (opt_.route == MonodromyRoute::Variational) {
     if (!var_dense_) {
       var_dense_ = std::make_unique<VariationalFlow>();
-      PetscCall(var_dense_->Setup(*lat_, 2 * lat_->N() + 1, opt_.steps));
+      PetscCall(var_dense_->Setup(*fx_, 2 * lat_->N() + 1, opt_.steps));
     }
     PetscCall(var_dense_->Integrate(z0, T, beta, NULL, 1.0, 0.0, zT, S, NULL));
     PetscFunctionReturn(0);
@@ -294,7 +298,7 @@ PetscErrorCode PeriodicFlow::IntegrateWithTangent(Vec z0, PetscReal T, PetscReal
   if (symplectic_) {
     if (!sym_tlm_) {
       sym_tlm_ = std::make_unique<SymplecticVariationalFlow>();
-      PetscCall(sym_tlm_->Setup(*lat_, 1, opt_.steps));
+      PetscCall(sym_tlm_->Setup(*fx_, 1, opt_.steps));
     }
     PetscCall(sym_tlm_->Integrate(z0, T, beta, dz, dbeta, dT, zT, NULL, w));
     PetscFunctionReturn(0);
@@ -302,7 +306,7 @@ PetscErrorCode PeriodicFlow::IntegrateWithTangent(Vec z0, PetscReal T, PetscReal
   if (opt_.route == MonodromyRoute::Variational) {
     if (!var_tlm_) { // one column: dbeta and dT enter as sources
       var_tlm_ = std::make_unique<VariationalFlow>();
-      PetscCall(var_tlm_->Setup(*lat_, 1, opt_.steps));
+      PetscCall(var_tlm_->Setup(*fx_, 1, opt_.steps));
     }
     PetscCall(var_tlm_->Integrate(z0, T, beta, dz, dbeta, dT, zT, NULL, w));
     PetscFunctionReturn(0);

@@ -44,7 +44,8 @@ PetscErrorCode FlowOptionsFromOptions(MPI_Comm comm, FlowOptions *o);
 class PeriodicFlow {
 public:
   ~PeriodicFlow();
-  PetscErrorCode Setup(const Lattice &lat, const FlowOptions &o);
+  // fx: the scene's effects, conservative (kept by reference).
+  PetscErrorCode Setup(const EffectList &fx, const FlowOptions &o);
 
   // zT = z(T; z0, beta).
   PetscErrorCode Integrate(Vec z0, PetscReal T, PetscReal beta, Vec zT);
@@ -66,6 +67,7 @@ public:
   PetscErrorCode GradEnergy(Vec z, Vec g);
 
   const Lattice &Lat() const { return *lat_; }
+  const EffectList &Effects() const { return *fx_; }
   // The symplectic route (-nnm_ts_type symsplit): Floquet multipliers are
   // taken at beta = 0, where the discrete monodromy is exactly symplectic.
   bool Symplectic() const { return symplectic_; }
@@ -86,6 +88,7 @@ private:
   PetscErrorCode Run(TS ts, Vec z0, PetscReal T, Vec zT);
   PetscErrorCode Unfold(Vec zT, PetscReal T, PetscReal beta); // zT += beta T grad E(zT) (symplectic route)
 
+  const EffectList *fx_ = nullptr;
   const Lattice *lat_ = nullptr;
   FlowOptions opt_;
   Rhs *rhs_ = nullptr;

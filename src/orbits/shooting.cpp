@@ -328,7 +328,7 @@ PetscErrorCode Shooting::Residual(Vec X, Vec F)
   PetscCall(VecDot(fref_, w_, &p));
   if (kind_ == Constraint::Energy) {
     EnergyParts e;
-    PetscCall(lat_->Energy(z_, &e));
+    PetscCall(flow_->Effects().Energy(z_, &e));
     c = e.Total() - energy_target_;
   } else if (kind_ == Constraint::Period) {
     c = T - period_target_;

@@ -16,11 +16,14 @@ PetscErrorCode VarRhs(TS ts, PetscReal t, Vec Y, Vec F, void *ctx)
 }
 } // namespace
 
-PetscErrorCode VariationalFlow::Setup(const Lattice &lat, PetscInt ncol, PetscInt steps)
+PetscErrorCode VariationalFlow::Setup(const EffectList &fx, PetscInt ncol, PetscInt steps)
 {
+  const Lattice &lat = fx.Lat();
   const PetscInt *lx;
   PetscMPIInt size;
   PetscFunctionBeginUser;
+  PetscCall(fx.RequireConservative("the periodic-orbit flow"));
+  fx_ = &fx;
   lat_ = &lat;
   ncol_ = ncol;
   dof_ = 2 + 2 * ncol;
@@ -35,6 +38,8 @@ PetscErrorCode VariationalFlow::Setup(const Lattice &lat, PetscInt ncol, PetscIn
   PetscCall(TSSetFromOptions(ts_));
   u_.assign(lat.N(), 0.0);
   a_.assign(lat.N(), 0.0);
+  kd_.assign(lat.N(), 0.0);
+  kb_.assign(lat.N() + 1, 0.0);
   PetscFunctionReturn(0);
 }
 
@@ -62,17 +67,16 @@ PetscErrorCode VariationalFlow::Rhs(PetscReal t, Vec Y, Vec F)
   PetscCall(VecGetArray(F, &f));
   const PetscScalar *yb = y - d * gxs; // block of site i at yb + d i
   for (PetscInt i = gxs; i < gxs + gxm; i++) u_[i] = yb[d * i];
-  for (PetscInt i = xs; i < xs + xm; i++) a_[i] = 0;
-  lat_->LinearAcceleration(u_.data(), a_.data());
-  if (lat_->HasCubic()) lat_->AddCubicAcceleration(u_.data(), a_.data());
+  PetscCall(fx_->Acceleration(t, u_.data(), NULL, a_.data()));
+  const PetscScalar *kb = kb_.data() + 1; // kb[b]: K_T(b, b+1), 0 outside the chain
+  fx_->Stiffness(u_.data(), kd_.data(), kb_.data() + 1);
   for (PetscInt i = xs; i < xs + xm; i++) {
     const PetscScalar *yi = yb + d * i;
     PetscScalar *fi = f + d * (i - xs);
     const PetscScalar du = yi[1], dv = a_[i];
     fi[0] = du - b * dv;
     fi[1] = dv + b * du;
-    PetscScalar c[3];
-    lat_->TangentRow(i, u_.data(), c);
+    const PetscScalar c[3] = {kb[i - 1], kd_[i], kb[i]}; // row i of K_T
     const PetscScalar *Wu = yi + 2, *Wv = yi + 2 + nc;
     const PetscScalar *Wl = i > 0 ? yb + d * (i - 1) + 2 : Wu; // neighbours' Wu (unused at the ends: c = 0)
     const PetscScalar *Wr = i < N - 1 ? yb + d * (i + 1) + 2 : Wu;

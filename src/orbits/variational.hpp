@@ -13,7 +13,7 @@
 // structured product costs O(N ncol), against a general sparse-times-dense
 // product and ~30 dense AXPYs per step in PETSc 3.18's TSForward for RK
 // (README.md, NNM performance).
-#include "lattice/lattice.hpp"
+#include "effects/effect.hpp"
 #include <vector>
 
 namespace nltopo {
@@ -21,7 +21,8 @@ namespace nltopo {
 class VariationalFlow {
 public:
   // ncol columns of W; the last one carries the beta and T sources.
-  PetscErrorCode Setup(const Lattice &lat, PetscInt ncol, PetscInt steps);
+  // fx: the (conservative) effects whose flow this is; kept by reference.
+  PetscErrorCode Setup(const EffectList &fx, PetscInt ncol, PetscInt steps);
   // W0 columns: identity on the state columns (dense monodromy, ncol = 2N + 1,
   // last column the beta column: s_beta = 1, s_T = 0) when dz is NULL, else
   // the one column (ncol = 1) starts at dz and returns in w the derivative of
@@ -32,12 +33,13 @@ public:
   PetscReal beta_ = 0, src_beta_ = 1, src_f_ = 0; // src_f_ = s_T / T
 
 private:
+  const EffectList *fx_ = nullptr;
   const Lattice *lat_ = nullptr;
   PetscInt ncol_ = 0, dof_ = 0, steps_ = 0;
   OwnedDM da_;
   OwnedTS ts_;
   OwnedVec Y_;
-  std::vector<PetscScalar> u_, a_; // ghosted displacement and acceleration by global site
+  std::vector<PetscScalar> u_, a_, kd_, kb_; // ghosted displacement, acceleration and K_T by global site; kb_[b + 1]: bond b
 };
 
 } // namespace nltopo

@@ -34,10 +34,14 @@ PetscErrorCode SymVarRhs(TS ts, PetscReal, Vec Y, Vec F, void *ctx)
 }
 } // namespace
 
-PetscErrorCode SymplecticVariationalFlow::Setup(const Lattice &lat, PetscInt ncol, PetscInt steps)
+PetscErrorCode SymplecticVariationalFlow::Setup(const EffectList &fx, PetscInt ncol, PetscInt steps)
 {
+  const Lattice &lat = fx.Lat();
   const PetscInt xs = lat.OwnedStart(), xm = lat.OwnedCount();
   PetscFunctionBeginUser;
+  PetscCall(fx.RequireConservative("the symplectic periodic-orbit flow"));
+  PetscCall(fx.RequirePositionOnly("the symplectic periodic-orbit flow"));
+  fx_ = &fx;
   lat_ = &lat;
   ncol_ = ncol;
   bs_ = 1 + ncol;
@@ -69,6 +73,8 @@ PetscErrorCode SymplecticVariationalFlow::Setup(const Lattice &lat, PetscInt nco
   PetscCall(TSSetFromOptions(ts_));
   u_.assign(lat.N(), 0.0);
   a_.assign(lat.N(), 0.0);
+  kd_.assign(lat.N(), 0.0);
+  kb_.assign(lat.N() + 1, 0.0);
   A_.assign(bs_ * xm, 0.0);
   PetscFunctionReturn(0);
 }
@@ -88,13 +94,12 @@ PetscErrorCode SymplecticVariationalFlow::Acceleration(Vec Y, PetscScalar *A)
   for (PetscInt k = 0; k < xm; k++) u_[xs + k] = q[bs * k];
   if (g && xs > 0) u_[xs - 1] = g[0];
   if (g && xs + xm < N) u_[xs + xm] = g[bs];
-  for (PetscInt i = xs; i < xs + xm; i++) a_[i] = 0;
-  lat_->LinearAcceleration(u_.data(), a_.data());
-  if (lat_->HasCubic()) lat_->AddCubicAcceleration(u_.data(), a_.data());
+  PetscCall(fx_->Acceleration(0, u_.data(), NULL, a_.data()));
+  const PetscScalar *kb = kb_.data() + 1; // kb[b]: K_T(b, b+1), 0 outside the chain
+  fx_->Stiffness(u_.data(), kd_.data(), kb_.data() + 1);
   for (PetscInt k = 0; k < xm; k++) {
     const PetscInt i = xs + k;
-    PetscScalar c[3];
-    lat_->TangentRow(i, u_.data(), c);
+    const PetscScalar c[3] = {kb[i - 1], kd_[i], kb[i]}; // row i of K_T
     const PetscScalar *W = q + bs * k + 1;
     const PetscScalar *Wl = i == 0 ? W : (k > 0 ? W - bs : g + 1); // c[0] = 0 at the chain's ends
     const PetscScalar *Wr = i == N - 1 ? W : (k < xm - 1 ? W + bs : g + bs + 1);

@@ -25,7 +25,7 @@
 // Layout: each rank owns [q_local | p_local], q per owned site (u_i, W_u,i(0..ncol-1))
 // contiguous (the tridiagonal K_T then reads the neighbours' rows of W_u: one
 // ghost exchange of two site blocks per acceleration).
-#include "lattice/lattice.hpp"
+#include "effects/effect.hpp"
 #include <vector>
 
 namespace nltopo {
@@ -34,7 +34,8 @@ class SymplecticVariationalFlow {
 public:
   // ncol columns: the dense monodromy (ncol = 2N, identity start) or one
   // tangent column (ncol = 1). steps = n fixed steps per period.
-  PetscErrorCode Setup(const Lattice &lat, PetscInt ncol, PetscInt steps);
+  // fx: the (conservative) effects whose flow this is; kept by reference.
+  PetscErrorCode Setup(const EffectList &fx, PetscInt ncol, PetscInt steps);
   // Dense (dz NULL): zT = z(T) and S = [dz(T)/dz0 | dz(T)/dbeta] (2N x (2N+1),
   // dense, state-row layout). Tangent (dz given, ncol = 1): w = dz(T)/dz0 dz +
   // dz(T)/dbeta s_beta + dz(T)/dT s_T, the exact derivative of the discrete map.
@@ -43,14 +44,14 @@ public:
   PetscErrorCode Acceleration(Vec Y, PetscScalar *A);
 
 private:
-  PetscErrorCode GhostBlocks(Vec Y);
+  const EffectList *fx_ = nullptr;
   const Lattice *lat_ = nullptr;
   PetscInt ncol_ = 0, bs_ = 0, steps_ = 0; // bs_ = 1 + ncol: one site's q block
   PetscReal s_ = 0;                        // s_T / T: the T source
   OwnedTS ts_;
   OwnedVec Y_, ghost_;  // ghost_: the q blocks of sites xs-1 and xs+xm (parallel only)
   OwnedVecScatter to_ghost_;
-  std::vector<PetscScalar> u_, a_; // displacement (ghosted) and acceleration by global site
+  std::vector<PetscScalar> u_, a_, kd_, kb_; // displacement (ghosted), acceleration and K_T by global site; kb_[b + 1]: bond b
   std::vector<PetscScalar> A_;     // the acceleration at the end (B_beta's derivative)
 };
 

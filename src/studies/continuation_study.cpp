@@ -414,7 +414,7 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
   if (resume) PetscCall(CheckResumeOptions(comm, resume_file, "continuation", "-cont_resume")); // the same physics and numerics, or one line naming the first difference
   PetscCall(OutputPathFromOptions(comm, "continuation", &path, [&](const std::string &p) { return resume && SameFile(p, resume_file); }));
   PetscCall(out.Open(comm, path));
-  PetscCall(nnm.Build(comm));
+  PetscCall(nnm.Build(comm, "-study continuation"));
   Lattice &lat = nnm.lat;
   LinearModes &modes = nnm.modes;
   PeriodicFlow &flow = nnm.flow;

@@ -1,7 +1,8 @@
 #pragma once
-// The pieces every NNM study composes: lattice, linear modes, periodic flow,
-// shooting and continuation options; read first (bad options fail before any
-// output file exists), built after.
+// The pieces every NNM study composes: lattice, its effects (conservative:
+// NNM families need a conserved energy), linear modes, periodic flow, shooting
+// and continuation options; read first (bad options fail before any output
+// file exists), built after.
 #include "bands/linear_modes.hpp"
 #include "core/options_audit.hpp"
 #include "orbits/continuation.hpp"
@@ -15,6 +16,7 @@ struct NnmSetup {
   ShootingOptions so;
   ContinuationOptions co;
   Lattice lat;
+  EffectList fx{lat};
   LinearModes modes;
   PeriodicFlow flow;
   Shooting shoot;
@@ -41,12 +43,15 @@ struct NnmSetup {
     PetscCall(DeclareEPS(comm, "linear_"));
     PetscFunctionReturn(0);
   }
-  PetscErrorCode Build(MPI_Comm comm)
+  // study: "-study continuation", for the refusal of non-conservative effects.
+  PetscErrorCode Build(MPI_Comm comm, const char *study)
   {
     PetscFunctionBeginUser;
     PetscCall(lat.Setup(comm, lp));
+    PetscCall(BuildEffects(lat, nullptr, &fx));
+    PetscCall(fx.RequireConservative(study));
     PetscCall(modes.Compute(lat, mo));
-    PetscCall(flow.Setup(lat, fo));
+    PetscCall(flow.Setup(fx, fo));
     PetscCall(shoot.Setup(flow, so));
     PetscFunctionReturn(0);
   }

@@ -181,7 +181,7 @@ PetscErrorCode PerturbStudy(MPI_Comm comm)
     PetscCallMPI(MPI_Bcast(bE.data(), n, MPIU_REAL, 0, comm));
     PetscCallMPI(MPI_Bcast(bw.data(), n, MPIU_REAL, 0, comm));
   } else {
-    PetscCall(nnm.Build(comm));
+    PetscCall(nnm.Build(comm, "-study perturb"));
     PetscCheck(nnm.modes.Insulated(), comm, PETSC_ERR_USER,
                "-study perturb follows the insulated mode, and this lattice has none (-lattice_gamma %g: no isolated mode in the gap)", (double)nnm.lp.gamma);
     nnm.co.verbose = PETSC_FALSE;
@@ -227,7 +227,9 @@ PetscErrorCode PerturbStudy(MPI_Comm comm)
       PetscCall(burst.Setup(lat, pf, &modes));
       SimulationResult sr;
       PetscInt resc;
-      PetscCall(SimulateForced(lat, &burst, sim, NULL, &sr, &resc));
+      EffectList fx(lat);
+      PetscCall(BuildEffects(lat, &burst, &fx));
+      PetscCall(SimulateForced(fx, sim, NULL, &sr, &resc));
       row[1 + e] = sr.reached ? sr.mcr : NAN; // a run that never reached E* is not scored
     }
     PetscFunctionReturn(0);

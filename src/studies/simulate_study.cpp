@@ -136,7 +136,9 @@ PetscErrorCode SimulateStudy(MPI_Comm comm)
   PetscCall(PetscLogStagePush(Log().solve));
   PetscCall(PetscTime(&t_solve0));
   {
-    const PetscErrorCode ierr = SimulateForced(lat, &burst, so, &sink, &r, &rescalings);
+    EffectList fx(lat);
+    PetscCall(BuildEffects(lat, &burst, &fx));
+    const PetscErrorCode ierr = SimulateForced(fx, so, &sink, &r, &rescalings);
     // One run has nothing partial worth keeping: a stop signal ends it without output.
     PetscCheck(!IsInterrupt(ierr), comm, PETSC_ERR_SIG, "interrupted by %s during the forced run; no output written (one run has no partial result)",
                SignalName(StopSignalSeen()));

@@ -162,7 +162,7 @@ PetscErrorCode StabilityStudy(MPI_Comm comm)
   const PetscInt nw = st.nw, periods = st.periods, sample_periods = st.sample_periods, seed = st.seed;
   PetscCall(OutputPathFromOptions(comm, "stability", &path));
   PetscCall(out.Open(comm, path));
-  PetscCall(nnm.Build(comm));
+  PetscCall(nnm.Build(comm, "-study stability"));
   Lattice &lat = nnm.lat;
   LinearModes &modes = nnm.modes;
   PeriodicFlow &flow = nnm.flow;
@@ -208,7 +208,7 @@ PetscErrorCode StabilityStudy(MPI_Comm comm)
       }
       EnergyParts e;
       FloquetResult fr;
-      PetscCall(lat.Energy(z, &e));
+      PetscCall(nnm.fx.Energy(z, &e));
       PetscCall(flow.IntegrateWithMonodromy(z, T, flow.FloquetBeta(beta), zT, S));
       PetscCall(FloquetAnalysis(lat, S, flo, &fr));
       // Perturbation: z0 + eps ||z0|| / sqrt(2N) xi, xi uniform in (-1, 1) per entry,
@@ -236,13 +236,13 @@ PetscErrorCode StabilityStudy(MPI_Comm comm)
         PetscCall(VecRestoreArrayRead(z, &a));
       }
       EnergyParts ep;
-      PetscCall(lat.Energy(zp, &ep)); // the perturbed start: the free run conserves this
+      PetscCall(nnm.fx.Energy(zp, &ep)); // the perturbed start: the free run conserves this
       SimulationOptions run = sim;
       run.t_final = periods * T;
       run.sample_dt = T / 8;
       Persistence sink(lat, z, 8 * sample_periods);
       SimulationResult r;
-      PetscCall(Simulate(lat, nullptr, run, zp, &sink, &r));
+      PetscCall(Simulate(nnm.fx, run, zp, &sink, &r));
       const size_t ns = sink.corr_.size(), tail = std::max<size_t>(1, ns / 10);
       PetscReal tail_min = 1;
       for (size_t k = ns - tail; k < ns; k++) tail_min = std::min(tail_min, sink.corr_[k]);

@@ -46,7 +46,9 @@ PetscErrorCode Rerun(const Lattice &lat, const ToneBurst &burst, const Simulatio
   o.sample_dt = 0;
   ToneBurst b = burst;
   if (da != 0) b.ScaleAmplitude(1 + da);
-  PetscCall(Simulate(lat, &b, o, NULL, NULL, r));
+  EffectList fx(lat);
+  PetscCall(BuildEffects(lat, &b, &fx));
+  PetscCall(Simulate(fx, o, NULL, NULL, r));
   pt->rhs += r->counters.rhs;
   pt->runs++;
   PetscFunctionReturn(0);

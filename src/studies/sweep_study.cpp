@@ -152,7 +152,9 @@ PetscErrorCode ComputePoint(const Lattice &lat, const LinearModes &modes, const 
   PetscInt rescalings;
   PetscLogDouble p0, p1;
   PetscCall(PetscTime(&p0));
-  PetscCall(SimulateForced(lat, &burst, ps, so.kcorr ? &sink : NULL, &r, &rescalings));
+  EffectList fx(lat), free_fx(lat); // the scene, and its free motion after the cut-off
+  PetscCall(BuildEffects(lat, &burst, &fx));
+  PetscCall(SimulateForced(fx, ps, so.kcorr ? &sink : NULL, &r, &rescalings));
   pt->rhs = r.rhs_all_attempts;
   if (so.kcorr && r.reached && r.t_off + so.kcorr_record > ps.t_final) {
     // The test needs a longer free record than the run has after t_off: the
@@ -163,7 +165,8 @@ PetscErrorCode ComputePoint(const Lattice &lat, const LinearModes &modes, const 
     cont.t_start = ps.t_final;
     cont.t_final = r.t_off + so.kcorr_record;
     sink.Continue(r.t_off);
-    PetscCall(Simulate(lat, NULL, cont, r.z_final, &sink, &rc));
+    PetscCall(BuildEffects(lat, NULL, &free_fx));
+    PetscCall(Simulate(free_fx, cont, r.z_final, &sink, &rc));
     pt->rhs += rc.counters.rhs;
   }
   if (so.kcorr) {

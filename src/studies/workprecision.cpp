@@ -68,12 +68,14 @@ PetscErrorCode RunScene(const Lattice &lat, ToneBurst *burst, bool rule, Outcome
   PetscCall(SimulationOptionsFromOptions(comm, &so)); // a configuration may set -sim_dt_quartic_energy
   so.sample_dt = 0;
   so.progress = 0;
+  EffectList fx(lat);
+  PetscCall(BuildEffects(lat, burst, &fx));
   PetscCallMPI(MPI_Barrier(comm));
   PetscCall(PetscTime(&t0));
   if (rule) {
     PetscInt rescalings;
-    PetscCall(SimulateForced(lat, burst, so, NULL, &out->r, &rescalings));
-  } else PetscCall(Simulate(lat, burst, so, NULL, NULL, &out->r));
+    PetscCall(SimulateForced(fx, so, NULL, &out->r, &rescalings));
+  } else PetscCall(Simulate(fx, so, NULL, NULL, &out->r));
   PetscCall(PetscTime(&t1));
   double w = t1 - t0;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &w, 1, MPI_DOUBLE, MPI_MAX, comm));

@@ -41,8 +41,9 @@ struct Orbit {
   PetscInt newton = 0;
 };
 
-PetscErrorCode SolveOrbit(const Lattice &lat, Vec z_guess, PetscReal T_guess, PetscReal E, Orbit *orb, std::unique_ptr<PeriodicFlow> *keep_flow = nullptr)
+PetscErrorCode SolveOrbit(const EffectList &fx, Vec z_guess, PetscReal T_guess, PetscReal E, Orbit *orb, std::unique_ptr<PeriodicFlow> *keep_flow = nullptr)
 {
+  const Lattice &lat = fx.Lat();
   MPI_Comm comm = lat.Comm();
   FlowOptions fo;
   ShootingOptions so;
@@ -59,7 +60,7 @@ PetscErrorCode SolveOrbit(const Lattice &lat, Vec z_guess, PetscReal T_guess, Pe
   PetscCall(FlowOptionsFromOptions(comm, &fo));
   PetscCall(ShootingOptionsFromOptions(comm, &so));
   PetscCall(FloquetOptionsFromOptions(comm, &flo));
-  PetscCall(flow.Setup(lat, fo));
+  PetscCall(flow.Setup(fx, fo));
   PetscCall(shoot.Setup(flow, so));
   PetscCall(shoot.CreateUnknowns(X.out()));
   if (!orb->z0) PetscCall(VecDuplicate(z_guess, orb->z0.out()));
@@ -116,7 +117,7 @@ PetscErrorCode RunWorkPrecisionShooting(MPI_Comm comm, const WorkPrecisionOption
 
   // The guess: the insulated branch of the scene continued to the energy.
   PetscCall(nnm.ReadOptions(comm));
-  PetscCall(nnm.Build(comm));
+  PetscCall(nnm.Build(comm, "-study workprecision -wp_scene shooting"));
   PetscCheck(nnm.modes.Insulated(), comm, PETSC_ERR_USER, "-wp_scene shooting follows the insulated branch: this lattice has no insulated mode");
   nnm.co.verbose = PETSC_FALSE;
   nnm.co.energy_max = o.nnm_energy;
@@ -135,7 +136,7 @@ PetscErrorCode RunWorkPrecisionShooting(MPI_Comm comm, const WorkPrecisionOption
     opts.push_back({"-nnm_steps_per_period", std::to_string(n)});
     ScopedConfig sc;
     PetscCall(sc.Apply(opts));
-    PetscCall(SolveOrbit(lat, last.z, last.period, o.nnm_energy, &ref, &ref_flow));
+    PetscCall(SolveOrbit(nnm.fx, last.z, last.period, o.nnm_energy, &ref, &ref_flow));
     PetscCall(sc.Restore());
     res->reference = o.nnm_reference + " -nnm_steps_per_period " + std::to_string(n);
     res->reference_wall = ref.wall;
@@ -171,7 +172,7 @@ PetscErrorCode RunWorkPrecisionShooting(MPI_Comm comm, const WorkPrecisionOption
       [&](PetscReal *w) -> PetscErrorCode {
         PetscFunctionBeginUser;
         CostTotals(&s0, &e0);
-        PetscCall(SolveOrbit(lat, last.z, last.period, o.nnm_energy, &orb));
+        PetscCall(SolveOrbit(nnm.fx, last.z, last.period, o.nnm_energy, &orb));
         CostTotals(&s1, &e1);
         *w = orb.wall;
         PetscFunctionReturn(0);

@@ -74,7 +74,9 @@ PetscErrorCode PhaseRun(const Lattice &lat, const LinearModes &modes, const Tone
   AfterCutoffSamples sink(N);
   SimulationResult r;
   PetscInt rescalings;
-  PetscCall(SimulateForced(lat, &burst, ps, &sink, &r, &rescalings));
+  EffectList fx(lat);
+  PetscCall(BuildEffects(lat, &burst, &fx));
+  PetscCall(SimulateForced(fx, ps, &sink, &r, &rescalings));
   for (PetscInt k = 0; k < RowWidth(zo); k++) row[k] = nan;
   row[0] = r.reached;
   row[1] = r.t_off;

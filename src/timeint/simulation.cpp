@@ -1,6 +1,5 @@
 #include "timeint/simulation.hpp"
 #include "core/cost.hpp"
-#include <petsc/private/tsimpl.h> // ts->ops->rollback: can the type locate events?
 #include "core/log.hpp"
 #include "core/signals.hpp"
 #include "diagnostics/mcr.hpp"
@@ -8,6 +7,7 @@
 #include "timeint/ts_symsplit.hpp"
 #include <cmath>
 #include <cstring>
+#include <string>
 
 namespace nltopo {
 
@@ -38,6 +38,7 @@ namespace {
 
 struct Run {
   const Lattice *lat;
+  const EffectList *fx;
   const ToneBurst *forcing;
   Rhs rhs;
   SampleSink *sink;
@@ -53,26 +54,31 @@ struct Run {
   OwnedVec zcut; // the state at a cut-off located inside a step
   // energy cache (the event indicator and the post-step see the same state)
   PetscObjectId cache_id = 0;
-  PetscObjectState cache_state = -1;
+  PetscInt cache_step = -1;
+  PetscReal cache_t = -1;
   EnergyParts cache_e;
   // RMS / energy-ratio window accumulators (trapezoid over steps)
   bool accumulating = false;
   PetscReal t_prev = 0, nl_prev = 0, lin_prev = 0, acc_nl = 0, acc_lin = 0;
   std::vector<PetscReal> u2_prev, acc_u2;
 
-  Run(const Lattice &l, const ToneBurst *f, SampleSink *s, SimulationResult *res) : lat(&l), forcing(f), rhs(l, f), sink(s), r(res) {}
+  Run(const EffectList &e, SampleSink *s, SimulationResult *res) : lat(&e.Lat()), fx(&e), forcing(e.Burst()), rhs(e), sink(s), r(res) {}
 
-  PetscErrorCode EnergyAt(Vec z, EnergyParts *e)
+  // The energy of the TS solution z at (t, step): the event indicator and the
+  // post-step see the same state (the code that changes z in place at the
+  // same t, the cut-off inside a step, sets t anew).
+  PetscErrorCode EnergyAt(TS ts, PetscReal t, Vec z, EnergyParts *e)
   {
     PetscObjectId id;
-    PetscObjectState st;
+    PetscInt step;
     PetscFunctionBeginUser;
     PetscCall(PetscObjectGetId((PetscObject)z, &id));
-    PetscCall(PetscObjectStateGet((PetscObject)z, &st));
-    if (id != cache_id || st != cache_state) {
-      PetscCall(lat->Energy(z, &cache_e));
+    PetscCall(TSGetStepNumber(ts, &step));
+    if (id != cache_id || step != cache_step || t != cache_t) {
+      PetscCall(fx->Energy(z, &cache_e));
       cache_id = id;
-      cache_state = st;
+      cache_step = step;
+      cache_t = t;
     }
     *e = cache_e;
     PetscFunctionReturn(0);
@@ -90,7 +96,7 @@ struct Run {
     for (int it = 0; it < 200 && hi - lo > 1e-14 * (1 + hi); it++) {
       const PetscReal mid = 0.5 * (lo + hi);
       PetscCall(TSInterpolate(ts, mid, zs));
-      PetscCall(lat->Energy(zs, e_off));
+      PetscCall(fx->Energy(zs, e_off));
       const PetscReal g = e_off->Total() / estar - 1;
       if (std::abs(g) <= 1e-10) {
         lo = hi = mid;
@@ -100,7 +106,7 @@ struct Run {
     }
     *t_off = hi;
     PetscCall(TSInterpolate(ts, hi, zs));
-    PetscCall(lat->Energy(zs, e_off));
+    PetscCall(fx->Energy(zs, e_off));
     PetscFunctionReturn(0);
   }
 
@@ -123,7 +129,7 @@ struct Run {
     for (PetscInt i = 1; i <= k; i++) {
       const PetscReal ti = t_prev_step + i * (t - t_prev_step) / (k + 1);
       PetscCall(TSInterpolate(ts, ti, zs));
-      PetscCall(lat->Energy(zs, e_off));
+      PetscCall(fx->Energy(zs, e_off));
       if (e_off->Total() >= estar) {
         PetscCall(LocateCutOff(ts, lo, ti, t_off, e_off));
         *found = true;
@@ -160,7 +166,7 @@ struct Run {
       const PetscScalar *a;
       EnergyParts eq;
       PetscCall(TSRknInterpolatePositions(gauss_ts, std::max(t_prev, tp) + node[q] * h, zs)); // Energy's kinetic part unused here
-      PetscCall(lat->Energy(zs, &eq));
+      PetscCall(fx->Energy(zs, &eq));
       PetscCall(VecGetArrayRead(zs, &a));
       for (PetscInt k = 0; k < n; k++) acc_u2[k] += w[q] * h * a[k] * a[k];
       PetscCall(VecRestoreArrayRead(zs, &a));
@@ -223,7 +229,7 @@ struct Run {
       if (interpolate && std::abs(ts_k - t) > 1e-12 * (1 + t)) {
         EnergyParts es;
         PetscCall(TSInterpolate(ts, ts_k, zs));
-        PetscCall(lat->Energy(zs, &es));
+        PetscCall(fx->Energy(zs, &es));
         PetscCall(sink->Sample(ts_k, zs, es));
       } else {
         PetscCall(sink->Sample(interpolate ? ts_k : t, z, e));
@@ -233,6 +239,23 @@ struct Run {
     PetscFunctionReturn(0);
   }
 };
+
+// Types that integrate without the state Jacobian.
+bool TypeIsExplicit(TSType type)
+{
+  for (const char *t : {TSRK, TSEULER, TSSSP, TSSYMSPLIT, TSRKN, TSBASICSYMPLECTIC})
+    if (!std::strcmp(type, t)) return true;
+  return false;
+}
+
+// Types that can roll a step back, so a TS event can locate the cut-off
+// inside it (PETSc 3.18's types with TSRollBack, and nltopo's own).
+bool TypeRollsBack(TSType type)
+{
+  for (const char *t : {TSRK, TSARKIMEX, TSROSW, TSBDF, TSALPHA, TSALPHA2, TSIRK, TSTHETA, TSBEULER, TSCN, TSSYMSPLIT, TSRKN})
+    if (!std::strcmp(type, t)) return true;
+  return false;
+}
 
 PetscErrorCode RhsFunction(TS ts, PetscReal t, Vec z, Vec f, void *ctx)
 {
@@ -244,7 +267,7 @@ PetscErrorCode RhsFunction(TS ts, PetscReal t, Vec z, Vec f, void *ctx)
 PetscErrorCode RhsJacobian(TS ts, PetscReal t, Vec z, Mat A, Mat P, void *ctx)
 {
   PetscFunctionBeginUser;
-  PetscCall(static_cast<Run *>(ctx)->lat->AssembleStateJacobian(z, P));
+  PetscCall(static_cast<Run *>(ctx)->fx->AssembleStateJacobian(z, P));
   if (A != P) {
     PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
@@ -279,7 +302,7 @@ PetscErrorCode CutOffIndicator(TS ts, PetscReal t, Vec z, PetscScalar *fv, void 
   PetscFunctionBeginUser;
   if (run->rhs.Forcing()) {
     EnergyParts e;
-    PetscCall(run->EnergyAt(z, &e));
+    PetscCall(run->EnergyAt(ts, t, z, &e));
     fv[0] = e.Total() / run->estar - 1; // relative, so the event tolerance means the same at any E*
   } else {
     fv[0] = -1.0; // after the cut-off the event can never fire again (it fires on upward crossings only, and a cut-off found inside a step leaves a negative value behind)
@@ -313,7 +336,7 @@ PetscErrorCode PostStep(TS ts)
   }
   PetscCall(TSGetTime(ts, &t));
   PetscCall(TSGetSolution(ts, &z));
-  PetscCall(run->EnergyAt(z, &e));
+  PetscCall(run->EnergyAt(ts, t, z, &e));
   PetscCheck(std::isfinite(e.Total()), run->lat->Comm(), PETSC_ERR_FP,
              "non-finite state at t = %g: the integration diverged (reduce -sim_ts_dt or tighten -sim_ts_rtol)", (double)t);
   if (run->rhs.Forcing()) run->r->energy_peak = std::max(run->r->energy_peak, e.Total());
@@ -376,10 +399,16 @@ PetscErrorCode AfterCutoffSamples::Sample(PetscReal t, Vec z, const EnergyParts 
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SimulateForced(const Lattice &lat, ToneBurst *burst, const SimulationOptions &o, SampleSink *sink, SimulationResult *r,
-                              PetscInt *rescalings)
+PetscErrorCode SimulateForced(const EffectList &fx, const SimulationOptions &o, SampleSink *sink, SimulationResult *r, PetscInt *rescalings)
 {
+  ToneBurst *burst = fx.Burst();
   PetscFunctionBeginUser;
+  if (!burst) { // no forcing (-force_profile none): one free run
+    PetscCall(Simulate(fx, o, NULL, sink, r));
+    r->rhs_all_attempts = r->counters.rhs;
+    *rescalings = 0;
+    PetscFunctionReturn(0);
+  }
   const PetscInt retries = burst->AmplitudeFromRule() ? burst->Options().retries : 0;
   SimulationOptions attempt = o;
   PetscInt work = 0;
@@ -387,7 +416,7 @@ PetscErrorCode SimulateForced(const Lattice &lat, ToneBurst *burst, const Simula
   for (PetscInt k = 0;; k++) {
     attempt.abort_if_missed = k < retries; // the last attempt is a complete run
     if (sink) sink->Restart();
-    PetscCall(Simulate(lat, burst, attempt, NULL, sink, r));
+    PetscCall(Simulate(fx, attempt, NULL, sink, r));
     work += r->counters.rhs;
     r->rhs_all_attempts = work;
     if (!r->aborted) {
@@ -410,8 +439,10 @@ PetscErrorCode SimulateForced(const Lattice &lat, ToneBurst *burst, const Simula
   }
 }
 
-PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const SimulationOptions &o, Vec z0, SampleSink *sink, SimulationResult *r)
+PetscErrorCode Simulate(const EffectList &fx, const SimulationOptions &o, Vec z0, SampleSink *sink, SimulationResult *r)
 {
+  const Lattice &lat = fx.Lat();
+  const ToneBurst *forcing = fx.Burst();
   MPI_Comm comm = lat.Comm();
   OwnedTS ts;
   OwnedMat J;
@@ -420,7 +451,7 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
   TSConvergedReason reason;
   PetscFunctionBeginUser;
   *r = SimulationResult();
-  Run run(lat, forcing, sink, r);
+  Run run(fx, sink, r);
   run.estar = forcing ? forcing->EnergyStar() : 0;
   run.t_final = o.t_final;
   run.sample_dt = o.sample_dt;
@@ -447,7 +478,6 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
   else PetscCall(VecZeroEntries(z));
   PetscCall(VecDuplicate(z, run.zs.out()));
   PetscCall(VecDuplicate(z, run.zcut.out()));
-  PetscCall(lat.CreateStateMatrix(J.out()));
 
   PetscCall(TSCreate(comm, ts.out()));
   PetscCall(TSSetOptionsPrefix(ts, "sim_"));
@@ -456,7 +486,6 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
   PetscCall(TSSetType(ts, TSRK));
   PetscCall(TSRKSetType(ts, TSRK5DP));
   PetscCall(TSSetRHSFunction(ts, NULL, RhsFunction, &run));
-  PetscCall(TSSetRHSJacobian(ts, J, J, RhsJacobian, &run));
   PetscCall(TSSetAcceleration(ts, RunAcceleration, &run)); // symsplit, rkn: raw-array accelerations
   PetscCall(TSSetTolerances(ts, 1e-8, NULL, 1e-8, NULL));
   PetscCall(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP));
@@ -467,6 +496,14 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
   PetscCall(TSSetPostStep(ts, PostStep));
   PetscCall(TSSetFromOptions(ts));
   PetscCall(TSGetType(ts, &type));
+  if (!TypeIsExplicit(type)) { // the state Jacobian only for the types that solve with it
+    PetscCall(lat.CreateStateMatrix(J.out()));
+    PetscCall(TSSetRHSJacobian(ts, J, J, RhsJacobian, &run));
+  }
+  if (!std::strcmp(type, TSSYMSPLIT) || !std::strcmp(type, TSRKN) || !std::strcmp(type, TSBASICSYMPLECTIC)) {
+    const std::string who = std::string("-sim_ts_type ") + type;
+    PetscCall(fx.RequirePositionOnly(who.c_str()));
+  }
 
   const bool symplectic = !std::strcmp(type, TSBASICSYMPLECTIC), splitting = !std::strcmp(type, TSSYMSPLIT);
   if (symplectic || splitting) {
@@ -480,7 +517,7 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
       if (forcing && forcing->Present()) E = forcing->EnergyStar();
       else {
         EnergyParts e;
-        PetscCall(lat.Energy(z, &e));
+        PetscCall(fx.Energy(z, &e));
         E = e.Total();
       }
       if (E > o.dt_quartic_energy) scale *= std::pow(o.dt_quartic_energy / E, 0.25);
@@ -515,7 +552,7 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
     run.interpolate = false;
   } else if (run.rhs.Forcing() && splitting) {
     run.locate_in_step = true;
-  } else if (run.rhs.Forcing() && ts.get()->ops->rollback) {
+  } else if (run.rhs.Forcing() && TypeRollsBack(type)) {
     if (!std::strcmp(type, TSRKN)) run.gauss_ts = ts; // long steps: the window integrals on the interpolant
     // Locate the cut-off E(t) = E* (relative tolerance 1e-10) with a TS event,
     // registered after the step size is final (guide, pitfall a). Types that
@@ -531,7 +568,7 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
   // Initial sample and window start.
   {
     EnergyParts e0;
-    PetscCall(lat.Energy(z, &e0));
+    PetscCall(fx.Energy(z, &e0));
     // A continued run's samples follow the earlier run's (which took t = t_start).
     if (o.t_start > 0 && o.sample_dt > 0) run.next_sample = (PetscInt)std::floor(o.t_start / o.sample_dt + 1e-9) + 1;
     PetscCall(run.Window(o.t_start, z, e0));
@@ -588,7 +625,7 @@ PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const Simu
   PetscCall(PetscLogEventEnd(Log().diagnostics, 0, 0, 0, 0));
   {
     EnergyParts e;
-    PetscCall(lat.Energy(z, &e));
+    PetscCall(fx.Energy(z, &e));
     r->energy_final = e.Total();
   }
   r->counters = run.rhs.Counters();

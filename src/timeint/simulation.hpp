@@ -4,6 +4,7 @@
 // roll back; checked after every step otherwise), then free motion; RMS per
 // site, MCR and the nonlinear/linear potential ratio over the window after the
 // cut-off. Every study that integrates a forced run calls this one function.
+#include "effects/forcing.hpp"
 #include "effects/rhs.hpp"
 #include <vector>
 
@@ -77,11 +78,11 @@ struct SimulationResult {
 // -force_amplitude_retries times; the last attempt runs to t_final whatever
 // happens (and says reached = false). With a given -force_amplitude: one run.
 // *rescalings = attempts - 1, or -1 if E* was never reached.
-PetscErrorCode SimulateForced(const Lattice &lat, ToneBurst *burst, const SimulationOptions &o, SampleSink *sink, SimulationResult *r,
-                              PetscInt *rescalings);
+// The tone burst is the scene's forcing effect (fx.Burst(), rescaled in place).
+PetscErrorCode SimulateForced(const EffectList &fx, const SimulationOptions &o, SampleSink *sink, SimulationResult *r, PetscInt *rescalings);
 
-// forcing may be NULL (free run). z0 NULL starts from rest.
-PetscErrorCode Simulate(const Lattice &lat, const ToneBurst *forcing, const SimulationOptions &o, Vec z0, SampleSink *sink,
-                        SimulationResult *r);
+// The scene's effects fx (effects/effect.hpp); a free run when it has no
+// forcing. z0 NULL starts from rest.
+PetscErrorCode Simulate(const EffectList &fx, const SimulationOptions &o, Vec z0, SampleSink *sink, SimulationResult *r);
 
 } // namespace nltopo

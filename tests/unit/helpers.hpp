@@ -1,9 +1,11 @@
 #pragma once
 // Shared helpers for the unit tests (every test runs on 1 and 2 ranks).
+#include "effects/effect.hpp"
 #include "lattice/lattice.hpp"
 #include <catch2/catch.hpp>
 #include <petscsys.h>
 #include <initializer_list>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -11,6 +13,15 @@
 #define PCHK(...) REQUIRE((__VA_ARGS__) == 0)
 
 namespace nltopo::test {
+
+// The scene's effects on lat (effects/effect.hpp): the lattice's own, the
+// burst's forcing if given, and the optional effects the options enable.
+inline std::unique_ptr<EffectList> Effects(const Lattice &lat, ToneBurst *burst = nullptr)
+{
+  auto fx = std::make_unique<EffectList>(lat);
+  PCHK(BuildEffects(lat, burst, fx.get()));
+  return fx;
+}
 
 inline int Rank()
 {

@@ -122,7 +122,7 @@ inline SimulationResult ShortForcedRun(MPI_Comm comm, std::initializer_list<std:
   so.progress = 0;
   SimulationResult r;
   for (const auto &o : ts_options) PCHK(PetscOptionsSetValue(NULL, o.first, o.second));
-  PCHK(Simulate(lat, &burst, so, NULL, NULL, &r));
+  PCHK(Simulate(*Effects(lat, &burst), so, NULL, NULL, &r));
   for (const auto &o : ts_options) PCHK(PetscOptionsClearValue(NULL, o.first));
   return r;
 }

@@ -13,6 +13,7 @@ namespace {
 
 struct Fixture {
   Lattice lat;
+  EffectList fx{lat};
   LinearModes modes;
   PeriodicFlow flow;
   Shooting shoot;
@@ -21,7 +22,8 @@ struct Fixture {
     PetscFunctionBeginUser;
     PetscCall(lat.Setup(PETSC_COMM_WORLD, p));
     PetscCall(modes.Compute(lat, LinearModesOptions()));
-    PetscCall(flow.Setup(lat, FlowOptions()));
+    PetscCall(BuildLatticeEffects(lat, &fx));
+    PetscCall(flow.Setup(fx, FlowOptions()));
     PetscCall(shoot.Setup(flow, ShootingOptions()));
     PetscFunctionReturn(0);
   }
@@ -146,7 +148,7 @@ TEST_CASE("a branch with energy folds is followed through them, and every orbit 
     // of this branch) the stored orbit is a fixed point of the discrete flow.
     PCHK(f.flow.Integrate(z, b.period[k], b.beta[k], zT));
     EnergyParts e;
-    PCHK(f.lat.Energy(z, &e));
+    PCHK(Effects(f.lat)->Energy(z, &e));
     PetscReal nz, d;
     PCHK(VecNorm(z, NORM_2, &nz));
     PCHK(VecAXPY(zT, -1.0, z));

@@ -60,7 +60,8 @@ TEST_CASE("Floquet multipliers in the linear limit, symplectic pairs, det M = 1,
   PeriodicFlow flow;
   FlowOptions fo;
   fo.steps = 512; // det M = 1 to 1e-8 needs the RK error below it (2e-8 at 256 steps)
-  PCHK(flow.Setup(lat, fo));
+  auto fx_flow = Effects(lat);
+  PCHK(flow.Setup(*fx_flow, fo));
   Shooting shoot;
   PCHK(shoot.Setup(flow, ShootingOptions()));
   ContinuationOptions co;
@@ -113,6 +114,7 @@ namespace {
 // Two stiff dimers joined by a weak soft bond: layout right, Nc = 2, gamma = 0.9.
 struct CoupledDimers {
   Lattice lat;
+  EffectList fx{lat};
   LinearModes modes;
   PeriodicFlow flow;
   Shooting shoot;
@@ -125,7 +127,8 @@ struct CoupledDimers {
     p.gamma = 0.9;
     PetscCall(lat.Setup(PETSC_COMM_WORLD, p));
     PetscCall(modes.Compute(lat, LinearModesOptions()));
-    PetscCall(flow.Setup(lat, FlowOptions()));
+    PetscCall(BuildLatticeEffects(lat, &fx));
+    PetscCall(flow.Setup(fx, FlowOptions()));
     PetscCall(shoot.Setup(flow, ShootingOptions()));
     PetscFunctionReturn(0);
   }

@@ -77,7 +77,10 @@ TEST_CASE("state operator L z = [v, -K u]", "[lattice]")
   const auto uv = Pseudo(N, 1), vv = Pseudo(N, 2);
   SetState(lat, uv, vv, z);
   Scatter(uv, u);
-  PCHK(MatMult(lat.L(), z, f));
+  OwnedMat L; // the state Jacobian at rest
+  PCHK(lat.CreateStateMatrix(L.out()));
+  PCHK(Effects(lat)->AssembleStateJacobian(NULL, L));
+  PCHK(MatMult(L, z, f));
   PCHK(MatMult(lat.K(), u, Ku));
   const auto kv = Gather(Ku);
   std::vector<PetscReal> fu, fv;
@@ -102,9 +105,13 @@ TEST_CASE("the linear-coupling effect (stencil) equals the assembled L z", "[lat
     PCHK(VecDuplicate(z, f.out()));
     PCHK(VecDuplicate(z, g.out()));
     SetState(lat, Pseudo(lat.N(), 11), Pseudo(lat.N(), 12), z);
-    Rhs rhs(lat, nullptr);
+    auto fx_rhs = Effects(lat);
+    Rhs rhs(*fx_rhs);
     PCHK(rhs.Evaluate(0.0, z, f));
-    PCHK(MatMult(lat.L(), z, g));
+    OwnedMat L;
+    PCHK(lat.CreateStateMatrix(L.out()));
+    PCHK(fx_rhs->AssembleStateJacobian(NULL, L));
+    PCHK(MatMult(L, z, g));
     PCHK(VecAXPY(g, -1.0, f));
     PetscReal err;
     PCHK(VecNorm(g, NORM_INFINITY, &err));
@@ -119,7 +126,8 @@ static std::vector<PetscReal> Acceleration(const Lattice &lat, const std::vector
   lat.CreateStateVector(&z);
   VecDuplicate(z, &f);
   SetState(lat, u, std::vector<PetscReal>(lat.N(), 0.0), z);
-  Rhs rhs(lat, nullptr);
+  auto fx_rhs = Effects(lat);
+  Rhs rhs(*fx_rhs);
   rhs.Evaluate(0.0, z, f);
   std::vector<PetscReal> fu, a;
   GetState(lat, f, &fu, &a);
@@ -134,7 +142,7 @@ static PetscReal PotentialEnergy(const Lattice &lat, const std::vector<PetscReal
   lat.CreateStateVector(&z);
   SetState(lat, u, std::vector<PetscReal>(lat.N(), 0.0), z);
   EnergyParts e;
-  lat.Energy(z, &e);
+  Effects(lat)->Energy(z, &e);
   VecDestroy(&z);
   return e.linear + e.quartic;
 }
@@ -176,11 +184,11 @@ TEST_CASE("tangent stiffness and state Jacobian equal central differences of the
   PCHK(DMCreateGlobalVector(lat.SiteDM(), uv.out()));
   Scatter(u, uv);
   PCHK(DMCreateMatrix(lat.SiteDM(), KT.out()));
-  PCHK(lat.AssembleTangentStiffness(uv, KT));
+  PCHK(Effects(lat)->AssembleTangentStiffness(uv, KT));
   PCHK(lat.CreateStateVector(z.out()));
   SetState(lat, u, std::vector<PetscReal>(N, 0.0), z);
   PCHK(lat.CreateStateMatrix(A.out()));
-  PCHK(lat.AssembleStateJacobian(z, A));
+  PCHK(Effects(lat)->AssembleStateJacobian(z, A));
   const PetscReal h = 1e-6;
   for (PetscInt j = 0; j < N; j++) {
     auto up = u, um = u;

@@ -25,7 +25,8 @@ TEST_CASE("monodromy (variational TS and TSForward routes) equals central differ
   FlowOptions fo;
   fo.steps = 400;
   fo.route = route;
-  PCHK(flow.Setup(lat, fo));
+  auto fx_flow = Effects(lat);
+  PCHK(flow.Setup(*fx_flow, fo));
   OwnedVec z0, zT, w;
   OwnedMat S;
   PCHK(lat.CreateStateVector(z0.out()));
@@ -83,7 +84,8 @@ TEST_CASE("tangent T column is the derivative of the discrete flow", "[orbits][m
   PeriodicFlow flow;
   FlowOptions fo;
   fo.steps = 16;
-  PCHK(flow.Setup(lat, fo));
+  auto fx_flow = Effects(lat);
+  PCHK(flow.Setup(*fx_flow, fo));
   OwnedVec z0, zero, zT, zp, zm, w, f;
   PCHK(lat.CreateStateVector(z0.out()));
   for (OwnedVec *v : {&zero, &zT, &zp, &zm, &w, &f}) PCHK(VecDuplicate(z0, v->out()));
@@ -126,7 +128,8 @@ static PetscReal PreconditionerError(const Lattice &lat, LinearMonodromyPC &pc, 
   PeriodicFlow flow;
   FlowOptions fo;
   fo.steps = 2000;
-  PCHK(flow.Setup(lat, fo));
+  auto fx_flow = Effects(lat);
+  PCHK(flow.Setup(*fx_flow, fo));
   PCHK(pc.SetPeriod(T));
   OwnedVec z0, x, zT, w, y;
   PCHK(lat.CreateStateVector(z0.out()));
@@ -177,7 +180,7 @@ TEST_CASE("preconditioner with a replaced stiffness inverts that lattice's M - I
   std::vector<PetscReal> diag, off;
   for (PetscInt i = b.OwnedStart(); i < b.OwnedStart() + b.OwnedCount(); i++) {
     PetscScalar c[3];
-    b.TangentRow(i, NULL, c);
+    b.KRow(i, c);
     diag.push_back(c[1]);
     off.push_back(c[2]);
   }
@@ -213,7 +216,7 @@ TEST_CASE("parametric preconditioner inverts M - I of a Hill equation near the 1
   std::vector<PetscReal> kd(N, 0.0), ko(N, 0.0), cd(N, c), co(N, 0.25 * c), sd(N, 0.5 * c), so(N, -0.3 * c);
   for (PetscInt i = lat.OwnedStart(); i < lat.OwnedStart() + lat.OwnedCount(); i++) { // owned rows, then summed over ranks
     PetscScalar r[3];
-    lat.TangentRow(i, NULL, r);
+    lat.KRow(i, r);
     kd[i] = r[1];
     ko[i] = i + 1 < N ? r[2] : 0.0;
   }
@@ -315,7 +318,8 @@ TEST_CASE_METHOD(NonlinearChain14, "orbit tangent-stiffness harmonics equal thei
   PCHK(VecDuplicate(z0, zT.out()));
   SetState(lat, u0, v0, z0);
   PeriodicFlow flow;
-  PCHK(flow.Setup(lat, FlowOptions()));
+  auto fx_flow = Effects(lat);
+  PCHK(flow.Setup(*fx_flow, FlowOptions()));
   StiffnessHarmonics h;
   h.parametric = true;
   PCHK(flow.IntegrateAveragingStiffness(z0, 2 * PETSC_PI / omega, 0.0, zT, &h));
@@ -323,7 +327,7 @@ TEST_CASE_METHOD(NonlinearChain14, "orbit tangent-stiffness harmonics equal thei
   PetscReal err = 0, dmax = 0, herr = 0;
   for (PetscInt i = lat.OwnedStart(); i < lat.OwnedStart() + lat.OwnedCount(); i++) {
     PetscScalar c[3];
-    lat.TangentRow(i, NULL, c); // K
+    lat.KRow(i, c); // K
     PetscReal dd = 0, de = 0;   // predicted additions to K(i,i) and K(i,i+1)
     for (PetscInt b : {i - 1, i}) {
       if (b < 0 || b + 1 >= N || !p.Stiff(b)) continue;
@@ -353,7 +357,8 @@ TEST_CASE_METHOD(NonlinearChain14, "matrix-free shooting Jacobian action equals 
 {
   const PetscInt N = lat.N();
   PeriodicFlow flow;
-  PCHK(flow.Setup(lat, FlowOptions()));
+  auto fx_flow = Effects(lat);
+  PCHK(flow.Setup(*fx_flow, FlowOptions()));
   Shooting dense, mf;
   ShootingOptions so;
   PCHK(dense.Setup(flow, so));
@@ -397,7 +402,8 @@ TEST_CASE_METHOD(NonlinearChain14, "matrix-free shooting Jacobian is the derivat
   PeriodicFlow flow;
   FlowOptions fo;
   fo.steps = 24;
-  PCHK(flow.Setup(lat, fo));
+  auto fx_flow = Effects(lat);
+  PCHK(flow.Setup(*fx_flow, fo));
   Shooting dense, mf;
   ShootingOptions so;
   PCHK(dense.Setup(flow, so));
@@ -445,7 +451,8 @@ TEST_CASE_METHOD(NonlinearChain14, "-nnm_orbit_rtol stops Newton at |F| <= rtol 
   LinearModes modes;
   PCHK(modes.Compute(lat, LinearModesOptions()));
   PeriodicFlow flow;
-  PCHK(flow.Setup(lat, FlowOptions()));
+  auto fx_flow = Effects(lat);
+  PCHK(flow.Setup(*fx_flow, FlowOptions()));
   OwnedVec z, zs, X, F;
   PCHK(lat.CreateStateVector(z.out()));
   PCHK(VecDuplicate(z, zs.out()));
@@ -460,7 +467,7 @@ TEST_CASE_METHOD(NonlinearChain14, "-nnm_orbit_rtol stops Newton at |F| <= rtol 
     PCHK(VecRestoreArray(z, &a));
   }
   EnergyParts e;
-  PCHK(lat.Energy(z, &e));
+  PCHK(Effects(lat)->Energy(z, &e));
   const PetscReal T = 2 * PETSC_PI / modes.Omega()[N - 1];
   PetscInt its[3];
   PetscReal fn[3], zn[3];

@@ -82,7 +82,8 @@ TEST_CASE_METHOD(Chain10, "symplectic shooting flow: every column of S and the T
   PeriodicFlow flow;
   FlowOptions fo;
   fo.steps = 24; // coarse: the discrete map differs visibly from the exact flow
-  PCHK(flow.Setup(lat, fo));
+  auto fx_flow = Effects(lat);
+  PCHK(flow.Setup(*fx_flow, fo));
   REQUIRE(flow.Symplectic());
   OwnedVec z0, zT, zp, zm, w, dz, f;
   OwnedMat S;
@@ -138,7 +139,8 @@ TEST_CASE_METHOD(Chain10, "symplectic shooting flow: at beta = 0 the monodromy i
     PeriodicFlow flow;
     FlowOptions fo;
     fo.steps = 128;
-    PCHK(flow.Setup(lat, fo));
+    auto fx_flow = Effects(lat);
+    PCHK(flow.Setup(*fx_flow, fo));
     OwnedVec z0, zT;
     OwnedMat S;
     PCHK(lat.CreateStateVector(z0.out()));

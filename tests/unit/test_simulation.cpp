@@ -42,7 +42,7 @@ TEST_CASE("a linear scene never runs the cubic kernel; a nonlinear one always do
     SimulationOptions so;
     so.t_final = 50;
     SimulationResult r;
-    PCHK(Simulate(lat, &burst, so, NULL, NULL, &r));
+    PCHK(Simulate(*Effects(lat, &burst), so, NULL, NULL, &r));
     REQUIRE(r.counters.rhs > 0);
     REQUIRE(r.counters.linear == r.counters.rhs);
     REQUIRE(r.counters.cubic == (Gamma == 0 ? 0 : r.counters.rhs));
@@ -62,9 +62,9 @@ TEST_CASE("after the cut-off the forcing is never evaluated; no forcing, no forc
   SimulationResult a, b;
   SimulationOptions so;
   so.t_final = 500;
-  PCHK(Simulate(lat, &burst, so, NULL, NULL, &a));
+  PCHK(Simulate(*Effects(lat, &burst), so, NULL, NULL, &a));
   so.t_final = 800;
-  PCHK(Simulate(lat, &burst, so, NULL, NULL, &b));
+  PCHK(Simulate(*Effects(lat, &burst), so, NULL, NULL, &b));
   REQUIRE(a.reached);
   REQUIRE(b.reached);
   REQUIRE(a.t_off == b.t_off);
@@ -80,7 +80,7 @@ TEST_CASE("after the cut-off the forcing is never evaluated; no forcing, no forc
   PCHK(off.Setup(lat, none, nullptr));
   SimulationResult c;
   so.t_final = 50;
-  PCHK(Simulate(lat, &off, so, NULL, NULL, &c));
+  PCHK(Simulate(*Effects(lat, &off), so, NULL, NULL, &c));
   REQUIRE(c.counters.forcing == 0);
   REQUIRE(c.energy_final == 0.0);
 }
@@ -93,7 +93,7 @@ static PetscErrorCode FreeRun(const Lattice &lat, Vec z0, PetscReal t_final, Ene
   so.sample_dt = 1.0;
   SimulationResult r;
   PetscFunctionBeginUser;
-  PetscCall(Simulate(lat, nullptr, so, z0, trace, &r));
+  PetscCall(Simulate(*Effects(lat), so, z0, trace, &r));
   PetscReal d = 0;
   for (PetscReal e : trace->e) d = std::max(d, std::abs(e - trace->e[0]) / trace->e[0]);
   *drift = d;
@@ -113,7 +113,7 @@ TEST_CASE("free run at E = 100 conserves energy to a bound tied to the TS tolera
   for (auto &x : v0) x *= std::sqrt(200.0); // E = 1/2 v.v = 100
   SetState(lat, std::vector<PetscReal>(lat.N(), 0.0), v0, z0);
   EnergyParts e0;
-  PCHK(lat.Energy(z0, &e0));
+  PCHK(Effects(lat)->Energy(z0, &e0));
   REQUIRE(e0.Total() == Approx(100.0).epsilon(1e-12));
 
   PetscReal d8, d10, ds;
@@ -188,11 +188,11 @@ TEST_CASE("a cut-off inside a long step is found: E reaches E* between two step 
   SimulationResult ref, rkn;
   {
     ScopedOptions opt({{"-sim_ts_rtol", "1e-10"}, {"-sim_ts_atol", "1e-10"}});
-    PCHK(Simulate(lat, &burst, so, NULL, NULL, &ref));
+    PCHK(Simulate(*Effects(lat, &burst), so, NULL, NULL, &ref));
   }
   {
     ScopedOptions opt({{"-sim_ts_type", "rkn"}, {"-sim_ts_rkn_scheme", "dep86"}, {"-sim_ts_rtol", "1e-6"}, {"-sim_ts_atol", "1e-6"}});
-    PCHK(Simulate(lat, &burst, so, NULL, NULL, &rkn));
+    PCHK(Simulate(*Effects(lat, &burst), so, NULL, NULL, &rkn));
   }
   INFO("t_off: rk 5dp 1e-10 " << ref.t_off << ", rkn dep86 1e-6 " << rkn.t_off << " in " << rkn.steps << " steps");
   REQUIRE(ref.reached);
@@ -226,7 +226,7 @@ TEST_CASE("-sim_dt_quartic_energy: the fixed step shrinks as E^(-1/4) and keeps 
     SimulationResult r;
     EnergyTrace tr;
     ScopedOptions o({{"-sim_ts_type", "symsplit"}, {"-sim_ts_dt", "0.4"}});
-    PCHK(Simulate(lat, nullptr, so, z0, &tr, &r));
+    PCHK(Simulate(*Effects(lat), so, z0, &tr, &r));
     PetscReal d = 0;
     for (PetscReal e : tr.e) d = std::max(d, std::abs(e - E) / E);
     *err = d;
