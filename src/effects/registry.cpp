@@ -11,7 +11,7 @@ namespace nltopo {
 // lat NULL: read (and so declare) the options only.
 using EffectFromOptions = PetscErrorCode (*)(MPI_Comm comm, const Lattice *lat, std::unique_ptr<Effect> *e);
 
-#define NLTOPO_OPTIONAL_EFFECTS(X)
+#define NLTOPO_OPTIONAL_EFFECTS(X) X(Damping)
 
 #define NLTOPO_DECLARE_EFFECT(Name) PetscErrorCode Name##FromOptions(MPI_Comm, const Lattice *, std::unique_ptr<Effect> *);
 NLTOPO_OPTIONAL_EFFECTS(NLTOPO_DECLARE_EFFECT)
