@@ -1,6 +1,7 @@
 // -study linear: eigenpairs of K, the named modes (README.md "Mode
 // identification"), infinite-lattice Bloch bands and Zak phases; /linear of outputs.md.
 #include "bands/linear_modes.hpp"
+#include "effects/effect.hpp"
 #include "core/log.hpp"
 #include "core/options_audit.hpp"
 #include "io/output.hpp"
@@ -58,6 +59,11 @@ PetscErrorCode LinearStudy(MPI_Comm comm)
   PetscCall(OutputPathFromOptions(comm, "linear", &path));
   PetscCall(out.Open(comm, path));
   PetscCall(lat.Setup(comm, lp));
+  {
+    EffectList fx(lat); // the undamped modes of K: no non-conservative effect belongs here
+    PetscCall(BuildEffects(lat, nullptr, &fx));
+    PetscCall(fx.RequireConservative("-study linear (the normal modes of K)"));
+  }
   PetscCall(PetscLogStagePop());
 
   PetscCall(PetscLogStagePush(Log().solve));

@@ -55,6 +55,13 @@ mkdir -p adir.h5
 expect_error "-output $WORK/adir.h5: is a directory" "$WORK/adir.h5" -study linear -lattice_cells 5
 expect_error "-force_energy" o.h5 $S -force_energy -1
 expect_error "-lattice_cubic" o.h5 -study linear -lattice_Gamma 0.5
+# damping (an effect): refused by the studies that need a conservative lattice and by the integrators of u'' = a(t, u)
+expect_error "-lattice_damping must lie in" o.h5 $S -lattice_damping -1
+expect_error "-study continuation needs a conservative lattice; -lattice_damping 0.1 adds" o.h5 $C -lattice_damping 0.1
+expect_error "-study linear (the normal modes of K) needs a conservative lattice; -lattice_damping 0.1" o.h5 -study linear -lattice_cells 5 -lattice_damping 0.1
+expect_error "-study stability needs a conservative lattice; -lattice_damping 0.2" o.h5 -study stability -lattice_cells 5 -lattice_damping 0.2
+expect_error "-sim_ts_type rkn integrates u'' = a(t, u); -lattice_damping 0.1" o.h5 $S -lattice_damping 0.1 -sim_ts_type rkn
+expect_error "-sim_ts_type symsplit integrates u'' = a(t, u); -lattice_damping 0.1" o.h5 $S -lattice_damping 0.1 -sim_ts_type symsplit -sim_ts_dt 0.1
 expect_error "-lattice_layout" o.h5 -study linear -lattice_layout sideways
 expect_error "-force_profile" o.h5 $S -force_profile sideways
 # misspelt, foreign and unused options: the closest known option is named

@@ -49,3 +49,24 @@ assert a["energy_reached"] == 1 and a["amplitude_rescalings"] >= 1, dict(a)
 assert abs(a["energy_final"] - 10) < 1e-2, a["energy_final"]
 print("E* = 10 reached after", a["amplitude_rescalings"], "rescalings of S, S =", a["amplitude"])
 PYEOF
+# Damping (-lattice_damping c, an effect): simulate honours it with an rk
+# type. After the cut-off dE/dt = -2 c E_kin: E(t) / E* >= exp(-2 c (t - t_off))
+# (all energy kinetic), and by the virial theorem the mean kinetic share is
+# p / (p + 2) >= 1/2 for potentials of degree p >= 2, so E(t) / E* <= about
+# exp(-c (t - t_off)); 1 and 2 ranks agree.
+run1 -options_file "$SRC/options/simulate.opts" -sim_ts_type rk -sim_store_u 0 -sim_t_final 600 -lattice_damping 0.01 -output simd1.h5 > outd1.txt
+run2 -options_file "$SRC/options/simulate.opts" -sim_ts_type rk -sim_store_u 0 -sim_t_final 600 -lattice_damping 0.01 -output simd2.h5 > outd2.txt
+$PY - <<'PYEOF'
+import h5py, numpy as np
+a, b = h5py.File("simd1.h5", "r")["simulate"], h5py.File("simd2.h5", "r")["simulate"]
+A = a.attrs
+assert A["energy_reached"] == 1, dict(A)
+t, E = a["t"][:], a["energy"][:]
+after = t >= A["t_off"]
+ratio = E[-1] / A["energy_star"]
+lower, virial = np.exp(-0.02 * (t[-1] - A["t_off"])), np.exp(-0.01 * (t[-1] - A["t_off"]))
+assert lower < ratio < 1.02 * virial, (ratio, lower, virial)
+assert np.all(np.diff(E[after]) <= 1e-12 * E[after][:-1]), "damped energy must never grow after the cut-off"
+assert abs(A["mcr"] - b.attrs["mcr"]) < 1e-8 and np.abs(b["energy"][:] - E).max() < 1e-8
+print("damped run: E(t_final)/E* =", ratio, "in [exp(-2c dt), exp(-c dt)] =", [lower, virial])
+PYEOF

@@ -122,5 +122,19 @@ assert (s["failed"][:] == [[0, 0], [1, 1]]).all() and s["done"][:].all()
 assert np.isfinite(s["mcr"][0]).all() and np.isnan(s["mcr"][1]).all()
 print("failed points flagged:", s["failed"][:].tolist())
 PYEOF
+# Damping (an effect) is honoured by the sweep: after the cut-off every point
+# loses energy, at least as exp(-2 c (t_final - t_off)) allows and no slower
+# than the virial bound exp(-c (t_final - t_off)) (tests/scenes/simulate.sh).
+run2 -study sweep -sweep_omega_list 1.6,1.9 -sweep_energy_list 0.1,1 -sweep_kcorr 0 -lattice_damping 0.01 -output damped.h5 > damped.txt
+$PY - <<'PYEOF'
+import h5py, numpy as np
+s = h5py.File("damped.h5", "r")["sweep"]
+E, ef, toff = s["energy"][:], s["energy_final"][:], s["t_off"][:]
+dt = 1000 - toff
+assert (toff > 0).all(), toff
+r = ef / E[:, None]
+assert (r > np.exp(-0.02 * dt)).all() and (r < 1.02 * np.exp(-0.01 * dt)).all(), r
+print("damped sweep: E_final / E* =", r.round(4).tolist())
+PYEOF
 $PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_sweep.py" full1.h5 map.png
 echo "sweep scene OK"
