@@ -3,6 +3,7 @@
 #include "core/log.hpp"
 #include "core/signals.hpp"
 #include "diagnostics/mcr.hpp"
+#include "diagnostics/rms_window.hpp"
 #include "timeint/ts_rkn.hpp"
 #include "timeint/ts_symsplit.hpp"
 #include <cmath>
@@ -44,7 +45,6 @@ struct Run {
   SampleSink *sink;
   bool event_mode = false, interpolate = true;
   bool locate_in_step = false; // find the cut-off on the step's interpolant (fixed-step symsplit)
-  TS gauss_ts = nullptr;        // rkn: the window integrals by 3-point Gauss-Legendre on each step's interpolant
   PetscReal burst_end = PETSC_MAX_REAL; // abort_if_missed: stop here if E* was missed
   PetscReal estar = 0, t_final = 0, sample_dt = 0, window_default = 0, progress = 0;
   PetscLogDouble wall0 = 0, wall_last = 0;
@@ -57,12 +57,9 @@ struct Run {
   PetscInt cache_step = -1;
   PetscReal cache_t = -1;
   EnergyParts cache_e;
-  // RMS / energy-ratio window accumulators (trapezoid over steps)
-  bool accumulating = false;
-  PetscReal t_prev = 0, nl_prev = 0, lin_prev = 0, acc_nl = 0, acc_lin = 0;
-  std::vector<PetscReal> u2_prev, acc_u2;
+  RmsWindow window; // the RMS / energy-ratio window after the cut-off
 
-  Run(const EffectList &e, SampleSink *s, SimulationResult *res) : lat(&e.Lat()), fx(&e), forcing(e.Burst()), rhs(e), sink(s), r(res) {}
+  Run(const EffectList &e, SampleSink *s, SimulationResult *res) : lat(&e.Lat()), fx(&e), forcing(e.Burst()), rhs(e), sink(s), r(res), window(e) {}
 
   // The energy of the TS solution z at (t, step): the event indicator and the
   // post-step see the same state (the code that changes z in place at the
@@ -146,73 +143,7 @@ struct Run {
     r->t_off = t;
     r->reached = true;
     r->window_start = t;
-    accumulating = false; // restart the window at t_off
-  }
-
-  // The window integrals over [t_prev, t] inside the last step by 3-point
-  // Gauss-Legendre on the step's interpolant (exact for degree 5): long
-  // adaptive steps (rkn) make the trapezoid the error. False if [t_prev, t]
-  // is not inside the last step (then the trapezoid is used).
-  PetscErrorCode GaussStep(PetscReal t, bool *done)
-  {
-    PetscReal tp;
-    PetscFunctionBeginUser;
-    PetscCall(TSGetPrevTime(gauss_ts, &tp));
-    *done = t_prev >= tp - 1e-12 * (1 + std::abs(tp)) && t > t_prev;
-    if (!*done) PetscFunctionReturn(0);
-    const PetscReal h = t - t_prev, x = std::sqrt(15.0) / 10, node[3] = {0.5 - x, 0.5, 0.5 + x}, w[3] = {5.0 / 18, 8.0 / 18, 5.0 / 18};
-    const PetscInt n = lat->OwnedCount();
-    for (int q = 0; q < 3; q++) {
-      const PetscScalar *a;
-      EnergyParts eq;
-      PetscCall(TSRknInterpolatePositions(gauss_ts, std::max(t_prev, tp) + node[q] * h, zs)); // Energy's kinetic part unused here
-      PetscCall(fx->Energy(zs, &eq));
-      PetscCall(VecGetArrayRead(zs, &a));
-      for (PetscInt k = 0; k < n; k++) acc_u2[k] += w[q] * h * a[k] * a[k];
-      PetscCall(VecRestoreArrayRead(zs, &a));
-      acc_nl += w[q] * h * eq.quartic;
-      acc_lin += w[q] * h * eq.linear;
-    }
-    PetscFunctionReturn(0);
-  }
-
-  PetscErrorCode Window(PetscReal t, Vec z, const EnergyParts &e)
-  {
-    const PetscScalar *a;
-    const PetscInt n = lat->OwnedCount();
-    PetscFunctionBeginUser;
-    if (!accumulating && t + 1e-12 < r->window_start) PetscFunctionReturn(0);
-    PetscCall(VecGetArrayRead(z, &a));
-    if (!accumulating) {
-      accumulating = true;
-      r->window_start = t;
-      acc_nl = acc_lin = 0;
-      u2_prev.assign(n, 0.0);
-      acc_u2.assign(n, 0.0);
-      for (PetscInt k = 0; k < n; k++) u2_prev[k] = a[k] * a[k];
-    } else {
-      const PetscReal h = 0.5 * (t - t_prev);
-      bool gauss = false;
-      if (gauss_ts) {
-        PetscCall(VecRestoreArrayRead(z, &a));
-        PetscCall(GaussStep(t, &gauss));
-        PetscCall(VecGetArrayRead(z, &a));
-      }
-      for (PetscInt k = 0; k < n; k++) {
-        const PetscReal u2 = a[k] * a[k];
-        if (!gauss) acc_u2[k] += h * (u2 + u2_prev[k]);
-        u2_prev[k] = u2;
-      }
-      if (!gauss) {
-        acc_nl += h * (e.quartic + nl_prev);
-        acc_lin += h * (e.linear + lin_prev);
-      }
-    }
-    PetscCall(VecRestoreArrayRead(z, &a));
-    t_prev = t;
-    nl_prev = e.quartic;
-    lin_prev = e.linear;
-    PetscFunctionReturn(0);
+    window.Restart(); // the window starts at t_off
   }
 
   PetscErrorCode Samples(TS ts, PetscReal t, Vec z, const EnergyParts &e)
@@ -368,7 +299,7 @@ PetscErrorCode PostStep(TS ts)
     run->r->aborted = true;
     PetscCall(TSSetConvergedReason(ts, TS_CONVERGED_USER));
   }
-  PetscCall(run->Window(t, z, e));
+  PetscCall(run->window.Step(t, z, e, &run->r->window_start));
   PetscCall(run->Samples(ts, t, z, e));
   if (run->progress > 0) { // long runs say where they are (rank 0, one line per interval)
     PetscLogDouble now;
@@ -553,7 +484,7 @@ PetscErrorCode Simulate(const EffectList &fx, const SimulationOptions &o, Vec z0
   } else if (run.rhs.Forcing() && splitting) {
     run.locate_in_step = true;
   } else if (run.rhs.Forcing() && TypeRollsBack(type)) {
-    if (!std::strcmp(type, TSRKN)) run.gauss_ts = ts; // long steps: the window integrals on the interpolant
+    if (!std::strcmp(type, TSRKN)) run.window.SetInterpolant(ts); // long steps: the window integrals on the interpolant
     // Locate the cut-off E(t) = E* (relative tolerance 1e-10) with a TS event,
     // registered after the step size is final (guide, pitfall a). Types that
     // cannot roll back a step (euler, ssp, ...) check after every step instead.
@@ -571,7 +502,7 @@ PetscErrorCode Simulate(const EffectList &fx, const SimulationOptions &o, Vec z0
     PetscCall(fx.Energy(z, &e0));
     // A continued run's samples follow the earlier run's (which took t = t_start).
     if (o.t_start > 0 && o.sample_dt > 0) run.next_sample = (PetscInt)std::floor(o.t_start / o.sample_dt + 1e-9) + 1;
-    PetscCall(run.Window(o.t_start, z, e0));
+    PetscCall(run.window.Step(o.t_start, z, e0, &r->window_start));
     PetscCall(run.Samples(ts, o.t_start, z, e0));
   }
   PetscCall(TSSetTime(ts, o.t_start));
@@ -609,18 +540,7 @@ PetscErrorCode Simulate(const EffectList &fx, const SimulationOptions &o, Vec z0
   PetscCall(PetscLogEventBegin(Log().diagnostics, 0, 0, 0, 0));
   PetscCall(DMCreateGlobalVector(lat.SiteDM(), r->rms.out()));
   PetscCall(PetscObjectSetName((PetscObject)r->rms.get(), "rms"));
-  {
-    PetscScalar *a;
-    const PetscReal len = run.t_prev - r->window_start;
-    PetscCall(VecGetArray(r->rms, &a));
-    if (len > 0) {
-      for (PetscInt k = 0; k < lat.OwnedCount(); k++) a[k] = std::sqrt(run.acc_u2[k] / len);
-    } else { // zero-length window: the final displacement
-      for (PetscInt k = 0; k < lat.OwnedCount(); k++) a[k] = std::sqrt(run.u2_prev[k]);
-    }
-    PetscCall(VecRestoreArray(r->rms, &a));
-    r->nl_ratio = run.acc_lin > 0 ? run.acc_nl / run.acc_lin : (run.lin_prev > 0 ? run.nl_prev / run.lin_prev : 0);
-  }
+  PetscCall(run.window.Finish(r->window_start, r->rms, &r->nl_ratio));
   PetscCall(Mcr(r->rms, &r->mcr));
   PetscCall(PetscLogEventEnd(Log().diagnostics, 0, 0, 0, 0));
   {

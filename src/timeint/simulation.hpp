@@ -74,7 +74,9 @@ struct SimulationResult {
 
 // A forced run under the amplitude rule (README.md "Amplitude rule"): with S
 // from the rule, a run whose burst ends (t0 + 3 tau) before E* is reached is
-// stopped there and repeated with S scaled by max(2, sqrt(E* / E_peak)), at most
+// stopped there and repeated with S scaled by (1.2 E* / E_peak)^(1/p), at least
+// 2 and at most 100, with p = 1 after the first miss and then the log-log slope
+// of E_peak against S over the last two attempts (clamped to [0.3, 2]), at most
 // -force_amplitude_retries times; the last attempt runs to t_final whatever
 // happens (and says reached = false). With a given -force_amplitude: one run.
 // *rescalings = attempts - 1, or -1 if E* was never reached.
