@@ -9,6 +9,7 @@
 // throw-away solver object for each solver prefix, so that under -help PETSc
 // prints them all and otherwise marks them used.
 #include <petscsys.h>
+#include <functional>
 #include <map>
 #include <set>
 #include <string>
@@ -17,7 +18,7 @@
 
 namespace nltopo {
 
-using OptionsFn = PetscErrorCode (*)(MPI_Comm);
+using OptionsFn = std::function<PetscErrorCode(MPI_Comm)>;
 
 // Options as given (name without the dash, value or ""), listed before anything reads them.
 using OptionList = std::vector<std::pair<std::string, std::string>>;

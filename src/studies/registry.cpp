@@ -8,20 +8,21 @@
 namespace nltopo {
 
 static const StudyEntry kStudies[] = {
-  {"linear", "linear modes of K, named modes, Bloch bands and Zak phases", LinearStudy, LinearStudyOptions},
-  {"simulate", "one forced tone-burst run with energy cut-off", SimulateStudy, SimulateStudyOptions},
-  {"continuation", "NNM branches by shooting and pseudo-arclength continuation", ContinuationStudy, ContinuationStudyOptions},
-  {"sweep", "a grid of forced runs (omega_ext x E*) scored by MCR, 0-1 test and energy ratio; parallel, resumable", SweepStudy, SweepStudyOptions},
-  {"zak", "the half-lattice phase experiment: phi_0, phi_pi and the energy where they stop being distinct", ZakStudy, ZakStudyOptions},
-  {"perturb", "chiral and achiral spring-perturbation ensembles: insulated frequency and MCR along the insulated NNM", PerturbStudy, PerturbStudyOptions},
-  {"workprecision", "what accuracy costs for one forced run: integrator configurations timed and scored against a converged reference, and the predictability floor", WorkprecisionStudy, WorkprecisionStudyOptions},
-  {"stability", "perturbed insulated-branch NNMs integrated for many periods: does the standing wave persist", StabilityStudy, StabilityStudyOptions},
+  {"linear", "linear modes of K, named modes, Bloch bands and Zak phases", nullptr, LinearStudy, LinearStudyOptions},
+  {"simulate", "one forced tone-burst run with energy cut-off", CreateSimulateStudy, nullptr, nullptr},
+  {"continuation", "NNM branches by shooting and pseudo-arclength continuation", nullptr, ContinuationStudy, ContinuationStudyOptions},
+  {"sweep", "a grid of forced runs (omega_ext x E*) scored by MCR, 0-1 test and energy ratio; parallel, resumable", nullptr, SweepStudy, SweepStudyOptions},
+  {"zak", "the half-lattice phase experiment: phi_0, phi_pi and the energy where they stop being distinct", nullptr, ZakStudy, ZakStudyOptions},
+  {"perturb", "chiral and achiral spring-perturbation ensembles: insulated frequency and MCR along the insulated NNM", nullptr, PerturbStudy, PerturbStudyOptions},
+  {"workprecision", "what accuracy costs for one forced run: integrator configurations timed and scored against a converged reference, and the predictability floor", nullptr, WorkprecisionStudy, WorkprecisionStudyOptions},
+  {"stability", "perturbed insulated-branch NNMs integrated for many periods: does the standing wave persist", nullptr, StabilityStudy, StabilityStudyOptions},
 };
 
 static std::map<std::string, OptionsFn> StudyOptionFunctions()
 {
   std::map<std::string, OptionsFn> m;
-  for (const auto &s : kStudies) m[s.name] = s.options;
+  for (const auto &s : kStudies)
+    m[s.name] = s.create ? OptionsFn([&s](MPI_Comm c) { return s.create()->DeclareOptions(c); }) : OptionsFn(s.options);
   return m;
 }
 
@@ -62,9 +63,10 @@ PetscErrorCode RunStudyFromOptions(MPI_Comm comm)
   OptionList given;
   PetscCall(ListGivenOptions(&given));
   PetscCall(CheckFiniteOptionValues(comm, given, true)); // nan/inf in solver options, whose own checks do not name them
-  PetscCall(CheckOptionValueShapes(comm, name, entry->options, given)); // a missing value, an integer PETSc would wrap
+  PetscCall(CheckOptionValueShapes(comm, name, StudyOptionFunctions()[name], given)); // a missing value, an integer PETSc would wrap
   PetscCall(PetscOptionsHasHelp(NULL, &list_help));
-  PetscCall(entry->options(comm)); // -help: prints them all; otherwise marks them read and checks their ranges
+  const OptionsFn options = StudyOptionFunctions()[name];
+  PetscCall(options(comm)); // -help: prints them all; otherwise marks them read and checks their ranges
   PetscCall(CheckFiniteOptionValues(comm, given, false)); // nan/inf that no range check of nltopo's caught
   if (list_help) {
     PetscCall(PetscPrintf(comm, "nltopo: -help listed the options of -study %s; nothing was computed\n", name));
@@ -73,7 +75,8 @@ PetscErrorCode RunStudyFromOptions(MPI_Comm comm)
   g_running = entry;
   PetscCall(AuditUnusedOptions(comm, name, StudyOptionFunctions(), true)); // misspelt or foreign options fail before any work
   PetscCall(SetCommitGuard(AuditOptionsBeforeCommit));
-  PetscCall(entry->run(comm));
+  if (entry->create) PetscCall(entry->create()->Run(comm, entry->name));
+  else PetscCall(entry->run(comm));
   PetscFunctionReturn(0);
 }
 

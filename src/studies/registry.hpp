@@ -3,7 +3,7 @@
 // Each study also has an options function that reads every option block of
 // its components and declares its solver prefixes (core/options_audit.hpp):
 // -help runs only that and exits, and options it does not read are refused.
-#include <petscsys.h>
+#include "studies/study.hpp"
 
 namespace nltopo {
 
@@ -11,14 +11,16 @@ using StudyFn = PetscErrorCode (*)(MPI_Comm);
 
 struct StudyEntry {
   const char *name, *help;
-  StudyFn run, options;
+  StudyFactory create; // a Study class (studies/study.hpp)
+  StudyFn run, options; // not yet a class
 };
+
+std::unique_ptr<Study> CreateSimulateStudy();
 
 #define NLTOPO_STUDY(Name) \
   PetscErrorCode Name##Study(MPI_Comm comm); \
   PetscErrorCode Name##StudyOptions(MPI_Comm comm)
 NLTOPO_STUDY(Linear);
-NLTOPO_STUDY(Simulate);
 NLTOPO_STUDY(Continuation);
 NLTOPO_STUDY(Stability);
 NLTOPO_STUDY(Sweep);

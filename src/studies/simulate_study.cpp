@@ -6,6 +6,7 @@
 #include "core/signals.hpp"
 #include "io/output.hpp"
 #include "studies/registry.hpp"
+#include "studies/study.hpp"
 #include "timeint/simulation.hpp"
 
 namespace nltopo {
@@ -69,132 +70,136 @@ PetscErrorCode StoreOptionsFromOptions(MPI_Comm comm, const LatticeParams &lp, c
   PetscFunctionReturn(0);
 }
 
+class SimulateStudy : public Study {
+public:
+  PetscErrorCode DeclareOptions(MPI_Comm comm) override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(LatticeParamsFromOptions(comm, &lp_));
+    PetscCall(ToneBurstOptionsFromOptions(comm, lp_, &fo_));
+    PetscCall(SimulationOptionsFromOptions(comm, &so_));
+    PetscCall(StoreOptionsFromOptions(comm, lp_, so_, &store_u_, &stride_));
+    PetscCall(LinearModesOptionsFromOptions(comm, &mo_)); // the mode profiles and the amplitude rule
+    PetscCall(DeclareEPS(comm, "linear_"));
+    PetscCall(DeclareTS(comm, "sim_"));
+    PetscCall(DeclareOutputOptions(comm, "simulate"));
+    PetscFunctionReturn(0);
+  }
+
+protected:
+  PetscErrorCode ReadOptions() override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(LatticeParamsFromOptions(comm_, &lp_));
+    PetscCall(ToneBurstOptionsFromOptions(comm_, lp_, &fo_));
+    PetscCall(SimulationOptionsFromOptions(comm_, &so_));
+    PetscCall(StoreOptionsFromOptions(comm_, lp_, so_, &store_u_, &stride_));
+    need_modes_ = fo_.profile == ForceProfile::Mode || fo_.profile == ForceProfile::Exponential || (fo_.profile != ForceProfile::None && fo_.amplitude < 0);
+    if (need_modes_) PetscCall(LinearModesOptionsFromOptions(comm_, &mo_));
+    if (store_u_ && so_.sample_dt > 0) {
+      PetscMPIInt nranks;
+      PetscCallMPI(MPI_Comm_size(comm_, &nranks));
+      const double samples = (so_.t_final - so_.t_start) / so_.sample_dt + 2, sites = std::ceil((double)lp_.N() / stride_) / nranks;
+      PetscCall(CheckMemory(comm_, 8.0 * samples * sites, "/simulate/u (-lattice_cells x -sim_t_final / -sim_sample_dt; -sim_store_u_stride or -sim_store_u 0 shrink it)"));
+      u_bytes_ = 8.0 * samples * sites * nranks;
+    }
+    PetscFunctionReturn(0);
+  }
+  double OutputBytes() const override { return u_bytes_ + 16.0 * lp_.N(); }
+  PetscErrorCode Build() override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(lat_.Setup(comm_, lp_));
+    if (need_modes_) PetscCall(modes_.Compute(lat_, mo_));
+    PetscCall(burst_.Setup(lat_, fo_, need_modes_ ? &modes_ : NULL));
+    PetscCall(BuildEffects(lat_, &burst_, &fx_));
+    sink_ = std::make_unique<Samples>(lat_, store_u_, stride_);
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode Solve() override
+  {
+    PetscLogDouble t0, t1;
+    PetscFunctionBeginUser;
+    PetscCall(PetscTime(&t0));
+    {
+      const PetscErrorCode ierr = SimulateForced(fx_, so_, sink_.get(), &r_, &rescalings_);
+      // One run has nothing partial worth keeping: a stop signal ends it without output.
+      PetscCheck(!IsInterrupt(ierr), comm_, PETSC_ERR_SIG, "interrupted by %s during the forced run; no output written (one run has no partial result)",
+                 SignalName(StopSignalSeen()));
+      PetscCall(ierr);
+    }
+    PetscCall(PetscTime(&t1));
+    solve_seconds_ = t1 - t0;
+    PetscCall(PetscPrintf(comm_, "nltopo simulate: N = %" PetscInt_FMT ", omega_ext = %.6f, E* = %g, S = %.6g (%s, %" PetscInt_FMT " rescalings), t_final = %g\n",
+                          lat_.N(), (double)burst_.Omega(), (double)burst_.EnergyStar(), (double)burst_.Amplitude(),
+                          burst_.AmplitudeFromRule() ? "amplitude rule" : "-force_amplitude", rescalings_, (double)so_.t_final));
+    if (r_.reached) PetscCall(PetscPrintf(comm_, "  cut-off at t_off = %.6f, E_final = %.10g\n", (double)r_.t_off, (double)r_.energy_final));
+    else if (burst_.Present())
+      PetscCall(PetscPrintf(comm_, "  WARNING: E* = %g was NOT reached (E_final = %.6g); RMS window from t = %g\n", (double)burst_.EnergyStar(),
+                            (double)r_.energy_final, (double)r_.window_start));
+    PetscCall(PetscPrintf(comm_, "  MCR = %.10f, nl_ratio = %.6g, steps = %" PetscInt_FMT " (%" PetscInt_FMT " rejected), RHS evaluations = %" PetscInt_FMT
+                                 ", solve %.3f s\n",
+                          (double)r_.mcr, (double)r_.nl_ratio, r_.steps, r_.rejected, r_.counters.rhs, solve_seconds_));
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode Write(PetscViewer v) override
+  {
+    const SimulationResult &r = r_;
+    const Samples &sink = *sink_;
+    const char *g = "/simulate";
+    PetscFunctionBeginUser;
+    PetscCall(WriteArray(v, g, "t", sink.t_));
+    PetscCall(WriteArray(v, g, "energy", sink.energy_));
+    if (store_u_ && !sink.t_.empty()) {
+      PetscCall(WriteColumnBlock(v, g, "u", (PetscInt)sink.t_.size(), sink.Cols(), sink.Col0(), sink.LocalCols(), sink.u_));
+      PetscCall(WriteAttr(v, g, "u_stride", stride_));
+    }
+    PetscCall(WriteDistributed(v, g, "rms", r.rms));
+    PetscCall(WriteAttr(v, g, "mcr", r.mcr));
+    PetscCall(WriteAttr(v, g, "t_off", r.t_off));
+    PetscCall(WriteAttr(v, g, "energy_final", r.energy_final));
+    PetscCall(WriteAttr(v, g, "nl_ratio", r.nl_ratio));
+    PetscCall(WriteAttr(v, g, "rhs_evals", r.counters.rhs));
+    PetscCall(WriteAttr(v, g, "rhs_evals_all_attempts", r.rhs_all_attempts));
+    PetscCall(WriteAttr(v, g, "steps", r.steps));
+    PetscCall(WriteAttr(v, g, "rejected_steps", r.rejected));
+    PetscCall(WriteAttr(v, g, "energy_reached", (PetscInt)r.reached));
+    PetscCall(WriteAttr(v, g, "window_start", r.window_start));
+    PetscCall(WriteAttr(v, g, "omega_ext", burst_.Omega()));
+    PetscCall(WriteAttr(v, g, "energy_star", burst_.EnergyStar()));
+    PetscCall(WriteAttr(v, g, "amplitude", burst_.Amplitude()));
+    PetscCall(WriteAttr(v, g, "amplitude_rule",
+                        !burst_.Present() ? "none (no forcing)"
+                        : burst_.AmplitudeFromRule() ? "linear Gaussian-burst energy = amplitude_safety * E*; a run whose burst ends before E* is repeated with a larger S (x (1.2 E*/E_peak)^(1/p), p the log-log slope of the misses) (README.md, Amplitude rule)"
+                                                     : "user (-force_amplitude)"));
+    PetscCall(WriteAttr(v, g, "amplitude_safety", fo_.safety));
+    PetscCall(WriteAttr(v, g, "amplitude_rescalings", rescalings_)); // -1: E* missed after -force_amplitude_retries
+    PetscCall(WriteAttr(v, g, "tau", burst_.Tau()));
+    PetscCall(WriteAttr(v, g, "t0", burst_.T0()));
+    PetscCall(WriteAttr(v, g, "solve_seconds", solve_seconds_));
+    PetscFunctionReturn(0);
+  }
+
+private:
+  LatticeParams lp_;
+  ToneBurstOptions fo_;
+  SimulationOptions so_;
+  LinearModesOptions mo_;
+  PetscBool store_u_ = PETSC_TRUE;
+  PetscInt stride_ = 1, rescalings_ = 0;
+  bool need_modes_ = false;
+  double u_bytes_ = 0;
+  PetscReal solve_seconds_ = 0;
+  Lattice lat_;
+  EffectList fx_{lat_};
+  LinearModes modes_;
+  ToneBurst burst_;
+  std::unique_ptr<Samples> sink_;
+  SimulationResult r_;
+};
+
 } // namespace
 
-PetscErrorCode SimulateStudyOptions(MPI_Comm comm)
-{
-  LatticeParams lp;
-  ToneBurstOptions fo;
-  SimulationOptions so;
-  LinearModesOptions mo;
-  PetscBool store_u = PETSC_TRUE;
-  PetscInt stride = 1;
-  PetscFunctionBeginUser;
-  PetscCall(LatticeParamsFromOptions(comm, &lp));
-  PetscCall(ToneBurstOptionsFromOptions(comm, lp, &fo));
-  PetscCall(SimulationOptionsFromOptions(comm, &so));
-  PetscCall(StoreOptionsFromOptions(comm, lp, so, &store_u, &stride));
-  PetscCall(LinearModesOptionsFromOptions(comm, &mo)); // the mode profiles and the amplitude rule
-  PetscCall(DeclareEPS(comm, "linear_"));
-  PetscCall(DeclareTS(comm, "sim_"));
-  PetscCall(DeclareOutputOptions(comm, "simulate"));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode SimulateStudy(MPI_Comm comm)
-{
-  LatticeParams lp;
-  ToneBurstOptions fo;
-  SimulationOptions so;
-  LinearModesOptions mo;
-  PetscBool store_u = PETSC_TRUE;
-  PetscInt stride = 1;
-  std::string path;
-  OutputFile out;
-  Lattice lat;
-  LinearModes modes;
-  ToneBurst burst;
-  SimulationResult r;
-  PetscLogDouble t_start, t_solve0, t_solve1, t_end;
-  PetscFunctionBeginUser;
-  PetscCall(PetscTime(&t_start));
-  PetscCall(LogRegister());
-  PetscCall(PetscLogStagePush(Log().setup));
-  PetscCall(LatticeParamsFromOptions(comm, &lp));
-  PetscCall(ToneBurstOptionsFromOptions(comm, lp, &fo));
-  PetscCall(SimulationOptionsFromOptions(comm, &so));
-  PetscCall(StoreOptionsFromOptions(comm, lp, so, &store_u, &stride));
-  const bool need_modes = fo.profile == ForceProfile::Mode || fo.profile == ForceProfile::Exponential || (fo.profile != ForceProfile::None && fo.amplitude < 0);
-  if (need_modes) PetscCall(LinearModesOptionsFromOptions(comm, &mo));
-  PetscCall(OutputPathFromOptions(comm, "simulate", &path));
-  double u_bytes = 0;
-  if (store_u && so.sample_dt > 0) {
-    PetscMPIInt nranks;
-    PetscCallMPI(MPI_Comm_size(comm, &nranks));
-    const double samples = (so.t_final - so.t_start) / so.sample_dt + 2, sites = std::ceil((double)lp.N() / stride) / nranks;
-    PetscCall(CheckMemory(comm, 8.0 * samples * sites, "/simulate/u (-lattice_cells x -sim_t_final / -sim_sample_dt; -sim_store_u_stride or -sim_store_u 0 shrink it)"));
-    u_bytes = 8.0 * samples * sites * nranks;
-  }
-  PetscCall(out.Open(comm, path, "", u_bytes + 16.0 * lp.N()));
-  PetscCall(lat.Setup(comm, lp));
-  if (need_modes) PetscCall(modes.Compute(lat, mo));
-  PetscCall(burst.Setup(lat, fo, need_modes ? &modes : NULL));
-  PetscCall(PetscLogStagePop());
-  PetscInt rescalings = 0;
-
-  Samples sink(lat, store_u, stride);
-  PetscCall(PetscLogStagePush(Log().solve));
-  PetscCall(PetscTime(&t_solve0));
-  {
-    EffectList fx(lat);
-    PetscCall(BuildEffects(lat, &burst, &fx));
-    const PetscErrorCode ierr = SimulateForced(fx, so, &sink, &r, &rescalings);
-    // One run has nothing partial worth keeping: a stop signal ends it without output.
-    PetscCheck(!IsInterrupt(ierr), comm, PETSC_ERR_SIG, "interrupted by %s during the forced run; no output written (one run has no partial result)",
-               SignalName(StopSignalSeen()));
-    PetscCall(ierr);
-  }
-  PetscCall(PetscTime(&t_solve1));
-  PetscCall(PetscLogStagePop());
-
-  PetscCall(PetscPrintf(comm, "nltopo simulate: N = %" PetscInt_FMT ", omega_ext = %.6f, E* = %g, S = %.6g (%s, %" PetscInt_FMT " rescalings), t_final = %g\n",
-                        lat.N(), (double)burst.Omega(), (double)burst.EnergyStar(), (double)burst.Amplitude(),
-                        burst.AmplitudeFromRule() ? "amplitude rule" : "-force_amplitude", rescalings, (double)so.t_final));
-  if (r.reached) PetscCall(PetscPrintf(comm, "  cut-off at t_off = %.6f, E_final = %.10g\n", (double)r.t_off, (double)r.energy_final));
-  else if (burst.Present())
-    PetscCall(PetscPrintf(comm, "  WARNING: E* = %g was NOT reached (E_final = %.6g); RMS window from t = %g\n", (double)burst.EnergyStar(),
-                          (double)r.energy_final, (double)r.window_start));
-  PetscCall(PetscPrintf(comm, "  MCR = %.10f, nl_ratio = %.6g, steps = %" PetscInt_FMT " (%" PetscInt_FMT " rejected), RHS evaluations = %" PetscInt_FMT
-                              ", solve %.3f s\n",
-                        (double)r.mcr, (double)r.nl_ratio, r.steps, r.rejected, r.counters.rhs, (double)(t_solve1 - t_solve0)));
-
-  PetscCall(PetscLogStagePush(Log().write));
-  PetscViewer v = out.Viewer();
-  const char *g = "/simulate";
-  PetscCall(WriteArray(v, g, "t", sink.t_));
-  PetscCall(WriteArray(v, g, "energy", sink.energy_));
-  if (store_u && !sink.t_.empty()) {
-    PetscCall(WriteColumnBlock(v, g, "u", (PetscInt)sink.t_.size(), sink.Cols(), sink.Col0(), sink.LocalCols(), sink.u_));
-    PetscCall(WriteAttr(v, g, "u_stride", stride));
-  }
-  PetscCall(WriteDistributed(v, g, "rms", r.rms));
-  PetscCall(WriteAttr(v, g, "mcr", r.mcr));
-  PetscCall(WriteAttr(v, g, "t_off", r.t_off));
-  PetscCall(WriteAttr(v, g, "energy_final", r.energy_final));
-  PetscCall(WriteAttr(v, g, "nl_ratio", r.nl_ratio));
-  PetscCall(WriteAttr(v, g, "rhs_evals", r.counters.rhs));
-  PetscCall(WriteAttr(v, g, "rhs_evals_all_attempts", r.rhs_all_attempts));
-  PetscCall(WriteAttr(v, g, "steps", r.steps));
-  PetscCall(WriteAttr(v, g, "rejected_steps", r.rejected));
-  PetscCall(WriteAttr(v, g, "energy_reached", (PetscInt)r.reached));
-  PetscCall(WriteAttr(v, g, "window_start", r.window_start));
-  PetscCall(WriteAttr(v, g, "omega_ext", burst.Omega()));
-  PetscCall(WriteAttr(v, g, "energy_star", burst.EnergyStar()));
-  PetscCall(WriteAttr(v, g, "amplitude", burst.Amplitude()));
-  PetscCall(WriteAttr(v, g, "amplitude_rule",
-                      !burst.Present() ? "none (no forcing)"
-                      : burst.AmplitudeFromRule() ? "linear Gaussian-burst energy = amplitude_safety * E*; a run whose burst ends before E* is repeated with a larger S (x (1.2 E*/E_peak)^(1/p), p the log-log slope of the misses) (README.md, Amplitude rule)"
-                                                  : "user (-force_amplitude)"));
-  PetscCall(WriteAttr(v, g, "amplitude_safety", fo.safety));
-  PetscCall(WriteAttr(v, g, "amplitude_rescalings", rescalings)); // -1: E* missed after -force_amplitude_retries
-  PetscCall(WriteAttr(v, g, "tau", burst.Tau()));
-  PetscCall(WriteAttr(v, g, "t0", burst.T0()));
-  PetscCall(WriteAttr(v, g, "solve_seconds", (PetscReal)(t_solve1 - t_solve0)));
-  PetscCall(PetscTime(&t_end));
-  PetscCall(out.Commit("simulate", t_end - t_start));
-  PetscCall(PetscLogStagePop());
-  PetscCall(PetscPrintf(comm, "  wrote %s\n", path.c_str()));
-  PetscFunctionReturn(0);
-}
+std::unique_ptr<Study> CreateSimulateStudy() { return std::make_unique<SimulateStudy>(); }
 
 } // namespace nltopo

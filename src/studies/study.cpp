@@ -1,0 +1,50 @@
+#include "studies/study.hpp"
+#include "core/log.hpp"
+
+namespace nltopo {
+
+PetscErrorCode Study::OutputPath(std::string *path)
+{
+  PetscFunctionBeginUser;
+  PetscCall(OutputPathFromOptions(comm_, name_, path));
+  PetscFunctionReturn(0);
+}
+
+PetscReal Study::Elapsed() const
+{
+  PetscLogDouble now;
+  PetscTime(&now);
+  return (PetscReal)(now - t_start_);
+}
+
+PetscErrorCode Study::Run(MPI_Comm comm, const char *name)
+{
+  OutputFile out;
+  PetscFunctionBeginUser;
+  comm_ = comm;
+  name_ = name;
+  PetscCall(PetscTime(&t_start_));
+  PetscCall(LogRegister());
+  PetscCall(PetscLogStagePush(Log().setup));
+  PetscCall(ReadOptions());
+  PetscCall(OutputPath(&path_));
+  if (!WritesOwnFile()) PetscCall(out.Open(comm, path_, "", OutputBytes()));
+  PetscCall(Build());
+  PetscCall(PetscLogStagePop());
+
+  PetscCall(PetscLogStagePush(Log().solve));
+  PetscCall(Solve());
+  PetscCall(PetscLogStagePop());
+
+  PetscCall(PetscLogStagePush(Log().write));
+  if (WritesOwnFile()) PetscCall(Write(NULL));
+  else {
+    PetscCall(Write(out.Viewer()));
+    PetscCall(out.Commit(name, Elapsed()));
+  }
+  PetscCall(PetscLogStagePop());
+  if (!WritesOwnFile()) PetscCall(PetscPrintf(comm, "  wrote %s\n", path_.c_str()));
+  PetscFunctionReturn(0);
+}
+
+} // namespace nltopo

@@ -1,0 +1,48 @@
+#pragma once
+// One study = one class (registry.cpp lists them by -study name). Run() owns
+// the lifecycle every study shares: the timer, the log stages (Setup, Solve,
+// Write: -log_view shows where the time goes), the output file (a temporary
+// renamed at commit, io/output.hpp), its provenance and cost card (written by
+// OutputFile::Commit), and the "wrote" line. A study supplies only what is
+// its own: the options it reads, Build, Solve and Write.
+#include "io/output.hpp"
+#include <memory>
+#include <string>
+
+namespace nltopo {
+
+class Study {
+public:
+  virtual ~Study() = default;
+  // Every option block the study's components read and its solver prefixes
+  // (core/options_audit.hpp): -help lists them, options none of them reads are refused.
+  virtual PetscErrorCode DeclareOptions(MPI_Comm comm) = 0;
+  PetscErrorCode Run(MPI_Comm comm, const char *name);
+
+protected:
+  // Reads and checks the options, before any output exists.
+  virtual PetscErrorCode ReadOptions() = 0;
+  // The -output path; a study that resumes its own file says so here.
+  virtual PetscErrorCode OutputPath(std::string *path);
+  // The bytes the output will take (the free-space check at open).
+  virtual double OutputBytes() const { return 0; }
+  // The objects of the computation (Setup stage).
+  virtual PetscErrorCode Build() = 0;
+  // The computation (Solve stage).
+  virtual PetscErrorCode Solve() = 0;
+  // The datasets (Write stage) into the output's viewer (v NULL when the study writes its own file).
+  virtual PetscErrorCode Write(PetscViewer v) = 0;
+  // A study whose ranks write and commit the file themselves (the sweep: rank
+  // 0 merges the journals) gets no OutputFile.
+  virtual bool WritesOwnFile() const { return false; }
+
+  PetscReal Elapsed() const; // wall seconds since Run started
+  MPI_Comm comm_ = MPI_COMM_NULL;
+  const char *name_ = "";
+  std::string path_; // -output
+  PetscLogDouble t_start_ = 0;
+};
+
+using StudyFactory = std::unique_ptr<Study> (*)();
+
+} // namespace nltopo
