@@ -3,6 +3,7 @@
 #include "core/errors.hpp"
 #include "core/log.hpp"
 #include "io/run_options.hpp"
+#include "io/schema.hpp"
 #include <petscviewerhdf5.h>
 #include <cerrno>
 #include <cstdio>
@@ -177,6 +178,7 @@ static PetscErrorCode WriteRank0(PetscViewer v, const char *group, const char *n
 PetscErrorCode WriteArray(PetscViewer v, const char *group, const char *name, const std::vector<PetscReal> &data, PetscInt bs)
 {
   PetscFunctionBeginUser;
+  PetscCall(SchemaCheckWrite(PetscObjectComm((PetscObject)v), group, name, FieldKind::Dataset, FieldType::Real));
   PetscCall(WriteRank0(v, group, name, data.data(), (PetscInt)data.size(), bs));
   PetscFunctionReturn(0);
 }
@@ -193,6 +195,7 @@ PetscErrorCode WriteColumnBlock(PetscViewer v, const char *group, const char *na
   hid_t file, grp, space, mem, dset, xfer;
   PetscMPIInt size;
   PetscFunctionBeginUser;
+  PetscCall(SchemaCheckWrite(PetscObjectComm((PetscObject)v), group, name, FieldKind::Dataset, FieldType::Real));
   PetscCall(PetscLogEventBegin(Log().output, 0, 0, 0, 0));
   PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)v), &size));
   PetscCheck(rows >= 0 && ncols > 0, PetscObjectComm((PetscObject)v), PETSC_ERR_ARG_OUTOFRANGE, "empty dataset %s/%s", group, name);
@@ -232,6 +235,7 @@ PetscErrorCode WriteArrayND(PetscViewer v, const char *group, const char *name, 
   MPI_Comm comm = PetscObjectComm((PetscObject)v);
   std::vector<hsize_t> hd(dims.begin(), dims.end());
   PetscFunctionBeginUser;
+  PetscCall(SchemaCheckWrite(PetscObjectComm((PetscObject)v), group, name, FieldKind::Dataset, FieldType::Real));
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Comm_size(comm, &size));
   size_t n = 1;
@@ -262,6 +266,7 @@ PetscErrorCode WriteIntArray(PetscViewer v, const char *group, const char *name,
   MPI_Comm comm = PetscObjectComm((PetscObject)v);
   PetscInt n = (PetscInt)data.size();
   PetscFunctionBeginUser;
+  PetscCall(SchemaCheckWrite(PetscObjectComm((PetscObject)v), group, name, FieldKind::Dataset, FieldType::Int));
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCallMPI(MPI_Bcast(&n, 1, MPIU_INT, 0, comm));
@@ -293,6 +298,7 @@ PetscErrorCode WriteStringArray(PetscViewer v, const char *group, const char *na
   MPI_Comm comm = PetscObjectComm((PetscObject)v);
   PetscInt n = (PetscInt)data.size(), width = 1;
   PetscFunctionBeginUser;
+  PetscCall(SchemaCheckWrite(PetscObjectComm((PetscObject)v), group, name, FieldKind::Dataset, FieldType::String));
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Comm_size(comm, &size));
   for (const auto &s : data) width = std::max(width, (PetscInt)s.size() + 1);
@@ -342,6 +348,7 @@ PetscErrorCode WriteDistributed(PetscViewer v, const char *group, const char *na
 PetscErrorCode WriteVec(PetscViewer v, const char *group, const char *name, Vec x)
 {
   PetscFunctionBeginUser;
+  PetscCall(SchemaCheckWrite(PetscObjectComm((PetscObject)v), group, name, FieldKind::Dataset, FieldType::Real));
   PetscCall(PetscLogEventBegin(Log().output, 0, 0, 0, 0));
   PetscCall(PetscObjectSetName((PetscObject)x, name));
   PetscCall(PetscViewerHDF5PushGroup(v, group));
@@ -354,6 +361,7 @@ PetscErrorCode WriteVec(PetscViewer v, const char *group, const char *name, Vec 
 PetscErrorCode WriteAttr(PetscViewer v, const char *path, const char *name, PetscReal value)
 {
   PetscFunctionBeginUser;
+  PetscCall(SchemaCheckWrite(PetscObjectComm((PetscObject)v), path, name, FieldKind::Attribute, FieldType::Real));
   PetscCall(PetscViewerHDF5WriteGroup(v, path));
   PetscCall(PetscViewerHDF5WriteAttribute(v, path, name, PETSC_REAL, &value));
   PetscFunctionReturn(0);
@@ -362,6 +370,7 @@ PetscErrorCode WriteAttr(PetscViewer v, const char *path, const char *name, Pets
 PetscErrorCode WriteAttr(PetscViewer v, const char *path, const char *name, PetscInt value)
 {
   PetscFunctionBeginUser;
+  PetscCall(SchemaCheckWrite(PetscObjectComm((PetscObject)v), path, name, FieldKind::Attribute, FieldType::Int));
   PetscCall(PetscViewerHDF5WriteGroup(v, path));
   PetscCall(PetscViewerHDF5WriteAttribute(v, path, name, PETSC_INT, &value));
   PetscFunctionReturn(0);
@@ -370,6 +379,7 @@ PetscErrorCode WriteAttr(PetscViewer v, const char *path, const char *name, Pets
 PetscErrorCode WriteAttr(PetscViewer v, const char *path, const char *name, const char *value)
 {
   PetscFunctionBeginUser;
+  PetscCall(SchemaCheckWrite(PetscObjectComm((PetscObject)v), path, name, FieldKind::Attribute, FieldType::String));
   PetscCall(PetscViewerHDF5WriteGroup(v, path));
   PetscCall(PetscViewerHDF5WriteAttribute(v, path, name, PETSC_STRING, value));
   PetscFunctionReturn(0);

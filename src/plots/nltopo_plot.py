@@ -1,24 +1,9 @@
-"""Shared helpers of the figure scripts: the options a file was written with,
-and the infinite lattice's band edges from them (model.md)."""
-import re
-import numpy as np
+"""Shared helpers of the figure scripts."""
 
 
-def options(f):
-    """The options database text stored in an nltopo HDF5 file's root."""
-    o = f.attrs["options"]
-    return o.decode() if isinstance(o, bytes) else str(o)
-
-
-def opt(text, name, default):
-    m = re.search(r"-%s\s+(\S+)" % name, text)
-    return float(m.group(1)) if m else default
-
-
-def bands(f):
-    """[(acoustic bottom, top), (optical bottom, top)] in rad/s."""
-    text = options(f)
-    k, g, g0 = opt(text, "lattice_k", 1.0), opt(text, "lattice_gamma", 0.4), opt(text, "lattice_gamma0", 1.0)
-    k1, k2 = k * (1 + g), k * (1 - g)
-    kh = k1 + k2 + g0
-    return [(np.sqrt(max(kh - k1 - k2, 0)), np.sqrt(kh - abs(k1 - k2))), (np.sqrt(kh + abs(k1 - k2)), np.sqrt(kh + k1 + k2))]
+def bands(group):
+    """The infinite lattice's bands [(acoustic bottom, top), (optical bottom, top)]
+    in rad/s, from the *_inf attributes of a group (/linear/bloch, /continuation,
+    /sweep; outputs.md schema: src/io/schema.cpp)."""
+    a = group.attrs
+    return [(float(a["acoustic_bottom_inf"]), float(a["acoustic_top_inf"])), (float(a["optical_bottom_inf"]), float(a["optical_top_inf"]))]

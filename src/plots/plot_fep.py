@@ -12,7 +12,7 @@ import nltopo_plot
 
 f = h5py.File(sys.argv[1], "r")
 out = sys.argv[2] if len(sys.argv) > 2 else sys.argv[1].replace(".h5", "") + "_fep.png"
-bands = nltopo_plot.bands(f)
+bands = nltopo_plot.bands(f["continuation"])
 fig, ax = plt.subplots(1, 2, figsize=(13, 5))
 for lo, hi in bands:
     ax[0].axhspan(lo, hi, color="0.9")

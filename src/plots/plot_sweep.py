@@ -24,7 +24,7 @@ w, E = s["omega"][:], s["energy"][:]
 done = s["done"][:].astype(bool)
 mcr = np.where(done, s["mcr"][:], np.nan)
 kc = np.where(done, s["kcorr"][:], np.nan)
-bands = nltopo_plot.bands(f)
+bands = nltopo_plot.bands(s)
 
 fig, ax = plt.subplots(1, 2, figsize=(13, 5.2))
 pc = ax[0].pcolormesh(E, w, mcr.T, shading="nearest", cmap="viridis", vmin=0, vmax=np.nanmax(mcr))

@@ -7,9 +7,11 @@
 #include "io/input.hpp"
 #include "io/output.hpp"
 #include "io/run_options.hpp"
+#include "io/schema.hpp"
 #include "orbits/continuation.hpp"
 #include "stability/floquet.hpp"
 #include "stability/floquet_mf.hpp"
+#include "studies/continuation_record.hpp"
 #include "studies/registry.hpp"
 #include <cmath>
 #include <cstdlib>
@@ -52,16 +54,6 @@ PetscErrorCode BranchStart(const Lattice &lat, const LinearModes &modes, const c
   *omega = modes.Omega()[j];
   PetscFunctionReturn(0);
 }
-
-// The Floquet columns of a branch, one entry (or row) per orbit: what both
-// hooks below collect and /continuation/<branch> stores (dense route: all 2N
-// multipliers, krein and instability; matrix-free: the -floquet_mf_nev
-// leading ones, products and unconverged).
-struct FloquetColumns {
-  std::vector<PetscReal> re, im, max_modulus, det_error;
-  std::vector<PetscInt> krein, stable, instability;
-  PetscInt products = 0, unconverged = 0;
-};
 
 // Floquet multipliers, Krein signatures and stability of every orbit of a branch.
 class FloquetHook : public PointHook {
@@ -127,170 +119,6 @@ private:
   FloquetMfOptions mopt_;
   std::vector<OwnedVec> warm_; // the previous orbit's eigenvectors: the next solve's initial space
 };
-
-// Everything /continuation/<label> holds: the branch, its Floquet data (dense
-// or matrix-free hook) and its cost.
-struct BranchRecord {
-  std::string label;
-  PetscReal omega = 0, seconds = 0;
-  Branch b;
-  FloquetColumns f;
-  PetscInt jac = 0, res = 0, tan = 0, kry = 0;
-};
-
-enum class FloquetKind { None, Dense, MatrixFree };
-
-PetscErrorCode WriteRecord(PetscViewer v, const BranchRecord &r, FloquetKind fk, PetscInt n2, PetscInt nev)
-{
-  const Branch &b = r.b;
-  const FloquetColumns &f = r.f;
-  const std::string g = "/continuation/" + r.label;
-  PetscFunctionBeginUser;
-  std::vector<PetscReal> its(b.newton_its.begin(), b.newton_its.end());
-  PetscCall(WriteArray(v, g.c_str(), "energy", b.energy));
-  PetscCall(WriteArray(v, g.c_str(), "omega", b.omega));
-  PetscCall(WriteArray(v, g.c_str(), "period", b.period));
-  PetscCall(WriteArray(v, g.c_str(), "mcr", b.mcr));
-  PetscCall(WriteArray(v, g.c_str(), "newton_its", its));
-  std::vector<PetscReal> kits(b.krylov_its.begin(), b.krylov_its.end());
-  PetscCall(WriteArray(v, g.c_str(), "krylov_its", kits));
-  PetscCall(WriteArray(v, g.c_str(), "shape_corr", b.shape_corr));
-  PetscCall(WriteArray(v, g.c_str(), "beta", b.beta));
-  PetscCall(WriteArray(v, g.c_str(), "z0", b.z0, n2));
-  std::vector<PetscReal> inter(b.interactions.begin(), b.interactions.end());
-  PetscCall(WriteArray(v, g.c_str(), "interactions", inter));
-  PetscCall(WriteAttr(v, g.c_str(), "linear_omega", r.omega));
-  if (!b.energy.empty()) { // where the continuation stands: what -cont_resume needs to go on bit for bit
-    PetscCall(WriteArray(v, g.c_str(), "next_tangent", b.next_tangent));
-    PetscCall(WriteArray(v, g.c_str(), "next_ds", std::vector<PetscReal>{b.next_ds}));
-  }
-  if (fk == FloquetKind::MatrixFree) {
-    const std::vector<PetscInt> dims = {(PetscInt)b.energy.size(), nev}; // npts x nev, also for nev = 1
-    PetscCall(WriteArrayND(v, g.c_str(), "multipliers_re", f.re, dims));
-    PetscCall(WriteArrayND(v, g.c_str(), "multipliers_im", f.im, dims));
-    PetscCall(WriteArray(v, g.c_str(), "max_modulus", f.max_modulus));
-    PetscCall(WriteIntArray(v, g.c_str(), "stable", f.stable));
-    PetscCall(WriteAttr(v, g.c_str(), "floquet_products", f.products));
-    PetscCall(WriteAttr(v, g.c_str(), "floquet_unconverged", f.unconverged));
-  } else if (fk == FloquetKind::Dense) {
-    PetscCall(WriteArray(v, g.c_str(), "multipliers_re", f.re, n2));
-    PetscCall(WriteArray(v, g.c_str(), "multipliers_im", f.im, n2));
-    PetscCall(WriteIntArray(v, g.c_str(), "krein", f.krein, n2));
-    PetscCall(WriteArray(v, g.c_str(), "max_modulus", f.max_modulus));
-    PetscCall(WriteArray(v, g.c_str(), "det_error", f.det_error));
-    PetscCall(WriteIntArray(v, g.c_str(), "stable", f.stable));
-    PetscCall(WriteIntArray(v, g.c_str(), "instability", f.instability));
-  }
-  PetscCall(WriteAttr(v, g.c_str(), "stop_reason", b.stop_reason.c_str()));
-  PetscCall(WriteAttr(v, g.c_str(), "reached_energy_max", (PetscInt)b.reached_max));
-  PetscCall(WriteAttr(v, g.c_str(), "points", (PetscInt)b.energy.size()));
-  PetscCall(WriteAttr(v, g.c_str(), "jacobian_evaluations", r.jac));
-  PetscCall(WriteAttr(v, g.c_str(), "residual_evaluations", r.res));
-  PetscCall(WriteAttr(v, g.c_str(), "tangent_products", r.tan));
-  PetscCall(WriteAttr(v, g.c_str(), "krylov_iterations", r.kry));
-  PetscCall(WriteAttr(v, g.c_str(), "seconds", r.seconds));
-  PetscFunctionReturn(0);
-}
-
-// Rank 0's vector to every rank.
-template <typename T>
-PetscErrorCode Broadcast(MPI_Comm comm, MPI_Datatype type, std::vector<T> *v)
-{
-  PetscFunctionBeginUser;
-  PetscInt n = (PetscInt)v->size();
-  PetscCallMPI(MPI_Bcast(&n, 1, MPIU_INT, 0, comm));
-  v->resize(n);
-  if (n) PetscCallMPI(MPI_Bcast(v->data(), (PetscMPIInt)n, type, 0, comm));
-  PetscFunctionReturn(0);
-}
-
-// -cont_resume: /continuation/<label> of an earlier output (complete or a
-// checkpoint) as a Branch (z0 rows on rank 0, the rest on every rank) and its
-// Floquet columns; found is false when the file has no such branch. Floquet
-// data the file lacks (it was written without -floquet) become NaN / 0.
-PetscErrorCode ReadResume(MPI_Comm comm, const std::string &file, const std::string &label, FloquetKind fk, PetscInt n2, PetscInt nev, Branch *b,
-                          FloquetColumns *f, bool *found)
-{
-  PetscMPIInt rank;
-  const std::string g = "/continuation/" + label + "/";
-  auto has = [&](const char *d) { return HasDataset(file, (g + d).c_str()); };
-  auto reals = [&](const char *d, std::vector<PetscReal> *v) -> PetscErrorCode {
-    PetscFunctionBeginUser;
-    PetscCall(ReadDoubles(file, (g + d).c_str(), v));
-    PetscFunctionReturn(0);
-  };
-  PetscFunctionBeginUser;
-  *b = Branch();
-  *f = FloquetColumns();
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  int status[2] = {0, 0}; // rank 0 reads; every rank checks: [readable, branch present]
-  if (rank == 0) {
-    status[0] = HasDataset(file, "/continuation");
-    status[1] = status[0] && has("energy");
-  }
-  PetscCallMPI(MPI_Bcast(status, 2, MPI_INT, 0, comm));
-  PetscCheck(status[0], comm, PETSC_ERR_FILE_OPEN, "-cont_resume %s: cannot open it, or it is not a continuation output (no /continuation group)", file.c_str());
-  *found = status[1];
-  if (!*found) PetscFunctionReturn(0);
-  PetscInt rowlen = 0; // values per stored orbit
-  std::vector<PetscReal> its, kits, inter;
-  if (rank == 0) {
-    PetscCall(reals("energy", &b->energy));
-    PetscCall(reals("omega", &b->omega));
-    PetscCall(reals("period", &b->period));
-    PetscCall(reals("mcr", &b->mcr));
-    PetscCall(reals("shape_corr", &b->shape_corr));
-    PetscCall(reals("beta", &b->beta));
-    PetscCall(reals("newton_its", &its));
-    PetscCall(reals("krylov_its", &kits));
-    PetscCall(reals("interactions", &inter));
-    PetscCall(reals("z0", &b->z0));
-    if (has("next_tangent") && has("next_ds")) { // written since the step state is stored (else: the re-solving resume)
-      std::vector<PetscReal> ds;
-      PetscCall(reals("next_tangent", &b->next_tangent));
-      PetscCall(reals("next_ds", &ds));
-      b->next_ds = ds.empty() ? 0 : ds[0];
-      if (b->next_tangent.size() != (size_t)n2 + 2 || ds.size() != 1) b->next_tangent.clear();
-    }
-    rowlen = b->z0.size() == b->energy.size() * (size_t)n2 ? n2 : b->energy.empty() ? -1 : (PetscInt)(b->z0.size() / b->energy.size());
-    const size_t np = b->energy.size(), per = fk == FloquetKind::Dense ? (size_t)n2 : (size_t)nev;
-    if (fk != FloquetKind::None && has("max_modulus") && has("multipliers_re")) {
-      PetscCall(reals("multipliers_re", &f->re));
-      PetscCall(reals("multipliers_im", &f->im));
-      PetscCall(reals("max_modulus", &f->max_modulus));
-      PetscCall(ReadInts(file, (g + "stable").c_str(), &f->stable));
-      if (fk == FloquetKind::Dense && has("krein")) {
-        PetscCall(ReadInts(file, (g + "krein").c_str(), &f->krein));
-        PetscCall(ReadInts(file, (g + "instability").c_str(), &f->instability));
-      }
-      if (fk == FloquetKind::Dense && has("det_error")) PetscCall(reals("det_error", &f->det_error));
-    }
-    if (fk != FloquetKind::None && f->re.size() != np * per) { // absent, or another -floquet_mf_nev / route: not comparable
-      f->re.assign(np * per, NAN);
-      f->im.assign(np * per, NAN);
-      f->max_modulus.assign(np, NAN);
-      f->stable.assign(np, 0);
-      f->krein.clear();
-      f->instability.clear();
-      f->det_error.clear();
-    }
-    if (fk == FloquetKind::Dense) {
-      f->krein.resize(np * per, 0);
-      f->instability.resize(np, 0);
-      f->det_error.resize(np, NAN); // files written before det_error was stored
-    }
-  }
-  PetscCallMPI(MPI_Bcast(&rowlen, 1, MPIU_INT, 0, comm));
-  PetscCheck(rowlen == n2, comm, PETSC_ERR_USER, "-cont_resume %s: branch %s has orbits of %" PetscInt_FMT " values, this lattice has 2N = %" PetscInt_FMT " (same -lattice_cells?)",
-             file.c_str(), label.c_str(), rowlen, n2);
-  for (auto *v : {&b->energy, &b->omega, &b->period, &b->mcr, &b->shape_corr, &b->beta, &its, &kits, &inter, &f->re, &f->im, &f->max_modulus})
-    PetscCall(Broadcast(comm, MPIU_REAL, v));
-  for (auto *v : {&f->stable, &f->krein, &f->instability}) PetscCall(Broadcast(comm, MPIU_INT, v));
-  b->newton_its.assign(its.begin(), its.end());
-  b->krylov_its.assign(kits.begin(), kits.end());
-  b->interactions.assign(inter.begin(), inter.end());
-  PetscFunctionReturn(0);
-}
 
 // Forwards every orbit to the Floquet hook (if any), then, every
 // -cont_checkpoint_seconds, writes the -output file with what is done so far
@@ -481,6 +309,7 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
       PetscFunctionBeginUser;
       PetscCall(PetscLogStagePush(Log().write));
       PetscCall(f.Open(comm, path, "checkpoint."));
+      PetscCall(WriteBandEdges(f.Viewer(), "/continuation", InfiniteBandEdges(lat.Params())));
       for (const BranchRecord &r : done) PetscCall(WriteRecord(f.Viewer(), r, fk, n2, fmo.nev));
       if (!b.energy.empty()) {
         BranchRecord cur = snapshot(label, omega, b, j0, r0, p0, k0, b0);
@@ -536,6 +365,7 @@ PetscErrorCode ContinuationStudy(MPI_Comm comm)
     PetscCall(PetscPrintf(comm, "  [%s] %.2f s, %.3f s per new point\n", label.c_str(), (double)(b1 - b0), (double)(b1 - b0) / std::max<size_t>(nnew, 1)));
   }
   PetscCall(PetscLogStagePush(Log().write));
+  PetscCall(WriteBandEdges(out.Viewer(), "/continuation", InfiniteBandEdges(lat.Params())));
   for (const BranchRecord &r : done) PetscCall(WriteRecord(out.Viewer(), r, fk, n2, fmo.nev));
   PetscCall(PetscLogStagePop());
   PetscCall(PetscTime(&t_end));

@@ -5,6 +5,7 @@
 #include "core/log.hpp"
 #include "core/options_audit.hpp"
 #include "io/output.hpp"
+#include "io/schema.hpp"
 #include "studies/registry.hpp"
 #include <petscviewerhdf5.h>
 #include <cmath>
@@ -118,10 +119,7 @@ PetscErrorCode LinearStudy(MPI_Comm comm)
   PetscCall(WriteAttr(v, "/linear/bloch", "zak_left_optical", bl.zak_left[1]));
   PetscCall(WriteAttr(v, "/linear/bloch", "zak_right_acoustic", bl.zak_right[0]));
   PetscCall(WriteAttr(v, "/linear/bloch", "zak_right_optical", bl.zak_right[1]));
-  PetscCall(WriteAttr(v, "/linear/bloch", "acoustic_bottom_inf", be.acoustic_bottom));
-  PetscCall(WriteAttr(v, "/linear/bloch", "acoustic_top_inf", be.acoustic_top));
-  PetscCall(WriteAttr(v, "/linear/bloch", "optical_bottom_inf", be.optical_bottom));
-  PetscCall(WriteAttr(v, "/linear/bloch", "optical_top_inf", be.optical_top));
+  PetscCall(WriteBandEdges(v, "/linear/bloch", be));
   PetscCall(PetscTime(&t_end));
   PetscCall(out.Commit("linear", t_end - t_start));
   PetscCall(PetscLogStagePop());

@@ -1,23 +1,75 @@
 #include "studies/sweep_store.hpp"
 #include "io/input.hpp"
+#include "io/schema.hpp"
 #include <cstdlib>
 #include <cstring>
 #include <dirent.h>
 
 namespace nltopo {
 
-const SweepRealField kSweepRealFields[9] = {{"mcr", &SweepPoint::mcr},
-                                            {"t_off", &SweepPoint::t_off},
-                                            {"kcorr", &SweepPoint::kcorr},
-                                            {"nl_ratio", &SweepPoint::nl_ratio},
-                                            {"amplitude", &SweepPoint::amplitude},
-                                            {"energy_final", &SweepPoint::energy_final},
-                                            {"seconds", &SweepPoint::seconds},
-                                            {"mcr_error", &SweepPoint::mcr_error},
-                                            {"mcr_spread", &SweepPoint::mcr_spread}};
-const SweepIntField kSweepIntFields[7] = {{"reached", &SweepPoint::reached}, {"rescalings", &SweepPoint::rescalings}, {"rhs_evals", &SweepPoint::rhs},
-                                          {"steps", &SweepPoint::steps},     {"failed", &SweepPoint::failed},         {"predictable", &SweepPoint::predictable},
-                                          {"mcr_runs", &SweepPoint::runs}};
+namespace {
+
+const SweepRealField kRealMembers[] = {{"mcr", &SweepPoint::mcr},
+                                       {"t_off", &SweepPoint::t_off},
+                                       {"kcorr", &SweepPoint::kcorr},
+                                       {"nl_ratio", &SweepPoint::nl_ratio},
+                                       {"amplitude", &SweepPoint::amplitude},
+                                       {"energy_final", &SweepPoint::energy_final},
+                                       {"seconds", &SweepPoint::seconds},
+                                       {"mcr_error", &SweepPoint::mcr_error},
+                                       {"mcr_spread", &SweepPoint::mcr_spread}};
+const SweepIntField kIntMembers[] = {{"reached", &SweepPoint::reached}, {"rescalings", &SweepPoint::rescalings}, {"rhs_evals", &SweepPoint::rhs},
+                                     {"steps", &SweepPoint::steps},     {"failed", &SweepPoint::failed},         {"predictable", &SweepPoint::predictable},
+                                     {"mcr_runs", &SweepPoint::runs}};
+
+bool PerPoint(const Field &f) { return f.kind == FieldKind::Dataset && !std::strcmp(f.shape, "ne x no") && std::strcmp(f.name, "done"); }
+
+// The members in the schema's order (a member it lacks is left out: SweepFieldsUnbound names it).
+template <typename F, size_t n>
+std::vector<F> InSchemaOrder(const F (&members)[n], FieldType type)
+{
+  std::vector<F> out;
+  if (const Schema *s = FindSchema("/sweep"))
+    for (const Field &f : s->fields)
+      for (const F &m : members)
+        if (PerPoint(f) && f.type == type && !std::strcmp(f.name, m.name)) out.push_back(m);
+  return out;
+}
+
+} // namespace
+
+const std::vector<SweepRealField> &SweepRealFields()
+{
+  static const std::vector<SweepRealField> v = InSchemaOrder(kRealMembers, FieldType::Real);
+  return v;
+}
+
+const std::vector<SweepIntField> &SweepIntFields()
+{
+  static const std::vector<SweepIntField> v = InSchemaOrder(kIntMembers, FieldType::Int);
+  return v;
+}
+
+std::vector<std::string> SweepFieldsUnbound()
+{
+  std::vector<std::string> bad;
+  size_t n = 0;
+  if (const Schema *s = FindSchema("/sweep"))
+    for (const Field &f : s->fields) {
+      if (!PerPoint(f)) continue;
+      n++;
+      bool bound = false;
+      for (const auto &m : SweepRealFields()) bound |= !std::strcmp(m.name, f.name);
+      for (const auto &m : SweepIntFields()) bound |= !std::strcmp(m.name, f.name);
+      if (!bound) bad.push_back(std::string("schema field ") + f.name);
+    }
+  for (const auto &m : kRealMembers)
+    if (!FindField("/sweep", m.name, FieldKind::Dataset)) bad.push_back(std::string("member ") + m.name);
+  for (const auto &m : kIntMembers)
+    if (!FindField("/sweep", m.name, FieldKind::Dataset)) bad.push_back(std::string("member ") + m.name);
+  if (n != SweepRealFields().size() + SweepIntFields().size()) bad.push_back("a member bound twice or of the wrong type");
+  return bad;
+}
 
 PetscInt SweepGrid::Done() const
 {
@@ -58,8 +110,8 @@ PetscErrorCode SweepGrid::Load(const std::string &path)
     for (size_t i = 0; i < iv.size(); i++) pts[i].*field = iv[i];
     PetscFunctionReturn(0);
   };
-  for (const auto &f : kSweepRealFields) PetscCall(doubles(f.name, f.field));
-  for (const auto &f : kSweepIntFields) PetscCall(ints(f.name, f.field));
+  for (const auto &f : SweepRealFields()) PetscCall(doubles(f.name, f.field));
+  for (const auto &f : SweepIntFields()) PetscCall(ints(f.name, f.field));
   PetscCall(ReadInts(path, "/sweep/done", &done));
   PetscCheck(done.size() == Size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-sweep_resume: /sweep/done in %s has the wrong size", path.c_str());
   PetscFunctionReturn(0);
@@ -79,8 +131,8 @@ std::vector<std::string> JournalFiles(const std::string &path)
   return files;
 }
 
-// Line format: the index, then every field of kSweepRealFields (hex floats:
-// exact) and of kSweepIntFields, in that order.
+// Line format: the index, then every field of SweepRealFields() (hex floats:
+// exact) and of SweepIntFields(), in that order.
 PetscErrorCode SweepGrid::MergeJournals(const std::string &path, PetscInt *lines)
 {
   PetscFunctionBeginUser;
@@ -95,13 +147,13 @@ PetscErrorCode SweepGrid::MergeJournals(const std::string &path, PetscInt *lines
       const long idx = std::strtol(p, &end, 10);
       bool ok = end != p && idx >= 0 && (size_t)idx < Size();
       SweepPoint pt;
-      for (const auto &fd : kSweepRealFields) {
+      for (const auto &fd : SweepRealFields()) {
         if (!ok) break;
         p = end;
         pt.*fd.field = std::strtod(p, &end);
         ok = end != p;
       }
-      for (const auto &fd : kSweepIntFields) {
+      for (const auto &fd : SweepIntFields()) {
         if (!ok) break;
         p = end;
         pt.*fd.field = (PetscInt)std::strtol(p, &end, 10);
@@ -131,8 +183,8 @@ PetscErrorCode Journal::Append(size_t index, const SweepPoint &p)
   PetscFunctionBeginUser;
   std::string line = std::to_string(index);
   char v[64];
-  for (const auto &fd : kSweepRealFields) std::snprintf(v, sizeof(v), " %a", (double)(p.*fd.field)), line += v;
-  for (const auto &fd : kSweepIntFields) line += " " + std::to_string((long)(p.*fd.field));
+  for (const auto &fd : SweepRealFields()) std::snprintf(v, sizeof(v), " %a", (double)(p.*fd.field)), line += v;
+  for (const auto &fd : SweepIntFields()) line += " " + std::to_string((long)(p.*fd.field));
   std::fprintf(f_, "%s\n", line.c_str());
   PetscCheck(std::fflush(f_) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "cannot write the sweep journal (disk full?)");
   PetscFunctionReturn(0);

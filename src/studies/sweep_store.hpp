@@ -27,12 +27,15 @@ struct SweepPoint {
   PetscInt predictable = -1, runs = 1;
 };
 
-// The per-point datasets of /sweep and the SweepPoint fields behind them (read
-// back by SweepGrid::Load, written by the sweep study).
+// The per-point (ne x no) datasets of the /sweep schema (io/schema.cpp) but
+// done, in its order, and the SweepPoint fields behind them: what the sweep
+// study writes, SweepGrid::Load reads back and a journal line holds.
 struct SweepRealField { const char *name; PetscReal SweepPoint::*field; };
 struct SweepIntField { const char *name; PetscInt SweepPoint::*field; };
-extern const SweepRealField kSweepRealFields[9];
-extern const SweepIntField kSweepIntFields[7];
+const std::vector<SweepRealField> &SweepRealFields();
+const std::vector<SweepIntField> &SweepIntFields();
+// Schema fields without a SweepPoint member, and members the schema lacks (tests: none).
+std::vector<std::string> SweepFieldsUnbound();
 
 // Rank 0's picture of the grid: energy rows x omega columns, row-major.
 struct SweepGrid {

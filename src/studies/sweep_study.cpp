@@ -14,6 +14,7 @@
 #include "diagnostics/zero_one.hpp"
 #include "io/output.hpp"
 #include "io/run_options.hpp"
+#include "io/schema.hpp"
 #include "studies/grid_axis.hpp"
 #include "studies/registry.hpp"
 #include "studies/sweep_accuracy.hpp"
@@ -42,6 +43,7 @@ struct SweepOptions {
   PetscInt kcorr_seed = 1;
   PetscReal kcorr_sample_dt = 0; // 0: a quarter of the insulated period, pi / (2 sqrt(k_hat))
   McrAccuracyOptions mcr;        // -sweep_mcr_tol
+  BandEdges bands{};             // of the infinite lattice, written with the map
 };
 
 PetscErrorCode SweepOptionsFromOptions(MPI_Comm comm, SweepOptions *o)
@@ -115,9 +117,10 @@ PetscErrorCode WriteSweep(const std::string &path, const SweepGrid &g, const Swe
     PetscCall(WriteIntArray(w, grp, name, iv, no));
     PetscFunctionReturn(0);
   };
-  for (const auto &f : kSweepRealFields) PetscCall(doubles(f.name, f.field));
-  for (const auto &f : kSweepIntFields) PetscCall(ints(f.name, f.field));
+  for (const auto &f : SweepRealFields()) PetscCall(doubles(f.name, f.field));
+  for (const auto &f : SweepIntFields()) PetscCall(ints(f.name, f.field));
   PetscCall(WriteIntArray(w, grp, "done", g.done, no));
+  PetscCall(WriteBandEdges(w, grp, so.bands));
   PetscCall(WriteAttr(w, grp, "points_done", g.Done()));
   PetscCall(WriteAttr(w, grp, "points_computed", computed)); // by this invocation (a resume computes only the missing ones)
   PetscCall(WriteAttr(w, grp, "kcorr_computed", (PetscInt)so.kcorr));
@@ -255,6 +258,7 @@ PetscErrorCode SweepStudy(MPI_Comm comm)
   // The lattice's frequencies (linear 1.0..2.24 at the defaults, higher when
   // hardened) then map to c = omega dt inside the test's range (pi/5, 4 pi/5).
   if (so.kcorr_sample_dt == 0) so.kcorr_sample_dt = PETSC_PI / (2 * std::sqrt(lp.KHat()));
+  so.bands = InfiniteBandEdges(lp);
   const ZeroOneTest zero_one(so.kcorr_nc, (unsigned long)so.kcorr_seed, so.kcorr_lags);
 
   // Rank 0 builds the starting grid (fresh, or the stored one plus journals).

@@ -1,0 +1,55 @@
+#pragma once
+// One declarative schema per output group (../shared/spec/outputs.md plus our
+// additions): every dataset and attribute a study writes, with its type, shape
+// and meaning. It drives the continuation record (studies/continuation_record)
+// and the sweep's fields (studies/sweep_store); tests/unit/test_schema.cpp
+// checks outputs.md against it, and the writers of io/output refuse a name the
+// schema lacks when the check is on (NLTOPO_SCHEMA_CHECK=1, as ctest sets it,
+// or a debug build).
+#include "bands/bloch.hpp"
+#include <petscviewer.h>
+#include <string>
+#include <vector>
+
+namespace nltopo {
+
+enum class FieldKind { Dataset, Attribute };
+enum class FieldType { Real, Int, String };
+
+struct Field {
+  const char *name;  // may hold one placeholder, e.g. "error_<observable>"
+  FieldKind kind;
+  FieldType type;
+  const char *shape; // "scalar", or dimensions as outputs.md names them: "npts", "npts x 2N", "ne x no", ...
+  const char *meaning;
+};
+
+struct Schema {
+  const char *group;   // a path; a segment "<...>" (or "case<k>") stands for any name
+  const char *variant; // "" the group's fields; else added fields, e.g. "floquet" (with -floquet)
+  std::vector<Field> fields;
+};
+
+// Every schema, in the order of outputs.md.
+const std::vector<Schema> &Schemas();
+// The schema of a group pattern and variant, exactly as written in Schemas(); nullptr if none.
+const Schema *FindSchema(const char *group, const char *variant = "");
+// The field of a written group path (e.g. "/continuation/insulated") by its
+// written name, over every variant of every matching schema; nullptr if none.
+const Field *FindField(const std::string &group_path, const std::string &name, FieldKind kind);
+// Whether a written name (or path segment) matches a pattern with at most one "<...>".
+bool NameMatches(const std::string &pattern, const std::string &name);
+bool GroupMatches(const std::string &pattern, const std::string &path);
+const char *KindName(FieldKind k);
+const char *TypeName(FieldType t);
+
+// The writers' check: an error naming the group and name unless the schema has
+// such a field of that kind and type (no-op unless the check is on).
+PetscErrorCode SchemaCheckWrite(MPI_Comm comm, const char *group, const char *name, FieldKind kind, FieldType type);
+void SetSchemaCheck(bool on); // overrides NLTOPO_SCHEMA_CHECK (tests)
+
+// The infinite lattice's band edges as the four *_inf attributes of a group
+// (/linear/bloch, /continuation, /sweep): what the figure scripts draw.
+PetscErrorCode WriteBandEdges(PetscViewer v, const char *group, const BandEdges &be);
+
+} // namespace nltopo

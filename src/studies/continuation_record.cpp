@@ -1,0 +1,253 @@
+#include "studies/continuation_record.hpp"
+#include "io/input.hpp"
+#include "io/output.hpp"
+#include "io/schema.hpp"
+#include <cmath>
+#include <cstring>
+
+namespace nltopo {
+
+namespace {
+
+const char *const kGroup = "/continuation/<branch>";
+
+// Where a record keeps a dataset: one of the three.
+struct Cells {
+  std::vector<PetscReal> *reals = nullptr;
+  std::vector<PetscInt> *ints = nullptr; // written as the schema's type (newton_its: real)
+  PetscReal *scalar = nullptr;           // a one-value dataset
+};
+struct AttrValue {
+  PetscReal r = 0;
+  PetscInt i = 0;
+  std::string s;
+};
+
+enum : unsigned {
+  kRank0 = 1,     // resume: kept on rank 0 only (not broadcast)
+  kStepState = 2, // written once there are points; resume: read if present (files of older versions lack it)
+};
+
+// One field of the schema and where BranchRecord keeps it: a dataset (data)
+// or an attribute (attr; written only, a resume recounts them).
+struct Column {
+  const char *name;
+  unsigned flags;
+  Cells (*data)(BranchRecord &);
+  void (*attr)(const BranchRecord &, AttrValue *);
+};
+
+// clang-format off
+const Column kColumns[] = {
+  {"energy", 0, [](BranchRecord &r) { return Cells{&r.b.energy}; }, nullptr},
+  {"omega", 0, [](BranchRecord &r) { return Cells{&r.b.omega}; }, nullptr},
+  {"period", 0, [](BranchRecord &r) { return Cells{&r.b.period}; }, nullptr},
+  {"mcr", 0, [](BranchRecord &r) { return Cells{&r.b.mcr}; }, nullptr},
+  {"newton_its", 0, [](BranchRecord &r) { return Cells{nullptr, &r.b.newton_its}; }, nullptr},
+  {"krylov_its", 0, [](BranchRecord &r) { return Cells{nullptr, &r.b.krylov_its}; }, nullptr},
+  {"shape_corr", 0, [](BranchRecord &r) { return Cells{&r.b.shape_corr}; }, nullptr},
+  {"beta", 0, [](BranchRecord &r) { return Cells{&r.b.beta}; }, nullptr},
+  {"z0", kRank0, [](BranchRecord &r) { return Cells{&r.b.z0}; }, nullptr},
+  {"interactions", 0, [](BranchRecord &r) { return Cells{nullptr, &r.b.interactions}; }, nullptr},
+  {"next_tangent", kRank0 | kStepState, [](BranchRecord &r) { return Cells{&r.b.next_tangent}; }, nullptr},
+  {"next_ds", kRank0 | kStepState, [](BranchRecord &r) { return Cells{nullptr, nullptr, &r.b.next_ds}; }, nullptr},
+  {"multipliers_re", 0, [](BranchRecord &r) { return Cells{&r.f.re}; }, nullptr},
+  {"multipliers_im", 0, [](BranchRecord &r) { return Cells{&r.f.im}; }, nullptr},
+  {"krein", 0, [](BranchRecord &r) { return Cells{nullptr, &r.f.krein}; }, nullptr},
+  {"max_modulus", 0, [](BranchRecord &r) { return Cells{&r.f.max_modulus}; }, nullptr},
+  {"det_error", 0, [](BranchRecord &r) { return Cells{&r.f.det_error}; }, nullptr},
+  {"stable", 0, [](BranchRecord &r) { return Cells{nullptr, &r.f.stable}; }, nullptr},
+  {"instability", 0, [](BranchRecord &r) { return Cells{nullptr, &r.f.instability}; }, nullptr},
+  {"linear_omega", 0, nullptr, [](const BranchRecord &r, AttrValue *a) { a->r = r.omega; }},
+  {"stop_reason", 0, nullptr, [](const BranchRecord &r, AttrValue *a) { a->s = r.b.stop_reason; }},
+  {"reached_energy_max", 0, nullptr, [](const BranchRecord &r, AttrValue *a) { a->i = r.b.reached_max; }},
+  {"points", 0, nullptr, [](const BranchRecord &r, AttrValue *a) { a->i = (PetscInt)r.b.energy.size(); }},
+  {"jacobian_evaluations", 0, nullptr, [](const BranchRecord &r, AttrValue *a) { a->i = r.jac; }},
+  {"residual_evaluations", 0, nullptr, [](const BranchRecord &r, AttrValue *a) { a->i = r.res; }},
+  {"tangent_products", 0, nullptr, [](const BranchRecord &r, AttrValue *a) { a->i = r.tan; }},
+  {"krylov_iterations", 0, nullptr, [](const BranchRecord &r, AttrValue *a) { a->i = r.kry; }},
+  {"seconds", 0, nullptr, [](const BranchRecord &r, AttrValue *a) { a->r = r.seconds; }},
+  {"floquet_products", 0, nullptr, [](const BranchRecord &r, AttrValue *a) { a->i = r.f.products; }},
+  {"floquet_unconverged", 0, nullptr, [](const BranchRecord &r, AttrValue *a) { a->i = r.f.unconverged; }},
+};
+// clang-format on
+
+const Column *FindColumn(const char *name)
+{
+  for (const Column &c : kColumns)
+    if (!std::strcmp(c.name, name)) return &c;
+  return nullptr;
+}
+
+struct Bound {
+  const Field *fd;
+  const Column *c;
+  bool floquet; // of a Floquet variant
+};
+
+// The fields of a route, each with its column.
+PetscErrorCode Fields(MPI_Comm comm, FloquetKind fk, std::vector<Bound> *out)
+{
+  PetscFunctionBeginUser;
+  out->clear();
+  for (const char *variant : ContinuationVariants(fk)) {
+    const Schema *s = FindSchema(kGroup, variant);
+    PetscCheck(s, comm, PETSC_ERR_PLIB, "output schema (src/io/schema.cpp) has no %s variant \"%s\"", kGroup, variant);
+    for (const Field &fd : s->fields) {
+      const Column *c = FindColumn(fd.name);
+      PetscCheck(c && (fd.kind == FieldKind::Dataset ? c->data != nullptr : c->attr != nullptr), comm, PETSC_ERR_PLIB,
+                 "%s %s/%s of the output schema has no column in studies/continuation_record.cpp", KindName(fd.kind), kGroup, fd.name);
+      out->push_back({&fd, c, *variant != 0});
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+// Values per row of a per-point dataset ("npts x 2N", "npts x nev"); 0: one-dimensional.
+PetscInt RowLength(const char *shape, PetscInt n2, PetscInt nev)
+{
+  if (!std::strcmp(shape, "npts x 2N")) return n2;
+  if (!std::strcmp(shape, "npts x nev")) return nev;
+  return 0;
+}
+
+// Rank 0's vector to every rank.
+template <typename T>
+PetscErrorCode Broadcast(MPI_Comm comm, MPI_Datatype type, std::vector<T> *v)
+{
+  PetscFunctionBeginUser;
+  PetscInt n = (PetscInt)v->size();
+  PetscCallMPI(MPI_Bcast(&n, 1, MPIU_INT, 0, comm));
+  v->resize(n);
+  if (n) PetscCallMPI(MPI_Bcast(v->data(), (PetscMPIInt)n, type, 0, comm));
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+std::vector<const char *> ContinuationVariants(FloquetKind fk)
+{
+  if (fk == FloquetKind::Dense) return {"", "floquet"};
+  if (fk == FloquetKind::MatrixFree) return {"", "floquet_mf"};
+  return {""};
+}
+
+std::vector<std::string> ContinuationColumnNames()
+{
+  std::vector<std::string> n;
+  for (const Column &c : kColumns) n.push_back(c.name);
+  return n;
+}
+
+PetscErrorCode WriteRecord(PetscViewer v, const BranchRecord &r, FloquetKind fk, PetscInt n2, PetscInt nev)
+{
+  const std::string g = "/continuation/" + r.label;
+  const char *gc = g.c_str();
+  const PetscInt np = (PetscInt)r.b.energy.size();
+  std::vector<Bound> fields;
+  PetscFunctionBeginUser;
+  PetscCall(Fields(PetscObjectComm((PetscObject)v), fk, &fields));
+  for (const auto &[fd, c, floquet] : fields) {
+    if (fd->kind == FieldKind::Attribute) {
+      AttrValue a;
+      c->attr(r, &a);
+      if (fd->type == FieldType::Real) PetscCall(WriteAttr(v, gc, fd->name, a.r));
+      else if (fd->type == FieldType::Int) PetscCall(WriteAttr(v, gc, fd->name, a.i));
+      else PetscCall(WriteAttr(v, gc, fd->name, a.s.c_str()));
+      continue;
+    }
+    if ((c->flags & kStepState) && !np) continue; // where the continuation stands: what -cont_resume needs to go on bit for bit
+    const Cells d = c->data(const_cast<BranchRecord &>(r)); // the accessors only point, the record is not changed
+    const PetscInt row = RowLength(fd->shape, n2, nev);
+    if (d.scalar) PetscCall(WriteArray(v, gc, fd->name, std::vector<PetscReal>{*d.scalar}));
+    else if (d.ints && fd->type == FieldType::Int) PetscCall(WriteIntArray(v, gc, fd->name, *d.ints, row ? row : 1));
+    else {
+      const std::vector<PetscReal> conv = d.ints ? std::vector<PetscReal>(d.ints->begin(), d.ints->end()) : std::vector<PetscReal>();
+      const std::vector<PetscReal> &x = d.ints ? conv : *d.reals;
+      if (!std::strcmp(fd->shape, "npts x nev")) PetscCall(WriteArrayND(v, gc, fd->name, x, {np, nev})); // 2-D also for nev = 1
+      else PetscCall(WriteArray(v, gc, fd->name, x, row ? row : 1));
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ReadResume(MPI_Comm comm, const std::string &file, const std::string &label, FloquetKind fk, PetscInt n2, PetscInt nev, Branch *b,
+                          FloquetColumns *f, bool *found)
+{
+  PetscMPIInt rank;
+  const std::string g = "/continuation/" + label + "/";
+  auto has = [&](const char *d) { return HasDataset(file, (g + d).c_str()); };
+  std::vector<Bound> fields;
+  BranchRecord rec;
+  PetscFunctionBeginUser;
+  *b = Branch();
+  *f = FloquetColumns();
+  PetscCall(Fields(comm, fk, &fields));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  int status[2] = {0, 0}; // rank 0 reads; every rank checks: [readable, branch present]
+  if (rank == 0) {
+    status[0] = HasDataset(file, "/continuation");
+    status[1] = status[0] && has("energy");
+  }
+  PetscCallMPI(MPI_Bcast(status, 2, MPI_INT, 0, comm));
+  PetscCheck(status[0], comm, PETSC_ERR_FILE_OPEN, "-cont_resume %s: cannot open it, or it is not a continuation output (no /continuation group)", file.c_str());
+  *found = status[1];
+  if (!*found) PetscFunctionReturn(0);
+  PetscInt rowlen = 0; // values per stored orbit
+  Branch &rb = rec.b;
+  FloquetColumns &rf = rec.f;
+  if (rank == 0) {
+    // The branch's columns must be there; the step state and Floquet columns
+    // may not (files of older versions, or written without -floquet).
+    rb.next_ds = NAN;
+    for (const auto &[fd, c, floquet] : fields) {
+      if (fd->kind != FieldKind::Dataset) continue;
+      if ((floquet || (c->flags & kStepState)) && !has(fd->name)) continue;
+      const Cells d = c->data(rec);
+      const std::string path = g + fd->name;
+      if (d.ints && fd->type == FieldType::Int) {
+        PetscCall(ReadInts(file, path.c_str(), d.ints));
+        continue;
+      }
+      std::vector<PetscReal> x;
+      PetscCall(ReadDoubles(file, path.c_str(), &x));
+      if (d.reals) *d.reals = std::move(x);
+      else if (d.ints) d.ints->assign(x.begin(), x.end());
+      else *d.scalar = x.size() == 1 ? x[0] : NAN;
+    }
+    if (rb.next_tangent.size() != (size_t)n2 + 2 || !std::isfinite(rb.next_ds)) { // absent or not of this lattice: the re-solving resume
+      rb.next_tangent.clear();
+      rb.next_ds = 0;
+    }
+    const size_t np = rb.energy.size();
+    rowlen = rb.z0.size() == np * (size_t)n2 ? n2 : np == 0 ? -1 : (PetscInt)(rb.z0.size() / np);
+    // Floquet columns of another -floquet_mf_nev or route (or none) are not comparable: NaN / 0 for every stored orbit.
+    const bool comparable = rf.re.size() == np * (size_t)(fk == FloquetKind::Dense ? n2 : nev);
+    for (const auto &[fd, c, floquet] : fields) { // padded: files written before krein or det_error were stored
+      if (!floquet || fd->kind != FieldKind::Dataset) continue;
+      const Cells d = c->data(rec);
+      const size_t n = np * (size_t)std::max<PetscInt>(1, RowLength(fd->shape, n2, nev));
+      if (d.reals) {
+        if (!comparable) d.reals->clear();
+        d.reals->resize(n, NAN);
+      } else {
+        if (!comparable) d.ints->clear();
+        d.ints->resize(n, 0);
+      }
+    }
+  }
+  PetscCallMPI(MPI_Bcast(&rowlen, 1, MPIU_INT, 0, comm));
+  PetscCheck(rowlen == n2, comm, PETSC_ERR_USER, "-cont_resume %s: branch %s has orbits of %" PetscInt_FMT " values, this lattice has 2N = %" PetscInt_FMT " (same -lattice_cells?)",
+             file.c_str(), label.c_str(), rowlen, n2);
+  for (const auto &[fd, c, floquet] : fields) {
+    if (fd->kind != FieldKind::Dataset || (c->flags & kRank0)) continue;
+    const Cells d = c->data(rec);
+    if (d.reals) PetscCall(Broadcast(comm, MPIU_REAL, d.reals));
+    if (d.ints) PetscCall(Broadcast(comm, MPIU_INT, d.ints));
+  }
+  *b = std::move(rb);
+  *f = std::move(rf);
+  PetscFunctionReturn(0);
+}
+
+} // namespace nltopo

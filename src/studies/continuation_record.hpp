@@ -1,0 +1,47 @@
+#pragma once
+// /continuation/<branch> of outputs.md: what the continuation study keeps per
+// branch, written and read back (-cont_resume) by one table of columns bound
+// to the fields of the group's schema (io/schema.cpp).
+#include "orbits/continuation.hpp"
+#include <string>
+#include <vector>
+
+namespace nltopo {
+
+// The Floquet columns of a branch, one entry (or row) per orbit (dense route:
+// all 2N multipliers, krein and instability; matrix-free: the -floquet_mf_nev
+// leading ones, products and unconverged).
+struct FloquetColumns {
+  std::vector<PetscReal> re, im, max_modulus, det_error;
+  std::vector<PetscInt> krein, stable, instability;
+  PetscInt products = 0, unconverged = 0;
+};
+
+// Everything /continuation/<label> holds: the branch, its Floquet data (dense
+// or matrix-free hook) and its cost.
+struct BranchRecord {
+  std::string label;
+  PetscReal omega = 0, seconds = 0;
+  Branch b;
+  FloquetColumns f;
+  PetscInt jac = 0, res = 0, tan = 0, kry = 0;
+};
+
+enum class FloquetKind { None, Dense, MatrixFree };
+
+// The schema variants of a route: "" and, with Floquet, "floquet" or "floquet_mf".
+std::vector<const char *> ContinuationVariants(FloquetKind fk);
+// The names the column table binds (tests: it covers the schema exactly).
+std::vector<std::string> ContinuationColumnNames();
+
+// n2 = 2N, nev = -floquet_mf_nev.
+PetscErrorCode WriteRecord(PetscViewer v, const BranchRecord &r, FloquetKind fk, PetscInt n2, PetscInt nev);
+
+// -cont_resume: /continuation/<label> of an earlier output (complete or a
+// checkpoint) as a Branch (z0 rows on rank 0, the rest on every rank) and its
+// Floquet columns; found is false when the file has no such branch. Floquet
+// data the file lacks (it was written without -floquet) become NaN / 0.
+PetscErrorCode ReadResume(MPI_Comm comm, const std::string &file, const std::string &label, FloquetKind fk, PetscInt n2, PetscInt nev, Branch *b,
+                          FloquetColumns *f, bool *found);
+
+} // namespace nltopo
