@@ -7,7 +7,7 @@ namespace nltopo {
 
 struct LogEvents {
   PetscLogEvent rhs_linear, rhs_cubic, rhs_forcing, energy, jacobian, eigen, bloch, output, diagnostics, variational, floquet, mf_pc;
-  PetscLogStage setup, solve, analysis, write;
+  PetscLogStage setup, solve, write;
 };
 
 // Registers on first call; later calls return the same ids.
