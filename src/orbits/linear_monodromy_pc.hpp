@@ -61,7 +61,6 @@ public:
   PetscErrorCode SetPeriod(PetscReal T);
   // x = (M_lin - I)^{-1} r on state vectors (x may not alias r).
   PetscErrorCode Apply(Vec r, Vec x);
-  PetscInt Shifts() const { return (PetscInt)lu_.size(); }
 
 private:
   struct TridiagonalLU { // LAPACK gttrf layout: L multipliers, U with a second superdiagonal, pivots

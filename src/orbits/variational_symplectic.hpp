@@ -43,7 +43,6 @@ public:
   PetscErrorCode Acceleration(Vec Y, PetscScalar *A);
 
 private:
-  PetscErrorCode GhostBlocks(Vec Y);
   const Lattice *lat_ = nullptr;
   PetscInt ncol_ = 0, bs_ = 0, steps_ = 0; // bs_ = 1 + ncol: one site's q block
   PetscReal s_ = 0;                        // s_T / T: the T source
