@@ -129,12 +129,12 @@ PetscErrorCode ShootingSystem::SetPhaseReference(Vec zref)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ShootingSystem::SetEnergyConstraint(Vec zref, PetscReal energy)
+PetscErrorCode ShootingSystem::SetTargetConstraint(Vec zref, Constraint kind, PetscReal target)
 {
   PetscFunctionBeginUser;
   PetscCall(SetPhaseReference(zref));
-  kind_ = Constraint::Energy;
-  energy_target_ = energy;
+  kind_ = kind;
+  target_ = target;
   PetscFunctionReturn(0);
 }
 
@@ -148,21 +148,9 @@ PetscErrorCode ShootingSystem::SetArclengthConstraint(Vec zref, Vec tangent, Vec
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ShootingSystem::SetPeriodConstraint(Vec zref, PetscReal period)
-{
-  PetscFunctionBeginUser;
-  PetscCall(SetPhaseReference(zref));
-  kind_ = Constraint::Period;
-  period_target_ = period;
-  PetscFunctionReturn(0);
-}
-
 PetscErrorCode ShootingSystem::Residual(Vec X, Vec F)
 {
   PetscReal T, beta, p, c;
-  PetscScalar *f;
-  const PetscScalar *a, *b;
-  const PetscInt m = 2 * lat_->OwnedCount();
   PetscFunctionBeginUser;
   PetscCall(CheckInterrupt(lat_->Comm())); // a stop signal ends the solve here (core/signals.hpp)
   nres_++;
@@ -174,24 +162,35 @@ PetscErrorCode ShootingSystem::Residual(Vec X, Vec F)
   if (kind_ == Constraint::Energy) {
     EnergyParts e;
     PetscCall(lat_->Energy(z_, &e));
-    c = e.Total() - energy_target_;
+    c = e.Total() - target_;
   } else if (kind_ == Constraint::Period) {
-    c = T - period_target_;
+    c = T - target_;
   } else {
     PetscCall(VecWAXPY(work_, -1.0, Xpred_, X));
     PetscCall(VecDot(tan_, work_, &c));
   }
-  PetscCall(VecGetArray(F, &f));
-  PetscCall(VecGetArrayRead(zT_, &a));
-  PetscCall(VecGetArrayRead(z_, &b));
-  for (PetscInt k = 0; k < m; k++) f[k] = a[k] - b[k];
-  PetscCall(VecRestoreArrayRead(z_, &b));
-  PetscCall(VecRestoreArrayRead(zT_, &a));
+  PetscCall(SetRows(zT_, z_, p, c, F));
+  PetscFunctionReturn(0);
+}
+
+// y = [a - b; p; c]: the state rows from state vectors, the phase and constraint rows.
+PetscErrorCode ShootingSystem::SetRows(Vec a, Vec b, PetscReal p, PetscReal c, Vec y) const
+{
+  PetscScalar *yv;
+  const PetscScalar *av, *bv;
+  const PetscInt m = 2 * lat_->OwnedCount();
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArray(y, &yv));
+  PetscCall(VecGetArrayRead(a, &av));
+  PetscCall(VecGetArrayRead(b, &bv));
+  for (PetscInt k = 0; k < m; k++) yv[k] = av[k] - bv[k];
+  PetscCall(VecRestoreArrayRead(b, &bv));
+  PetscCall(VecRestoreArrayRead(a, &av));
   if (rank_ == size_ - 1) {
-    f[m] = p;
-    f[m + 1] = c;
+    yv[m] = p;
+    yv[m + 1] = c;
   }
-  PetscCall(VecRestoreArray(F, &f));
+  PetscCall(VecRestoreArray(y, &yv));
   PetscFunctionReturn(0);
 }
 
@@ -303,10 +302,8 @@ PetscErrorCode ShootingSystem::SetBorderRows(Mat J)
 // state rows (T column included), the gathered rows for the phase and constraint.
 PetscErrorCode ShootingSystem::ShellMult(Vec x, Vec y)
 {
-  PetscReal dT, db, p = 0, c = 0;
-  PetscScalar *yv;
-  const PetscScalar *wv, *dv, *xv;
-  const PetscInt m = 2 * lat_->OwnedCount();
+  PetscReal dT, db;
+  const PetscScalar *xv;
   PetscInt rs;
   PetscFunctionBeginUser;
   PetscCall(CheckInterrupt(lat_->Comm())); // a stop signal ends the solve here (core/signals.hpp)
@@ -326,19 +323,7 @@ PetscErrorCode ShootingSystem::ShellMult(Vec x, Vec y)
   }
   PetscCall(VecRestoreArrayRead(x, &xv));
   PetscCall(MPIU_Allreduce(loc, glob, 2, MPIU_REAL, MPIU_SUM, lat_->Comm()));
-  p = glob[0];
-  c = glob[1];
-  PetscCall(VecGetArray(y, &yv));
-  PetscCall(VecGetArrayRead(w_, &wv));
-  PetscCall(VecGetArrayRead(g_, &dv));
-  for (PetscInt k = 0; k < m; k++) yv[k] = wv[k] - dv[k];
-  PetscCall(VecRestoreArrayRead(g_, &dv));
-  PetscCall(VecRestoreArrayRead(w_, &wv));
-  if (rank_ == size_ - 1) {
-    yv[m] = p;
-    yv[m + 1] = c;
-  }
-  PetscCall(VecRestoreArray(y, &yv));
+  PetscCall(SetRows(w_, g_, glob[0], glob[1], y)); // state rows: w - dz = (M - I) dz + the T and beta columns
   PetscFunctionReturn(0);
 }
 

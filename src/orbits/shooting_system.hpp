@@ -34,9 +34,9 @@ public:
   PetscErrorCode StateNorm(Vec X, PetscReal *norm) const;
 
   // Constraint for the next solve; each also sets the phase reference z_ref.
-  PetscErrorCode SetEnergyConstraint(Vec zref, PetscReal energy);
+  PetscErrorCode SetEnergyConstraint(Vec zref, PetscReal energy) { return SetTargetConstraint(zref, Constraint::Energy, energy); }
   PetscErrorCode SetArclengthConstraint(Vec zref, Vec tangent, Vec Xpred);
-  PetscErrorCode SetPeriodConstraint(Vec zref, PetscReal period);
+  PetscErrorCode SetPeriodConstraint(Vec zref, PetscReal period) { return SetTargetConstraint(zref, Constraint::Period, period); }
   bool EnergyConstrained() const { return kind_ == Constraint::Energy; }
 
   PetscErrorCode InDomain(Vec X, PetscBool *ok); // T > 0 (collective)
@@ -63,9 +63,12 @@ public:
   PetscInt TangentProducts() const { return nlin_; }
 
 private:
+  enum class Constraint { Energy, Arclength, Period };
   PetscErrorCode SetPhaseReference(Vec zref);
+  PetscErrorCode SetTargetConstraint(Vec zref, Constraint kind, PetscReal target); // c = E(z0) - target or T - target
   PetscErrorCode GatherBorderRows(Vec X, PetscReal *T, PetscReal *beta);
   PetscErrorCode SetBorderRows(Mat J);
+  PetscErrorCode SetRows(Vec a, Vec b, PetscReal p, PetscReal c, Vec y) const;
 
   PeriodicFlow *flow_ = nullptr;
   const Lattice *lat_ = nullptr;
@@ -73,8 +76,8 @@ private:
   PetscInt n_ = 0, nlocx_ = 0; // 2N, local size of X
   OwnedMat S_;                 // [dz(T)/dz0 | dz(T)/dbeta] of the assembled Jacobian
   OwnedVec z_, zT_, fref_, zref_, g_, tan_, Xpred_, work_, w_;
-  enum class Constraint { Energy, Arclength, Period } kind_ = Constraint::Energy;
-  PetscReal energy_target_ = 0, period_target_ = 0;
+  Constraint kind_ = Constraint::Energy;
+  PetscReal target_ = 0; // E_target or T_target
   OwnedVec zlin_; // linearisation point of the matrix-free product
   OwnedVec fT_;   // the assembled T column, f_beta(z(T))
   PetscReal Tlin_ = 0, blin_ = 0;
