@@ -22,7 +22,6 @@ PetscErrorCode LogRegister()
   PetscCall(PetscLogEventRegister("ShootLinPC", cid, &g_log.mf_pc));
   PetscCall(PetscLogStageRegister("Setup", &g_log.setup));
   PetscCall(PetscLogStageRegister("Solve", &g_log.solve));
-  PetscCall(PetscLogStageRegister("Analysis", &g_log.analysis));
   PetscCall(PetscLogStageRegister("Write", &g_log.write));
   g_registered = true;
   PetscFunctionReturn(0);

@@ -8,7 +8,7 @@ namespace nltopo {
 struct LogEvents {
   PetscClassId classid; // the effects register their own events (RhsLinear, RhsCubic, ...) with it
   PetscLogEvent energy, jacobian, eigen, bloch, output, diagnostics, variational, floquet, mf_pc;
-  PetscLogStage setup, solve, analysis, write;
+  PetscLogStage setup, solve, write;
 };
 
 // Registers on first call; later calls return the same ids.

@@ -36,7 +36,6 @@ public:
   // Writes the root attributes (study, version, options, wall_seconds,
   // complete: 0 for a checkpoint of a run still going), closes, renames.
   PetscErrorCode Commit(const char *study, PetscReal wall_seconds, bool complete = true);
-  const std::string &Path() const { return path_; }
 
 private:
   MPI_Comm comm_ = MPI_COMM_NULL;

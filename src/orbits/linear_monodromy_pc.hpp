@@ -8,8 +8,9 @@
 //   G = g(K),  g(l) = cot(sqrt(l) T/2) / sqrt(l).
 // g is applied through its partial fractions (cot x = 1/x + sum_n 2x/(x^2 - n^2 pi^2)):
 //   g(K) = (2/T) K^{-1} + (4/T) sum_{n>=1} (K - w_n^2 I)^{-1},   w_n = 2 pi n / T,
-// with the shifted tridiagonal solves for n <= n_max (w_nmax^2 > 4 lambda_max(K))
-// and the tail sum_{n>n_max} (K - w_n^2)^{-1} = -sum_k K^k s_{k+1},
+// with the shifted tridiagonal solves for n <= n_max (n_max >= 4 and
+// w_nmax^2 >= 64 lambda, lambda the Gershgorin bound of K's spectrum) and the
+// tail sum_{n>n_max} (K - w_n^2)^{-1} = -sum_k K^k s_{k+1},
 // s_j = sum_{n>n_max} w_n^{-2j}, to k = 3. The lattice is a chain, so K is
 // tridiagonal and every solve is O(N) (LU with partial pivoting: the shifts lie
 // inside K's spectrum). Each rank solves the whole chain redundantly on the
@@ -54,11 +55,12 @@ public:
   // term. Collective.
   PetscErrorCode SetParametricTerm(const std::vector<PetscReal> &cdiag, const std::vector<PetscReal> &coff, const std::vector<PetscReal> &sdiag,
                                    const std::vector<PetscReal> &soff, PetscReal weight);
-  // Factor the shifted chains for the period T (called at every Jacobian evaluation).
+  // Factor the shifted chains (and the rotating-wave block) for the period T;
+  // nothing to do when neither T nor the stiffness changed since the last
+  // factorisation. The matrix-free shooting calls it at every Jacobian evaluation.
   PetscErrorCode SetPeriod(PetscReal T);
   // x = (M_lin - I)^{-1} r on state vectors (x may not alias r).
   PetscErrorCode Apply(Vec r, Vec x);
-  PetscInt Shifts() const { return (PetscInt)lu_.size(); }
 
 private:
   struct TridiagonalLU { // LAPACK gttrf layout: L multipliers, U with a second superdiagonal, pivots

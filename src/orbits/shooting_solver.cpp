@@ -1,0 +1,282 @@
+#include "orbits/shooting_solver.hpp"
+#include "core/log.hpp"
+#include <algorithm>
+
+namespace nltopo {
+
+static const char *const kJacobianNames[] = {"dense", "mf"};
+static const char *const kMfPcNames[] = {"none", "linear", "averaged", "parametric"};
+
+PetscErrorCode ShootingOptionsFromOptions(MPI_Comm comm, ShootingOptions *o)
+{
+  PetscInt j = static_cast<PetscInt>(o->jacobian), pc = static_cast<PetscInt>(o->mf_pc);
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, "nnm_", "Shooting Newton (SNES options: -nnm_snes_*, -nnm_ksp_*, -nnm_pc_*)", NULL);
+  PetscBool start_set;
+  PetscCall(PetscOptionsEList("-jacobian", "Shooting Jacobian: dense (monodromy by forward sensitivities) or mf (one tangent-linear integration per product); -nnm_snes_mf for finite differences",
+                              NULL, kJacobianNames, 2, kJacobianNames[j], &j, NULL));
+  PetscCall(PetscOptionsInt("-start_dense_max",
+                            "Largest 2N for which the first orbit of a branch uses the dense SVD start solver (-nnm_start_*); default 4000 for the "
+                            "dense Jacobian, 0 for mf (its preconditioner already treats the edge-mode direction exactly)",
+                            NULL, o->start_dense_max, &o->start_dense_max, &start_set));
+  if (!start_set && j == static_cast<PetscInt>(ShootingJacobian::MatrixFree)) o->start_dense_max = 0;
+  PetscCall(PetscOptionsEList("-mf_pc",
+                              "Preconditioner of the mf shooting Jacobian: linear (exact inverse of M_lin - I of the linear lattice, O(N) per "
+                              "application), averaged (the same with K replaced by the orbit's time-averaged tangent stiffness), parametric (averaged "
+                              "plus the orbit's 2 omega parametric term on the band modes near omega, rotating-wave approximation) or none (plain GMRES)",
+                              NULL, kMfPcNames, 4, kMfPcNames[pc], &pc, NULL));
+  PetscCall(PetscOptionsReal("-mf_pc_parametric_weight",
+                             "Scale in (0, 1] of the 2 omega term in -nnm_mf_pc parametric; below 1 it keeps the block regular along the orbit's own phase "
+                             "direction (1 makes GMRES break down at converged orbits)",
+                             NULL, o->parametric_weight, &o->parametric_weight, NULL));
+  PetscCall(PetscOptionsReal("-orbit_rtol",
+                             "Newton also stops once |z(T) - z0| <= this times |z0| (0: only -nnm_snes_atol and -nnm_snes_rtol); for branches whose "
+                             "amplitude grows by decades, where one absolute tolerance is too tight at the top or too loose at the bottom",
+                             NULL, o->orbit_rtol, &o->orbit_rtol, NULL));
+  PetscOptionsEnd();
+  PetscCheck(o->start_dense_max >= 0 && o->start_dense_max <= 20000, comm, PETSC_ERR_USER, "-nnm_start_dense_max must lie in [0, 20000], got %" PetscInt_FMT,
+             o->start_dense_max);
+  PetscCheck(o->orbit_rtol >= 0 && o->orbit_rtol < 1, comm, PETSC_ERR_USER, "-nnm_orbit_rtol %g: must lie in [0, 1)", (double)o->orbit_rtol);
+  PetscCheck(o->parametric_weight > 0 && o->parametric_weight <= 1, comm, PETSC_ERR_USER, "-nnm_mf_pc_parametric_weight %g: must lie in (0, 1]",
+             (double)o->parametric_weight);
+  o->jacobian = static_cast<ShootingJacobian>(j);
+  o->mf_pc = static_cast<MatrixFreePC>(pc);
+  PetscFunctionReturn(0);
+}
+
+namespace {
+// A Newton iterate with T <= 0 (a failing step far from the branch) is outside
+// the domain: SNES stops with DIVERGED_FUNCTION_DOMAIN and the continuation
+// rejects the step, instead of integrating backwards or failing at SetPeriod.
+PetscErrorCode ShootResidual(SNES snes, Vec X, Vec F, void *ctx)
+{
+  ShootingSystem *sys = static_cast<ShootingSystem *>(ctx);
+  PetscBool ok;
+  PetscFunctionBeginUser;
+  PetscCall(sys->InDomain(X, &ok));
+  if (!ok) {
+    PetscCall(SNESSetFunctionDomainError(snes));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(sys->Residual(X, F));
+  PetscFunctionReturn(0);
+}
+PetscErrorCode ShootJacobian(SNES snes, Vec X, Mat A, Mat P, void *ctx)
+{
+  ShootingSolver *s = static_cast<ShootingSolver *>(ctx);
+  PetscBool ok;
+  PetscFunctionBeginUser;
+  PetscCall(s->System().InDomain(X, &ok));
+  if (!ok) {
+    PetscCall(SNESSetJacobianDomainError(snes));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(s->Jacobian(X, P));
+  if (A != P) {
+    PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+  }
+  PetscFunctionReturn(0);
+}
+PetscErrorCode ShootConverged(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm, SNESConvergedReason *reason, void *ctx)
+{
+  PetscFunctionBeginUser;
+  PetscCall(static_cast<ShootingSolver *>(ctx)->Converged(snes, it, xnorm, snorm, fnorm, reason));
+  PetscFunctionReturn(0);
+}
+} // namespace
+
+PetscErrorCode ShootingSolver::Setup(ShootingSystem &sys, const ShootingOptions &o)
+{
+  MPI_Comm comm = sys.Lat().Comm();
+  KSP ksp;
+  PC pc;
+  PetscFunctionBeginUser;
+  sys_ = &sys;
+  opt_ = o;
+  PetscCall(sys.CreateUnknowns(F_.out()));
+  PetscCall(VecDuplicate(F_, rhs_.out()));
+  PetscCall(SNESCreate(comm, snes_.out()));
+  PetscCall(SNESSetOptionsPrefix(snes_, "nnm_"));
+  PetscCall(SNESSetFunction(snes_, F_, ShootResidual, sys_));
+  PetscCall(SNESGetKSP(snes_, &ksp));
+  PetscCall(KSPGetPC(ksp, &pc));
+  // The assembled Jacobian: the dense route, and the start solver of every
+  // route while 2N is small enough to hold it.
+  if (o.jacobian == ShootingJacobian::Dense || sys.Size() - 2 <= o.start_dense_max) PetscCall(sys.CreateDenseJacobian(Jdense_.out()));
+  if (o.jacobian == ShootingJacobian::Dense) PetscCall(SetupDirect(ksp, pc));
+  else PetscCall(SetupMatrixFree(ksp, pc));
+  PetscCall(SNESSetJacobian(snes_, Operator(), Operator(), ShootJacobian, this));
+  PetscCall(SNESSetTolerances(snes_, 1e-12, 1e-10, 1e-14, 12, PETSC_DEFAULT));
+  PetscCall(SNESSetFromOptions(snes_));
+  PetscCall(SNESGetTolerances(snes_, &snes_atol_, NULL, NULL, NULL, NULL));
+  if (o.jacobian == ShootingJacobian::MatrixFree) {
+    // No GMRES iterations beyond what Newton's own threshold asks for
+    // (-nnm_snes_atol here, or -nnm_orbit_rtol |z0| once larger: Converged): a
+    // linear residual below half of it makes the next |F| (linear residual +
+    // O(|step|^2)) meet it. Eisenstat-Walker alone asks the last solve for a
+    // fixed relative reduction, which near the band edge of long lattices costs
+    // many iterations on a residual already close to atol (benchmarks/README.md).
+    PetscCall(PetscOptionsHasName(NULL, "nnm_", "-ksp_atol", &ksp_atol_set_));
+    if (!ksp_atol_set_) PetscCall(KSPSetTolerances(ksp, PETSC_DEFAULT, 0.5 * snes_atol_, PETSC_DEFAULT, PETSC_DEFAULT));
+  }
+  PetscCall(SNESSetConvergenceTest(snes_, ShootConverged, this, NULL));
+  PetscCall(KSPGetTolerances(ksp, &tangent_rtol_, NULL, NULL, NULL)); // before Eisenstat-Walker changes it
+  PetscCall(PetscOptionsHasName(NULL, "nnm_", "-snes_mf", &snes_mf_));
+  if (Jdense_) PetscCall(SetupStart());
+  PetscFunctionReturn(0);
+}
+
+// Newton with the assembled Jacobian; a pivoting LU, since the bordered
+// Jacobian has zero diagonal entries: MUMPS.
+PetscErrorCode ShootingSolver::SetupDirect(KSP ksp, PC pc)
+{
+  PetscFunctionBeginUser;
+  PetscCall(KSPSetType(ksp, KSPPREONLY));
+  PetscCall(PCSetType(pc, PCLU));
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscFunctionReturn(0);
+}
+
+// Start solver (prefix -nnm_start_) for the first orbit of a branch:
+// pseudo-inverse by SVD with tiny singular values dropped. At the linear limit
+// of the insulated branch the left-end edge mode has the same period (model.md
+// "Trap"): a near-null direction of the shooting Jacobian, its singular value
+// orders of magnitude below the others, that an LU would follow off the
+// branch. Dropping it keeps Newton quadratic and on the insulated family;
+// along the branch the hardening detunes the edge mode and the main solver's
+// pivoting LU is used.
+PetscErrorCode ShootingSolver::SetupStart()
+{
+  KSP ksp;
+  PC pc;
+  PetscBool has;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasName(NULL, "nnm_start_", "-pc_svd_zero_sing", &has));
+  if (!has) PetscCall(PetscOptionsSetValue(NULL, "-nnm_start_pc_svd_zero_sing", "1e-9")); // PCSVD has no setter in 3.18
+  PetscCall(SNESCreate(sys_->Lat().Comm(), snes_start_.out()));
+  PetscCall(SNESSetOptionsPrefix(snes_start_, "nnm_start_"));
+  PetscCall(SNESSetFunction(snes_start_, F_, ShootResidual, sys_));
+  PetscCall(SNESSetJacobian(snes_start_, Jdense_, Jdense_, ShootJacobian, this));
+  PetscCall(SNESGetKSP(snes_start_, &ksp));
+  PetscCall(KSPSetType(ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCSVD));
+  PetscCall(SNESSetTolerances(snes_start_, 1e-12, 1e-10, 1e-14, 20, PETSC_DEFAULT));
+  PetscCall(SNESSetFromOptions(snes_start_));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ShootingSolver::Jacobian(Vec X, Mat J)
+{
+  PetscFunctionBeginUser;
+  if (J != Jshell_.get()) {
+    PetscCall(sys_->AssembleJacobian(X, J));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(sys_->Linearise(X));
+  PetscCall(UpdatePreconditioner());
+  PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
+// SNESConvergedDefault, plus |F| <= -nnm_orbit_rtol |z0|; on the mf route it
+// also keeps GMRES's atol at half of the threshold in force.
+PetscErrorCode ShootingSolver::Converged(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm, SNESConvergedReason *reason)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SNESConvergedDefault(snes, it, xnorm, snorm, fnorm, reason, NULL));
+  if (opt_.orbit_rtol <= 0 || *reason != SNES_CONVERGED_ITERATING) PetscFunctionReturn(0);
+  Vec X;
+  PetscReal zn;
+  PetscCall(SNESGetSolution(snes, &X));
+  PetscCall(sys_->StateNorm(X, &zn));
+  const PetscReal thr = std::max(snes_atol_, opt_.orbit_rtol * zn);
+  if (fnorm <= thr) {
+    PetscCall(PetscInfo(snes, "|F| = %g <= -nnm_orbit_rtol |z0| = %g\n", (double)fnorm, (double)thr));
+    *reason = SNES_CONVERGED_FNORM_ABS;
+  } else if (opt_.jacobian == ShootingJacobian::MatrixFree && !ksp_atol_set_) {
+    KSP ksp; // the next GMRES solve: no further than half of the threshold (see Setup)
+    PetscCall(SNESGetKSP(snes, &ksp));
+    PetscCall(KSPSetTolerances(ksp, PETSC_DEFAULT, 0.5 * thr, PETSC_DEFAULT, PETSC_DEFAULT));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ShootingSolver::Solve(Vec X, bool *converged, PetscInt *its)
+{
+  SNESConvergedReason reason;
+  // The first orbit of a branch (energy constraint) uses the start solver.
+  SNES snes = sys_->EnergyConstrained() && snes_start_ ? snes_start_.get() : snes_.get();
+  PetscFunctionBeginUser;
+  const PetscInt j0 = sys_->JacobianEvaluations();
+  PetscCall(SNESSolve(snes, NULL, X));
+  fresh_ = sys_->JacobianEvaluations() > j0 && snes == snes_.get() && opt_.jacobian == ShootingJacobian::Dense && !snes_mf_;
+  PetscCall(SNESGetConvergedReason(snes, &reason));
+  PetscCall(SNESGetIterationNumber(snes, its));
+  {
+    PetscInt lits;
+    PetscCall(SNESGetLinearSolveIterations(snes, &lits));
+    nkrylov_ += lits;
+  }
+  *converged = reason > 0;
+  reason_ = reason;
+  if (!*converged) { // e.g. a zero pivot at a bifurcation: start the next factorisation afresh
+    KSP ksp;
+    PC pc;
+    PetscCall(SNESGetKSP(snes, &ksp));
+    PetscCall(KSPGetPC(ksp, &pc));
+    PetscCall(PCReset(pc));
+    fresh_ = false;
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ShootingSolver::Tangent(Vec X, Vec t_prev, Vec t)
+{
+  KSP ksp;
+  PetscReal nrm, d;
+  PetscFunctionBeginUser;
+  // J t = e_last with the Jacobian of the last Newton iterate (already
+  // factored; one step from the solution), or a new one at the solution when
+  // Newton needed no iteration or the route is matrix-free.
+  PetscCall(SNESGetKSP(snes_, &ksp));
+  if (snes_mf_) { // -nnm_snes_mf: the finite-difference operator, based at the solution
+    Mat A;
+    PetscCall(SNESGetJacobian(snes_, &A, NULL, NULL, NULL));
+    PetscCall(SNESComputeFunction(snes_, X, F_));
+    PetscCall(MatMFFDSetBase(A, X, F_));
+    PetscCall(KSPSetOperators(ksp, A, A));
+  } else if (!fresh_) {
+    Mat J = opt_.jacobian == ShootingJacobian::Dense ? Jdense_.get() : Jshell_.get();
+    PetscCall(Jacobian(X, J));
+    PetscCall(KSPSetOperators(ksp, J, J));
+  }
+  PetscInt lo, hi;
+  const PetscInt last = sys_->Size() - 1;
+  PetscCall(VecZeroEntries(rhs_));
+  PetscCall(VecGetOwnershipRange(rhs_, &lo, &hi));
+  if (last >= lo && last < hi) PetscCall(VecSetValue(rhs_, last, 1.0, INSERT_VALUES));
+  PetscCall(VecAssemblyBegin(rhs_));
+  PetscCall(VecAssemblyEnd(rhs_));
+  PetscReal rtol, atol, dtol;
+  PetscInt maxit;
+  PetscCall(KSPGetTolerances(ksp, &rtol, &atol, &dtol, &maxit)); // the last Eisenstat-Walker forcing term: too loose for the predictor
+  PetscCall(KSPSetTolerances(ksp, tangent_rtol_, atol, dtol, maxit));
+  PetscCall(KSPSolve(ksp, rhs_, t));
+  PetscCall(KSPSetTolerances(ksp, rtol, atol, dtol, maxit));
+  if (opt_.jacobian == ShootingJacobian::MatrixFree) {
+    PetscInt lits;
+    PetscCall(KSPGetIterationNumber(ksp, &lits));
+    nkrylov_ += lits;
+  }
+  PetscCall(VecNormalize(t, &nrm));
+  if (t_prev) {
+    PetscCall(VecDot(t, t_prev, &d));
+    if (d < 0) PetscCall(VecScale(t, -1.0));
+  }
+  PetscFunctionReturn(0);
+}
+
+} // namespace nltopo
