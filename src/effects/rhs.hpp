@@ -32,7 +32,6 @@ public:
     if (forcing_ >= 0) calls_.on[forcing_] = 0;
   }
   EffectCounters Counters() const;
-  const EffectList &Effects() const { return fx_; }
 
 private:
   // a[i] for owned sites i (a indexed by global site), x a state or SiteDM vector.
