@@ -1,5 +1,4 @@
 #include "timeint/ts_acceleration.hpp"
-#include <petsc/private/tsimpl.h>
 
 namespace nltopo {
 
@@ -49,14 +48,17 @@ PetscErrorCode TSGetAcceleration(TS ts, AccelerationFn *f, void **ctx)
 PetscErrorCode SecondOrderProblem::Setup(TS ts, const char *type)
 {
   PetscInt nloc;
+  Vec x;
+  const char *prefix;
   PetscFunctionBegin;
-  PetscCall(VecGetLocalSize(ts->vec_sol, &nloc));
+  PetscCall(TSGetSolution(ts, &x));
+  PetscCall(TSGetOptionsPrefix(ts, &prefix));
+  PetscCall(VecGetLocalSize(x, &nloc));
   PetscCheck(nloc % 2 == 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_SIZ,
-             "-%sts_type %s needs a state [u, v] with both halves on every rank (local size %" PetscInt_FMT " is odd)",
-             ((PetscObject)ts)->prefix ? ((PetscObject)ts)->prefix : "", type, nloc);
+             "-%sts_type %s needs a state [u, v] with both halves on every rank (local size %" PetscInt_FMT " is odd)", prefix ? prefix : "", type, nloc);
   n = nloc / 2;
   PetscCall(TSGetAcceleration(ts, &fn, &ctx));
-  if (!fn) PetscCall(VecDuplicate(ts->vec_sol, &f));
+  if (!fn) PetscCall(VecDuplicate(x, &f));
   PetscFunctionReturn(0);
 }
 
