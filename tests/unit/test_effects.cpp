@@ -3,6 +3,7 @@
 // modal solution and finite differences.
 #include "bands/linear_modes.hpp"
 #include "effects/rhs.hpp"
+#include "energy_trace.hpp"
 #include "helpers.hpp"
 #include "orbits/flow.hpp"
 #include "timeint/simulation.hpp"
@@ -12,17 +13,6 @@ using namespace nltopo;
 using namespace nltopo::test;
 
 namespace {
-
-class EnergySamples : public SampleSink {
-public:
-  std::vector<PetscReal> t, e;
-  PetscErrorCode Sample(PetscReal tt, Vec, const EnergyParts &en) override
-  {
-    t.push_back(tt);
-    e.push_back(en.Total());
-    return 0;
-  }
-};
 
 PetscReal MaxAbsDiff(Vec a, Vec b)
 {
@@ -164,7 +154,7 @@ TEST_CASE("the damped linear lattice loses energy at the rate of its modal solut
   SimulationOptions so;
   so.t_final = 60;
   so.sample_dt = 2;
-  EnergySamples tr;
+  EnergyTrace tr;
   SimulationResult r;
   PCHK(Simulate(*fx, so, z0, &tr, &r));
   REQUIRE(tr.t.size() == 31);

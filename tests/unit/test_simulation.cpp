@@ -1,6 +1,7 @@
 // Forced and free runs: effects composed per scene (counters), energy
 // conservation tied to the TS tolerance, the cut-off.
 #include "bands/linear_modes.hpp"
+#include "energy_trace.hpp"
 #include "helpers.hpp"
 #include "timeint/simulation.hpp"
 #include <cmath>
@@ -18,17 +19,6 @@ static ToneBurstOptions SiteBurst(PetscReal S, PetscReal estar)
   o.energy = estar;
   return o;
 }
-
-class EnergyTrace : public SampleSink {
-public:
-  std::vector<PetscReal> t, e;
-  PetscErrorCode Sample(PetscReal tt, Vec, const EnergyParts &en) override
-  {
-    t.push_back(tt);
-    e.push_back(en.Total());
-    return 0;
-  }
-};
 
 TEST_CASE("a linear scene never runs the cubic kernel; a nonlinear one always does", "[effects]")
 {
