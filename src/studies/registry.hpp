@@ -17,13 +17,13 @@ struct StudyEntry {
 
 std::unique_ptr<Study> CreateSimulateStudy();
 std::unique_ptr<Study> CreateContinuationStudy();
+std::unique_ptr<Study> CreateSweepStudy();
 
 #define NLTOPO_STUDY(Name) \
   PetscErrorCode Name##Study(MPI_Comm comm); \
   PetscErrorCode Name##StudyOptions(MPI_Comm comm)
 NLTOPO_STUDY(Linear);
 NLTOPO_STUDY(Stability);
-NLTOPO_STUDY(Sweep);
 NLTOPO_STUDY(Zak);
 NLTOPO_STUDY(Perturb);
 NLTOPO_STUDY(Workprecision);
