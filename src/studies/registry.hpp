@@ -18,6 +18,7 @@ struct StudyEntry {
 std::unique_ptr<Study> CreateSimulateStudy();
 std::unique_ptr<Study> CreateContinuationStudy();
 std::unique_ptr<Study> CreateSweepStudy();
+std::unique_ptr<Study> CreateWorkprecisionStudy();
 
 #define NLTOPO_STUDY(Name) \
   PetscErrorCode Name##Study(MPI_Comm comm); \
@@ -26,7 +27,6 @@ NLTOPO_STUDY(Linear);
 NLTOPO_STUDY(Stability);
 NLTOPO_STUDY(Zak);
 NLTOPO_STUDY(Perturb);
-NLTOPO_STUDY(Workprecision);
 #undef NLTOPO_STUDY
 
 // Reads -study (default linear), checks the options (finite values, no option
