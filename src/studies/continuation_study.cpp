@@ -13,10 +13,12 @@
 #include "stability/floquet_mf.hpp"
 #include "studies/continuation_record.hpp"
 #include "studies/registry.hpp"
+#include "studies/study.hpp"
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <functional>
+#include <memory>
 
 namespace nltopo {
 
@@ -197,181 +199,203 @@ PetscErrorCode ReadStudyChoices(MPI_Comm comm, StudyChoices *c)
   PetscFunctionReturn(0);
 }
 
-} // namespace
+// The branch being continued, live: what a checkpoint or an interrupt writes
+// of it, and the counters its cost is measured from.
+struct LiveBranch {
+  std::string label;
+  PetscReal omega = 0;
+  Branch b;
+  PetscInt j0 = 0, r0 = 0, p0 = 0, k0 = 0;
+  PetscLogDouble b0 = 0;
+};
 
-PetscErrorCode ContinuationStudyOptions(MPI_Comm comm)
-{
-  NnmSetup nnm;
-  StudyChoices ch;
-  FloquetOptions flo;
-  FloquetMfOptions fmo;
-  PetscFunctionBeginUser;
-  PetscCall(nnm.DeclareOptions(comm));
-  PetscCall(ReadStudyChoices(comm, &ch));
-  PetscCall(FloquetOptionsFromOptions(comm, &flo)); // read even without -floquet: they belong to this study
-  PetscCall(FloquetMfOptionsFromOptions(comm, &fmo));
-  PetscCall(DeclareEPS(comm, "floquet_"));
-  PetscCall(DeclareEPS(comm, "floquet_mf_"));
-  PetscCall(DeclareOutputOptions(comm, "continuation"));
-  PetscFunctionReturn(0);
-}
+// -cont_resume: a branch as the earlier output holds it.
+struct Resume {
+  Branch b;
+  FloquetColumns f;
+  bool found = false;
+};
 
-PetscErrorCode ContinuationStudy(MPI_Comm comm)
-{
-  NnmSetup nnm;
-  std::string path;
-  OutputFile out;
-  PetscLogDouble t_start, t_end;
-  PetscFunctionBeginUser;
-  PetscCall(PetscTime(&t_start));
-  PetscCall(LogRegister());
-  PetscCall(PetscLogStagePush(Log().setup));
-  PetscCall(nnm.ReadOptions(comm));
-  StudyChoices ch;
-  PetscCall(ReadStudyChoices(comm, &ch));
-  const PetscBool floquet = ch.floquet, floquet_mf = ch.floquet_mf;
-  FloquetOptions flo;
-  FloquetMfOptions fmo;
-  if (floquet) PetscCall(FloquetOptionsFromOptions(comm, &flo));
-  if (floquet && floquet_mf) PetscCall(FloquetMfOptionsFromOptions(comm, &fmo));
-  char **names = ch.names;
-  const PetscInt nb = ch.nb;
-  const PetscReal checkpoint_seconds = ch.checkpoint_seconds;
-  const char *resume_file = ch.resume_file;
-  const PetscBool resume = ch.resume;
-  if (resume) PetscCall(CheckResumeOptions(comm, resume_file, "continuation", "-cont_resume")); // the same physics and numerics, or one line naming the first difference
-  PetscCall(OutputPathFromOptions(comm, "continuation", &path, [&](const std::string &p) { return resume && SameFile(p, resume_file); }));
-  PetscCall(out.Open(comm, path));
-  PetscCall(nnm.Build(comm, "-study continuation"));
-  Lattice &lat = nnm.lat;
-  LinearModes &modes = nnm.modes;
-  PeriodicFlow &flow = nnm.flow;
-  Shooting &shoot = nnm.shoot;
-  const ShootingOptions &so = nnm.so;
-  ContinuationOptions &co = nnm.co;
-  PetscCall(PetscLogStagePop());
+class ContinuationStudy : public Study {
+public:
+  PetscErrorCode DeclareOptions(MPI_Comm comm) override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(nnm_.DeclareOptions(comm));
+    PetscCall(ReadStudyChoices(comm, &ch_));
+    PetscCall(FloquetOptionsFromOptions(comm, &flo_)); // read even without -floquet: they belong to this study
+    PetscCall(FloquetMfOptionsFromOptions(comm, &fmo_));
+    PetscCall(DeclareEPS(comm, "floquet_"));
+    PetscCall(DeclareEPS(comm, "floquet_mf_"));
+    PetscCall(DeclareOutputOptions(comm, "continuation"));
+    PetscFunctionReturn(0);
+  }
 
-  PetscCall(PetscPrintf(comm, "nltopo continuation: N = %" PetscInt_FMT ", %" PetscInt_FMT " branch(es), E %g .. %g, Jacobian %s\n", lat.N(), nb,
-                        (double)co.energy_min, (double)co.energy_max, so.jacobian == ShootingJacobian::Dense ? "dense" : "mf"));
-  OwnedVec u;
-  PetscCall(DMCreateGlobalVector(lat.SiteDM(), u.out()));
-  FloquetHook hook(flow, flo);
-  FloquetMfHook mf_hook(flow, flo, fmo);
-  const FloquetKind fk = !floquet ? FloquetKind::None : floquet_mf ? FloquetKind::MatrixFree : FloquetKind::Dense;
-  PointHook *floquet_hook = fk == FloquetKind::None ? nullptr : fk == FloquetKind::MatrixFree ? static_cast<PointHook *>(&mf_hook) : &hook;
-  const PetscInt n2 = 2 * lat.N();
-  std::vector<BranchRecord> done;
+protected:
+  PetscErrorCode ReadOptions() override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(nnm_.ReadOptions(comm_));
+    PetscCall(ReadStudyChoices(comm_, &ch_));
+    if (ch_.floquet) PetscCall(FloquetOptionsFromOptions(comm_, &flo_));
+    if (ch_.floquet && ch_.floquet_mf) PetscCall(FloquetMfOptionsFromOptions(comm_, &fmo_));
+    fk_ = !ch_.floquet ? FloquetKind::None : ch_.floquet_mf ? FloquetKind::MatrixFree : FloquetKind::Dense;
+    if (ch_.resume) PetscCall(CheckResumeOptions(comm_, ch_.resume_file, name_, "-cont_resume")); // the same physics and numerics, or one line naming the first difference
+    PetscFunctionReturn(0);
+  }
+  // -cont_resume of the -output file itself replaces it (no -output_overwrite needed).
+  PetscErrorCode OutputPath(std::string *path) override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(OutputPathFromOptions(comm_, name_, path, [&](const std::string &p) { return ch_.resume && SameFile(p, ch_.resume_file); }));
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode Build() override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(nnm_.Build(comm_, "-study continuation"));
+    PetscCall(DMCreateGlobalVector(nnm_.lat.SiteDM(), u_.out()));
+    hook_ = std::make_unique<FloquetHook>(nnm_.flow, flo_);
+    mf_hook_ = std::make_unique<FloquetMfHook>(nnm_.flow, flo_, fmo_);
+    n2_ = 2 * nnm_.lat.N();
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode Solve() override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(PetscPrintf(comm_, "nltopo continuation: N = %" PetscInt_FMT ", %" PetscInt_FMT " branch(es), E %g .. %g, Jacobian %s\n", nnm_.lat.N(), ch_.nb,
+                          (double)nnm_.co.energy_min, (double)nnm_.co.energy_max, nnm_.so.jacobian == ShootingJacobian::Dense ? "dense" : "mf"));
+    // -cont_resume: every branch read before the first checkpoint may replace the file
+    resumes_.resize(ch_.nb);
+    for (PetscInt k = 0; k < ch_.nb && ch_.resume; k++) {
+      PetscReal omega;
+      std::string label;
+      PetscCall(BranchStart(nnm_.lat, nnm_.modes, ch_.names[k], u_, &omega, &label));
+      PetscCall(ReadResume(comm_, ch_.resume_file, label, fk_, n2_, fmo_.nev, &resumes_[k].b, &resumes_[k].f, &resumes_[k].found));
+    }
+    for (PetscInt k = 0; k < ch_.nb; k++) PetscCall(ContinueOne(k));
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode Write(PetscViewer v) override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(WriteBandEdges(v, "/continuation", InfiniteBandEdges(nnm_.lat.Params())));
+    for (const BranchRecord &r : done_) PetscCall(WriteRecord(v, r, fk_, n2_, fmo_.nev));
+    PetscFunctionReturn(0);
+  }
+
+private:
+  PointHook *FloquetPointHook() { return fk_ == FloquetKind::None ? nullptr : fk_ == FloquetKind::MatrixFree ? static_cast<PointHook *>(mf_hook_.get()) : hook_.get(); }
   // The record of a branch from its live data (also mid-branch, for a checkpoint).
   // (b by value: the final record moves the branch in, a checkpoint copies it).
-  auto snapshot = [&](const std::string &label, PetscReal omega, Branch b, PetscInt j0, PetscInt r0, PetscInt p0, PetscInt k0, PetscLogDouble b0) {
+  BranchRecord Snapshot(const LiveBranch &cur, Branch b) const
+  {
+    const Shooting &shoot = nnm_.shoot;
     BranchRecord r;
     PetscLogDouble now;
     PetscTime(&now);
-    r.label = label, r.omega = omega, r.b = std::move(b), r.seconds = now - b0;
-    r.jac = shoot.JacobianEvaluations() - j0, r.res = shoot.ResidualEvaluations() - r0, r.tan = shoot.TangentProducts() - p0,
-    r.kry = shoot.KrylovIterations() - k0;
-    if (fk != FloquetKind::None) r.f = fk == FloquetKind::MatrixFree ? mf_hook.c : hook.c;
+    r.label = cur.label, r.omega = cur.omega, r.b = std::move(b), r.seconds = now - cur.b0;
+    r.jac = shoot.JacobianEvaluations() - cur.j0, r.res = shoot.ResidualEvaluations() - cur.r0, r.tan = shoot.TangentProducts() - cur.p0,
+    r.kry = shoot.KrylovIterations() - cur.k0;
+    if (fk_ != FloquetKind::None) r.f = fk_ == FloquetKind::MatrixFree ? mf_hook_->c : hook_->c;
     return r;
-  };
-  // -cont_resume: every branch read before the first checkpoint may replace the file
-  struct Resume {
-    Branch b;
-    FloquetColumns f;
-    bool found = false;
-  };
-  std::vector<Resume> resumes(nb);
-  for (PetscInt k = 0; k < nb && resume; k++) {
-    PetscReal omega;
-    std::string label;
-    PetscCall(BranchStart(lat, modes, names[k], u, &omega, &label));
-    PetscCall(ReadResume(comm, resume_file, label, fk, n2, fmo.nev, &resumes[k].b, &resumes[k].f, &resumes[k].found));
   }
-  for (PetscInt k = 0; k < nb; k++) {
-    PetscReal omega = 0;
-    std::string label;
-    Branch b;
-    PetscLogDouble b0, b1;
-    PetscCall(BranchStart(lat, modes, names[k], u, &omega, &label));
-    PetscCall(PetscTime(&b0));
-    PetscCall(PetscLogStagePush(Log().solve));
-    const PetscInt j0 = shoot.JacobianEvaluations(), r0 = shoot.ResidualEvaluations(), p0 = shoot.TangentProducts(), k0 = shoot.KrylovIterations();
-    hook.Clear();
-    mf_hook.Clear();
-    Branch &rb = resumes[k].b;
-    const bool resumed = resumes[k].found && rb.energy.size() >= 2;
-    if (resumed && fk != FloquetKind::None) (fk == FloquetKind::MatrixFree ? mf_hook.c : hook.c) = resumes[k].f;
-    if (resume && !resumed)
-      PetscCall(PetscPrintf(comm, "  [%s] -cont_resume %s: fewer than 2 points of this branch there, starting afresh\n", label.c_str(), resume_file));
-    // -output with the branches done and this one so far, complete = 0.
-    auto write_partial = [&](const char *reason) -> PetscErrorCode {
-      OutputFile f;
-      PetscLogDouble now;
+  // -output with the branches done and this one so far, complete = 0.
+  PetscErrorCode WritePartial(const LiveBranch &cur, const char *reason)
+  {
+    OutputFile f;
+    PetscFunctionBeginUser;
+    PetscCall(PetscLogStagePush(Log().write));
+    PetscCall(f.Open(comm_, path_, "checkpoint."));
+    PetscCall(WriteBandEdges(f.Viewer(), "/continuation", InfiniteBandEdges(nnm_.lat.Params())));
+    for (const BranchRecord &r : done_) PetscCall(WriteRecord(f.Viewer(), r, fk_, n2_, fmo_.nev));
+    if (!cur.b.energy.empty()) {
+      BranchRecord rec = Snapshot(cur, cur.b);
+      rec.b.stop_reason = reason;
+      PetscCall(WriteRecord(f.Viewer(), rec, fk_, n2_, fmo_.nev));
+    }
+    PetscCall(f.Commit(name_, Elapsed(), false));
+    PetscCall(PetscLogStagePop());
+    PetscFunctionReturn(0);
+  }
+  // Branch k from its start (or its -cont_resume points) to the end, with
+  // checkpoints; a stop signal writes the partial file and fails.
+  PetscErrorCode ContinueOne(PetscInt k)
+  {
+    Shooting &shoot = nnm_.shoot;
+    LiveBranch cur;
+    PetscLogDouble b1;
+    PetscFunctionBeginUser;
+    PetscCall(BranchStart(nnm_.lat, nnm_.modes, ch_.names[k], u_, &cur.omega, &cur.label));
+    const std::string &label = cur.label;
+    Branch &b = cur.b;
+    PetscCall(PetscTime(&cur.b0));
+    cur.j0 = shoot.JacobianEvaluations(), cur.r0 = shoot.ResidualEvaluations(), cur.p0 = shoot.TangentProducts(), cur.k0 = shoot.KrylovIterations();
+    hook_->Clear();
+    mf_hook_->Clear();
+    Branch &rb = resumes_[k].b;
+    const bool resumed = resumes_[k].found && rb.energy.size() >= 2;
+    if (resumed && fk_ != FloquetKind::None) (fk_ == FloquetKind::MatrixFree ? mf_hook_->c : hook_->c) = resumes_[k].f;
+    if (ch_.resume && !resumed)
+      PetscCall(PetscPrintf(comm_, "  [%s] -cont_resume %s: fewer than 2 points of this branch there, starting afresh\n", label.c_str(), ch_.resume_file));
+    CheckpointHook ck(comm_, FloquetPointHook(), ch_.checkpoint_seconds, [&]() -> PetscErrorCode {
       PetscFunctionBeginUser;
-      PetscCall(PetscLogStagePush(Log().write));
-      PetscCall(f.Open(comm, path, "checkpoint."));
-      PetscCall(WriteBandEdges(f.Viewer(), "/continuation", InfiniteBandEdges(lat.Params())));
-      for (const BranchRecord &r : done) PetscCall(WriteRecord(f.Viewer(), r, fk, n2, fmo.nev));
-      if (!b.energy.empty()) {
-        BranchRecord cur = snapshot(label, omega, b, j0, r0, p0, k0, b0);
-        cur.b.stop_reason = reason;
-        PetscCall(WriteRecord(f.Viewer(), cur, fk, n2, fmo.nev));
-      }
-      PetscCall(PetscTime(&now));
-      PetscCall(f.Commit("continuation", now - t_start, false));
-      PetscCall(PetscLogStagePop());
-      PetscFunctionReturn(0);
-    };
-    CheckpointHook ck(comm, floquet_hook, checkpoint_seconds, [&]() -> PetscErrorCode {
-      PetscFunctionBeginUser;
-      PetscCall(write_partial("checkpoint: the run was still going"));
-      PetscCall(PetscPrintf(comm, "  [%s] checkpoint: %zu points written to %s\n", label.c_str(), b.energy.size(), path.c_str()));
+      PetscCall(WritePartial(cur, "checkpoint: the run was still going"));
+      PetscCall(PetscPrintf(comm_, "  [%s] checkpoint: %zu points written to %s\n", label.c_str(), b.energy.size(), path_.c_str()));
       PetscFunctionReturn(0);
     });
-    const PetscErrorCode ic = ContinueBranch(shoot, u, 2 * PETSC_PI / omega, co, label.c_str(), &b, &ck, resumed ? &rb : nullptr);
-    PetscCall(PetscLogStagePop());
+    const PetscErrorCode ic = ContinueBranch(shoot, u_, 2 * PETSC_PI / cur.omega, nnm_.co, label.c_str(), &b, &ck, resumed ? &rb : nullptr);
     if (IsInterrupt(ic)) {
       // A stop signal during the solve of the next point: the points so far
       // (every earlier branch, this one's recorded points with the step to
       // take next) are the checkpoint a -cont_resume continues bit for bit.
       const char *sn = SignalName(StopSignalSeen());
-      PetscCheck(!done.empty() || !b.energy.empty(), comm, PETSC_ERR_SIG, "interrupted by %s before the first orbit of branch %s; no output written", sn,
+      PetscCheck(!done_.empty() || !b.energy.empty(), comm_, PETSC_ERR_SIG, "interrupted by %s before the first orbit of branch %s; no output written", sn,
                  label.c_str());
       const std::string reason = std::string("interrupted by ") + sn + ": -cont_resume continues it";
-      PetscCall(write_partial(reason.c_str()));
-      for (PetscInt j = 0; j < nb; j++) PetscCall(PetscFree(names[j]));
-      SETERRQ(comm, PETSC_ERR_SIG, "interrupted by %s after %zu points of branch %s (last E = %g); partial output %s (complete = 0); -cont_resume %s continues it", sn,
-              b.energy.size(), label.c_str(), b.energy.empty() ? 0.0 : (double)b.energy.back(), path.c_str(), path.c_str());
+      PetscCall(WritePartial(cur, reason.c_str()));
+      SETERRQ(comm_, PETSC_ERR_SIG, "interrupted by %s after %zu points of branch %s (last E = %g); partial output %s (complete = 0); -cont_resume %s continues it", sn,
+              b.energy.size(), label.c_str(), b.energy.empty() ? 0.0 : (double)b.energy.back(), path_.c_str(), path_.c_str());
     }
     PetscCall(ic);
     PetscCall(PetscTime(&b1));
     const size_t npts = b.energy.size();
-    done.push_back(snapshot(label, omega, std::move(b), j0, r0, p0, k0, b0));
-    done.back().seconds = b1 - b0;
-    if (fk != FloquetKind::None) {
-      const FloquetColumns &f = done.back().f;
+    done_.push_back(Snapshot(cur, std::move(b)));
+    done_.back().seconds = b1 - cur.b0;
+    if (fk_ != FloquetKind::None) {
+      const FloquetColumns &f = done_.back().f;
       PetscInt ns = 0;
       for (PetscInt s : f.stable) ns += s;
-      PetscCall(PetscPrintf(comm, "  [%s] Floquet%s: %" PetscInt_FMT " of %zu orbits stable (|mu| <= 1 + %g)", label.c_str(),
-                            fk == FloquetKind::MatrixFree ? " (matrix-free, leading pairs)" : "", ns, f.stable.size(), (double)flo.tol));
-      if (fk == FloquetKind::MatrixFree) PetscCall(PetscPrintf(comm, ", %" PetscInt_FMT " monodromy products", f.products));
+      PetscCall(PetscPrintf(comm_, "  [%s] Floquet%s: %" PetscInt_FMT " of %zu orbits stable (|mu| <= 1 + %g)", label.c_str(),
+                            fk_ == FloquetKind::MatrixFree ? " (matrix-free, leading pairs)" : "", ns, f.stable.size(), (double)flo_.tol));
+      if (fk_ == FloquetKind::MatrixFree) PetscCall(PetscPrintf(comm_, ", %" PetscInt_FMT " monodromy products", f.products));
       else {
         PetscReal dmax = 0;
         for (PetscReal d : f.det_error) dmax = std::max(dmax, d); // NaN (resumed from an older file) ignored
-        PetscCall(PetscPrintf(comm, ", max |det M - 1| = %.1e", (double)dmax));
+        PetscCall(PetscPrintf(comm_, ", max |det M - 1| = %.1e", (double)dmax));
       }
-      PetscCall(PetscPrintf(comm, "\n"));
+      PetscCall(PetscPrintf(comm_, "\n"));
     }
     const size_t nnew = npts - (resumed ? rb.energy.size() : 0); // seconds and costs cover this run's points
-    PetscCall(PetscPrintf(comm, "  [%s] %.2f s, %.3f s per new point\n", label.c_str(), (double)(b1 - b0), (double)(b1 - b0) / std::max<size_t>(nnew, 1)));
+    PetscCall(PetscPrintf(comm_, "  [%s] %.2f s, %.3f s per new point\n", label.c_str(), (double)(b1 - cur.b0), (double)(b1 - cur.b0) / std::max<size_t>(nnew, 1)));
+    PetscFunctionReturn(0);
   }
-  PetscCall(PetscLogStagePush(Log().write));
-  PetscCall(WriteBandEdges(out.Viewer(), "/continuation", InfiniteBandEdges(lat.Params())));
-  for (const BranchRecord &r : done) PetscCall(WriteRecord(out.Viewer(), r, fk, n2, fmo.nev));
-  PetscCall(PetscLogStagePop());
-  PetscCall(PetscTime(&t_end));
-  PetscCall(out.Commit("continuation", t_end - t_start));
-  PetscCall(PetscPrintf(comm, "  wrote %s\n", path.c_str()));
-  PetscFunctionReturn(0);
-}
+
+  NnmSetup nnm_;
+  StudyChoices ch_;
+  FloquetOptions flo_;
+  FloquetMfOptions fmo_;
+  FloquetKind fk_ = FloquetKind::None;
+  PetscInt n2_ = 0;
+  OwnedVec u_; // a branch's starting shape
+  std::unique_ptr<FloquetHook> hook_;
+  std::unique_ptr<FloquetMfHook> mf_hook_;
+  std::vector<Resume> resumes_;
+  std::vector<BranchRecord> done_;
+};
+
+} // namespace
+
+std::unique_ptr<Study> CreateContinuationStudy() { return std::make_unique<ContinuationStudy>(); }
 
 } // namespace nltopo

@@ -10,11 +10,11 @@ namespace nltopo {
 static const StudyEntry kStudies[] = {
   {"linear", "linear modes of K, named modes, Bloch bands and Zak phases", nullptr, LinearStudy, LinearStudyOptions},
   {"simulate", "one forced tone-burst run with energy cut-off", CreateSimulateStudy, nullptr, nullptr},
-  {"continuation", "NNM branches by shooting and pseudo-arclength continuation", nullptr, ContinuationStudy, ContinuationStudyOptions},
-  {"sweep", "a grid of forced runs (omega_ext x E*) scored by MCR, 0-1 test and energy ratio; parallel, resumable", nullptr, SweepStudy, SweepStudyOptions},
+  {"continuation", "NNM branches by shooting and pseudo-arclength continuation", CreateContinuationStudy, nullptr, nullptr},
+  {"sweep", "a grid of forced runs (omega_ext x E*) scored by MCR, 0-1 test and energy ratio; parallel, resumable", CreateSweepStudy, nullptr, nullptr},
   {"zak", "the half-lattice phase experiment: phi_0, phi_pi and the energy where they stop being distinct", nullptr, ZakStudy, ZakStudyOptions},
   {"perturb", "chiral and achiral spring-perturbation ensembles: insulated frequency and MCR along the insulated NNM", nullptr, PerturbStudy, PerturbStudyOptions},
-  {"workprecision", "what accuracy costs for one forced run: integrator configurations timed and scored against a converged reference, and the predictability floor", nullptr, WorkprecisionStudy, WorkprecisionStudyOptions},
+  {"workprecision", "what accuracy costs for one forced run: integrator configurations timed and scored against a converged reference, and the predictability floor", CreateWorkprecisionStudy, nullptr, nullptr},
   {"stability", "perturbed insulated-branch NNMs integrated for many periods: does the standing wave persist", nullptr, StabilityStudy, StabilityStudyOptions},
 };
 

@@ -16,17 +16,17 @@ struct StudyEntry {
 };
 
 std::unique_ptr<Study> CreateSimulateStudy();
+std::unique_ptr<Study> CreateContinuationStudy();
+std::unique_ptr<Study> CreateSweepStudy();
+std::unique_ptr<Study> CreateWorkprecisionStudy();
 
 #define NLTOPO_STUDY(Name) \
   PetscErrorCode Name##Study(MPI_Comm comm); \
   PetscErrorCode Name##StudyOptions(MPI_Comm comm)
 NLTOPO_STUDY(Linear);
-NLTOPO_STUDY(Continuation);
 NLTOPO_STUDY(Stability);
-NLTOPO_STUDY(Sweep);
 NLTOPO_STUDY(Zak);
 NLTOPO_STUDY(Perturb);
-NLTOPO_STUDY(Workprecision);
 #undef NLTOPO_STUDY
 
 // Reads -study (default linear), checks the options (finite values, no option

@@ -17,6 +17,7 @@
 #include "io/schema.hpp"
 #include "studies/grid_axis.hpp"
 #include "studies/registry.hpp"
+#include "studies/study.hpp"
 #include "studies/sweep_accuracy.hpp"
 #include "studies/sweep_store.hpp"
 #include "timeint/simulation.hpp"
@@ -24,6 +25,7 @@
 #include <cstdlib>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <unistd.h>
 
@@ -200,265 +202,309 @@ PetscErrorCode ComputePoint(const Lattice &lat, const LinearModes &modes, const 
   PetscFunctionReturn(0);
 }
 
+// Rank 0 writes the file itself: it merges every rank's journal into it
+// (checkpoints while the sweep runs, the final file at the end).
+class SweepStudy : public Study {
+public:
+  PetscErrorCode DeclareOptions(MPI_Comm comm) override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(RejectGivenOptions(comm, {"-sim_progress", "-sim_sample_dt"}, "-study sweep (progress: -sweep_progress; no samples are stored)"));
+    PetscCall(LatticeParamsFromOptions(comm, &lp_));
+    PetscCall(SweepOptionsFromOptions(comm, &so_));
+    PetscCall(ToneBurstOptionsFromOptions(comm, lp_, &fo_));
+    PetscCall(SimulationOptionsFromOptions(comm, &sim_));
+    PetscCall(LinearModesOptionsFromOptions(comm, &mo_));
+    PetscCall(DeclareEPS(comm, "linear_"));
+    PetscCall(DeclareTS(comm, "sim_"));
+    PetscCall(DeclareOutputOptions(comm, "sweep"));
+    PetscFunctionReturn(0);
+  }
+
+protected:
+  PetscErrorCode ReadOptions() override
+  {
+    PetscFunctionBeginUser;
+    PetscCallMPI(MPI_Comm_rank(comm_, &rank_));
+    PetscCallMPI(MPI_Comm_size(comm_, &size_));
+    PetscCall(LatticeParamsFromOptions(comm_, &lp_));
+    PetscCall(SweepOptionsFromOptions(comm_, &so_));
+    PetscCall(ToneBurstOptionsFromOptions(comm_, lp_, &fo_));
+    PetscCheck(fo_.profile != ForceProfile::None, comm_, PETSC_ERR_USER, "-force_profile none: a sweep needs a forcing");
+    PetscCall(SimulationOptionsFromOptions(comm_, &sim_));
+    PetscCall(CheckMcrAccuracyIntegrator(comm_, so_.mcr));
+    PetscCall(LinearModesOptionsFromOptions(comm_, &mo_));
+    PetscFunctionReturn(0);
+  }
+  // -sweep_resume continues -output itself (no -output_overwrite needed).
+  PetscErrorCode OutputPath(std::string *path) override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(OutputPathFromOptions(comm_, name_, path, [&](const std::string &) { return (bool)so_.resume; }));
+    if (so_.resume) PetscCall(CheckResumeOptions(comm_, *path, name_, "-sweep_resume")); // the same physics and numerics, or one line naming the first difference
+    PetscFunctionReturn(0);
+  }
+  bool WritesOwnFile() const override { return true; }
+  PetscErrorCode Build() override
+  {
+    PetscFunctionBeginUser;
+    // Every rank integrates whole runs on its own copy of the lattice.
+    PetscCall(lat_.Setup(PETSC_COMM_SELF, lp_));
+    PetscCall(modes_.Compute(lat_, mo_));
+    // The lattice's frequencies (linear 1.0..2.24 at the defaults, higher when
+    // hardened) then map to c = omega dt inside the test's range (pi/5, 4 pi/5).
+    if (so_.kcorr_sample_dt == 0) so_.kcorr_sample_dt = PETSC_PI / (2 * std::sqrt(lp_.KHat()));
+    so_.bands = InfiniteBandEdges(lp_);
+    zero_one_ = std::make_unique<const ZeroOneTest>(so_.kcorr_nc, (unsigned long)so_.kcorr_seed, so_.kcorr_lags);
+    PetscCall(StartGrid());
+
+    // The missing points, most expensive (highest E*, then highest omega) first.
+    const size_t no = so_.omega.size(), ne = so_.energy.size();
+    for (size_t i = 0; i < grid_.Size(); i++)
+      if (!grid_.done[i]) todo_.push_back(i);
+    std::stable_sort(todo_.begin(), todo_.end(), [&](size_t a, size_t b) { return a / no != b / no ? a / no > b / no : a % no > b % no; });
+    PetscCall(PetscPrintf(comm_, "nltopo sweep: %zu omega x %zu E* = %zu points, %zu to compute on %d rank(s)%s, N = %" PetscInt_FMT ", t_final = %g\n", no, ne,
+                          grid_.Size(), todo_.size(), size_, so_.kcorr ? ", with the 0-1 test" : "", lat_.N(), (double)sim_.t_final));
+    {
+      PetscErrorCode jerr = 0;
+      char jmsg[1024];
+      PetscCall(CaptureError([&]() { return journal_.Open(path_, rank_); }, &jerr, jmsg, sizeof(jmsg)));
+      PetscCall(FailTogether(comm_, jerr, jmsg)); // one rank's journal: every rank stops
+    }
+    PetscCall(queue_.Create(comm_, (PetscInt)todo_.size()));
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode Solve() override
+  {
+    PetscLogDouble t_last_ck, t_last_pr, now;
+    PetscFunctionBeginUser;
+    sim_.progress = 0;
+    sim_.sample_dt = 0;
+    // One updating line on a terminal; periodic lines otherwise. Under mpiexec
+    // (OpenMPI gives ranks a pty even when the output goes to a file) lines.
+    tty_ = !rank_ && isatty(fileno(stdout)) && !getenv("OMPI_COMM_WORLD_SIZE") && !getenv("PMI_RANK");
+    const size_t no = so_.omega.size();
+    PetscInt item;
+    t_last_ck = t_last_pr = t_start_;
+    PetscCall(PetscTime(&t_loop_));
+    // A rank stops drawing points at a stop signal (the point it is integrating
+    // ends at its next time step and is dropped: a resume recomputes it) or when
+    // its journal or rank 0's checkpoint cannot be written; WorkQueue::Stop makes
+    // the others stop after their current point. Then all ranks meet below.
+    PetscErrorCode failed = 0;
+    char fail_msg[1024] = "";
+    for (;;) {
+      if (StopSignalLocal()) {
+        PetscCall(queue_.Stop());
+        break;
+      }
+      PetscCallAbort(PETSC_COMM_WORLD, queue_.Next(&item)); // MPI itself failing: nothing to save
+      if (item < 0) break;
+      const size_t idx = todo_[item];
+      SweepPoint pt;
+      PetscErrorCode ierr = 0;
+      char msg[1024];
+      PetscCall(CaptureError([&]() { return ComputePoint(lat_, modes_, fo_, sim_, so_, *zero_one_, so_.omega[idx % no], so_.energy[idx / no], &pt); }, &ierr, msg,
+                             sizeof(msg)));
+      if (IsInterrupt(ierr)) {
+        PetscCall(queue_.Stop());
+        break;
+      }
+      if (ierr) { // one failed run (e.g. a diverging integration) is flagged; the sweep goes on
+        std::fprintf(stderr, "nltopo: warning: sweep point E* = %g, omega = %g failed (flagged failed = 1): %s\n", (double)so_.energy[idx / no],
+                     (double)so_.omega[idx % no], msg);
+        const PetscReal nan = std::numeric_limits<PetscReal>::quiet_NaN();
+        pt = SweepPoint();
+        pt.mcr = pt.t_off = pt.kcorr = pt.nl_ratio = pt.amplitude = pt.energy_final = nan;
+        pt.failed = 1;
+      }
+      PetscCall(CaptureError([&]() { return journal_.Append(idx, pt); }, &failed, fail_msg, sizeof(fail_msg)));
+      if (failed) { // a rank that cannot journal stops every rank
+        PetscCall(queue_.Stop());
+        break;
+      }
+      computed_++;
+      if (!rank_) { // rank 0 merges what every rank journaled: checkpoint file and progress
+        PetscCall(PetscTime(&now));
+        const bool ck = now - t_last_ck >= so_.checkpoint, pr = so_.progress > 0 && (tty_ || now - t_last_pr >= so_.progress);
+        if (ck || pr) {
+          PetscCall(CaptureError(
+            [&]() -> PetscErrorCode {
+              PetscInt lines;
+              PetscFunctionBeginUser;
+              PetscCall(grid_.MergeJournals(path_, &lines));
+              if (ck) PetscCall(WriteSweep(path_, grid_, so_, computed_, now - t_start_, false));
+              PetscFunctionReturn(0);
+            },
+            &failed, fail_msg, sizeof(fail_msg)));
+          if (failed) {
+            PetscCall(queue_.Stop());
+            break;
+          }
+          if (ck) t_last_ck = now;
+          if (pr && (tty_ ? now - t_last_pr >= 0.5 : true)) {
+            PetscCall(PrintProgress(now));
+            t_last_pr = now;
+          }
+        }
+      }
+    }
+    journal_.Close();
+    PetscCallMPI(MPI_Barrier(comm_)); // every journal is complete
+    // A journal or checkpoint failure: every rank fails with its message; the
+    // last checkpoint and the journals stay for -sweep_resume.
+    PetscCall(FailTogether(comm_, failed, fail_msg));
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode Write(PetscViewer) override
+  {
+    PetscLogDouble now = 0;
+    PetscErrorCode failed = 0;
+    char fail_msg[1024] = "";
+    PetscFunctionBeginUser;
+    PetscCall(AuditOptionsBeforeCommit(comm_)); // collective; rank 0 alone commits the file below
+    PetscInt total_computed = 0;
+    int sig;
+    PetscCall(InterruptRequested(comm_, &sig));
+    PetscCallMPI(MPI_Reduce(&computed_, &total_computed, 1, MPIU_INT, MPI_SUM, 0, comm_));
+    PetscCall(CostReduceWorld()); // rank 0 writes the card of every rank's integrations
+    PetscInt done_now = 0;
+    if (!rank_) {
+      // The journals hold every point done; merged into -output they are no
+      // longer needed, also when the sweep was interrupted (the file is then
+      // complete = 0 and -sweep_resume continues from it alone).
+      PetscCall(CaptureError(
+        [&]() -> PetscErrorCode {
+          PetscInt lines;
+          PetscFunctionBeginUser;
+          PetscCall(grid_.MergeJournals(path_, &lines));
+          if (so_.mcr.tol > 0) {
+            PetscReal worst = 0;
+            for (size_t i = 0; i < grid_.Size(); i++)
+              if (grid_.done[i] && grid_.pts[i].predictable == 1 && grid_.pts[i].mcr_error <= so_.mcr.tol) worst = std::max(worst, grid_.pts[i].mcr_error);
+            CostSetErrorEstimate(worst, "the largest mcr_error of the points converged to -sweep_mcr_tol (relative)");
+          }
+          PetscCall(PetscTime(&now));
+          done_now = grid_.Done();
+          PetscCall(WriteSweep(path_, grid_, so_, total_computed, now - t_start_, done_now == (PetscInt)grid_.Size()));
+          PetscFunctionReturn(0);
+        },
+        &failed, fail_msg, sizeof(fail_msg)));
+      if (!failed) {
+        for (const std::string &f : JournalFiles(path_)) std::remove(f.c_str());
+        PetscCall(PrintSummary(total_computed, now));
+      }
+    }
+    PetscCall(FailTogether(comm_, failed, fail_msg));
+    PetscCallMPI(MPI_Bcast(&done_now, 1, MPIU_INT, 0, comm_));
+    PetscCheck(!sig || done_now == (PetscInt)grid_.Size(), comm_, PETSC_ERR_SIG,
+               "interrupted by %s between sweep points (%" PetscInt_FMT " of %zu done, %" PetscInt_FMT " by this run); partial output %s (complete = 0); -sweep_resume continues it",
+               SignalName(sig), done_now, grid_.Size(), total_computed, path_.c_str());
+    PetscFunctionReturn(0);
+  }
+
+private:
+  // Rank 0 builds the starting grid (fresh, or the stored one plus journals)
+  // and writes it: the file exists (and is valid) from the start.
+  PetscErrorCode StartGrid()
+  {
+    int err = 0;
+    char msg[512] = "";
+    PetscFunctionBeginUser;
+    grid_.Reset(so_.omega, so_.energy);
+    if (!rank_) {
+      PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+      PetscErrorCode ierr = 0;
+      PetscInt merged = 0;
+      if (so_.resume) {
+        if (access(path_.c_str(), F_OK)) ierr = PetscError(PETSC_COMM_SELF, __LINE__, PETSC_FUNCTION_NAME, __FILE__, PETSC_ERR_FILE_OPEN, PETSC_ERROR_INITIAL,
+                                                           "-sweep_resume: no sweep file %s to resume", path_.c_str());
+        if (!ierr) ierr = grid_.Load(path_);
+        if (!ierr) ierr = grid_.MergeJournals(path_, &merged);
+      }
+      if (!ierr) ierr = WriteSweep(path_, grid_, so_, 0, 0, false); // the file exists (and is valid) from the start
+      PetscCall(PetscPopErrorHandler());
+      if (ierr) {
+        const char *text;
+        char *specific = NULL;
+        PetscCall(PetscErrorMessage(ierr, &text, &specific));
+        err = 1;
+        PetscCall(PetscStrncpy(msg, specific ? specific : text, sizeof(msg)));
+      } else {
+        for (const std::string &f : JournalFiles(path_)) std::remove(f.c_str()); // merged (resume) or stale (fresh start)
+        if (so_.resume)
+          PetscCall(PetscPrintf(PETSC_COMM_SELF, "nltopo sweep: resuming %s: %" PetscInt_FMT " of %zu points done (%" PetscInt_FMT " from journals)\n", path_.c_str(),
+                                grid_.Done(), grid_.Size(), merged));
+      }
+    }
+    PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm_));
+    PetscCallMPI(MPI_Bcast(msg, sizeof(msg), MPI_CHAR, 0, comm_));
+    PetscCheck(!err, comm_, PETSC_ERR_USER, "%s", msg);
+    PetscCallMPI(MPI_Bcast(grid_.done.data(), (PetscMPIInt)grid_.Size(), MPIU_INT, 0, comm_));
+    PetscFunctionReturn(0);
+  }
+  // Rank 0: points done (from the merged journals), rate and ETA.
+  PetscErrorCode PrintProgress(PetscLogDouble now) const
+  {
+    PetscFunctionBeginUser;
+    const PetscInt d = grid_.Done();
+    const double rate = (d - (PetscInt)(grid_.Size() - todo_.size())) / (now - t_loop_);
+    const double eta = rate > 0 ? (grid_.Size() - d) / rate : 0;
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "%s  [sweep] %" PetscInt_FMT " / %zu points (%.1f %%), %.2f points/s, ETA %.0f s%s", tty_ ? "\r" : "", d,
+                          grid_.Size(), 100.0 * d / grid_.Size(), rate, eta, tty_ ? "   " : "\n"));
+    if (tty_) fflush(stdout);
+    PetscFunctionReturn(0);
+  }
+  // Rank 0, once the final file is written: what the grid holds, and the "wrote" line.
+  PetscErrorCode PrintSummary(PetscInt total_computed, PetscLogDouble now) const
+  {
+    PetscInt missed = 0, nfailed = 0;
+    PetscFunctionBeginUser;
+    for (size_t i = 0; i < grid_.Size(); i++) {
+      missed += grid_.done[i] && !grid_.pts[i].reached && !grid_.pts[i].failed;
+      nfailed += grid_.done[i] && grid_.pts[i].failed;
+    }
+    if (tty_) PetscCall(PetscPrintf(PETSC_COMM_SELF, "\n")); // end the updating progress line
+    if (so_.mcr.tol > 0) {
+      PetscInt unpredictable = 0, short_of_tol = 0, runs = 0;
+      for (size_t i = 0; i < grid_.Size(); i++) {
+        if (!grid_.done[i] || grid_.pts[i].failed) continue;
+        unpredictable += grid_.pts[i].predictable == 0;
+        short_of_tol += grid_.pts[i].predictable == 1 && !(grid_.pts[i].mcr_error <= so_.mcr.tol);
+        runs += grid_.pts[i].runs;
+      }
+      PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                            "  -sweep_mcr_tol %g: %" PetscInt_FMT " integrations; %" PetscInt_FMT " point(s) unpredictable (predictable = 0: mcr is the twins' mean, mcr_spread their spread), %" PetscInt_FMT
+                            " predictable but short of the tolerance after %" PetscInt_FMT " halvings (mcr_error > tol)\n",
+                            (double)so_.mcr.tol, runs, unpredictable, short_of_tol, so_.mcr.levels));
+    }
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "  computed %" PetscInt_FMT " points in %.2f s (%.2f points/s on %d ranks); %" PetscInt_FMT
+                                           " point(s) never reached E* (reached = 0), %" PetscInt_FMT " failed (failed = 1)\n  wrote %s\n",
+                          total_computed, (double)(now - t_loop_), total_computed / std::max(1e-9, (double)(now - t_loop_)), size_, missed, nfailed,
+                          path_.c_str()));
+    PetscFunctionReturn(0);
+  }
+
+  LatticeParams lp_;
+  ToneBurstOptions fo_;
+  SimulationOptions sim_;
+  LinearModesOptions mo_;
+  SweepOptions so_;
+  PetscMPIInt rank_ = 0, size_ = 1;
+  Lattice lat_;
+  LinearModes modes_;
+  std::unique_ptr<const ZeroOneTest> zero_one_;
+  SweepGrid grid_;
+  std::vector<size_t> todo_; // grid indices to compute, in the order they are handed out
+  Journal journal_;
+  WorkQueue queue_;
+  bool tty_ = false;
+  PetscInt computed_ = 0; // points this rank computed
+  PetscLogDouble t_loop_ = 0;
+};
+
 } // namespace
 
-PetscErrorCode SweepStudyOptions(MPI_Comm comm)
-{
-  LatticeParams lp;
-  SweepOptions so;
-  ToneBurstOptions fo;
-  SimulationOptions sim;
-  LinearModesOptions mo;
-  PetscFunctionBeginUser;
-  PetscCall(RejectGivenOptions(comm, {"-sim_progress", "-sim_sample_dt"}, "-study sweep (progress: -sweep_progress; no samples are stored)"));
-  PetscCall(LatticeParamsFromOptions(comm, &lp));
-  PetscCall(SweepOptionsFromOptions(comm, &so));
-  PetscCall(ToneBurstOptionsFromOptions(comm, lp, &fo));
-  PetscCall(SimulationOptionsFromOptions(comm, &sim));
-  PetscCall(LinearModesOptionsFromOptions(comm, &mo));
-  PetscCall(DeclareEPS(comm, "linear_"));
-  PetscCall(DeclareTS(comm, "sim_"));
-  PetscCall(DeclareOutputOptions(comm, "sweep"));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode SweepStudy(MPI_Comm comm)
-{
-  LatticeParams lp;
-  ToneBurstOptions fo;
-  SimulationOptions sim;
-  LinearModesOptions mo;
-  SweepOptions so;
-  std::string path;
-  Lattice lat;
-  LinearModes modes;
-  SweepGrid grid;
-  Journal journal;
-  WorkQueue queue;
-  PetscMPIInt rank, size;
-  PetscLogDouble t_start, t_last_ck, t_last_pr, now = 0;
-  PetscFunctionBeginUser;
-  PetscCall(PetscTime(&t_start));
-  PetscCall(LogRegister());
-  PetscCall(PetscLogStagePush(Log().setup));
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscCall(LatticeParamsFromOptions(comm, &lp));
-  PetscCall(SweepOptionsFromOptions(comm, &so));
-  PetscCall(ToneBurstOptionsFromOptions(comm, lp, &fo));
-  PetscCheck(fo.profile != ForceProfile::None, comm, PETSC_ERR_USER, "-force_profile none: a sweep needs a forcing");
-  PetscCall(SimulationOptionsFromOptions(comm, &sim));
-  PetscCall(CheckMcrAccuracyIntegrator(comm, so.mcr));
-  PetscCall(LinearModesOptionsFromOptions(comm, &mo));
-  PetscCall(OutputPathFromOptions(comm, "sweep", &path, [&](const std::string &) { return (bool)so.resume; }));
-  if (so.resume) PetscCall(CheckResumeOptions(comm, path, "sweep", "-sweep_resume")); // the same physics and numerics, or one line naming the first difference
-  // Every rank integrates whole runs on its own copy of the lattice.
-  PetscCall(lat.Setup(PETSC_COMM_SELF, lp));
-  PetscCall(modes.Compute(lat, mo));
-  // The lattice's frequencies (linear 1.0..2.24 at the defaults, higher when
-  // hardened) then map to c = omega dt inside the test's range (pi/5, 4 pi/5).
-  if (so.kcorr_sample_dt == 0) so.kcorr_sample_dt = PETSC_PI / (2 * std::sqrt(lp.KHat()));
-  so.bands = InfiniteBandEdges(lp);
-  const ZeroOneTest zero_one(so.kcorr_nc, (unsigned long)so.kcorr_seed, so.kcorr_lags);
-
-  // Rank 0 builds the starting grid (fresh, or the stored one plus journals).
-  grid.Reset(so.omega, so.energy);
-  int err = 0;
-  char msg[512] = "";
-  if (!rank) {
-    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
-    PetscErrorCode ierr = 0;
-    PetscInt merged = 0;
-    if (so.resume) {
-      if (access(path.c_str(), F_OK)) ierr = PetscError(PETSC_COMM_SELF, __LINE__, PETSC_FUNCTION_NAME, __FILE__, PETSC_ERR_FILE_OPEN, PETSC_ERROR_INITIAL,
-                                                        "-sweep_resume: no sweep file %s to resume", path.c_str());
-      if (!ierr) ierr = grid.Load(path);
-      if (!ierr) ierr = grid.MergeJournals(path, &merged);
-    }
-    if (!ierr) ierr = WriteSweep(path, grid, so, 0, 0, false); // the file exists (and is valid) from the start
-    PetscCall(PetscPopErrorHandler());
-    if (ierr) {
-      const char *text;
-      char *specific = NULL;
-      PetscCall(PetscErrorMessage(ierr, &text, &specific));
-      err = 1;
-      PetscCall(PetscStrncpy(msg, specific ? specific : text, sizeof(msg)));
-    } else {
-      for (const std::string &f : JournalFiles(path)) std::remove(f.c_str()); // merged (resume) or stale (fresh start)
-      if (so.resume)
-        PetscCall(PetscPrintf(PETSC_COMM_SELF, "nltopo sweep: resuming %s: %" PetscInt_FMT " of %zu points done (%" PetscInt_FMT " from journals)\n", path.c_str(),
-                              grid.Done(), grid.Size(), merged));
-    }
-  }
-  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm));
-  PetscCallMPI(MPI_Bcast(msg, sizeof(msg), MPI_CHAR, 0, comm));
-  PetscCheck(!err, comm, PETSC_ERR_USER, "%s", msg);
-  PetscCallMPI(MPI_Bcast(grid.done.data(), (PetscMPIInt)grid.Size(), MPIU_INT, 0, comm));
-
-  // The missing points, most expensive (highest E*, then highest omega) first.
-  const size_t no = so.omega.size(), ne = so.energy.size();
-  std::vector<size_t> todo;
-  for (size_t i = 0; i < grid.Size(); i++)
-    if (!grid.done[i]) todo.push_back(i);
-  std::stable_sort(todo.begin(), todo.end(), [&](size_t a, size_t b) { return a / no != b / no ? a / no > b / no : a % no > b % no; });
-  PetscCall(PetscPrintf(comm, "nltopo sweep: %zu omega x %zu E* = %zu points, %zu to compute on %d rank(s)%s, N = %" PetscInt_FMT ", t_final = %g\n", no, ne,
-                        grid.Size(), todo.size(), size, so.kcorr ? ", with the 0-1 test" : "", lat.N(), (double)sim.t_final));
-  {
-    PetscErrorCode jerr = 0;
-    char jmsg[1024];
-    PetscCall(CaptureError([&]() { return journal.Open(path, rank); }, &jerr, jmsg, sizeof(jmsg)));
-    PetscCall(FailTogether(comm, jerr, jmsg)); // one rank's journal: every rank stops
-  }
-  PetscCall(queue.Create(comm, (PetscInt)todo.size()));
-  PetscCall(PetscLogStagePop());
-
-  PetscCall(PetscLogStagePush(Log().solve));
-  sim.progress = 0;
-  sim.sample_dt = 0;
-  // One updating line on a terminal; periodic lines otherwise. Under mpiexec
-  // (OpenMPI gives ranks a pty even when the output goes to a file) lines.
-  const bool tty = !rank && isatty(fileno(stdout)) && !getenv("OMPI_COMM_WORLD_SIZE") && !getenv("PMI_RANK");
-  PetscInt computed = 0, item;
-  t_last_ck = t_last_pr = t_start;
-  PetscLogDouble t_loop;
-  PetscCall(PetscTime(&t_loop));
-  // A rank stops drawing points at a stop signal (the point it is integrating
-  // ends at its next time step and is dropped: a resume recomputes it) or when
-  // its journal or rank 0's checkpoint cannot be written; WorkQueue::Stop makes
-  // the others stop after their current point. Then all ranks meet below.
-  PetscErrorCode failed = 0;
-  char fail_msg[1024] = "";
-  for (;;) {
-    if (StopSignalLocal()) {
-      PetscCall(queue.Stop());
-      break;
-    }
-    PetscCallAbort(PETSC_COMM_WORLD, queue.Next(&item)); // MPI itself failing: nothing to save
-    if (item < 0) break;
-    const size_t idx = todo[item];
-    SweepPoint pt;
-    PetscErrorCode ierr = 0;
-    char msg[1024];
-    PetscCall(CaptureError([&]() { return ComputePoint(lat, modes, fo, sim, so, zero_one, so.omega[idx % no], so.energy[idx / no], &pt); }, &ierr, msg,
-                           sizeof(msg)));
-    if (IsInterrupt(ierr)) {
-      PetscCall(queue.Stop());
-      break;
-    }
-    if (ierr) { // one failed run (e.g. a diverging integration) is flagged; the sweep goes on
-      std::fprintf(stderr, "nltopo: warning: sweep point E* = %g, omega = %g failed (flagged failed = 1): %s\n", (double)so.energy[idx / no],
-                   (double)so.omega[idx % no], msg);
-      const PetscReal nan = std::numeric_limits<PetscReal>::quiet_NaN();
-      pt = SweepPoint();
-      pt.mcr = pt.t_off = pt.kcorr = pt.nl_ratio = pt.amplitude = pt.energy_final = nan;
-      pt.failed = 1;
-    }
-    PetscCall(CaptureError([&]() { return journal.Append(idx, pt); }, &failed, fail_msg, sizeof(fail_msg)));
-    if (failed) { // a rank that cannot journal stops every rank
-      PetscCall(queue.Stop());
-      break;
-    }
-    computed++;
-    if (!rank) { // rank 0 merges what every rank journaled: checkpoint file and progress
-      PetscCall(PetscTime(&now));
-      const bool ck = now - t_last_ck >= so.checkpoint, pr = so.progress > 0 && (tty || now - t_last_pr >= so.progress);
-      if (ck || pr) {
-        PetscCall(CaptureError(
-          [&]() -> PetscErrorCode {
-            PetscInt lines;
-            PetscFunctionBeginUser;
-            PetscCall(grid.MergeJournals(path, &lines));
-            if (ck) PetscCall(WriteSweep(path, grid, so, computed, now - t_start, false));
-            PetscFunctionReturn(0);
-          },
-          &failed, fail_msg, sizeof(fail_msg)));
-        if (failed) {
-          PetscCall(queue.Stop());
-          break;
-        }
-        if (ck) t_last_ck = now;
-        if (pr && (tty ? now - t_last_pr >= 0.5 : true)) {
-          const PetscInt d = grid.Done();
-          const double rate = (d - (PetscInt)(grid.Size() - todo.size())) / (now - t_loop);
-          const double eta = rate > 0 ? (grid.Size() - d) / rate : 0;
-          PetscCall(PetscPrintf(PETSC_COMM_SELF, "%s  [sweep] %" PetscInt_FMT " / %zu points (%.1f %%), %.2f points/s, ETA %.0f s%s", tty ? "\r" : "", d,
-                                grid.Size(), 100.0 * d / grid.Size(), rate, eta, tty ? "   " : "\n"));
-          if (tty) fflush(stdout);
-          t_last_pr = now;
-        }
-      }
-    }
-  }
-  journal.Close();
-  PetscCallMPI(MPI_Barrier(comm)); // every journal is complete
-  PetscCall(PetscLogStagePop());
-  // A journal or checkpoint failure: every rank fails with its message; the
-  // last checkpoint and the journals stay for -sweep_resume.
-  PetscCall(FailTogether(comm, failed, fail_msg));
-  PetscCall(AuditOptionsBeforeCommit(comm)); // collective; rank 0 alone commits the file below
-
-  PetscCall(PetscLogStagePush(Log().write));
-  PetscInt total_computed = 0;
-  int sig;
-  PetscCall(InterruptRequested(comm, &sig));
-  PetscCallMPI(MPI_Reduce(&computed, &total_computed, 1, MPIU_INT, MPI_SUM, 0, comm));
-  PetscCall(CostReduceWorld()); // rank 0 writes the card of every rank's integrations
-  PetscInt done_now = 0;
-  if (!rank) {
-    // The journals hold every point done; merged into -output they are no
-    // longer needed, also when the sweep was interrupted (the file is then
-    // complete = 0 and -sweep_resume continues from it alone).
-    PetscCall(CaptureError(
-      [&]() -> PetscErrorCode {
-        PetscInt lines;
-        PetscFunctionBeginUser;
-        PetscCall(grid.MergeJournals(path, &lines));
-        if (so.mcr.tol > 0) {
-          PetscReal worst = 0;
-          for (size_t i = 0; i < grid.Size(); i++)
-            if (grid.done[i] && grid.pts[i].predictable == 1 && grid.pts[i].mcr_error <= so.mcr.tol) worst = std::max(worst, grid.pts[i].mcr_error);
-          CostSetErrorEstimate(worst, "the largest mcr_error of the points converged to -sweep_mcr_tol (relative)");
-        }
-        PetscCall(PetscTime(&now));
-        done_now = grid.Done();
-        PetscCall(WriteSweep(path, grid, so, total_computed, now - t_start, done_now == (PetscInt)grid.Size()));
-        PetscFunctionReturn(0);
-      },
-      &failed, fail_msg, sizeof(fail_msg)));
-    if (!failed) {
-      for (const std::string &f : JournalFiles(path)) std::remove(f.c_str());
-      PetscInt missed = 0, nfailed = 0;
-      for (size_t i = 0; i < grid.Size(); i++) {
-        missed += grid.done[i] && !grid.pts[i].reached && !grid.pts[i].failed;
-        nfailed += grid.done[i] && grid.pts[i].failed;
-      }
-      if (tty) PetscCall(PetscPrintf(PETSC_COMM_SELF, "\n")); // end the updating progress line
-      if (so.mcr.tol > 0) {
-        PetscInt unpredictable = 0, short_of_tol = 0, runs = 0;
-        for (size_t i = 0; i < grid.Size(); i++) {
-          if (!grid.done[i] || grid.pts[i].failed) continue;
-          unpredictable += grid.pts[i].predictable == 0;
-          short_of_tol += grid.pts[i].predictable == 1 && !(grid.pts[i].mcr_error <= so.mcr.tol);
-          runs += grid.pts[i].runs;
-        }
-        PetscCall(PetscPrintf(PETSC_COMM_SELF,
-                              "  -sweep_mcr_tol %g: %" PetscInt_FMT " integrations; %" PetscInt_FMT " point(s) unpredictable (predictable = 0: mcr is the twins' mean, mcr_spread their spread), %" PetscInt_FMT
-                              " predictable but short of the tolerance after %" PetscInt_FMT " halvings (mcr_error > tol)\n",
-                              (double)so.mcr.tol, runs, unpredictable, short_of_tol, so.mcr.levels));
-      }
-      PetscCall(PetscPrintf(PETSC_COMM_SELF, "  computed %" PetscInt_FMT " points in %.2f s (%.2f points/s on %d ranks); %" PetscInt_FMT
-                                             " point(s) never reached E* (reached = 0), %" PetscInt_FMT " failed (failed = 1)\n  wrote %s\n",
-                            total_computed, (double)(now - t_loop), total_computed / std::max(1e-9, (double)(now - t_loop)), size, missed,
-                            nfailed, path.c_str()));
-    }
-  }
-  PetscCall(FailTogether(comm, failed, fail_msg));
-  PetscCallMPI(MPI_Bcast(&done_now, 1, MPIU_INT, 0, comm));
-  PetscCall(PetscLogStagePop());
-  PetscCheck(!sig || done_now == (PetscInt)grid.Size(), comm, PETSC_ERR_SIG,
-             "interrupted by %s between sweep points (%" PetscInt_FMT " of %zu done, %" PetscInt_FMT " by this run); partial output %s (complete = 0); -sweep_resume continues it",
-             SignalName(sig), done_now, grid.Size(), total_computed, path.c_str());
-  PetscFunctionReturn(0);
-}
+std::unique_ptr<Study> CreateSweepStudy() { return std::make_unique<SweepStudy>(); }
 
 } // namespace nltopo
