@@ -123,7 +123,6 @@ PetscErrorCode RunWorkPrecisionShooting(MPI_Comm comm, const WorkPrecisionOption
   nnm.co.energy_max = o.nnm_energy;
   PetscCall(ContinueBranch(nnm.shoot, nnm.modes.Insulated(), 2 * PETSC_PI / nnm.modes.Named().insulated_omega, nnm.co, "insulated", &b, &last));
   PetscCheck(last.z, comm, PETSC_ERR_NOT_CONVERGED, "-wp_scene shooting: the insulated branch has no orbit (%s)", b.stop_reason.c_str());
-  const Lattice &lat = nnm.lat;
 
   // The reference: the reference integrator at n, 2n, ... steps per period
   // until two successive orbits agree in omega and the leading modulus.
