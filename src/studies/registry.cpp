@@ -8,7 +8,7 @@
 namespace nltopo {
 
 static const StudyEntry kStudies[] = {
-  {"linear", "linear modes of K, named modes, Bloch bands and Zak phases", nullptr, LinearStudy, LinearStudyOptions},
+  {"linear", "linear modes of K, named modes, Bloch bands and Zak phases", CreateLinearStudy, nullptr, nullptr},
   {"simulate", "one forced tone-burst run with energy cut-off", CreateSimulateStudy, nullptr, nullptr},
   {"continuation", "NNM branches by shooting and pseudo-arclength continuation", nullptr, ContinuationStudy, ContinuationStudyOptions},
   {"sweep", "a grid of forced runs (omega_ext x E*) scored by MCR, 0-1 test and energy ratio; parallel, resumable", nullptr, SweepStudy, SweepStudyOptions},

@@ -16,11 +16,11 @@ struct StudyEntry {
 };
 
 std::unique_ptr<Study> CreateSimulateStudy();
+std::unique_ptr<Study> CreateLinearStudy();
 
 #define NLTOPO_STUDY(Name) \
   PetscErrorCode Name##Study(MPI_Comm comm); \
   PetscErrorCode Name##StudyOptions(MPI_Comm comm)
-NLTOPO_STUDY(Linear);
 NLTOPO_STUDY(Continuation);
 NLTOPO_STUDY(Stability);
 NLTOPO_STUDY(Sweep);
