@@ -17,6 +17,7 @@ struct StudyEntry {
 
 std::unique_ptr<Study> CreateSimulateStudy();
 std::unique_ptr<Study> CreateLinearStudy();
+std::unique_ptr<Study> CreateZakStudy();
 
 #define NLTOPO_STUDY(Name) \
   PetscErrorCode Name##Study(MPI_Comm comm); \
@@ -24,7 +25,6 @@ std::unique_ptr<Study> CreateLinearStudy();
 NLTOPO_STUDY(Continuation);
 NLTOPO_STUDY(Stability);
 NLTOPO_STUDY(Sweep);
-NLTOPO_STUDY(Zak);
 NLTOPO_STUDY(Perturb);
 NLTOPO_STUDY(Workprecision);
 #undef NLTOPO_STUDY
