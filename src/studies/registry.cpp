@@ -13,7 +13,7 @@ static const StudyEntry kStudies[] = {
   {"continuation", "NNM branches by shooting and pseudo-arclength continuation", nullptr, ContinuationStudy, ContinuationStudyOptions},
   {"sweep", "a grid of forced runs (omega_ext x E*) scored by MCR, 0-1 test and energy ratio; parallel, resumable", nullptr, SweepStudy, SweepStudyOptions},
   {"zak", "the half-lattice phase experiment: phi_0, phi_pi and the energy where they stop being distinct", CreateZakStudy, nullptr, nullptr},
-  {"perturb", "chiral and achiral spring-perturbation ensembles: insulated frequency and MCR along the insulated NNM", nullptr, PerturbStudy, PerturbStudyOptions},
+  {"perturb", "chiral and achiral spring-perturbation ensembles: insulated frequency and MCR along the insulated NNM", CreatePerturbStudy, nullptr, nullptr},
   {"workprecision", "what accuracy costs for one forced run: integrator configurations timed and scored against a converged reference, and the predictability floor", nullptr, WorkprecisionStudy, WorkprecisionStudyOptions},
   {"stability", "perturbed insulated-branch NNMs integrated for many periods: does the standing wave persist", nullptr, StabilityStudy, StabilityStudyOptions},
 };

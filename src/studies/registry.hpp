@@ -18,6 +18,7 @@ struct StudyEntry {
 std::unique_ptr<Study> CreateSimulateStudy();
 std::unique_ptr<Study> CreateLinearStudy();
 std::unique_ptr<Study> CreateZakStudy();
+std::unique_ptr<Study> CreatePerturbStudy();
 
 #define NLTOPO_STUDY(Name) \
   PetscErrorCode Name##Study(MPI_Comm comm); \
@@ -25,7 +26,6 @@ std::unique_ptr<Study> CreateZakStudy();
 NLTOPO_STUDY(Continuation);
 NLTOPO_STUDY(Stability);
 NLTOPO_STUDY(Sweep);
-NLTOPO_STUDY(Perturb);
 NLTOPO_STUDY(Workprecision);
 #undef NLTOPO_STUDY
 
