@@ -15,7 +15,7 @@ static const StudyEntry kStudies[] = {
   {"zak", "the half-lattice phase experiment: phi_0, phi_pi and the energy where they stop being distinct", CreateZakStudy, nullptr, nullptr},
   {"perturb", "chiral and achiral spring-perturbation ensembles: insulated frequency and MCR along the insulated NNM", CreatePerturbStudy, nullptr, nullptr},
   {"workprecision", "what accuracy costs for one forced run: integrator configurations timed and scored against a converged reference, and the predictability floor", nullptr, WorkprecisionStudy, WorkprecisionStudyOptions},
-  {"stability", "perturbed insulated-branch NNMs integrated for many periods: does the standing wave persist", nullptr, StabilityStudy, StabilityStudyOptions},
+  {"stability", "perturbed insulated-branch NNMs integrated for many periods: does the standing wave persist", CreateStabilityStudy, nullptr, nullptr},
 };
 
 static std::map<std::string, OptionsFn> StudyOptionFunctions()

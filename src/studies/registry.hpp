@@ -19,12 +19,12 @@ std::unique_ptr<Study> CreateSimulateStudy();
 std::unique_ptr<Study> CreateLinearStudy();
 std::unique_ptr<Study> CreateZakStudy();
 std::unique_ptr<Study> CreatePerturbStudy();
+std::unique_ptr<Study> CreateStabilityStudy();
 
 #define NLTOPO_STUDY(Name) \
   PetscErrorCode Name##Study(MPI_Comm comm); \
   PetscErrorCode Name##StudyOptions(MPI_Comm comm)
 NLTOPO_STUDY(Continuation);
-NLTOPO_STUDY(Stability);
 NLTOPO_STUDY(Sweep);
 NLTOPO_STUDY(Workprecision);
 #undef NLTOPO_STUDY
