@@ -16,6 +16,7 @@
 #include "studies/grid_axis.hpp"
 #include "studies/nnm_setup.hpp"
 #include "studies/registry.hpp"
+#include "studies/study.hpp"
 #include "timeint/simulation.hpp"
 #include <algorithm>
 #include <cmath>
@@ -67,10 +68,8 @@ PetscErrorCode InsulatedOmega(const Lattice &lat, const LinearModes &modes, Pets
   PetscFunctionReturn(0);
 }
 
-} // namespace
-
 // The -perturb_ block (the study sets the spring perturbation, omega_ext and E* itself).
-static PetscErrorCode PerturbOptionsFromOptions(MPI_Comm comm, PerturbOptions *po)
+PetscErrorCode PerturbOptionsFromOptions(MPI_Comm comm, PerturbOptions *po)
 {
   PetscFunctionBeginUser;
   PetscCall(RejectGivenOptions(comm, {"-sim_progress", "-sim_sample_dt"}, "-study perturb (no progress lines or samples per run)"));
@@ -108,191 +107,230 @@ static PetscErrorCode PerturbOptionsFromOptions(MPI_Comm comm, PerturbOptions *p
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PerturbStudyOptions(MPI_Comm comm)
+// omega(E) of the unperturbed insulated NNM from a continuation file: rank 0
+// reads; a missing or unreadable file fails every rank with its one line.
+PetscErrorCode ReadInsulatedBranch(MPI_Comm comm, const char *fep, std::vector<PetscReal> *bE, std::vector<PetscReal> *bw)
 {
-  PerturbOptions po;
-  ToneBurstOptions fo;
-  SimulationOptions sim;
-  NnmSetup nnm;
+  PetscMPIInt rank;
+  PetscInt n = 0;
+  char msg[512] = "";
   PetscFunctionBeginUser;
-  PetscCall(nnm.DeclareOptions(comm));
-  PetscCall(PerturbOptionsFromOptions(comm, &po));
-  PetscCall(ToneBurstOptionsFromOptions(comm, nnm.lp, &fo));
-  PetscCall(SimulationOptionsFromOptions(comm, &sim));
-  PetscCall(DeclareTS(comm, "sim_"));
-  PetscCall(DeclareOutputOptions(comm, "perturb"));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (!rank) {
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+    PetscErrorCode ierr = ReadDoubles(fep, "/continuation/insulated/energy", bE);
+    if (!ierr) ierr = ReadDoubles(fep, "/continuation/insulated/omega", bw);
+    PetscCall(PetscPopErrorHandler());
+    if (ierr) {
+      const char *text;
+      char *specific = NULL;
+      PetscCall(PetscErrorMessage(ierr, &text, &specific));
+      PetscCall(PetscSNPrintf(msg, sizeof(msg), "-perturb_fep %s: %s", fep, specific ? specific : text));
+    }
+    n = ierr ? -1 : (PetscInt)bE->size();
+    if (!ierr && bE->size() != bw->size()) {
+      PetscCall(PetscSNPrintf(msg, sizeof(msg), "-perturb_fep %s: /continuation/insulated energy and omega differ in length", fep));
+      n = -1;
+    }
+  }
+  PetscCallMPI(MPI_Bcast(&n, 1, MPIU_INT, 0, comm));
+  PetscCallMPI(MPI_Bcast(msg, sizeof(msg), MPI_CHAR, 0, comm));
+  PetscCheck(n >= 0, comm, PETSC_ERR_FILE_READ, "%s", msg);
+  bE->resize(n), bw->resize(n);
+  PetscCallMPI(MPI_Bcast(bE->data(), n, MPIU_REAL, 0, comm));
+  PetscCallMPI(MPI_Bcast(bw->data(), n, MPIU_REAL, 0, comm));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PerturbStudy(MPI_Comm comm)
+// omega(E) of the unperturbed insulated NNM, continued here up to 1.2 Emax.
+PetscErrorCode ContinueInsulatedBranch(MPI_Comm comm, NnmSetup *nnm, PetscReal Emax, std::vector<PetscReal> *bE, std::vector<PetscReal> *bw)
 {
-  PerturbOptions po;
-  ToneBurstOptions fo;
-  SimulationOptions sim;
-  NnmSetup nnm;
-  std::string path;
-  OutputFile out;
-  PetscLogDouble t_start, t_end;
   PetscFunctionBeginUser;
-  PetscCall(PetscTime(&t_start));
-  PetscCall(LogRegister());
-  PetscCall(PetscLogStagePush(Log().setup));
-  PetscCall(RejectGivenOptions(comm, {"-lattice_perturbation", "-lattice_delta", "-lattice_seed", "-force_omega", "-force_energy"},
-                               "-study perturb (-perturb_kinds, -perturb_delta_list, -perturb_ensemble, -perturb_energy_*)"));
-  PetscCall(nnm.ReadOptions(comm));
-  PetscCheck(nnm.lp.layout == Layout::Interface, comm, PETSC_ERR_USER, "-study perturb follows the insulated mode: -lattice_layout must be interface");
-  PetscCall(PerturbOptionsFromOptions(comm, &po));
-  PetscCall(ToneBurstOptionsFromOptions(comm, nnm.lp, &fo));
-  PetscCall(SimulationOptionsFromOptions(comm, &sim));
-  sim.progress = 0;
-  sim.sample_dt = 0;
-  PetscCall(OutputPathFromOptions(comm, "perturb", &path));
-  PetscCall(out.Open(comm, path));
+  PetscCall(nnm->Build(comm, "-study perturb"));
+  PetscCheck(nnm->modes.Insulated(), comm, PETSC_ERR_USER,
+             "-study perturb follows the insulated mode, and this lattice has none (-lattice_gamma %g: no isolated mode in the gap)", (double)nnm->lp.gamma);
+  nnm->co.verbose = PETSC_FALSE;
+  nnm->co.energy_max = 1.2 * Emax;
+  Branch b;
+  const PetscErrorCode ib = ContinueBranch(nnm->shoot, nnm->modes.Insulated(), 2 * PETSC_PI / nnm->modes.Named().insulated_omega, nnm->co, "insulated", &b);
+  PetscCheck(!IsInterrupt(ib), comm, PETSC_ERR_SIG, "interrupted by %s while continuing the insulated branch, before the first forced run; no output written",
+             SignalName(StopSignalSeen()));
+  PetscCall(ib);
+  *bE = b.energy, *bw = b.omega;
+  PetscFunctionReturn(0);
+}
 
-  // omega(E) of the unperturbed insulated NNM: from -perturb_fep, or continued here.
-  std::vector<PetscReal> bE, bw;
-  const PetscReal Emax = *std::max_element(po.energy.begin(), po.energy.end());
-  if (po.fep[0]) {
-    PetscMPIInt rank;
-    PetscCallMPI(MPI_Comm_rank(comm, &rank));
-    PetscInt n = 0;
-    char msg[512] = "";
-    if (!rank) { // rank 0 reads; a missing or unreadable file fails every rank with its one line
-      PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
-      PetscErrorCode ierr = ReadDoubles(po.fep, "/continuation/insulated/energy", &bE);
-      if (!ierr) ierr = ReadDoubles(po.fep, "/continuation/insulated/omega", &bw);
-      PetscCall(PetscPopErrorHandler());
-      if (ierr) {
-        const char *text;
-        char *specific = NULL;
-        PetscCall(PetscErrorMessage(ierr, &text, &specific));
-        PetscCall(PetscSNPrintf(msg, sizeof(msg), "-perturb_fep %s: %s", po.fep, specific ? specific : text));
-      }
-      n = ierr ? -1 : (PetscInt)bE.size();
-      if (!ierr && bE.size() != bw.size()) {
-        PetscCall(PetscSNPrintf(msg, sizeof(msg), "-perturb_fep %s: /continuation/insulated energy and omega differ in length", po.fep));
-        n = -1;
-      }
-    }
-    PetscCallMPI(MPI_Bcast(&n, 1, MPIU_INT, 0, comm));
-    PetscCallMPI(MPI_Bcast(msg, sizeof(msg), MPI_CHAR, 0, comm));
-    PetscCheck(n >= 0, comm, PETSC_ERR_FILE_READ, "%s", msg);
-    bE.resize(n), bw.resize(n);
-    PetscCallMPI(MPI_Bcast(bE.data(), n, MPIU_REAL, 0, comm));
-    PetscCallMPI(MPI_Bcast(bw.data(), n, MPIU_REAL, 0, comm));
-  } else {
-    PetscCall(nnm.Build(comm, "-study perturb"));
-    PetscCheck(nnm.modes.Insulated(), comm, PETSC_ERR_USER,
-               "-study perturb follows the insulated mode, and this lattice has none (-lattice_gamma %g: no isolated mode in the gap)", (double)nnm.lp.gamma);
-    nnm.co.verbose = PETSC_FALSE;
-    nnm.co.energy_max = 1.2 * Emax;
-    Branch b;
-    const PetscErrorCode ib = ContinueBranch(nnm.shoot, nnm.modes.Insulated(), 2 * PETSC_PI / nnm.modes.Named().insulated_omega, nnm.co, "insulated", &b);
-    PetscCheck(!IsInterrupt(ib), comm, PETSC_ERR_SIG, "interrupted by %s while continuing the insulated branch, before the first forced run; no output written",
-               SignalName(StopSignalSeen()));
-    PetscCall(ib);
-    bE = b.energy, bw = b.omega;
+// One item (kind, level, realisation): [insulated omega, MCR at every energy].
+PetscErrorCode Realisation(const PerturbOptions &po, const LatticeParams &base, const LinearModesOptions &mo, const ToneBurstOptions &fo,
+                           const SimulationOptions &sim, const std::vector<PetscReal> &wext, PetscInt it, PetscReal *row)
+{
+  const PetscInt nd = (PetscInt)po.delta.size(), ns = po.ensemble, ne = (PetscInt)po.energy.size();
+  PetscFunctionBeginUser;
+  const PetscInt k = it / (nd * ns), d = (it / ns) % nd, r = it % ns;
+  LatticeParams lp = base;
+  lp.perturbation = po.kinds[k];
+  lp.delta = po.delta[d];
+  lp.seed = po.seed0 + r;
+  Lattice lat;
+  LinearModes modes;
+  PetscCall(lat.Setup(PETSC_COMM_SELF, lp));
+  PetscCall(modes.Compute(lat, mo));
+  PetscCall(InsulatedOmega(lat, modes, &row[0]));
+  for (PetscInt e = 0; e < ne; e++) {
+    ToneBurstOptions pf = fo;
+    pf.omega = wext[e];
+    pf.energy = po.energy[e];
+    ToneBurst burst;
+    PetscCall(burst.Setup(lat, pf, &modes));
+    SimulationResult sr;
+    PetscInt resc;
+    EffectList fx(lat);
+    PetscCall(BuildEffects(lat, &burst, &fx));
+    PetscCall(SimulateForced(fx, sim, NULL, &sr, &resc));
+    row[1 + e] = sr.reached ? sr.mcr : NAN; // a run that never reached E* is not scored
   }
-  PetscCheck(bE.size() >= 2 && bE.back() >= Emax * (1 - 1e-9), comm, PETSC_ERR_USER, "-study perturb: the insulated branch reaches E = %g only, below -perturb_energy_max %g",
-             bE.empty() ? 0.0 : (double)bE.back(), (double)Emax);
-  std::vector<PetscReal> wext;
-  for (PetscReal e : po.energy) wext.push_back(BranchOmega(bE, bw, e));
-  const PetscInt nd = (PetscInt)po.delta.size(), ne = (PetscInt)po.energy.size(), ns = po.ensemble, nk = (PetscInt)po.kinds.size();
-  PetscCall(PetscPrintf(comm, "nltopo perturb: %" PetscInt_FMT " kind(s) x %" PetscInt_FMT " levels x %" PetscInt_FMT " realisations x %" PetscInt_FMT
-                              " energies = %" PetscInt_FMT " forced runs, N = %" PetscInt_FMT "\n",
-                        nk, nd, ns, ne, nk * nd * ns * ne, nnm.lp.N()));
-  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(0);
+}
 
-  // Item (kind, level, realisation): [insulated omega, MCR at every energy].
-  PetscCall(PetscLogStagePush(Log().solve));
-  std::vector<PetscReal> res;
-  LinearModesOptions mo = nnm.mo;
-  auto item = [&](PetscInt it, PetscReal *row) -> PetscErrorCode {
-    PetscFunctionBeginUser;
-    const PetscInt k = it / (nd * ns), d = (it / ns) % nd, r = it % ns;
-    LatticeParams lp = nnm.lp;
-    lp.perturbation = po.kinds[k];
-    lp.delta = po.delta[d];
-    lp.seed = po.seed0 + r;
-    Lattice lat;
-    LinearModes modes;
-    PetscCall(lat.Setup(PETSC_COMM_SELF, lp));
-    PetscCall(modes.Compute(lat, mo));
-    PetscCall(InsulatedOmega(lat, modes, &row[0]));
+// Kind k's datasets from the items' rows, mcr (nd x ne x ns) and insulated
+// omega (nd x ns), and its table: MCR mean +- std per level and energy.
+PetscErrorCode Tabulate(MPI_Comm comm, const PerturbOptions &po, PetscReal khat, const std::vector<PetscReal> &res, PetscInt k, std::vector<PetscReal> *mcr,
+                        std::vector<PetscReal> *win)
+{
+  const PetscInt nd = (PetscInt)po.delta.size(), ne = (PetscInt)po.energy.size(), ns = po.ensemble;
+  PetscFunctionBeginUser;
+  mcr->assign((size_t)nd * ne * ns, 0), win->assign((size_t)nd * ns, 0);
+  PetscCall(PetscPrintf(comm, "  %s: MCR mean +- std over %" PetscInt_FMT " realisations (rows delta, columns E*), and the linear insulated omega\n",
+                        PerturbationName(po.kinds[k]), ns));
+  PetscCall(PetscPrintf(comm, "    delta \\ E*"));
+  for (PetscInt e = 0; e < ne; e++) PetscCall(PetscPrintf(comm, " %13.3g", (double)po.energy[e]));
+  PetscCall(PetscPrintf(comm, "   omega_ins mean (max |dev from sqrt 3|)\n"));
+  for (PetscInt d = 0; d < nd; d++) {
+    PetscReal wsum = 0, wdev = 0;
+    for (PetscInt r = 0; r < ns; r++) {
+      const PetscReal *row = &res[(size_t)((k * nd + d) * ns + r) * (1 + ne)];
+      (*win)[d * ns + r] = row[0];
+      wsum += row[0];
+      wdev = std::max(wdev, (PetscReal)std::abs(row[0] - std::sqrt(khat)));
+      for (PetscInt e = 0; e < ne; e++) (*mcr)[((size_t)d * ne + e) * ns + r] = row[1 + e];
+    }
+    PetscCall(PetscPrintf(comm, "    %9.4g ", (double)po.delta[d]));
     for (PetscInt e = 0; e < ne; e++) {
-      ToneBurstOptions pf = fo;
-      pf.omega = wext[e];
-      pf.energy = po.energy[e];
-      ToneBurst burst;
-      PetscCall(burst.Setup(lat, pf, &modes));
-      SimulationResult sr;
-      PetscInt resc;
-      EffectList fx(lat);
-      PetscCall(BuildEffects(lat, &burst, &fx));
-      PetscCall(SimulateForced(fx, sim, NULL, &sr, &resc));
-      row[1 + e] = sr.reached ? sr.mcr : NAN; // a run that never reached E* is not scored
+      PetscReal s = 0, s2 = 0;
+      PetscInt c = 0;
+      for (PetscInt r = 0; r < ns; r++) {
+        const PetscReal x = (*mcr)[((size_t)d * ne + e) * ns + r];
+        if (std::isfinite(x)) s += x, s2 += x * x, c++;
+      }
+      const PetscReal mean = c ? s / c : NAN, sd = c > 1 ? std::sqrt(std::max<PetscReal>(0, (s2 - c * mean * mean) / (c - 1))) : 0;
+      PetscCall(PetscPrintf(comm, " %6.3f+-%5.3f", (double)mean, (double)sd));
+    }
+    PetscCall(PetscPrintf(comm, "   %.10f (%.2e)\n", (double)(wsum / ns), (double)wdev));
+  }
+  PetscFunctionReturn(0);
+}
+
+class PerturbStudy : public Study {
+public:
+  PetscErrorCode DeclareOptions(MPI_Comm comm) override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(nnm_.DeclareOptions(comm));
+    PetscCall(PerturbOptionsFromOptions(comm, &po_));
+    PetscCall(ToneBurstOptionsFromOptions(comm, nnm_.lp, &fo_));
+    PetscCall(SimulationOptionsFromOptions(comm, &sim_));
+    PetscCall(DeclareTS(comm, "sim_"));
+    PetscCall(DeclareOutputOptions(comm, "perturb"));
+    PetscFunctionReturn(0);
+  }
+
+protected:
+  PetscErrorCode ReadOptions() override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(RejectGivenOptions(comm_, {"-lattice_perturbation", "-lattice_delta", "-lattice_seed", "-force_omega", "-force_energy"},
+                                 "-study perturb (-perturb_kinds, -perturb_delta_list, -perturb_ensemble, -perturb_energy_*)"));
+    PetscCall(nnm_.ReadOptions(comm_));
+    PetscCheck(nnm_.lp.layout == Layout::Interface, comm_, PETSC_ERR_USER, "-study perturb follows the insulated mode: -lattice_layout must be interface");
+    PetscCall(PerturbOptionsFromOptions(comm_, &po_));
+    PetscCall(ToneBurstOptionsFromOptions(comm_, nnm_.lp, &fo_));
+    PetscCall(SimulationOptionsFromOptions(comm_, &sim_));
+    sim_.progress = 0;
+    sim_.sample_dt = 0;
+    PetscFunctionReturn(0);
+  }
+  // omega(E) of the unperturbed insulated NNM (from -perturb_fep, or continued here), omega_ext at every E*.
+  PetscErrorCode Build() override
+  {
+    std::vector<PetscReal> bE, bw;
+    PetscFunctionBeginUser;
+    const PetscReal Emax = *std::max_element(po_.energy.begin(), po_.energy.end());
+    if (po_.fep[0]) PetscCall(ReadInsulatedBranch(comm_, po_.fep, &bE, &bw));
+    else PetscCall(ContinueInsulatedBranch(comm_, &nnm_, Emax, &bE, &bw));
+    PetscCheck(bE.size() >= 2 && bE.back() >= Emax * (1 - 1e-9), comm_, PETSC_ERR_USER,
+               "-study perturb: the insulated branch reaches E = %g only, below -perturb_energy_max %g", bE.empty() ? 0.0 : (double)bE.back(), (double)Emax);
+    for (PetscReal e : po_.energy) wext_.push_back(BranchOmega(bE, bw, e));
+    PetscCall(PetscPrintf(comm_, "nltopo perturb: %" PetscInt_FMT " kind(s) x %" PetscInt_FMT " levels x %" PetscInt_FMT " realisations x %" PetscInt_FMT
+                                 " energies = %" PetscInt_FMT " forced runs, N = %" PetscInt_FMT "\n",
+                          Kinds(), Levels(), po_.ensemble, Energies(), Items() * Energies(), nnm_.lp.N()));
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode Solve() override
+  {
+    const PetscInt ne = Energies(), items = Items();
+    std::vector<PetscReal> res;
+    PetscFunctionBeginUser;
+    auto item = [&](PetscInt it, PetscReal *row) { return Realisation(po_, nnm_.lp, nnm_.mo, fo_, sim_, wext_, it, row); };
+    const PetscErrorCode irun = RunDistributed(comm_, items, 1 + ne, item, &res, &ran_);
+    if (!IsInterrupt(irun)) PetscCall(irun);
+    const bool interrupted = IsInterrupt(irun); // a stop signal: the realisations done are written, complete = 0
+    const PetscInt nran = (PetscInt)std::count(ran_.begin(), ran_.end(), 1);
+    PetscCheck(!interrupted || nran > 0, comm_, PETSC_ERR_SIG, "interrupted by %s before the first realisation ended; no output written",
+               SignalName(StopSignalSeen()));
+    for (PetscInt it = 0; it < items; it++)
+      if (!ran_[it]) std::fill(res.begin() + it * (1 + ne), res.begin() + (it + 1) * (1 + ne), NAN); // not run
+    mcr_.resize(Kinds()), win_.resize(Kinds());
+    for (PetscInt k = 0; k < Kinds(); k++) PetscCall(Tabulate(comm_, po_, nnm_.lp.KHat(), res, k, &mcr_[k], &win_[k]));
+    if (interrupted) PetscCall(CommitPartial());
+    PetscCheck(!interrupted, comm_, PETSC_ERR_SIG, "interrupted by %s between realisations (%" PetscInt_FMT " of %" PetscInt_FMT " done); partial output %s (complete = 0)",
+               SignalName(StopSignalSeen()), nran, items, path_.c_str());
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode Write(PetscViewer v) override
+  {
+    const PetscInt nd = Levels(), ne = Energies(), ns = po_.ensemble;
+    PetscFunctionBeginUser;
+    for (PetscInt k = 0; k < Kinds(); k++) {
+      const std::string g = std::string("/perturb/") + PerturbationName(po_.kinds[k]);
+      PetscCall(WriteArray(v, g.c_str(), "delta", po_.delta));
+      PetscCall(WriteArray(v, g.c_str(), "energy", po_.energy));
+      PetscCall(WriteArray(v, g.c_str(), "omega_ext", wext_));
+      PetscCall(WriteArrayND(v, g.c_str(), "mcr", mcr_[k], {nd, ne, ns}));
+      PetscCall(WriteArrayND(v, g.c_str(), "insulated_omega", win_[k], {nd, ns}));
+      PetscCall(WriteIntArray(v, g.c_str(), "done", std::vector<PetscInt>(ran_.begin() + k * nd * ns, ran_.begin() + (k + 1) * nd * ns), ns)); // nd x ns; 0: not run (stop signal)
+      PetscCall(WriteAttr(v, g.c_str(), "seed_first", po_.seed0));
+      PetscCall(WriteAttr(v, g.c_str(), "rule", "springs change by k delta_b, delta_b uniform in (-2 delta, 2 delta) (README.md); realisation r uses seed seed_first + r"));
     }
     PetscFunctionReturn(0);
-  };
-  std::vector<PetscInt> ran;
-  const PetscErrorCode irun = RunDistributed(comm, nk * nd * ns, 1 + ne, item, &res, &ran);
-  PetscCall(PetscLogStagePop());
-  if (!IsInterrupt(irun)) PetscCall(irun);
-  const bool interrupted = IsInterrupt(irun); // a stop signal: the realisations done are written, complete = 0
-  const PetscInt nran = (PetscInt)std::count(ran.begin(), ran.end(), 1);
-  PetscCheck(!interrupted || nran > 0, comm, PETSC_ERR_SIG, "interrupted by %s before the first realisation ended; no output written",
-             SignalName(StopSignalSeen()));
-  for (PetscInt it = 0; it < nk * nd * ns; it++)
-    if (!ran[it]) std::fill(res.begin() + it * (1 + ne), res.begin() + (it + 1) * (1 + ne), NAN); // not run
-
-  PetscCall(PetscLogStagePush(Log().write));
-  PetscViewer v = out.Viewer();
-  for (PetscInt k = 0; k < nk; k++) {
-    const std::string g = std::string("/perturb/") + PerturbationName(po.kinds[k]);
-    std::vector<PetscReal> mcr((size_t)nd * ne * ns), win((size_t)nd * ns);
-    PetscCall(PetscPrintf(comm, "  %s: MCR mean +- std over %" PetscInt_FMT " realisations (rows delta, columns E*), and the linear insulated omega\n",
-                          PerturbationName(po.kinds[k]), ns));
-    PetscCall(PetscPrintf(comm, "    delta \\ E*"));
-    for (PetscInt e = 0; e < ne; e++) PetscCall(PetscPrintf(comm, " %13.3g", (double)po.energy[e]));
-    PetscCall(PetscPrintf(comm, "   omega_ins mean (max |dev from sqrt 3|)\n"));
-    for (PetscInt d = 0; d < nd; d++) {
-      PetscReal wsum = 0, wdev = 0;
-      for (PetscInt r = 0; r < ns; r++) {
-        const PetscReal *row = &res[(size_t)((k * nd + d) * ns + r) * (1 + ne)];
-        win[d * ns + r] = row[0];
-        wsum += row[0];
-        wdev = std::max(wdev, (PetscReal)std::abs(row[0] - std::sqrt(nnm.lp.KHat())));
-        for (PetscInt e = 0; e < ne; e++) mcr[((size_t)d * ne + e) * ns + r] = row[1 + e];
-      }
-      PetscCall(PetscPrintf(comm, "    %9.4g ", (double)po.delta[d]));
-      for (PetscInt e = 0; e < ne; e++) {
-        PetscReal s = 0, s2 = 0;
-        PetscInt c = 0;
-        for (PetscInt r = 0; r < ns; r++) {
-          const PetscReal x = mcr[((size_t)d * ne + e) * ns + r];
-          if (std::isfinite(x)) s += x, s2 += x * x, c++;
-        }
-        const PetscReal mean = c ? s / c : NAN, sd = c > 1 ? std::sqrt(std::max<PetscReal>(0, (s2 - c * mean * mean) / (c - 1))) : 0;
-        PetscCall(PetscPrintf(comm, " %6.3f+-%5.3f", (double)mean, (double)sd));
-      }
-      PetscCall(PetscPrintf(comm, "   %.10f (%.2e)\n", (double)(wsum / ns), (double)wdev));
-    }
-    PetscCall(WriteArray(v, g.c_str(), "delta", po.delta));
-    PetscCall(WriteArray(v, g.c_str(), "energy", po.energy));
-    PetscCall(WriteArray(v, g.c_str(), "omega_ext", wext));
-    PetscCall(WriteArrayND(v, g.c_str(), "mcr", mcr, {nd, ne, ns}));
-    PetscCall(WriteArrayND(v, g.c_str(), "insulated_omega", win, {nd, ns}));
-    PetscCall(WriteIntArray(v, g.c_str(), "done", std::vector<PetscInt>(ran.begin() + k * nd * ns, ran.begin() + (k + 1) * nd * ns), ns)); // nd x ns; 0: not run (stop signal)
-    PetscCall(WriteAttr(v, g.c_str(), "seed_first", po.seed0));
-    PetscCall(WriteAttr(v, g.c_str(), "rule", "springs change by k delta_b, delta_b uniform in (-2 delta, 2 delta) (README.md); realisation r uses seed seed_first + r"));
   }
-  PetscCall(PetscTime(&t_end));
-  PetscCall(out.Commit("perturb", t_end - t_start, !interrupted));
-  PetscCall(PetscLogStagePop());
-  PetscCheck(!interrupted, comm, PETSC_ERR_SIG, "interrupted by %s between realisations (%" PetscInt_FMT " of %" PetscInt_FMT " done); partial output %s (complete = 0)",
-             SignalName(StopSignalSeen()), nran, nk * nd * ns, path.c_str());
-  PetscCall(PetscPrintf(comm, "  wrote %s\n", path.c_str()));
-  PetscFunctionReturn(0);
-}
+
+private:
+  PetscInt Kinds() const { return (PetscInt)po_.kinds.size(); }
+  PetscInt Levels() const { return (PetscInt)po_.delta.size(); }
+  PetscInt Energies() const { return (PetscInt)po_.energy.size(); }
+  PetscInt Items() const { return Kinds() * Levels() * po_.ensemble; } // (kind, level, realisation)
+
+  PerturbOptions po_;
+  ToneBurstOptions fo_;
+  SimulationOptions sim_;
+  NnmSetup nnm_;
+  std::vector<PetscReal> wext_;   // omega_ext at every E*
+  std::vector<PetscInt> ran_;     // per item; 0: not run (stop signal)
+  std::vector<std::vector<PetscReal>> mcr_, win_; // per kind
+};
+
+} // namespace
+
+std::unique_ptr<Study> CreatePerturbStudy() { return std::make_unique<PerturbStudy>(); }
 
 } // namespace nltopo

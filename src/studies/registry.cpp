@@ -7,22 +7,15 @@
 
 namespace nltopo {
 
-static const StudyEntry kStudies[] = {
-  {"linear", "linear modes of K, named modes, Bloch bands and Zak phases", nullptr, LinearStudy, LinearStudyOptions},
-  {"simulate", "one forced tone-burst run with energy cut-off", CreateSimulateStudy, nullptr, nullptr},
-  {"continuation", "NNM branches by shooting and pseudo-arclength continuation", CreateContinuationStudy, nullptr, nullptr},
-  {"sweep", "a grid of forced runs (omega_ext x E*) scored by MCR, 0-1 test and energy ratio; parallel, resumable", CreateSweepStudy, nullptr, nullptr},
-  {"zak", "the half-lattice phase experiment: phi_0, phi_pi and the energy where they stop being distinct", nullptr, ZakStudy, ZakStudyOptions},
-  {"perturb", "chiral and achiral spring-perturbation ensembles: insulated frequency and MCR along the insulated NNM", nullptr, PerturbStudy, PerturbStudyOptions},
-  {"workprecision", "what accuracy costs for one forced run: integrator configurations timed and scored against a converged reference, and the predictability floor", CreateWorkprecisionStudy, nullptr, nullptr},
-  {"stability", "perturbed insulated-branch NNMs integrated for many periods: does the standing wave persist", nullptr, StabilityStudy, StabilityStudyOptions},
-};
+#define NLTOPO_STUDY_ENTRY(name, Class, help) {name, help, Create##Class##Study},
+static const StudyEntry kStudies[] = {NLTOPO_STUDIES(NLTOPO_STUDY_ENTRY)};
+#undef NLTOPO_STUDY_ENTRY
 
 static std::map<std::string, OptionsFn> StudyOptionFunctions()
 {
   std::map<std::string, OptionsFn> m;
   for (const auto &s : kStudies)
-    m[s.name] = s.create ? OptionsFn([&s](MPI_Comm c) { return s.create()->DeclareOptions(c); }) : OptionsFn(s.options);
+    m[s.name] = [&s](MPI_Comm c) { return s.create()->DeclareOptions(c); };
   return m;
 }
 
@@ -75,8 +68,7 @@ PetscErrorCode RunStudyFromOptions(MPI_Comm comm)
   g_running = entry;
   PetscCall(AuditUnusedOptions(comm, name, StudyOptionFunctions(), true)); // misspelt or foreign options fail before any work
   PetscCall(SetCommitGuard(AuditOptionsBeforeCommit));
-  if (entry->create) PetscCall(entry->create()->Run(comm, entry->name));
-  else PetscCall(entry->run(comm));
+  PetscCall(entry->create()->Run(comm, entry->name));
   PetscFunctionReturn(0);
 }
 

@@ -12,6 +12,7 @@
 #include "orbits/continuation.hpp"
 #include "stability/floquet.hpp"
 #include "studies/registry.hpp"
+#include "studies/study.hpp"
 #include "timeint/simulation.hpp"
 #include <cmath>
 #include <cstring>
@@ -90,14 +91,38 @@ PetscErrorCode RowToState(const Lattice &lat, const std::vector<PetscReal> &rows
   PetscFunctionReturn(0);
 }
 
-} // namespace
+// zp = z + eps ||z|| / sqrt(2N) xi, xi uniform in (-1, 1) per entry, drawn by
+// global index from the seed and the case (the same on any number of ranks).
+PetscErrorCode PerturbState(const Lattice &lat, Vec z, PetscReal eps, PetscInt seed, PetscInt c, Vec zp)
+{
+  PetscReal nz;
+  PetscFunctionBeginUser;
+  PetscCall(VecNorm(z, NORM_2, &nz));
+  std::mt19937_64 rng((unsigned long)seed * 7919 + c);
+  std::uniform_real_distribution<PetscReal> xi(-1, 1);
+  std::vector<PetscReal> noise(2 * lat.N());
+  for (auto &x : noise) x = xi(rng);
+  const PetscScalar *a;
+  PetscScalar *p;
+  const PetscInt xs = lat.OwnedStart(), xm = lat.OwnedCount(), N = lat.N();
+  const PetscReal scale = eps * nz / std::sqrt(2.0 * N);
+  PetscCall(VecGetArrayRead(z, &a));
+  PetscCall(VecGetArray(zp, &p));
+  for (PetscInt k = 0; k < xm; k++) {
+    p[k] = a[k] + scale * noise[xs + k];
+    p[xm + k] = a[xm + k] + scale * noise[N + xs + k];
+  }
+  PetscCall(VecRestoreArray(zp, &p));
+  PetscCall(VecRestoreArrayRead(z, &a));
+  PetscFunctionReturn(0);
+}
 
 struct StabilityOptions {
   PetscReal omegas[16] = {std::sqrt(3.0), 1.8245, 2.1876, 2.2654}, eps = 0.01, corr_min = 0.9;
   PetscInt nw = 4, periods = 30000, sample_periods = 10, seed = 1;
 };
 
-static PetscErrorCode StabilityOptionsFromOptions(MPI_Comm comm, StabilityOptions *o)
+PetscErrorCode StabilityOptionsFromOptions(MPI_Comm comm, StabilityOptions *o)
 {
   PetscInt nw = 16;
   PetscBool set;
@@ -125,165 +150,174 @@ static PetscErrorCode StabilityOptionsFromOptions(MPI_Comm comm, StabilityOption
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode StabilityStudyOptions(MPI_Comm comm)
-{
-  NnmSetup nnm;
-  FloquetOptions flo;
-  SimulationOptions sim;
-  StabilityOptions st;
-  PetscFunctionBeginUser;
-  PetscCall(nnm.DeclareOptions(comm));
-  PetscCall(FloquetOptionsFromOptions(comm, &flo));
-  PetscCall(DeclareEPS(comm, "floquet_"));
-  PetscCall(SimulationOptionsFromOptions(comm, &sim));
-  PetscCall(StabilityOptionsFromOptions(comm, &st));
-  PetscCall(DeclareTS(comm, "sim_"));
-  PetscCall(DeclareOutputOptions(comm, "stability"));
-  PetscFunctionReturn(0);
-}
+// One case's results: /stability/case<c>.
+struct StabilityCase {
+  std::vector<PetscReal> t, corr, mcr, energy; // per window (Persistence)
+  FloquetResult fr;
+  PetscReal omega_target = 0, period = 0, orbit_energy = 0, tail_min = 1, energy_drift = 0;
+  bool persisted = false;
+};
 
-PetscErrorCode StabilityStudy(MPI_Comm comm)
-{
-  NnmSetup nnm;
-  FloquetOptions flo;
-  SimulationOptions sim;
-  StabilityOptions st;
-  std::string path;
-  OutputFile out;
-  PetscLogDouble t_start, t_end;
-  PetscFunctionBeginUser;
-  PetscCall(PetscTime(&t_start));
-  PetscCall(LogRegister());
-  PetscCall(nnm.ReadOptions(comm));
-  PetscCall(FloquetOptionsFromOptions(comm, &flo));
-  PetscCall(SimulationOptionsFromOptions(comm, &sim));
-  PetscCall(StabilityOptionsFromOptions(comm, &st));
-  const PetscReal *omegas = st.omegas, eps = st.eps, corr_min = st.corr_min;
-  const PetscInt nw = st.nw, periods = st.periods, sample_periods = st.sample_periods, seed = st.seed;
-  PetscCall(OutputPathFromOptions(comm, "stability", &path));
-  PetscCall(out.Open(comm, path));
-  PetscCall(nnm.Build(comm, "-study stability"));
-  Lattice &lat = nnm.lat;
-  LinearModes &modes = nnm.modes;
-  PeriodicFlow &flow = nnm.flow;
-  Shooting &shoot = nnm.shoot;
-  ContinuationOptions &co = nnm.co;
-  PetscCheck(modes.Insulated(), comm, PETSC_ERR_USER, "-study stability follows the insulated branch: use -lattice_layout interface");
-  co.verbose = PETSC_FALSE;
+class StabilityStudy : public Study {
+public:
+  PetscErrorCode DeclareOptions(MPI_Comm comm) override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(nnm_.DeclareOptions(comm));
+    PetscCall(FloquetOptionsFromOptions(comm, &flo_));
+    PetscCall(DeclareEPS(comm, "floquet_"));
+    PetscCall(SimulationOptionsFromOptions(comm, &sim_));
+    PetscCall(StabilityOptionsFromOptions(comm, &st_));
+    PetscCall(DeclareTS(comm, "sim_"));
+    PetscCall(DeclareOutputOptions(comm, "stability"));
+    PetscFunctionReturn(0);
+  }
 
-  OwnedVec z, zT, X;
-  OwnedMat S;
-  PetscCall(lat.CreateStateVector(z.out()));
-  PetscCall(VecDuplicate(z, zT.out()));
-  PetscCall(shoot.CreateUnknowns(X.out()));
-  PetscCall(flow.CreateSensitivityMatrix(S.out()));
-  // One continuation of the insulated branch up to the highest frequency asked for.
-  const PetscReal w0 = modes.Named().insulated_omega;
-  Branch b;
-  co.omega_max = *std::max_element(omegas, omegas + nw);
+protected:
+  PetscErrorCode ReadOptions() override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(nnm_.ReadOptions(comm_));
+    PetscCall(FloquetOptionsFromOptions(comm_, &flo_));
+    PetscCall(SimulationOptionsFromOptions(comm_, &sim_));
+    PetscCall(StabilityOptionsFromOptions(comm_, &st_));
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode Build() override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(nnm_.Build(comm_, "-study stability"));
+    PetscCheck(nnm_.modes.Insulated(), comm_, PETSC_ERR_USER, "-study stability follows the insulated branch: use -lattice_layout interface");
+    nnm_.co.verbose = PETSC_FALSE;
+    // One continuation of the insulated branch up to the highest frequency asked for.
+    nnm_.co.omega_max = *std::max_element(st_.omegas, st_.omegas + st_.nw);
+    PetscCall(nnm_.lat.CreateStateVector(z_.out()));
+    PetscCall(VecDuplicate(z_, zT_.out()));
+    PetscCall(nnm_.shoot.CreateUnknowns(X_.out()));
+    PetscCall(nnm_.flow.CreateSensitivityMatrix(S_.out()));
+    PetscFunctionReturn(0);
+  }
   // A stop signal (core/signals.hpp) ends the branch continuation or a case
   // (its Newton solve or free run) at once; the cases done are kept.
-  PetscInt cases_done = 0;
-  const PetscErrorCode irun = [&]() -> PetscErrorCode {
+  PetscErrorCode Solve() override
+  {
     PetscFunctionBeginUser;
-    PetscCall(ContinueBranch(shoot, modes.Insulated(), 2 * PETSC_PI / w0, co, "insulated", &b));
-    for (PetscInt c = 0; c < nw; c++) {
-      const PetscReal wt = omegas[c];
-      PetscCheck(b.omega.back() >= wt, comm, PETSC_ERR_USER, "-stability_omega %g: the insulated branch ends at omega %g (%s)", (double)wt,
-                 (double)b.omega.back(), b.stop_reason.c_str());
-      // The orbit at omega = wt: Newton at fixed period from the first stored orbit
-      // at or above wt (the low-energy orbit itself when wt is at or below its frequency).
-      size_t k = 0;
-      while (b.omega[k] < wt) k++;
-      PetscCall(RowToState(lat, b.z0, k, z));
-      PetscReal T = b.period[k], beta = 0;
-      if (k > 0) {
-        bool ok;
-        PetscInt its;
-        PetscCall(shoot.Pack(z, 2 * PETSC_PI / wt, 0.0, X));
-        PetscCall(shoot.SetPeriodConstraint(z, 2 * PETSC_PI / wt));
-        PetscCall(shoot.Solve(X, &ok, &its));
-        PetscCheck(ok, comm, PETSC_ERR_NOT_CONVERGED, "-stability_omega %g: no insulated-branch orbit found at this frequency", (double)wt);
-        PetscCall(shoot.Unpack(X, z, &T, &beta));
-      }
-      EnergyParts e;
-      FloquetResult fr;
-      PetscCall(nnm.fx.Energy(z, &e));
-      PetscCall(flow.IntegrateWithMonodromy(z, T, flow.FloquetBeta(beta), zT, S));
-      PetscCall(FloquetAnalysis(lat, S, flo, &fr));
-      // Perturbation: z0 + eps ||z0|| / sqrt(2N) xi, xi uniform in (-1, 1) per entry,
-      // drawn by global index from the seed (the same on any number of ranks).
-      OwnedVec zp;
-      PetscReal nz;
-      PetscCall(VecDuplicate(z, zp.out()));
-      PetscCall(VecNorm(z, NORM_2, &nz));
-      {
-        std::mt19937_64 rng((unsigned long)seed * 7919 + c);
-        std::uniform_real_distribution<PetscReal> xi(-1, 1);
-        std::vector<PetscReal> noise(2 * lat.N());
-        for (auto &x : noise) x = xi(rng);
-        const PetscScalar *a;
-        PetscScalar *p;
-        const PetscInt xs = lat.OwnedStart(), xm = lat.OwnedCount(), N = lat.N();
-        const PetscReal scale = eps * nz / std::sqrt(2.0 * N);
-        PetscCall(VecGetArrayRead(z, &a));
-        PetscCall(VecGetArray(zp, &p));
-        for (PetscInt k = 0; k < xm; k++) {
-          p[k] = a[k] + scale * noise[xs + k];
-          p[xm + k] = a[xm + k] + scale * noise[N + xs + k];
-        }
-        PetscCall(VecRestoreArray(zp, &p));
-        PetscCall(VecRestoreArrayRead(z, &a));
-      }
-      EnergyParts ep;
-      PetscCall(nnm.fx.Energy(zp, &ep)); // the perturbed start: the free run conserves this
-      SimulationOptions run = sim;
-      run.t_final = periods * T;
-      run.sample_dt = T / 8;
-      Persistence sink(lat, z, 8 * sample_periods);
-      SimulationResult r;
-      PetscCall(Simulate(nnm.fx, run, zp, &sink, &r));
-      const size_t ns = sink.corr_.size(), tail = std::max<size_t>(1, ns / 10);
-      PetscReal tail_min = 1;
-      for (size_t k = ns - tail; k < ns; k++) tail_min = std::min(tail_min, sink.corr_[k]);
-      const bool persisted = tail_min >= corr_min;
-      PetscCall(PetscPrintf(comm, "nltopo stability: omega %.4f (E = %.4g): Floquet max |mu| = %.6f (%s), %" PetscInt_FMT " periods: shape correlation %.3f at the end (min %.3f over the last 10 %%), MCR %.3f -> %.3f: %s\n",
-                            (double)(2 * PETSC_PI / T), (double)e.Total(), (double)fr.max_modulus, fr.stable ? "stable" : "unstable", periods,
-                            (double)sink.corr_.back(), (double)tail_min, (double)sink.mcr_.front(), (double)sink.mcr_.back(),
-                            persisted ? "the standing wave persisted" : "the standing wave did NOT persist"));
+    const PetscErrorCode irun = RunCases();
+    if (!IsInterrupt(irun)) PetscCall(irun);
+    const bool interrupted = IsInterrupt(irun);
+    const PetscInt cases_done = (PetscInt)cases_.size();
+    PetscCheck(!interrupted || cases_done > 0, comm_, PETSC_ERR_SIG, "interrupted by %s before the first stability case ended; no output written",
+               SignalName(StopSignalSeen()));
+    if (interrupted) PetscCall(CommitPartial());
+    PetscCheck(!interrupted, comm_, PETSC_ERR_SIG, "interrupted by %s during stability case %" PetscInt_FMT " (omega %g); partial output %s (complete = 0) with the %" PetscInt_FMT " case(s) before it",
+               SignalName(StopSignalSeen()), cases_done, (double)st_.omegas[cases_done], path_.c_str(), cases_done);
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode Write(PetscViewer v) override
+  {
+    PetscFunctionBeginUser;
+    for (size_t c = 0; c < cases_.size(); c++) {
+      const StabilityCase &k = cases_[c];
       const std::string g = "/stability/case" + std::to_string(c);
-      PetscViewer v = out.Viewer();
-      PetscCall(WriteArray(v, g.c_str(), "t", sink.t_));
-      PetscCall(WriteArray(v, g.c_str(), "corr", sink.corr_));
-      PetscCall(WriteArray(v, g.c_str(), "mcr", sink.mcr_));
-      PetscCall(WriteArray(v, g.c_str(), "energy", sink.energy_));
-      PetscCall(WriteArray(v, g.c_str(), "multipliers_re", fr.re));
-      PetscCall(WriteArray(v, g.c_str(), "multipliers_im", fr.im));
-      PetscCall(WriteAttr(v, g.c_str(), "omega_target", wt));
-      PetscCall(WriteAttr(v, g.c_str(), "omega", (PetscReal)(2 * PETSC_PI / T)));
-      PetscCall(WriteAttr(v, g.c_str(), "energy", e.Total()));
-      PetscCall(WriteAttr(v, g.c_str(), "period", T));
-      PetscCall(WriteAttr(v, g.c_str(), "max_modulus", fr.max_modulus));
-      PetscCall(WriteAttr(v, g.c_str(), "floquet_stable", (PetscInt)fr.stable));
-      PetscCall(WriteAttr(v, g.c_str(), "instability", fr.instability));
-      PetscCall(WriteAttr(v, g.c_str(), "persisted", (PetscInt)persisted));
-      PetscCall(WriteAttr(v, g.c_str(), "corr_tail_min", tail_min));
-      PetscCall(WriteAttr(v, g.c_str(), "energy_drift", (r.energy_final - ep.Total()) / ep.Total()));
-      cases_done++;
+      PetscCall(WriteArray(v, g.c_str(), "t", k.t));
+      PetscCall(WriteArray(v, g.c_str(), "corr", k.corr));
+      PetscCall(WriteArray(v, g.c_str(), "mcr", k.mcr));
+      PetscCall(WriteArray(v, g.c_str(), "energy", k.energy));
+      PetscCall(WriteArray(v, g.c_str(), "multipliers_re", k.fr.re));
+      PetscCall(WriteArray(v, g.c_str(), "multipliers_im", k.fr.im));
+      PetscCall(WriteAttr(v, g.c_str(), "omega_target", k.omega_target));
+      PetscCall(WriteAttr(v, g.c_str(), "omega", (PetscReal)(2 * PETSC_PI / k.period)));
+      PetscCall(WriteAttr(v, g.c_str(), "energy", k.orbit_energy));
+      PetscCall(WriteAttr(v, g.c_str(), "period", k.period));
+      PetscCall(WriteAttr(v, g.c_str(), "max_modulus", k.fr.max_modulus));
+      PetscCall(WriteAttr(v, g.c_str(), "floquet_stable", (PetscInt)k.fr.stable));
+      PetscCall(WriteAttr(v, g.c_str(), "instability", k.fr.instability));
+      PetscCall(WriteAttr(v, g.c_str(), "persisted", (PetscInt)k.persisted));
+      PetscCall(WriteAttr(v, g.c_str(), "corr_tail_min", k.tail_min));
+      PetscCall(WriteAttr(v, g.c_str(), "energy_drift", k.energy_drift));
+    }
+    PetscCall(WriteAttr(v, "/stability", "cases_done", (PetscInt)cases_.size())); // of -stability_omega's; fewer only when interrupted
+    PetscFunctionReturn(0);
+  }
+
+private:
+  // The branch, then every case in turn (cases_ holds those done).
+  PetscErrorCode RunCases()
+  {
+    PetscFunctionBeginUser;
+    PetscCall(ContinueBranch(nnm_.shoot, nnm_.modes.Insulated(), 2 * PETSC_PI / nnm_.modes.Named().insulated_omega, nnm_.co, "insulated", &b_));
+    for (PetscInt c = 0; c < st_.nw; c++) {
+      StabilityCase k;
+      PetscCall(RunCase(c, &k));
+      cases_.push_back(std::move(k));
     }
     PetscFunctionReturn(0);
-  }();
-  if (!IsInterrupt(irun)) PetscCall(irun);
-  const bool interrupted = IsInterrupt(irun);
-  PetscCheck(!interrupted || cases_done > 0, comm, PETSC_ERR_SIG, "interrupted by %s before the first stability case ended; no output written",
-             SignalName(StopSignalSeen()));
-  PetscCall(WriteAttr(out.Viewer(), "/stability", "cases_done", cases_done)); // of -stability_omega's; fewer only when interrupted
-  PetscCall(PetscTime(&t_end));
-  PetscCall(out.Commit("stability", t_end - t_start, !interrupted));
-  PetscCheck(!interrupted, comm, PETSC_ERR_SIG, "interrupted by %s during stability case %" PetscInt_FMT " (omega %g); partial output %s (complete = 0) with the %" PetscInt_FMT " case(s) before it",
-             SignalName(StopSignalSeen()), cases_done, (double)omegas[cases_done], path.c_str(), cases_done);
-  PetscCall(PetscPrintf(comm, "  wrote %s\n", path.c_str()));
-  PetscFunctionReturn(0);
-}
+  }
+  // Case c: the orbit at its frequency, its Floquet multipliers, the perturbed free run.
+  PetscErrorCode RunCase(PetscInt c, StabilityCase *k)
+  {
+    const PetscReal wt = st_.omegas[c];
+    Shooting &shoot = nnm_.shoot;
+    PetscFunctionBeginUser;
+    PetscCheck(b_.omega.back() >= wt, comm_, PETSC_ERR_USER, "-stability_omega %g: the insulated branch ends at omega %g (%s)", (double)wt, (double)b_.omega.back(),
+               b_.stop_reason.c_str());
+    // The orbit at omega = wt: Newton at fixed period from the first stored orbit
+    // at or above wt (the low-energy orbit itself when wt is at or below its frequency).
+    size_t j = 0;
+    while (b_.omega[j] < wt) j++;
+    PetscCall(RowToState(nnm_.lat, b_.z0, j, z_));
+    PetscReal T = b_.period[j], beta = 0;
+    if (j > 0) {
+      bool ok;
+      PetscInt its;
+      PetscCall(shoot.Pack(z_, 2 * PETSC_PI / wt, 0.0, X_));
+      PetscCall(shoot.SetPeriodConstraint(z_, 2 * PETSC_PI / wt));
+      PetscCall(shoot.Solve(X_, &ok, &its));
+      PetscCheck(ok, comm_, PETSC_ERR_NOT_CONVERGED, "-stability_omega %g: no insulated-branch orbit found at this frequency", (double)wt);
+      PetscCall(shoot.Unpack(X_, z_, &T, &beta));
+    }
+    EnergyParts e;
+    PetscCall(nnm_.fx.Energy(z_, &e));
+    PetscCall(nnm_.flow.IntegrateWithMonodromy(z_, T, nnm_.flow.FloquetBeta(beta), zT_, S_));
+    PetscCall(FloquetAnalysis(nnm_.lat, S_, flo_, &k->fr));
+    OwnedVec zp;
+    PetscCall(VecDuplicate(z_, zp.out()));
+    PetscCall(PerturbState(nnm_.lat, z_, st_.eps, st_.seed, c, zp));
+    EnergyParts ep;
+    PetscCall(nnm_.fx.Energy(zp, &ep)); // the perturbed start: the free run conserves this
+    SimulationOptions run = sim_;
+    run.t_final = st_.periods * T;
+    run.sample_dt = T / 8;
+    Persistence sink(nnm_.lat, z_, 8 * st_.sample_periods);
+    SimulationResult r;
+    PetscCall(Simulate(nnm_.fx, run, zp, &sink, &r));
+    const size_t ns = sink.corr_.size(), tail = std::max<size_t>(1, ns / 10);
+    for (size_t i = ns - tail; i < ns; i++) k->tail_min = std::min(k->tail_min, sink.corr_[i]);
+    k->persisted = k->tail_min >= st_.corr_min;
+    PetscCall(PetscPrintf(comm_, "nltopo stability: omega %.4f (E = %.4g): Floquet max |mu| = %.6f (%s), %" PetscInt_FMT " periods: shape correlation %.3f at the end (min %.3f over the last 10 %%), MCR %.3f -> %.3f: %s\n",
+                          (double)(2 * PETSC_PI / T), (double)e.Total(), (double)k->fr.max_modulus, k->fr.stable ? "stable" : "unstable", st_.periods,
+                          (double)sink.corr_.back(), (double)k->tail_min, (double)sink.mcr_.front(), (double)sink.mcr_.back(),
+                          k->persisted ? "the standing wave persisted" : "the standing wave did NOT persist"));
+    k->omega_target = wt;
+    k->period = T;
+    k->orbit_energy = e.Total();
+    k->energy_drift = (r.energy_final - ep.Total()) / ep.Total();
+    k->t = std::move(sink.t_), k->corr = std::move(sink.corr_), k->mcr = std::move(sink.mcr_), k->energy = std::move(sink.energy_);
+    PetscFunctionReturn(0);
+  }
+
+  NnmSetup nnm_;
+  FloquetOptions flo_;
+  SimulationOptions sim_;
+  StabilityOptions st_;
+  OwnedVec z_, zT_, X_;
+  OwnedMat S_;
+  Branch b_;
+  std::vector<StabilityCase> cases_;
+};
+
+} // namespace
+
+std::unique_ptr<Study> CreateStabilityStudy() { return std::make_unique<StabilityStudy>(); }
 
 } // namespace nltopo

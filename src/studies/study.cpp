@@ -17,6 +17,16 @@ PetscReal Study::Elapsed() const
   return (PetscReal)(now - t_start_);
 }
 
+PetscErrorCode Study::CommitPartial()
+{
+  OutputFile partial;
+  PetscFunctionBeginUser;
+  PetscCall(partial.Open(comm_, path_, "partial."));
+  PetscCall(Write(partial.Viewer()));
+  PetscCall(partial.Commit(name_, Elapsed(), false));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Study::Run(MPI_Comm comm, const char *name)
 {
   OutputFile out;

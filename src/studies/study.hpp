@@ -37,6 +37,9 @@ protected:
   virtual bool WritesOwnFile() const { return false; }
 
   PetscReal Elapsed() const; // wall seconds since Run started
+  // What Write gives so far, committed at -output as complete = 0 (a study
+  // stopped by a signal keeps its finished part; Run commits complete outputs only).
+  PetscErrorCode CommitPartial();
   MPI_Comm comm_ = MPI_COMM_NULL;
   const char *name_ = "";
   std::string path_; // -output

@@ -20,6 +20,7 @@
 #include "io/output.hpp"
 #include "studies/grid_axis.hpp"
 #include "studies/registry.hpp"
+#include "studies/study.hpp"
 #include "timeint/simulation.hpp"
 #include <algorithm>
 #include <cmath>
@@ -103,10 +104,8 @@ PetscErrorCode PhaseRun(const Lattice &lat, const LinearModes &modes, const Tone
   PetscFunctionReturn(0);
 }
 
-} // namespace
-
 // The left half lattice's defaults, the fixed forcing and the -zak_ block.
-static PetscErrorCode ZakOptionsFromOptions(MPI_Comm comm, LatticeParams *lp, ZakOptions *zo)
+PetscErrorCode ZakOptionsFromOptions(MPI_Comm comm, LatticeParams *lp, ZakOptions *zo)
 {
   PetscFunctionBeginUser;
   PetscCall(RejectGivenOptions(comm, {"-sim_progress", "-sim_sample_dt"}, "-study zak (-zak_samples_per_period)"));
@@ -134,127 +133,148 @@ static PetscErrorCode ZakOptionsFromOptions(MPI_Comm comm, LatticeParams *lp, Za
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ZakStudyOptions(MPI_Comm comm)
-{
-  LatticeParams lp;
-  ToneBurstOptions fo;
-  SimulationOptions sim;
-  LinearModesOptions mo;
-  ZakOptions zo;
-  PetscFunctionBeginUser;
-  PetscCall(ZakOptionsFromOptions(comm, &lp, &zo));
-  PetscCall(ToneBurstOptionsFromOptions(comm, lp, &fo));
-  PetscCall(SimulationOptionsFromOptions(comm, &sim));
-  PetscCall(LinearModesOptionsFromOptions(comm, &mo));
-  PetscCall(DeclareEPS(comm, "linear_"));
-  PetscCall(DeclareTS(comm, "sim_"));
-  PetscCall(DeclareOutputOptions(comm, "zak"));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode ZakStudy(MPI_Comm comm)
-{
-  LatticeParams lp;
-  ToneBurstOptions fo;
-  SimulationOptions sim;
-  LinearModesOptions mo;
-  ZakOptions zo;
-  std::string path;
-  OutputFile out;
-  Lattice lat;
-  LinearModes modes;
-  PetscLogDouble t_start, t_end;
-  PetscFunctionBeginUser;
-  PetscCall(PetscTime(&t_start));
-  PetscCall(LogRegister());
-  PetscCall(PetscLogStagePush(Log().setup));
-  PetscCall(ZakOptionsFromOptions(comm, &lp, &zo));
-  PetscCall(ToneBurstOptionsFromOptions(comm, lp, &fo));
-  PetscCall(SimulationOptionsFromOptions(comm, &sim));
-  sim.progress = 0;
-  PetscCall(LinearModesOptionsFromOptions(comm, &mo));
-  PetscCall(OutputPathFromOptions(comm, "zak", &path));
-  PetscCall(out.Open(comm, path));
-  PetscCall(lat.Setup(PETSC_COMM_SELF, lp)); // every rank integrates whole runs
-  PetscCall(modes.Compute(lat, mo));
-  const NamedModes &nm = modes.Named();
-  PetscCheck(nm.optical_bottom >= 0 && nm.optical_top >= 0, comm, PETSC_ERR_USER, "-study zak: no optical band edges found for this lattice");
-  // Paper's labels: mu = 0 is the optical band's lower edge, mu = pi its upper edge.
-  const PetscInt edge_mode[2] = {nm.optical_bottom, nm.optical_top};
-  const PetscInt ne = (PetscInt)zo.energy.size(), width = RowWidth(zo);
-  PetscCall(PetscPrintf(comm, "nltopo zak: left lattice N = %" PetscInt_FMT ", mu = 0 edge omega = %.6f (mode %" PetscInt_FMT "), mu = pi edge omega = %.6f (mode %" PetscInt_FMT
-                              "), %" PetscInt_FMT " energies\n",
-                        lat.N(), (double)modes.Omega()[edge_mode[0]], edge_mode[0], (double)modes.Omega()[edge_mode[1]], edge_mode[1], ne));
-  PetscCall(PetscLogStagePop());
-
-  PetscCall(PetscLogStagePush(Log().solve));
-  std::vector<PetscReal> res; // run r = 2 e + edge
-  std::vector<PetscInt> ran;
-  const PetscErrorCode irun = RunDistributed(
-    comm, 2 * ne, width, [&](PetscInt r, PetscReal *row) { return PhaseRun(lat, modes, fo, sim, zo, edge_mode[r % 2], zo.energy[r / 2], row); }, &res, &ran);
-  PetscCall(PetscLogStagePop());
-  if (!IsInterrupt(irun)) PetscCall(irun);
-  const bool interrupted = IsInterrupt(irun); // a stop signal: the runs done are written, complete = 0
-  const PetscInt nran = (PetscInt)std::count(ran.begin(), ran.end(), 1);
-  PetscCheck(!interrupted || nran > 0, comm, PETSC_ERR_SIG, "interrupted by %s before the first zak run ended; no output written", SignalName(StopSignalSeen()));
-  for (PetscInt r = 0; r < 2 * ne; r++)
-    if (!ran[r]) { // not run: reached 0, NaN phases
-      res[r * width] = 0;
-      for (PetscInt k = 1; k < width; k++) res[r * width + k] = std::numeric_limits<PetscReal>::quiet_NaN();
-    }
-
-  // Threshold: the lowest energy at which phi_0 and phi_pi are no longer distinct.
-  std::vector<PetscReal> p0m(ne), p0d(ne), ppm(ne), ppd(ne), thm(ne), thd(ne), w0(ne * zo.windows), wp(ne * zo.windows), mcr0(ne), mcrp(ne);
-  std::vector<PetscInt> reached(2 * ne);
+// The columns of /zak per energy, from the rows of the runs (run r = 2 e + edge),
+// and the threshold: the lowest energy at which phi_0 and phi_pi are no longer distinct.
+struct ZakTable {
+  std::vector<PetscReal> p0m, p0d, ppm, ppd, thm, thd, w0, wp, mcr0, mcrp;
+  std::vector<PetscInt> reached;
   PetscReal threshold = -1, last_distinct = -1;
+};
+
+// Fills the table from the rows and prints it with the threshold.
+PetscErrorCode Tabulate(MPI_Comm comm, const ZakOptions &zo, const std::vector<PetscReal> &res, ZakTable *t)
+{
+  const PetscInt ne = (PetscInt)zo.energy.size(), width = RowWidth(zo);
+  PetscFunctionBeginUser;
+  for (auto *c : {&t->p0m, &t->p0d, &t->ppm, &t->ppd, &t->thm, &t->thd, &t->mcr0, &t->mcrp}) c->assign(ne, 0);
+  t->w0.assign(ne * zo.windows, 0), t->wp.assign(ne * zo.windows, 0);
+  t->reached.assign(2 * ne, 0);
   PetscCall(PetscPrintf(comm, "       E*    phi_0 mean  median   phi_pi mean  median   theta mean  median\n"));
   for (PetscInt e = 0; e < ne; e++) {
     const PetscReal *a = &res[(2 * e) * width], *b = &res[(2 * e + 1) * width];
-    reached[2 * e] = (PetscInt)a[0], reached[2 * e + 1] = (PetscInt)b[0];
-    p0m[e] = a[3], p0d[e] = a[4], ppm[e] = b[3], ppd[e] = b[4], mcr0[e] = a[2], mcrp[e] = b[2];
-    thm[e] = ppm[e] - p0m[e], thd[e] = ppd[e] - p0d[e];
-    for (PetscInt k = 0; k < zo.windows; k++) w0[e * zo.windows + k] = a[5 + k], wp[e * zo.windows + k] = b[5 + k];
+    t->reached[2 * e] = (PetscInt)a[0], t->reached[2 * e + 1] = (PetscInt)b[0];
+    t->p0m[e] = a[3], t->p0d[e] = a[4], t->ppm[e] = b[3], t->ppd[e] = b[4], t->mcr0[e] = a[2], t->mcrp[e] = b[2];
+    t->thm[e] = t->ppm[e] - t->p0m[e], t->thd[e] = t->ppd[e] - t->p0d[e];
+    for (PetscInt k = 0; k < zo.windows; k++) t->w0[e * zo.windows + k] = a[5 + k], t->wp[e * zo.windows + k] = b[5 + k];
     const bool ok = a[0] > 0 && b[0] > 0;
-    const bool distinct = ok && std::abs(thm[e] - PETSC_PI) <= zo.theta_tol && std::abs(thd[e] - PETSC_PI) <= zo.theta_tol;
-    if (ok && !distinct && threshold < 0) threshold = zo.energy[e];
-    if (distinct && threshold < 0) last_distinct = zo.energy[e];
-    PetscCall(PetscPrintf(comm, "  %9.4g   %8.4f  %8.4f    %8.4f  %8.4f    %8.4f %8.4f %s\n", (double)zo.energy[e], (double)p0m[e], (double)p0d[e], (double)ppm[e],
-                          (double)ppd[e], (double)thm[e], (double)thd[e], ok ? (distinct ? "" : " (not distinct)") : " (E* not reached)"));
+    const bool distinct = ok && std::abs(t->thm[e] - PETSC_PI) <= zo.theta_tol && std::abs(t->thd[e] - PETSC_PI) <= zo.theta_tol;
+    if (ok && !distinct && t->threshold < 0) t->threshold = zo.energy[e];
+    if (distinct && t->threshold < 0) t->last_distinct = zo.energy[e];
+    PetscCall(PetscPrintf(comm, "  %9.4g   %8.4f  %8.4f    %8.4f  %8.4f    %8.4f %8.4f %s\n", (double)zo.energy[e], (double)t->p0m[e], (double)t->p0d[e],
+                          (double)t->ppm[e], (double)t->ppd[e], (double)t->thm[e], (double)t->thd[e], ok ? (distinct ? "" : " (not distinct)") : " (E* not reached)"));
   }
-  if (threshold > 0)
-    PetscCall(PetscPrintf(comm, "  threshold: phi_0 and phi_pi stop being distinct at E = %g (last distinct: %g)\n", (double)threshold, (double)last_distinct));
+  if (t->threshold > 0)
+    PetscCall(PetscPrintf(comm, "  threshold: phi_0 and phi_pi stop being distinct at E = %g (last distinct: %g)\n", (double)t->threshold, (double)t->last_distinct));
   else PetscCall(PetscPrintf(comm, "  threshold: phi_0 and phi_pi stay distinct over the whole energy range\n"));
-
-  PetscCall(PetscLogStagePush(Log().write));
-  PetscViewer v = out.Viewer();
-  const char *g = "/zak";
-  PetscCall(WriteArray(v, g, "energy", zo.energy));
-  PetscCall(WriteArray(v, g, "phi0_mean", p0m));
-  PetscCall(WriteArray(v, g, "phi0_median", p0d));
-  PetscCall(WriteArray(v, g, "phipi_mean", ppm));
-  PetscCall(WriteArray(v, g, "phipi_median", ppd));
-  PetscCall(WriteArray(v, g, "theta_mean", thm));
-  PetscCall(WriteArray(v, g, "theta_median", thd));
-  PetscCall(WriteArray(v, g, "phi0_window_median", w0, zo.windows));
-  PetscCall(WriteArray(v, g, "phipi_window_median", wp, zo.windows));
-  PetscCall(WriteArray(v, g, "mcr0", mcr0));
-  PetscCall(WriteArray(v, g, "mcrpi", mcrp));
-  PetscCall(WriteIntArray(v, g, "reached", reached, 2));
-  PetscCall(WriteIntArray(v, g, "done", ran, 2)); // 0: not run (a stop signal came first)
-  PetscCall(WriteAttr(v, g, "energy_threshold", threshold));
-  PetscCall(WriteAttr(v, g, "energy_last_distinct", last_distinct));
-  PetscCall(WriteAttr(v, g, "omega0", modes.Omega()[edge_mode[0]]));
-  PetscCall(WriteAttr(v, g, "omegapi", modes.Omega()[edge_mode[1]]));
-  PetscCall(WriteAttr(v, g, "theta_tol", zo.theta_tol));
-  PetscCall(WriteAttr(v, g, "threshold_rule",
-                      "lowest E at which theta = phi_pi - phi_0 of the means or of the medians over cells and windows is more than theta_tol from pi (-1: never in range)"));
-  PetscCall(PetscTime(&t_end));
-  PetscCall(out.Commit("zak", t_end - t_start, !interrupted));
-  PetscCall(PetscLogStagePop());
-  PetscCheck(!interrupted, comm, PETSC_ERR_SIG, "interrupted by %s between zak runs (%" PetscInt_FMT " of %" PetscInt_FMT " done); partial output %s (complete = 0)",
-             SignalName(StopSignalSeen()), nran, 2 * ne, path.c_str());
-  PetscCall(PetscPrintf(comm, "  wrote %s\n", path.c_str()));
   PetscFunctionReturn(0);
 }
+
+class ZakStudy : public Study {
+public:
+  PetscErrorCode DeclareOptions(MPI_Comm comm) override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(ZakOptionsFromOptions(comm, &lp_, &zo_));
+    PetscCall(ToneBurstOptionsFromOptions(comm, lp_, &fo_));
+    PetscCall(SimulationOptionsFromOptions(comm, &sim_));
+    PetscCall(LinearModesOptionsFromOptions(comm, &mo_));
+    PetscCall(DeclareEPS(comm, "linear_"));
+    PetscCall(DeclareTS(comm, "sim_"));
+    PetscCall(DeclareOutputOptions(comm, "zak"));
+    PetscFunctionReturn(0);
+  }
+
+protected:
+  PetscErrorCode ReadOptions() override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(ZakOptionsFromOptions(comm_, &lp_, &zo_));
+    PetscCall(ToneBurstOptionsFromOptions(comm_, lp_, &fo_));
+    PetscCall(SimulationOptionsFromOptions(comm_, &sim_));
+    sim_.progress = 0;
+    PetscCall(LinearModesOptionsFromOptions(comm_, &mo_));
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode Build() override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(lat_.Setup(PETSC_COMM_SELF, lp_)); // every rank integrates whole runs
+    PetscCall(modes_.Compute(lat_, mo_));
+    const NamedModes &nm = modes_.Named();
+    PetscCheck(nm.optical_bottom >= 0 && nm.optical_top >= 0, comm_, PETSC_ERR_USER, "-study zak: no optical band edges found for this lattice");
+    // Paper's labels: mu = 0 is the optical band's lower edge, mu = pi its upper edge.
+    edge_mode_[0] = nm.optical_bottom, edge_mode_[1] = nm.optical_top;
+    PetscCall(PetscPrintf(comm_, "nltopo zak: left lattice N = %" PetscInt_FMT ", mu = 0 edge omega = %.6f (mode %" PetscInt_FMT "), mu = pi edge omega = %.6f (mode %" PetscInt_FMT
+                                 "), %" PetscInt_FMT " energies\n",
+                          lat_.N(), (double)modes_.Omega()[edge_mode_[0]], edge_mode_[0], (double)modes_.Omega()[edge_mode_[1]], edge_mode_[1],
+                          (PetscInt)zo_.energy.size()));
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode Solve() override
+  {
+    const PetscInt ne = (PetscInt)zo_.energy.size(), width = RowWidth(zo_);
+    std::vector<PetscReal> res; // run r = 2 e + edge
+    PetscFunctionBeginUser;
+    const PetscErrorCode irun = RunDistributed(
+      comm_, 2 * ne, width, [&](PetscInt r, PetscReal *row) { return PhaseRun(lat_, modes_, fo_, sim_, zo_, edge_mode_[r % 2], zo_.energy[r / 2], row); }, &res,
+      &ran_);
+    if (!IsInterrupt(irun)) PetscCall(irun);
+    const bool interrupted = IsInterrupt(irun); // a stop signal: the runs done are written, complete = 0
+    const PetscInt nran = (PetscInt)std::count(ran_.begin(), ran_.end(), 1);
+    PetscCheck(!interrupted || nran > 0, comm_, PETSC_ERR_SIG, "interrupted by %s before the first zak run ended; no output written", SignalName(StopSignalSeen()));
+    for (PetscInt r = 0; r < 2 * ne; r++)
+      if (!ran_[r]) { // not run: reached 0, NaN phases
+        res[r * width] = 0;
+        for (PetscInt k = 1; k < width; k++) res[r * width + k] = std::numeric_limits<PetscReal>::quiet_NaN();
+      }
+    PetscCall(Tabulate(comm_, zo_, res, &t_));
+    if (interrupted) PetscCall(CommitPartial());
+    PetscCheck(!interrupted, comm_, PETSC_ERR_SIG, "interrupted by %s between zak runs (%" PetscInt_FMT " of %" PetscInt_FMT " done); partial output %s (complete = 0)",
+               SignalName(StopSignalSeen()), nran, 2 * ne, path_.c_str());
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode Write(PetscViewer v) override
+  {
+    const char *g = "/zak";
+    PetscFunctionBeginUser;
+    PetscCall(WriteArray(v, g, "energy", zo_.energy));
+    PetscCall(WriteArray(v, g, "phi0_mean", t_.p0m));
+    PetscCall(WriteArray(v, g, "phi0_median", t_.p0d));
+    PetscCall(WriteArray(v, g, "phipi_mean", t_.ppm));
+    PetscCall(WriteArray(v, g, "phipi_median", t_.ppd));
+    PetscCall(WriteArray(v, g, "theta_mean", t_.thm));
+    PetscCall(WriteArray(v, g, "theta_median", t_.thd));
+    PetscCall(WriteArray(v, g, "phi0_window_median", t_.w0, zo_.windows));
+    PetscCall(WriteArray(v, g, "phipi_window_median", t_.wp, zo_.windows));
+    PetscCall(WriteArray(v, g, "mcr0", t_.mcr0));
+    PetscCall(WriteArray(v, g, "mcrpi", t_.mcrp));
+    PetscCall(WriteIntArray(v, g, "reached", t_.reached, 2));
+    PetscCall(WriteIntArray(v, g, "done", ran_, 2)); // 0: not run (a stop signal came first)
+    PetscCall(WriteAttr(v, g, "energy_threshold", t_.threshold));
+    PetscCall(WriteAttr(v, g, "energy_last_distinct", t_.last_distinct));
+    PetscCall(WriteAttr(v, g, "omega0", modes_.Omega()[edge_mode_[0]]));
+    PetscCall(WriteAttr(v, g, "omegapi", modes_.Omega()[edge_mode_[1]]));
+    PetscCall(WriteAttr(v, g, "theta_tol", zo_.theta_tol));
+    PetscCall(WriteAttr(v, g, "threshold_rule",
+                        "lowest E at which theta = phi_pi - phi_0 of the means or of the medians over cells and windows is more than theta_tol from pi (-1: never in range)"));
+    PetscFunctionReturn(0);
+  }
+
+private:
+  LatticeParams lp_;
+  ToneBurstOptions fo_;
+  SimulationOptions sim_;
+  LinearModesOptions mo_;
+  ZakOptions zo_;
+  Lattice lat_;
+  LinearModes modes_;
+  PetscInt edge_mode_[2] = {-1, -1};
+  std::vector<PetscInt> ran_;
+  ZakTable t_;
+};
+
+} // namespace
+
+std::unique_ptr<Study> CreateZakStudy() { return std::make_unique<ZakStudy>(); }
 
 } // namespace nltopo
