@@ -70,7 +70,7 @@ T = {
     "lattice_cubic": ("real", -1.0, 1.0), "lattice_cells": ("int", 2, 10),
     "lattice_layout": ("enum", 0, 0, ["interface", "left", "right"]),
     "lattice_perturbation": ("enum", 0, 0, ["none", "chiral", "achiral"]),
-    "lattice_delta": ("real", 0.0, 0.3), "lattice_seed": ("int", 0, 1000),
+    "lattice_delta": ("real", 0.0, 0.3), "lattice_seed": ("int", 0, 1000), "lattice_damping": ("real", 0.0, 0.2),
     "linear_dense_max": ("int", 0, 60), "linear_nev": ("int", 1, 8), "linear_target_offset": ("real", 1e-8, 0.05),
     "linear_nq": ("int", 4, 40),
     "force_profile": ("enum", 0, 0, ["site", "mode", "none", "exponential"]),
