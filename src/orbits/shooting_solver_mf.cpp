@@ -52,7 +52,7 @@ PetscErrorCode ShootingSolver::SetupMatrixFree(KSP ksp, PC pc)
 
 // The preconditioner at the linearisation point: -nnm_mf_pc averaged and
 // parametric take the harmonics of the tangent stiffness along the orbit
-// through it.
+// through it (one integration); linear and none need no integration.
 PetscErrorCode ShootingSolver::UpdatePreconditioner()
 {
   PeriodicFlow &flow = sys_->Flow();
@@ -64,7 +64,7 @@ PetscErrorCode ShootingSolver::UpdatePreconditioner()
     PetscCall(flow.IntegrateAveragingStiffness(z, T, beta, zT_, &kharm_));
     PetscCall(lin_pc_.SetStiffness(kharm_.d0, kharm_.o0));
     if (kharm_.parametric) PetscCall(lin_pc_.SetParametricTerm(kharm_.dc, kharm_.oc, kharm_.ds, kharm_.os, opt_.parametric_weight));
-  } else PetscCall(flow.Integrate(z, T, beta, zT_));
+  }
   if (opt_.mf_pc != MatrixFreePC::None) PetscCall(lin_pc_.SetPeriod(T));
   PetscFunctionReturn(0);
 }
