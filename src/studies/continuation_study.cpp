@@ -217,30 +217,25 @@ struct Resume {
 };
 
 class ContinuationStudy : public Study {
-public:
-  PetscErrorCode DeclareOptions(MPI_Comm comm) override
-  {
-    PetscFunctionBeginUser;
-    PetscCall(nnm_.DeclareOptions(comm));
-    PetscCall(ReadStudyChoices(comm, &ch_));
-    PetscCall(FloquetOptionsFromOptions(comm, &flo_)); // read even without -floquet: they belong to this study
-    PetscCall(FloquetMfOptionsFromOptions(comm, &fmo_));
-    PetscCall(DeclareEPS(comm, "floquet_"));
-    PetscCall(DeclareEPS(comm, "floquet_mf_"));
-    PetscCall(DeclareOutputOptions(comm, "continuation"));
-    PetscFunctionReturn(0);
-  }
-
 protected:
   PetscErrorCode ReadOptions() override
   {
     PetscFunctionBeginUser;
     PetscCall(nnm_.ReadOptions(comm_));
     PetscCall(ReadStudyChoices(comm_, &ch_));
-    if (ch_.floquet) PetscCall(FloquetOptionsFromOptions(comm_, &flo_));
-    if (ch_.floquet && ch_.floquet_mf) PetscCall(FloquetMfOptionsFromOptions(comm_, &fmo_));
+    // declared even without -floquet: they belong to this study
+    if (declaring_ || ch_.floquet) PetscCall(FloquetOptionsFromOptions(comm_, &flo_));
+    if (declaring_ || (ch_.floquet && ch_.floquet_mf)) PetscCall(FloquetMfOptionsFromOptions(comm_, &fmo_));
     fk_ = !ch_.floquet ? FloquetKind::None : ch_.floquet_mf ? FloquetKind::MatrixFree : FloquetKind::Dense;
-    if (ch_.resume) PetscCall(CheckResumeOptions(comm_, ch_.resume_file, name_, "-cont_resume")); // the same physics and numerics, or one line naming the first difference
+    if (!declaring_ && ch_.resume) PetscCall(CheckResumeOptions(comm_, ch_.resume_file, name_, "-cont_resume")); // the same physics and numerics, or one line naming the first difference
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode DeclareSolvers(MPI_Comm comm) override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(nnm_.DeclareSolvers(comm));
+    PetscCall(DeclareEPS(comm, "floquet_"));
+    PetscCall(DeclareEPS(comm, "floquet_mf_"));
     PetscFunctionReturn(0);
   }
   // -cont_resume of the -output file itself replaces it (no -output_overwrite needed).

@@ -30,18 +30,6 @@ PetscErrorCode BlochOptionsFromOptions(MPI_Comm comm, PetscInt *nq)
 }
 
 class LinearStudy : public Study {
-public:
-  PetscErrorCode DeclareOptions(MPI_Comm comm) override
-  {
-    PetscFunctionBeginUser;
-    PetscCall(LatticeParamsFromOptions(comm, &lp_));
-    PetscCall(LinearModesOptionsFromOptions(comm, &mo_));
-    PetscCall(BlochOptionsFromOptions(comm, &nq_));
-    PetscCall(DeclareEPS(comm, "linear_"));
-    PetscCall(DeclareOutputOptions(comm, "linear"));
-    PetscFunctionReturn(0);
-  }
-
 protected:
   PetscErrorCode ReadOptions() override
   {
@@ -51,6 +39,7 @@ protected:
     PetscCall(BlochOptionsFromOptions(comm_, &nq_));
     PetscFunctionReturn(0);
   }
+  PetscErrorCode DeclareSolvers(MPI_Comm comm) override { return DeclareEPS(comm, "linear_"); }
   PetscErrorCode Build() override
   {
     PetscFunctionBeginUser;

@@ -31,12 +31,11 @@ struct NnmSetup {
     PetscCall(ContinuationOptionsFromOptions(comm, &co));
     PetscFunctionReturn(0);
   }
-  // ReadOptions plus the solver objects' prefixes (-nnm_snes_*, -nnm_start_snes_*,
-  // -nnm_ts_*, -linear_eps_*), for the studies' options functions (registry.hpp).
-  PetscErrorCode DeclareOptions(MPI_Comm comm)
+  // The solver objects' prefixes (-nnm_snes_*, -nnm_start_snes_*, -nnm_ts_*,
+  // -linear_eps_*), for the studies' DeclareSolvers (studies/study.hpp).
+  PetscErrorCode DeclareSolvers(MPI_Comm comm)
   {
     PetscFunctionBeginUser;
-    PetscCall(ReadOptions(comm));
     PetscCall(DeclareSNES(comm, "nnm_"));
     PetscCall(DeclareSNES(comm, "nnm_start_"));
     PetscCall(DeclareTS(comm, "nnm_"));

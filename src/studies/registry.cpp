@@ -15,7 +15,7 @@ static std::map<std::string, OptionsFn> StudyOptionFunctions()
 {
   std::map<std::string, OptionsFn> m;
   for (const auto &s : kStudies)
-    m[s.name] = [&s](MPI_Comm c) { return s.create()->DeclareOptions(c); };
+    m[s.name] = [&s](MPI_Comm c) { return s.create()->DeclareOptions(c, s.name); };
   return m;
 }
 

@@ -1,9 +1,9 @@
 #pragma once
 // Studies registered by name (-study); main.cpp looks the name up and runs it.
 // A study is a class (studies/study.hpp): a new one is one file plus one line
-// in NLTOPO_STUDIES. Its DeclareOptions reads every option block of its
-// components and declares its solver prefixes (core/options_audit.hpp): -help
-// runs only that and exits, and options it does not read are refused.
+// in NLTOPO_STUDIES. Its DeclareOptions (Study's: its ReadOptions reading every
+// option block of its components, then its solver prefixes, core/options_audit.hpp):
+// -help runs only that and exits, and options it does not read are refused.
 #include "studies/study.hpp"
 
 namespace nltopo {

@@ -71,21 +71,6 @@ PetscErrorCode StoreOptionsFromOptions(MPI_Comm comm, const LatticeParams &lp, c
 }
 
 class SimulateStudy : public Study {
-public:
-  PetscErrorCode DeclareOptions(MPI_Comm comm) override
-  {
-    PetscFunctionBeginUser;
-    PetscCall(LatticeParamsFromOptions(comm, &lp_));
-    PetscCall(ToneBurstOptionsFromOptions(comm, lp_, &fo_));
-    PetscCall(SimulationOptionsFromOptions(comm, &so_));
-    PetscCall(StoreOptionsFromOptions(comm, lp_, so_, &store_u_, &stride_));
-    PetscCall(LinearModesOptionsFromOptions(comm, &mo_)); // the mode profiles and the amplitude rule
-    PetscCall(DeclareEPS(comm, "linear_"));
-    PetscCall(DeclareTS(comm, "sim_"));
-    PetscCall(DeclareOutputOptions(comm, "simulate"));
-    PetscFunctionReturn(0);
-  }
-
 protected:
   PetscErrorCode ReadOptions() override
   {
@@ -95,7 +80,8 @@ protected:
     PetscCall(SimulationOptionsFromOptions(comm_, &so_));
     PetscCall(StoreOptionsFromOptions(comm_, lp_, so_, &store_u_, &stride_));
     need_modes_ = fo_.profile == ForceProfile::Mode || fo_.profile == ForceProfile::Exponential || (fo_.profile != ForceProfile::None && fo_.amplitude < 0);
-    if (need_modes_) PetscCall(LinearModesOptionsFromOptions(comm_, &mo_));
+    if (declaring_ || need_modes_) PetscCall(LinearModesOptionsFromOptions(comm_, &mo_)); // the mode profiles and the amplitude rule
+    if (declaring_) PetscFunctionReturn(0);
     if (store_u_ && so_.sample_dt > 0) {
       PetscMPIInt nranks;
       PetscCallMPI(MPI_Comm_size(comm_, &nranks));
@@ -105,6 +91,7 @@ protected:
     }
     PetscFunctionReturn(0);
   }
+  PetscErrorCode DeclareSolvers(MPI_Comm comm) override { return DeclareForcedRunSolvers(comm); }
   double OutputBytes() const override { return u_bytes_ + 16.0 * lp_.N(); }
   PetscErrorCode Build() override
   {

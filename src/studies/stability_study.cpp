@@ -159,20 +159,6 @@ struct StabilityCase {
 };
 
 class StabilityStudy : public Study {
-public:
-  PetscErrorCode DeclareOptions(MPI_Comm comm) override
-  {
-    PetscFunctionBeginUser;
-    PetscCall(nnm_.DeclareOptions(comm));
-    PetscCall(FloquetOptionsFromOptions(comm, &flo_));
-    PetscCall(DeclareEPS(comm, "floquet_"));
-    PetscCall(SimulationOptionsFromOptions(comm, &sim_));
-    PetscCall(StabilityOptionsFromOptions(comm, &st_));
-    PetscCall(DeclareTS(comm, "sim_"));
-    PetscCall(DeclareOutputOptions(comm, "stability"));
-    PetscFunctionReturn(0);
-  }
-
 protected:
   PetscErrorCode ReadOptions() override
   {
@@ -181,6 +167,14 @@ protected:
     PetscCall(FloquetOptionsFromOptions(comm_, &flo_));
     PetscCall(SimulationOptionsFromOptions(comm_, &sim_));
     PetscCall(StabilityOptionsFromOptions(comm_, &st_));
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode DeclareSolvers(MPI_Comm comm) override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(nnm_.DeclareSolvers(comm));
+    PetscCall(DeclareEPS(comm, "floquet_"));
+    PetscCall(DeclareTS(comm, "sim_"));
     PetscFunctionReturn(0);
   }
   PetscErrorCode Build() override

@@ -1,5 +1,6 @@
 #include "studies/study.hpp"
 #include "core/log.hpp"
+#include "core/options_audit.hpp"
 
 namespace nltopo {
 
@@ -7,6 +8,27 @@ PetscErrorCode Study::OutputPath(std::string *path)
 {
   PetscFunctionBeginUser;
   PetscCall(OutputPathFromOptions(comm_, name_, path));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Study::DeclareOptions(MPI_Comm comm, const char *name)
+{
+  PetscFunctionBeginUser;
+  comm_ = comm;
+  name_ = name;
+  declaring_ = true;
+  PetscCall(ReadOptions());
+  PetscCall(DeclareSolvers(comm));
+  PetscCall(DeclareOutputOptions(comm, name));
+  declaring_ = false;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Study::DeclareForcedRunSolvers(MPI_Comm comm)
+{
+  PetscFunctionBeginUser;
+  PetscCall(DeclareEPS(comm, "linear_"));
+  PetscCall(DeclareTS(comm, "sim_"));
   PetscFunctionReturn(0);
 }
 

@@ -15,13 +15,21 @@ class Study {
 public:
   virtual ~Study() = default;
   // Every option block the study's components read and its solver prefixes
-  // (core/options_audit.hpp): -help lists them, options none of them reads are refused.
-  virtual PetscErrorCode DeclareOptions(MPI_Comm comm) = 0;
+  // (core/options_audit.hpp): -help lists them, options none of them reads are
+  // refused. ReadOptions with declaring_ set, then DeclareSolvers and the output options.
+  PetscErrorCode DeclareOptions(MPI_Comm comm, const char *name);
   PetscErrorCode Run(MPI_Comm comm, const char *name);
 
 protected:
-  // Reads and checks the options, before any output exists.
+  // Reads and checks the options, before any output exists. With declaring_
+  // (DeclareOptions) it reads every block it may read and does no run-time work
+  // (files, memory, computing).
   virtual PetscErrorCode ReadOptions() = 0;
+  // The solver prefixes (DeclareTS, DeclareSNES, DeclareEPS), after ReadOptions under DeclareOptions.
+  virtual PetscErrorCode DeclareSolvers(MPI_Comm comm) { return 0; }
+  // The solvers of a forced run (timeint/simulation.hpp): -linear_eps_* (the
+  // mode profiles and the amplitude rule) and -sim_ts_*.
+  static PetscErrorCode DeclareForcedRunSolvers(MPI_Comm comm);
   // The -output path; a study that resumes its own file says so here.
   virtual PetscErrorCode OutputPath(std::string *path);
   // The bytes the output will take (the free-space check at open).
@@ -40,6 +48,7 @@ protected:
   // What Write gives so far, committed at -output as complete = 0 (a study
   // stopped by a signal keeps its finished part; Run commits complete outputs only).
   PetscErrorCode CommitPartial();
+  bool declaring_ = false; // ReadOptions runs for DeclareOptions
   MPI_Comm comm_ = MPI_COMM_NULL;
   const char *name_ = "";
   std::string path_; // -output

@@ -205,37 +205,24 @@ PetscErrorCode ComputePoint(const Lattice &lat, const LinearModes &modes, const 
 // Rank 0 writes the file itself: it merges every rank's journal into it
 // (checkpoints while the sweep runs, the final file at the end).
 class SweepStudy : public Study {
-public:
-  PetscErrorCode DeclareOptions(MPI_Comm comm) override
-  {
-    PetscFunctionBeginUser;
-    PetscCall(RejectGivenOptions(comm, {"-sim_progress", "-sim_sample_dt"}, "-study sweep (progress: -sweep_progress; no samples are stored)"));
-    PetscCall(LatticeParamsFromOptions(comm, &lp_));
-    PetscCall(SweepOptionsFromOptions(comm, &so_));
-    PetscCall(ToneBurstOptionsFromOptions(comm, lp_, &fo_));
-    PetscCall(SimulationOptionsFromOptions(comm, &sim_));
-    PetscCall(LinearModesOptionsFromOptions(comm, &mo_));
-    PetscCall(DeclareEPS(comm, "linear_"));
-    PetscCall(DeclareTS(comm, "sim_"));
-    PetscCall(DeclareOutputOptions(comm, "sweep"));
-    PetscFunctionReturn(0);
-  }
-
 protected:
   PetscErrorCode ReadOptions() override
   {
     PetscFunctionBeginUser;
     PetscCallMPI(MPI_Comm_rank(comm_, &rank_));
     PetscCallMPI(MPI_Comm_size(comm_, &size_));
+    PetscCall(RejectGivenOptions(comm_, {"-sim_progress", "-sim_sample_dt"}, "-study sweep (progress: -sweep_progress; no samples are stored)"));
     PetscCall(LatticeParamsFromOptions(comm_, &lp_));
     PetscCall(SweepOptionsFromOptions(comm_, &so_));
     PetscCall(ToneBurstOptionsFromOptions(comm_, lp_, &fo_));
-    PetscCheck(fo_.profile != ForceProfile::None, comm_, PETSC_ERR_USER, "-force_profile none: a sweep needs a forcing");
+    // what the options must not combine to is the run's check: declaring_ reads every block
+    PetscCheck(declaring_ || fo_.profile != ForceProfile::None, comm_, PETSC_ERR_USER, "-force_profile none: a sweep needs a forcing");
     PetscCall(SimulationOptionsFromOptions(comm_, &sim_));
-    PetscCall(CheckMcrAccuracyIntegrator(comm_, so_.mcr));
+    if (!declaring_) PetscCall(CheckMcrAccuracyIntegrator(comm_, so_.mcr));
     PetscCall(LinearModesOptionsFromOptions(comm_, &mo_));
     PetscFunctionReturn(0);
   }
+  PetscErrorCode DeclareSolvers(MPI_Comm comm) override { return DeclareForcedRunSolvers(comm); }
   // -sweep_resume continues -output itself (no -output_overwrite needed).
   PetscErrorCode OutputPath(std::string *path) override
   {

@@ -19,50 +19,43 @@ namespace {
 // forcing and integrator) or one orbit of the insulated NNM (shooting,
 // studies/workprecision_shooting.cpp, which builds its own objects).
 class WorkprecisionStudy : public Study {
-public:
-  PetscErrorCode DeclareOptions(MPI_Comm comm) override
-  {
-    PetscBool store_u = PETSC_FALSE;
-    PetscInt stride = 1;
-    PetscFunctionBeginUser;
-    PetscCall(WorkPrecisionOptionsFromOptions(comm, &wo_));
-    if (wo_.shooting) { // the insulated NNM: lattice, modes, flow, shooting, continuation, Floquet
-      FloquetOptions flo;
-      PetscCall(nnm_.DeclareOptions(comm));
-      PetscCall(FloquetOptionsFromOptions(comm, &flo));
-      PetscCall(DeclareOutputOptions(comm, "workprecision"));
-      PetscFunctionReturn(0);
-    }
-    PetscCall(LatticeParamsFromOptions(comm, &lp_));
-    PetscCall(ToneBurstOptionsFromOptions(comm, lp_, &fo_));
-    PetscCall(SimulationOptionsFromOptions(comm, &so_));
-    // A simulate scene's output options are accepted and ignored (nothing is sampled):
-    // any simulate options file can be the base scene.
-    PetscOptionsBegin(comm, "sim_", "Simulate study output (ignored by -study workprecision)", NULL);
-    PetscCall(PetscOptionsBool("-store_u", "Ignored here (a simulate scene's option)", NULL, store_u, &store_u, NULL));
-    PetscCall(PetscOptionsInt("-store_u_stride", "Ignored here (a simulate scene's option)", NULL, stride, &stride, NULL));
-    PetscOptionsEnd();
-    PetscCall(LinearModesOptionsFromOptions(comm, &mo_));
-    PetscCall(DeclareEPS(comm, "linear_"));
-    PetscCall(DeclareTS(comm, "sim_"));
-    PetscCall(DeclareOutputOptions(comm, "workprecision"));
-    PetscFunctionReturn(0);
-  }
-
 protected:
   PetscErrorCode ReadOptions() override
   {
     PetscFunctionBeginUser;
     PetscCall(WorkPrecisionOptionsFromOptions(comm_, &wo_));
-    if (wo_.shooting) {
+    if (wo_.shooting) { // the insulated NNM: lattice, modes, flow, shooting, continuation, Floquet
       PetscCall(nnm_.ReadOptions(comm_)); // bad options fail before the output file exists
+      if (declaring_) {
+        FloquetOptions flo; // read by RunWorkPrecisionShooting
+        PetscCall(FloquetOptionsFromOptions(comm_, &flo));
+      }
       PetscFunctionReturn(0);
     }
     PetscCall(LatticeParamsFromOptions(comm_, &lp_));
     PetscCall(ToneBurstOptionsFromOptions(comm_, lp_, &fo_));
-    PetscCheck(fo_.profile != ForceProfile::None, comm_, PETSC_ERR_USER, "-force_profile none: -study workprecision scores a forced run (MCR after the cut-off)");
+    // what the options must not combine to is the run's check: declaring_ reads every block
+    PetscCheck(declaring_ || fo_.profile != ForceProfile::None, comm_, PETSC_ERR_USER,
+               "-force_profile none: -study workprecision scores a forced run (MCR after the cut-off)");
     PetscCall(SimulationOptionsFromOptions(comm_, &so_));
+    if (declaring_) {
+      // A simulate scene's output options are accepted and ignored (nothing is sampled):
+      // any simulate options file can be the base scene.
+      PetscBool store_u = PETSC_FALSE;
+      PetscInt stride = 1;
+      PetscOptionsBegin(comm_, "sim_", "Simulate study output (ignored by -study workprecision)", NULL);
+      PetscCall(PetscOptionsBool("-store_u", "Ignored here (a simulate scene's option)", NULL, store_u, &store_u, NULL));
+      PetscCall(PetscOptionsInt("-store_u_stride", "Ignored here (a simulate scene's option)", NULL, stride, &stride, NULL));
+      PetscOptionsEnd();
+    }
     PetscCall(LinearModesOptionsFromOptions(comm_, &mo_));
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode DeclareSolvers(MPI_Comm comm) override
+  {
+    PetscFunctionBeginUser;
+    if (wo_.shooting) PetscCall(nnm_.DeclareSolvers(comm));
+    else PetscCall(DeclareForcedRunSolvers(comm));
     PetscFunctionReturn(0);
   }
   PetscErrorCode Build() override

@@ -170,20 +170,6 @@ PetscErrorCode Tabulate(MPI_Comm comm, const ZakOptions &zo, const std::vector<P
 }
 
 class ZakStudy : public Study {
-public:
-  PetscErrorCode DeclareOptions(MPI_Comm comm) override
-  {
-    PetscFunctionBeginUser;
-    PetscCall(ZakOptionsFromOptions(comm, &lp_, &zo_));
-    PetscCall(ToneBurstOptionsFromOptions(comm, lp_, &fo_));
-    PetscCall(SimulationOptionsFromOptions(comm, &sim_));
-    PetscCall(LinearModesOptionsFromOptions(comm, &mo_));
-    PetscCall(DeclareEPS(comm, "linear_"));
-    PetscCall(DeclareTS(comm, "sim_"));
-    PetscCall(DeclareOutputOptions(comm, "zak"));
-    PetscFunctionReturn(0);
-  }
-
 protected:
   PetscErrorCode ReadOptions() override
   {
@@ -195,6 +181,7 @@ protected:
     PetscCall(LinearModesOptionsFromOptions(comm_, &mo_));
     PetscFunctionReturn(0);
   }
+  PetscErrorCode DeclareSolvers(MPI_Comm comm) override { return DeclareForcedRunSolvers(comm); }
   PetscErrorCode Build() override
   {
     PetscFunctionBeginUser;
