@@ -228,79 +228,72 @@ PetscErrorCode WriteColumnBlock(PetscViewer v, const char *group, const char *na
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode WriteArrayND(PetscViewer v, const char *group, const char *name, const std::vector<PetscReal> &data, const std::vector<PetscInt> &dims)
+// A dataset of the given HDF5 type and shape whose values rank 0 gives
+// (buf); the other ranks select nothing. Collective.
+static PetscErrorCode WriteRootDataset(PetscViewer v, const char *group, const char *name, hid_t type, const std::vector<hsize_t> &dims, const void *buf)
 {
   hid_t file, grp, space, dset, xfer;
   PetscMPIInt rank, size;
   MPI_Comm comm = PetscObjectComm((PetscObject)v);
-  std::vector<hsize_t> hd(dims.begin(), dims.end());
   PetscFunctionBeginUser;
-  PetscCall(SchemaCheckWrite(PetscObjectComm((PetscObject)v), group, name, FieldKind::Dataset, FieldType::Real));
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Comm_size(comm, &size));
-  size_t n = 1;
-  for (PetscInt d : dims) n *= (size_t)d;
-  PetscCheck(!dims.empty() && n > 0 && (rank || n == data.size()), comm, PETSC_ERR_ARG_SIZ, "dataset %s/%s: %zu values for its shape", group, name, data.size());
   PetscCall(PetscViewerHDF5WriteGroup(v, group));
   PetscCall(PetscViewerHDF5GetFileId(v, &file));
   H5CHK(grp = H5Gopen2(file, group, H5P_DEFAULT));
-  H5CHK(space = H5Screate_simple((int)hd.size(), hd.data(), NULL));
-  H5CHK(dset = H5Dcreate2(grp, name, H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  H5CHK(space = H5Screate_simple((int)dims.size(), dims.data(), NULL));
+  H5CHK(dset = H5Dcreate2(grp, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
   if (rank) H5CHK(H5Sselect_none(space));
   H5CHK(xfer = H5Pcreate(H5P_DATASET_XFER));
 #if defined(H5_HAVE_PARALLEL)
   if (size > 1) H5CHK(H5Pset_dxpl_mpio(xfer, H5FD_MPIO_COLLECTIVE));
 #endif
-  AGREE(PetscObjectComm((PetscObject)v), H5Dwrite(dset, H5T_NATIVE_DOUBLE, rank ? space : H5S_ALL, space, xfer, data.data()) < 0, "H5Dwrite");
+  AGREE(comm, H5Dwrite(dset, type, rank ? space : H5S_ALL, space, xfer, buf) < 0, "H5Dwrite");
   H5CHK(H5Pclose(xfer));
   H5CHK(H5Dclose(dset));
   H5CHK(H5Sclose(space));
   H5CHK(H5Gclose(grp));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode WriteArrayND(PetscViewer v, const char *group, const char *name, const std::vector<PetscReal> &data, const std::vector<PetscInt> &dims)
+{
+  PetscMPIInt rank;
+  MPI_Comm comm = PetscObjectComm((PetscObject)v);
+  PetscFunctionBeginUser;
+  PetscCall(SchemaCheckWrite(comm, group, name, FieldKind::Dataset, FieldType::Real));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  size_t n = 1;
+  for (PetscInt d : dims) n *= (size_t)d;
+  PetscCheck(!dims.empty() && n > 0 && (rank || n == data.size()), comm, PETSC_ERR_ARG_SIZ, "dataset %s/%s: %zu values for its shape", group, name, data.size());
+  PetscCall(WriteRootDataset(v, group, name, H5T_NATIVE_DOUBLE, std::vector<hsize_t>(dims.begin(), dims.end()), data.data()));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode WriteIntArray(PetscViewer v, const char *group, const char *name, const std::vector<PetscInt> &data, PetscInt bs)
 {
-  hid_t file, grp, space, dset, xfer;
-  PetscMPIInt rank, size;
   MPI_Comm comm = PetscObjectComm((PetscObject)v);
   PetscInt n = (PetscInt)data.size();
   PetscFunctionBeginUser;
-  PetscCall(SchemaCheckWrite(PetscObjectComm((PetscObject)v), group, name, FieldKind::Dataset, FieldType::Int));
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(SchemaCheckWrite(comm, group, name, FieldKind::Dataset, FieldType::Int));
   PetscCallMPI(MPI_Bcast(&n, 1, MPIU_INT, 0, comm));
   PetscCheck(n > 0 && n % bs == 0, comm, PETSC_ERR_ARG_SIZ, "integer dataset %s/%s: %" PetscInt_FMT " values, block %" PetscInt_FMT, group, name, n, bs);
-  PetscCall(PetscViewerHDF5WriteGroup(v, group));
-  PetscCall(PetscViewerHDF5GetFileId(v, &file));
-  const hsize_t dims[2] = {(hsize_t)(n / bs), (hsize_t)bs};
-  H5CHK(grp = H5Gopen2(file, group, H5P_DEFAULT));
-  H5CHK(space = H5Screate_simple(bs == 1 ? 1 : 2, dims, NULL));
-  H5CHK(dset = H5Dcreate2(grp, name, H5T_NATIVE_INT, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
-  if (rank) H5CHK(H5Sselect_none(space));
-  H5CHK(xfer = H5Pcreate(H5P_DATASET_XFER));
-#if defined(H5_HAVE_PARALLEL)
-  if (size > 1) H5CHK(H5Pset_dxpl_mpio(xfer, H5FD_MPIO_COLLECTIVE));
-#endif
-  std::vector<int> buf(data.begin(), data.end());
-  H5CHK(H5Dwrite(dset, H5T_NATIVE_INT, rank ? space : H5S_ALL, space, xfer, buf.data()));
-  H5CHK(H5Pclose(xfer));
-  H5CHK(H5Dclose(dset));
-  H5CHK(H5Sclose(space));
-  H5CHK(H5Gclose(grp));
+  std::vector<hsize_t> dims = {(hsize_t)(n / bs)};
+  if (bs != 1) dims.push_back((hsize_t)bs);
+  const std::vector<int> buf(data.begin(), data.end());
+  PetscCall(WriteRootDataset(v, group, name, H5T_NATIVE_INT, dims, buf.data()));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode WriteStringArray(PetscViewer v, const char *group, const char *name, const std::vector<std::string> &data)
 {
-  hid_t file, grp, space, dset, xfer, type;
-  PetscMPIInt rank, size;
+  hid_t type;
+  PetscMPIInt rank;
   MPI_Comm comm = PetscObjectComm((PetscObject)v);
   PetscInt n = (PetscInt)data.size(), width = 1;
   PetscFunctionBeginUser;
-  PetscCall(SchemaCheckWrite(PetscObjectComm((PetscObject)v), group, name, FieldKind::Dataset, FieldType::String));
+  PetscCall(SchemaCheckWrite(comm, group, name, FieldKind::Dataset, FieldType::String));
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  PetscCallMPI(MPI_Comm_size(comm, &size));
   for (const auto &s : data) width = std::max(width, (PetscInt)s.size() + 1);
   PetscCallMPI(MPI_Bcast(&n, 1, MPIU_INT, 0, comm));
   PetscCallMPI(MPI_Bcast(&width, 1, MPIU_INT, 0, comm));
@@ -308,25 +301,10 @@ PetscErrorCode WriteStringArray(PetscViewer v, const char *group, const char *na
   std::vector<char> buf(rank ? 1 : (size_t)(n * width), '\0');
   if (!rank)
     for (PetscInt i = 0; i < n; i++) std::copy(data[i].begin(), data[i].end(), buf.begin() + i * width);
-  PetscCall(PetscViewerHDF5WriteGroup(v, group));
-  PetscCall(PetscViewerHDF5GetFileId(v, &file));
-  const hsize_t dims[1] = {(hsize_t)n};
   H5CHK(type = H5Tcopy(H5T_C_S1));
   H5CHK(H5Tset_size(type, (size_t)width));
   H5CHK(H5Tset_strpad(type, H5T_STR_NULLTERM));
-  H5CHK(grp = H5Gopen2(file, group, H5P_DEFAULT));
-  H5CHK(space = H5Screate_simple(1, dims, NULL));
-  H5CHK(dset = H5Dcreate2(grp, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
-  if (rank) H5CHK(H5Sselect_none(space));
-  H5CHK(xfer = H5Pcreate(H5P_DATASET_XFER));
-#if defined(H5_HAVE_PARALLEL)
-  if (size > 1) H5CHK(H5Pset_dxpl_mpio(xfer, H5FD_MPIO_COLLECTIVE));
-#endif
-  H5CHK(H5Dwrite(dset, type, rank ? space : H5S_ALL, space, xfer, buf.data()));
-  H5CHK(H5Pclose(xfer));
-  H5CHK(H5Dclose(dset));
-  H5CHK(H5Sclose(space));
-  H5CHK(H5Gclose(grp));
+  PetscCall(WriteRootDataset(v, group, name, type, {(hsize_t)n}, buf.data()));
   H5CHK(H5Tclose(type));
   PetscFunctionReturn(0);
 }

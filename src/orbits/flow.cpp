@@ -232,7 +232,9 @@ PetscErrorCode PeriodicFlow::AccumulateStiffness(PetscInt step, Vec z)
   const PetscReal phase = 4 * PETSC_PI * step / opt_.steps, wc = 2 * w * std::cos(phase), ws = 2 * w * std::sin(phase);
   const PetscInt xs = lat_->OwnedStart(), xm = lat_->OwnedCount();
   StiffnessHarmonics &h = *harm_;
-  std::vector<PetscScalar> kd(xm), kb(xm + 1); // K_T(u): owned diagonal, bonds xs-1 .. xs+xm-1
+  std::vector<PetscScalar> &kd = kd_, &kb = kb_; // K_T(u): owned diagonal, bonds xs-1 .. xs+xm-1
+  kd.resize(xm);
+  kb.resize(xm + 1);
   PetscCall(lat_->GetGhostedU(z, &ul, &u));
   fx_->Stiffness(u, kd.data() - xs, kb.data() + 1 - xs);
   for (PetscInt i = xs; i < xs + xm; i++) {

@@ -99,6 +99,7 @@ private:
   bool symplectic_ = false;
   OwnedVec wb_;
   StiffnessHarmonics *harm_ = nullptr; // set while averaging K_T
+  std::vector<PetscScalar> kd_, kb_;   // K_T at one step of the averaging (scratch)
 };
 
 } // namespace nltopo
