@@ -19,6 +19,7 @@ PetscErrorCode LogRegister()
   PetscCall(PetscLogEventRegister("Diagnostics", cid, &g_log.diagnostics));
   PetscCall(PetscLogEventRegister("VariationalRhs", cid, &g_log.variational));
   PetscCall(PetscLogEventRegister("Floquet", cid, &g_log.floquet));
+  PetscCall(PetscLogEventRegister("Bifurcations", cid, &g_log.bifurcations));
   PetscCall(PetscLogEventRegister("ShootLinPC", cid, &g_log.mf_pc));
   PetscCall(PetscLogStageRegister("Setup", &g_log.setup));
   PetscCall(PetscLogStageRegister("Solve", &g_log.solve));

@@ -7,7 +7,7 @@ namespace nltopo {
 
 struct LogEvents {
   PetscClassId classid; // the effects register their own events (RhsLinear, RhsCubic, ...) with it
-  PetscLogEvent energy, jacobian, eigen, bloch, output, diagnostics, variational, floquet, mf_pc;
+  PetscLogEvent energy, jacobian, eigen, bloch, output, diagnostics, variational, floquet, mf_pc, bifurcations;
   PetscLogStage setup, solve, write;
 };
 

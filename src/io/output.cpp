@@ -244,6 +244,8 @@ static PetscErrorCode WriteRootDataset(PetscViewer v, const char *group, const c
   H5CHK(space = H5Screate_simple((int)dims.size(), dims.data(), NULL));
   H5CHK(dset = H5Dcreate2(grp, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
   if (rank) H5CHK(H5Sselect_none(space));
+  static const double none = 0;
+  if (!buf) buf = &none; // a dataset with no rows: HDF5 wants a buffer all the same
   H5CHK(xfer = H5Pcreate(H5P_DATASET_XFER));
 #if defined(H5_HAVE_PARALLEL)
   if (size > 1) H5CHK(H5Pset_dxpl_mpio(xfer, H5FD_MPIO_COLLECTIVE));
@@ -265,7 +267,7 @@ PetscErrorCode WriteArrayND(PetscViewer v, const char *group, const char *name, 
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   size_t n = 1;
   for (PetscInt d : dims) n *= (size_t)d;
-  PetscCheck(!dims.empty() && n > 0 && (rank || n == data.size()), comm, PETSC_ERR_ARG_SIZ, "dataset %s/%s: %zu values for its shape", group, name, data.size());
+  PetscCheck(!dims.empty() && (rank || n == data.size()), comm, PETSC_ERR_ARG_SIZ, "dataset %s/%s: %zu values for its shape", group, name, data.size());
   PetscCall(WriteRootDataset(v, group, name, H5T_NATIVE_DOUBLE, std::vector<hsize_t>(dims.begin(), dims.end()), data.data()));
   PetscFunctionReturn(0);
 }
@@ -277,7 +279,7 @@ PetscErrorCode WriteIntArray(PetscViewer v, const char *group, const char *name,
   PetscFunctionBeginUser;
   PetscCall(SchemaCheckWrite(comm, group, name, FieldKind::Dataset, FieldType::Int));
   PetscCallMPI(MPI_Bcast(&n, 1, MPIU_INT, 0, comm));
-  PetscCheck(n > 0 && n % bs == 0, comm, PETSC_ERR_ARG_SIZ, "integer dataset %s/%s: %" PetscInt_FMT " values, block %" PetscInt_FMT, group, name, n, bs);
+  PetscCheck(n >= 0 && bs > 0 && n % bs == 0, comm, PETSC_ERR_ARG_SIZ, "integer dataset %s/%s: %" PetscInt_FMT " values, block %" PetscInt_FMT, group, name, n, bs);
   std::vector<hsize_t> dims = {(hsize_t)(n / bs)};
   if (bs != 1) dims.push_back((hsize_t)bs);
   const std::vector<int> buf(data.begin(), data.end());

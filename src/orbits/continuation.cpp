@@ -72,8 +72,27 @@ PetscErrorCode DisplacementMcr(const Lattice &lat, Vec z, PetscReal *mcr)
   PetscFunctionReturn(0);
 }
 
+// The resume state after a point: the tangent t (natural order on rank 0) and ds.
+PetscErrorCode StoreNextStep(const Lattice &lat, Shooting &shoot, Vec t, Vec tz, PetscReal ds, Branch *b)
+{
+  PetscReal dT, dbeta;
+  std::vector<PetscReal> row;
+  PetscFunctionBeginUser;
+  PetscCall(shoot.Unpack(t, tz, &dT, &dbeta));
+  PetscCall(AppendStateRow(lat, tz, &row));
+  if (!row.empty()) {
+    row.push_back(dT);
+    row.push_back(dbeta);
+  }
+  b->next_tangent = std::move(row);
+  b->next_ds = ds;
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
 // Appends z in natural [u, v] order to rank 0's row store.
-PetscErrorCode AppendRow(const Lattice &lat, Vec z, std::vector<PetscReal> *rows)
+PetscErrorCode AppendStateRow(const Lattice &lat, Vec z, std::vector<PetscReal> *rows)
 {
   std::vector<PetscReal> all;
   PetscFunctionBeginUser;
@@ -91,7 +110,7 @@ PetscErrorCode AppendRow(const Lattice &lat, Vec z, std::vector<PetscReal> *rows
 }
 
 // z from a natural row [u_1..u_N, v_1..v_N] held by every rank.
-PetscErrorCode SetFromRow(const Lattice &lat, const PetscReal *row, Vec z)
+PetscErrorCode StateFromRow(const Lattice &lat, const PetscReal *row, Vec z)
 {
   const PetscInt N = lat.N();
   PetscFunctionBeginUser;
@@ -103,25 +122,6 @@ PetscErrorCode SetFromRow(const Lattice &lat, const PetscReal *row, Vec z)
   PetscCall(VecAssemblyEnd(z));
   PetscFunctionReturn(0);
 }
-
-// The resume state after a point: the tangent t (natural order on rank 0) and ds.
-PetscErrorCode StoreNextStep(const Lattice &lat, Shooting &shoot, Vec t, Vec tz, PetscReal ds, Branch *b)
-{
-  PetscReal dT, dbeta;
-  std::vector<PetscReal> row;
-  PetscFunctionBeginUser;
-  PetscCall(shoot.Unpack(t, tz, &dT, &dbeta));
-  PetscCall(AppendRow(lat, tz, &row));
-  if (!row.empty()) {
-    row.push_back(dT);
-    row.push_back(dbeta);
-  }
-  b->next_tangent = std::move(row);
-  b->next_ds = ds;
-  PetscFunctionReturn(0);
-}
-
-} // namespace
 
 PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, const ContinuationOptions &o, const char *name, Branch *b, PointHook *hook,
                               const Branch *resume)
@@ -175,9 +175,9 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
     }
     PetscCallMPI(MPI_Bcast(row.data(), (PetscMPIInt)(2 * N + 2), MPIU_REAL, 0, comm));
     PetscCallMPI(MPI_Bcast(last.data(), (PetscMPIInt)(2 * N), MPIU_REAL, 0, comm));
-    PetscCall(SetFromRow(lat, last.data(), z));
+    PetscCall(StateFromRow(lat, last.data(), z));
     PetscCall(shoot.Pack(z, b->period.back(), b->beta.back(), X));
-    PetscCall(SetFromRow(lat, row.data(), tz));
+    PetscCall(StateFromRow(lat, row.data(), tz));
     PetscCall(shoot.Pack(tz, row[2 * N], row[2 * N + 1], t));
     ds = b->next_ds;
     PetscCallMPI(MPI_Bcast(&ds, 1, MPIU_REAL, 0, comm));
@@ -195,8 +195,8 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
     PetscCallMPI(MPI_Comm_rank(comm, &rank));
     if (rank == 0) std::copy(b->z0.end() - 4 * N, b->z0.end(), rows.begin());
     PetscCallMPI(MPI_Bcast(rows.data(), (PetscMPIInt)(4 * N), MPIU_REAL, 0, comm));
-    PetscCall(SetFromRow(lat, rows.data(), zprev));
-    PetscCall(SetFromRow(lat, rows.data() + 2 * N, z));
+    PetscCall(StateFromRow(lat, rows.data(), zprev));
+    PetscCall(StateFromRow(lat, rows.data() + 2 * N, z));
     const PetscReal dT = b->period[np - 1] - b->period[np - 2];
     PetscCall(shoot.Pack(z, b->period.back(), 0.0, X));
     PetscCall(shoot.SetEnergyConstraint(z, b->energy.back()));
@@ -267,7 +267,7 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
       b->newton_its.push_back(newton_its);
       b->krylov_its.push_back(shoot.KrylovIterations() - kry0);
       kry0 = shoot.KrylovIterations();
-      PetscCall(AppendRow(lat, z, &b->z0));
+      PetscCall(AppendStateRow(lat, z, &b->z0));
       if (hook) {
         PetscReal dT, dbeta;
         PetscCall(shoot.Unpack(t, tz, &dT, &dbeta));

@@ -40,6 +40,11 @@ struct Branch {
   PetscReal next_ds = 0;
 };
 
+// A state z in natural order [u_1..u_N, v_1..v_N]: appended to rank 0's row
+// store (other ranks: unchanged), or set from a row every rank holds.
+PetscErrorCode AppendStateRow(const Lattice &lat, Vec z, std::vector<PetscReal> *rows);
+PetscErrorCode StateFromRow(const Lattice &lat, const PetscReal *row, Vec z);
+
 // Called at every accepted orbit (z0, T, beta), e.g. for its Floquet
 // multipliers. dz0 is the state part of the family tangent there (the
 // generalized eigenvector of the trivial Floquet pair: (M - I) dz0 = -dT f(z0)).

@@ -25,6 +25,15 @@ PetscErrorCode FloquetOptionsFromOptions(MPI_Comm comm, FloquetOptions *o)
   PetscFunctionReturn(0);
 }
 
+void KreinSums(const PetscScalar *a, const PetscScalar *b, PetscInt n, PetscReal sums[2])
+{
+  sums[0] = sums[1] = 0;
+  for (PetscInt k = 0; k < n; k++) {
+    sums[0] += 2 * (a[k] * b[n + k] - a[n + k] * b[k]);
+    sums[1] += a[k] * a[k] + b[k] * b[k] + a[n + k] * a[n + k] + b[n + k] * b[n + k];
+  }
+}
+
 namespace {
 
 // Sums over the owned state entries of x (u part first, then v): -i v^H J v / |v|^2 for v = xr + i xi,
@@ -39,10 +48,9 @@ PetscErrorCode KreinAndEdge(const Lattice &lat, Vec xr, Vec xi, PetscInt e, Pets
   PetscFunctionBeginUser;
   PetscCall(VecGetArrayRead(xr, &a));
   PetscCall(VecGetArrayRead(xi, &b));
+  KreinSums(a, b, xm, loc);
   for (PetscInt k = 0; k < xm; k++) {
     const PetscInt i = xs + k;
-    loc[0] += a[k] * b[xm + k] - a[xm + k] * b[k];
-    loc[1] += a[k] * a[k] + b[k] * b[k] + a[xm + k] * a[xm + k] + b[xm + k] * b[xm + k];
     const PetscReal d = a[k] * a[k] + b[k] * b[k];
     loc[2] += d;
     if (iface && i >= m - e && i <= m + 1 + e) loc[3] += d;
@@ -50,7 +58,7 @@ PetscErrorCode KreinAndEdge(const Lattice &lat, Vec xr, Vec xi, PetscInt e, Pets
   PetscCall(VecRestoreArrayRead(xi, &b));
   PetscCall(VecRestoreArrayRead(xr, &a));
   PetscCall(MPIU_Allreduce(loc, g, 4, MPIU_REAL, MPIU_SUM, lat.Comm()));
-  *kappa = g[1] > 0 ? 2 * g[0] / g[1] : 0;
+  *kappa = g[1] > 0 ? g[0] / g[1] : 0;
   *edge = g[2] > 0 ? g[3] / g[2] : 0;
   PetscFunctionReturn(0);
 }
@@ -98,9 +106,44 @@ PetscErrorCode DeterminantError(Mat M, PetscInt n, PetscReal *err)
   PetscFunctionReturn(0);
 }
 
+// The eigenvector of the multiplier nearest target (see floquet.hpp).
+PetscErrorCode CriticalVector(const Lattice &lat, EPS eps, const std::vector<PetscReal> &re, const std::vector<PetscReal> &im, const PetscReal *target,
+                              Vec xr, Vec xi, std::vector<PetscReal> *vec)
+{
+  PetscScalar kr, ki;
+  std::vector<PetscReal> a, b;
+  PetscFunctionBeginUser;
+  PetscCheck(target, lat.Comm(), PETSC_ERR_ARG_NULL, "FloquetAnalysis: an eigenvector needs a target multiplier");
+  size_t k = 0;
+  for (size_t i = 1; i < re.size(); i++)
+    if (std::hypot(re[i] - target[0], im[i] - target[1]) < std::hypot(re[k] - target[0], im[k] - target[1])) k = i;
+  PetscCall(EPSGetEigenpair(eps, (PetscInt)k, &kr, &ki, xr, xi));
+  if (ki == 0) PetscCall(VecZeroEntries(xi)); // a real eigenvalue: xi is not set
+  PetscCall(GatherVec(xr, true, &a));
+  PetscCall(GatherVec(xi, true, &b));
+  // e^{i phi} (a + i b) with the largest real part: tan 2 phi = -2 a.b / (|a|^2 - |b|^2).
+  PetscReal ab = 0, aa = 0, bb = 0;
+  for (size_t i = 0; i < a.size(); i++) ab += a[i] * b[i], aa += a[i] * a[i], bb += b[i] * b[i];
+  const PetscReal phi = -0.5 * std::atan2(2 * ab, aa - bb), c = std::cos(phi), s = std::sin(phi);
+  const PetscInt N = lat.N();
+  vec->assign(2 * N, 0);
+  PetscReal norm = 0, big = 0;
+  for (PetscInt i = 0; i < N; i++)
+    for (PetscInt part = 0; part < 2; part++) {
+      const PetscInt j = part ? lat.StateIndexV(i) : lat.StateIndexU(i);
+      const PetscReal x = c * a[j] - s * b[j];
+      (*vec)[part * N + i] = x;
+      norm += x * x;
+      if (std::abs(x) > std::abs(big)) big = x;
+    }
+  const PetscReal scale = (big < 0 ? -1 : 1) / (norm > 0 ? std::sqrt(norm) : 1);
+  for (PetscReal &x : *vec) x *= scale;
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
-PetscErrorCode FloquetAnalysis(const Lattice &lat, Mat S, const FloquetOptions &o, FloquetResult *r)
+PetscErrorCode FloquetAnalysis(const Lattice &lat, Mat S, const FloquetOptions &o, FloquetResult *r, const PetscReal *target, std::vector<PetscReal> *vec)
 {
   const PetscInt n = 2 * lat.N(), nl = 2 * lat.OwnedCount();
   OwnedMat M;
@@ -162,6 +205,8 @@ PetscErrorCode FloquetAnalysis(const Lattice &lat, Mat S, const FloquetOptions &
     r->re.push_back(re[i]);
     r->im.push_back(im[i]);
     r->krein.push_back(std::abs(kap[i]) < o.krein_tol ? 0 : (kap[i] > 0 ? 1 : -1));
+    r->edge.push_back(edge[i]);
+    r->kappa.push_back(kap[i]);
     if (std::hypot(re[i] - 1, im[i]) < 1e-4) r->trivial++;
     if (mod > r->max_modulus) {
       r->max_modulus = mod;
@@ -173,6 +218,7 @@ PetscErrorCode FloquetAnalysis(const Lattice &lat, Mat S, const FloquetOptions &
     const PetscReal w = edge[worst];
     r->instability = w > o.edge_weight ? 3 : (w < 1 - o.edge_weight ? 1 : 2);
   }
+  if (vec) PetscCall(CriticalVector(lat, eps, re, im, target, xr, xi, vec));
   PetscCall(PetscLogEventEnd(Log().floquet, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

@@ -20,6 +20,8 @@ PetscErrorCode FloquetOptionsFromOptions(MPI_Comm comm, FloquetOptions *o);
 struct FloquetResult {
   std::vector<PetscReal> re, im; // 2N multipliers, sorted by angle then modulus
   std::vector<PetscInt> krein;   // -1, 0, 1
+  std::vector<PetscReal> edge;   // share of each eigenvector's displacement norm in the edge region
+  std::vector<PetscReal> kappa;  // the Krein value -i v^H J v / |v|^2 itself (krein is its sign above krein_tol)
   PetscReal max_modulus = 0;
   bool stable = true;
   PetscInt instability = 0;      // 0 none, 1 bulk-bulk, 2 bulk-edge, 3 edge-edge
@@ -30,7 +32,17 @@ struct FloquetResult {
 };
 
 // M: the 2N x 2N monodromy in the state layout (columns 0..2N-1 of the
-// sensitivity matrix S, whose last column is ignored).
-PetscErrorCode FloquetAnalysis(const Lattice &lat, Mat S, const FloquetOptions &o, FloquetResult *r);
+// sensitivity matrix S, whose last column is ignored). With vec, also the
+// eigenvector of the multiplier nearest target (re, im): natural order
+// [u_1..u_N, v_1..v_N] on every rank, unit norm, its phase turned so that its
+// real part (written) is largest, the largest entry positive.
+PetscErrorCode FloquetAnalysis(const Lattice &lat, Mat S, const FloquetOptions &o, FloquetResult *r, const PetscReal *target = nullptr,
+                               std::vector<PetscReal> *vec = nullptr);
+
+// The Krein value -i v^H J v / |v|^2 of v = xr + i xi for J = [[0, I], [-I, 0]],
+// summed over n (u, v) pairs laid out as [u_1..u_n, v_1..v_n] (the owned part of
+// a state vector, or a whole small canonical state): returns the local sums
+// {2 (xr_u . xi_v - xr_v . xi_u), |v|^2}, to be reduced over ranks.
+void KreinSums(const PetscScalar *xr, const PetscScalar *xi, PetscInt n, PetscReal sums[2]);
 
 } // namespace nltopo

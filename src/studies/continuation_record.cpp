@@ -2,6 +2,7 @@
 #include "io/input.hpp"
 #include "io/output.hpp"
 #include "io/schema.hpp"
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -123,6 +124,60 @@ PetscErrorCode Broadcast(MPI_Comm comm, MPI_Datatype type, std::vector<T> *v)
   PetscFunctionReturn(0);
 }
 
+// /continuation/<branch>/bifurcations: each field of its schema from the events.
+struct EventColumn {
+  const char *name;
+  PetscInt width; // values per event: 1, 2 (krein) or 0 for 2N (vector)
+  void (*get)(const BifurcationEvent &, const BranchRecord &, PetscReal *);
+};
+
+// clang-format off
+const EventColumn kEventColumns[] = {
+  {"kind", 1, [](const BifurcationEvent &e, const BranchRecord &, PetscReal *x) { x[0] = (PetscReal)e.kind; }},
+  {"energy", 1, [](const BifurcationEvent &e, const BranchRecord &, PetscReal *x) { x[0] = e.energy; }},
+  {"omega", 1, [](const BifurcationEvent &e, const BranchRecord &, PetscReal *x) { x[0] = e.omega; }},
+  {"s", 1, [](const BifurcationEvent &e, const BranchRecord &, PetscReal *x) { x[0] = e.s; }},
+  {"multiplier_re", 1, [](const BifurcationEvent &e, const BranchRecord &, PetscReal *x) { x[0] = e.mu_re; }},
+  {"multiplier_im", 1, [](const BifurcationEvent &e, const BranchRecord &, PetscReal *x) { x[0] = e.mu_im; }},
+  {"krein", 2, [](const BifurcationEvent &e, const BranchRecord &, PetscReal *x) { x[0] = e.krein[0], x[1] = e.krein[1]; }},
+  {"vector", 0, [](const BifurcationEvent &e, const BranchRecord &, PetscReal *x) { std::copy(e.vector.begin(), e.vector.end(), x); }},
+  {"direction", 1, [](const BifurcationEvent &e, const BranchRecord &, PetscReal *x) { x[0] = (PetscReal)e.direction; }},
+  {"point", 1, [](const BifurcationEvent &e, const BranchRecord &, PetscReal *x) { x[0] = (PetscReal)e.point; }},
+  {"instability", 1, [](const BifurcationEvent &e, const BranchRecord &, PetscReal *x) { x[0] = (PetscReal)e.instability; }},
+  {"omega_bracket", 1, [](const BifurcationEvent &e, const BranchRecord &, PetscReal *x) { x[0] = e.omega_bracket; }},
+};
+// clang-format on
+
+PetscErrorCode WriteEvents(PetscViewer v, const BranchRecord &r, PetscInt n2)
+{
+  MPI_Comm comm = PetscObjectComm((PetscObject)v);
+  const std::string g = "/continuation/" + r.label + "/bifurcations";
+  const Schema *s = FindSchema("/continuation/<branch>/bifurcations");
+  const PetscInt ne = (PetscInt)r.events.size();
+  PetscFunctionBeginUser;
+  PetscCheck(s, comm, PETSC_ERR_PLIB, "output schema (src/io/schema.cpp) has no /continuation/<branch>/bifurcations");
+  for (const Field &fd : s->fields) {
+    if (fd.kind == FieldKind::Attribute) {
+      if (!std::strcmp(fd.name, "tol")) PetscCall(WriteAttr(v, g.c_str(), fd.name, r.bif_tol));
+      else if (!std::strcmp(fd.name, "probes")) PetscCall(WriteAttr(v, g.c_str(), fd.name, r.bif_probes));
+      else if (!std::strcmp(fd.name, "seconds")) PetscCall(WriteAttr(v, g.c_str(), fd.name, r.bif_seconds));
+      else SETERRQ(comm, PETSC_ERR_PLIB, "attribute %s/%s of the output schema has no value in studies/continuation_record.cpp", g.c_str(), fd.name);
+      continue;
+    }
+    const EventColumn *c = nullptr;
+    for (const EventColumn &k : kEventColumns)
+      if (!std::strcmp(k.name, fd.name)) c = &k;
+    PetscCheck(c, comm, PETSC_ERR_PLIB, "dataset %s/%s of the output schema has no column in studies/continuation_record.cpp", g.c_str(), fd.name);
+    const PetscInt w = c->width ? c->width : n2;
+    std::vector<PetscReal> x((size_t)ne * w, NAN);
+    for (PetscInt k = 0; k < ne; k++)
+      if (c->width || r.events[k].vector.size() == (size_t)n2) c->get(r.events[k], r, x.data() + (size_t)k * w); // a fold's tangent or a vector not found: NaN
+    if (fd.type == FieldType::Int) PetscCall(WriteIntArray(v, g.c_str(), fd.name, std::vector<PetscInt>(x.begin(), x.end()), w));
+    else PetscCall(WriteArrayND(v, g.c_str(), fd.name, x, w == 1 ? std::vector<PetscInt>{ne} : std::vector<PetscInt>{ne, w}));
+  }
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
 std::vector<const char *> ContinuationVariants(FloquetKind fk)
@@ -168,6 +223,7 @@ PetscErrorCode WriteRecord(PetscViewer v, const BranchRecord &r, FloquetKind fk,
       else PetscCall(WriteArray(v, gc, fd->name, x, row ? row : 1));
     }
   }
+  if (r.located) PetscCall(WriteEvents(v, r, n2));
   PetscFunctionReturn(0);
 }
 

@@ -3,6 +3,7 @@
 // branch, written and read back (-cont_resume) by one table of columns bound
 // to the fields of the group's schema (io/schema.cpp).
 #include "orbits/continuation.hpp"
+#include "stability/bifurcations.hpp"
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@ namespace nltopo {
 struct FloquetColumns {
   std::vector<PetscReal> re, im, max_modulus, det_error;
   std::vector<PetscInt> krein, stable, instability;
+  std::vector<PetscReal> edge; // dense route: each eigenvector's edge share (kept in memory for -cont_bifurcations, not written)
   PetscInt products = 0, unconverged = 0;
 };
 
@@ -25,6 +27,11 @@ struct BranchRecord {
   Branch b;
   FloquetColumns f;
   PetscInt jac = 0, res = 0, tan = 0, kry = 0;
+  // -cont_bifurcations: the located events (written when located is set)
+  bool located = false;
+  std::vector<BifurcationEvent> events;
+  PetscReal bif_tol = 0, bif_seconds = 0;
+  PetscInt bif_probes = 0;
 };
 
 enum class FloquetKind { None, Dense, MatrixFree };

@@ -10,6 +10,7 @@
 #include "io/schema.hpp"
 #include "orbits/continuation.hpp"
 #include "stability/floquet.hpp"
+#include "stability/bifurcation_locator.hpp"
 #include "stability/floquet_mf.hpp"
 #include "studies/continuation_record.hpp"
 #include "studies/registry.hpp"
@@ -74,6 +75,7 @@ public:
     c.re.insert(c.re.end(), r.re.begin(), r.re.end());
     c.im.insert(c.im.end(), r.im.begin(), r.im.end());
     c.krein.insert(c.krein.end(), r.krein.begin(), r.krein.end());
+    c.edge.insert(c.edge.end(), r.edge.begin(), r.edge.end());
     c.max_modulus.push_back(r.max_modulus);
     c.det_error.push_back(r.det_error);
     c.stable.push_back(r.stable);
@@ -227,6 +229,7 @@ protected:
     if (declaring_ || ch_.floquet) PetscCall(FloquetOptionsFromOptions(comm_, &flo_));
     if (declaring_ || (ch_.floquet && ch_.floquet_mf)) PetscCall(FloquetMfOptionsFromOptions(comm_, &fmo_));
     fk_ = !ch_.floquet ? FloquetKind::None : ch_.floquet_mf ? FloquetKind::MatrixFree : FloquetKind::Dense;
+    PetscCall(BifurcationOptionsFromOptions(comm_, (PetscBool)(fk_ == FloquetKind::Dense), &bo_));
     if (!declaring_ && ch_.resume) PetscCall(CheckResumeOptions(comm_, ch_.resume_file, name_, "-cont_resume")); // the same physics and numerics, or one line naming the first difference
     PetscFunctionReturn(0);
   }
@@ -252,6 +255,7 @@ protected:
     PetscCall(DMCreateGlobalVector(nnm_.lat.SiteDM(), u_.out()));
     hook_ = std::make_unique<FloquetHook>(nnm_.flow, flo_);
     mf_hook_ = std::make_unique<FloquetMfHook>(nnm_.flow, flo_, fmo_);
+    if (bo_.enabled) PetscCall(locator_.Setup(nnm_.shoot, flo_, bo_));
     n2_ = 2 * nnm_.lat.N();
     PetscFunctionReturn(0);
   }
@@ -355,8 +359,12 @@ private:
     PetscCall(ic);
     PetscCall(PetscTime(&b1));
     const size_t npts = b.energy.size();
+    BranchRecord rec;
+    if (bo_.enabled) PetscCall(LocateEvents(b, label, &rec)); // (the location's solves count in the branch's cost)
     done_.push_back(Snapshot(cur, std::move(b)));
     done_.back().seconds = b1 - cur.b0;
+    done_.back().located = rec.located, done_.back().events = std::move(rec.events);
+    done_.back().bif_tol = rec.bif_tol, done_.back().bif_seconds = rec.bif_seconds, done_.back().bif_probes = rec.bif_probes;
     if (fk_ != FloquetKind::None) {
       const FloquetColumns &f = done_.back().f;
       PetscInt ns = 0;
@@ -376,8 +384,25 @@ private:
     PetscFunctionReturn(0);
   }
 
+  // -cont_bifurcations: the events of branch b into rec.
+  PetscErrorCode LocateEvents(const Branch &b, const std::string &label, BranchRecord *rec)
+  {
+    PetscLogDouble t0, t1;
+    PetscFunctionBeginUser;
+    PetscCall(PetscTime(&t0));
+    const PetscInt p0 = locator_.Probes();
+    PetscCall(locator_.Locate(b, hook_->c.re, hook_->c.im, hook_->c.edge, label.c_str(), &rec->events));
+    PetscCall(PetscTime(&t1));
+    rec->located = true, rec->bif_tol = bo_.tol, rec->bif_seconds = t1 - t0, rec->bif_probes = locator_.Probes() - p0;
+    PetscCall(PetscPrintf(comm_, "  [%s] bifurcations: %zu event(s) located to %g in omega, %" PetscInt_FMT " orbits solved, %.2f s\n", label.c_str(), rec->events.size(),
+                          (double)bo_.tol, rec->bif_probes, (double)(t1 - t0)));
+    PetscFunctionReturn(0);
+  }
+
   NnmSetup nnm_;
   StudyChoices ch_;
+  BifurcationOptions bo_;
+  BifurcationLocator locator_;
   FloquetOptions flo_;
   FloquetMfOptions fmo_;
   FloquetKind fk_ = FloquetKind::None;

@@ -3,6 +3,7 @@
 // symplectic structure (reciprocal and conjugate pairs, det M = 1) and the two
 // trivial multipliers of an isolated NNM.
 #include "bands/linear_modes.hpp"
+#include "dimers.hpp"
 #include "helpers.hpp"
 #include "orbits/continuation.hpp"
 #include "stability/floquet.hpp"
@@ -110,42 +111,6 @@ TEST_CASE("Floquet multipliers in the linear limit, symplectic pairs, det M = 1,
 }
 
 
-namespace {
-// Two stiff dimers joined by a weak soft bond: layout right, Nc = 2, gamma = 0.9.
-struct CoupledDimers {
-  Lattice lat;
-  EffectList fx{lat};
-  LinearModes modes;
-  PeriodicFlow flow;
-  Shooting shoot;
-  PetscErrorCode Setup()
-  {
-    LatticeParams p;
-    PetscFunctionBeginUser;
-    p.layout = Layout::Right;
-    p.cells = 2;
-    p.gamma = 0.9;
-    PetscCall(lat.Setup(PETSC_COMM_WORLD, p));
-    PetscCall(modes.Compute(lat, LinearModesOptions()));
-    PetscCall(BuildLatticeEffects(lat, &fx));
-    PetscCall(flow.Setup(fx, FlowOptions()));
-    PetscCall(shoot.Setup(flow, ShootingOptions()));
-    PetscFunctionReturn(0);
-  }
-  // The NNM family of linear mode j up to omega_max, in small steps (to resolve the onset).
-  PetscErrorCode Continue(PetscInt j, PetscReal omega_max, PointHook *hook)
-  {
-    ContinuationOptions co;
-    Branch b;
-    PetscFunctionBeginUser;
-    co.verbose = PETSC_FALSE;
-    co.max_change = 0.05;
-    co.omega_max = omega_max;
-    PetscCall(ContinueBranch(shoot, modes.Mode(j), 2 * PETSC_PI / modes.Omega()[j], co, "dimers", &b, hook));
-    PetscFunctionReturn(0);
-  }
-};
-} // namespace
 
 // A known unstable orbit from theory. Layout `right` with Nc = 2 and gamma =
 // 0.9 is two stiff dimers (k1 = 1.9, cubic) joined by a weak soft bond (k2 =

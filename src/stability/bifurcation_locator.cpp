@@ -1,0 +1,337 @@
+#include "stability/bifurcation_locator.hpp"
+#include "core/gather.hpp"
+#include "core/log.hpp"
+#include <algorithm>
+#include <cmath>
+
+namespace nltopo {
+
+namespace {
+
+PetscInt Sign(PetscReal x) { return x > 0 ? 1 : (x < 0 ? -1 : 0); }
+
+PetscInt Localisation(const FloquetOptions &o, PetscReal w) { return w > o.edge_weight ? 3 : (w < 1 - o.edge_weight ? 1 : 2); }
+
+} // namespace
+
+PetscErrorCode BifurcationLocator::Setup(Shooting &shoot, const FloquetOptions &fo, const BifurcationOptions &bo)
+{
+  PetscFunctionBeginUser;
+  shoot_ = &shoot, fo_ = fo, bo_ = bo;
+  const Lattice &lat = shoot.Flow().Lat();
+  N_ = lat.N();
+  PetscCall(shoot.CreateUnknowns(Xa_.out()));
+  for (OwnedVec *v : {&Xb_, &d_, &X_, &Xpred_, &t_}) PetscCall(VecDuplicate(Xa_, v->out()));
+  PetscCall(lat.CreateStateVector(z_.out()));
+  for (OwnedVec *v : {&za_, &zT_, &tz_, &g_}) PetscCall(VecDuplicate(z_, v->out()));
+  PetscCall(shoot.Flow().CreateSensitivityMatrix(S_.out()));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BifurcationLocator::SetSegment(PetscInt i)
+{
+  const Lattice &lat = shoot_->Flow().Lat();
+  PetscFunctionBeginUser;
+  if (seg_ == i) PetscFunctionReturn(0);
+  PetscCall(StateFromRow(lat, rows_.data() + (size_t)(i + 1) * 2 * N_, z_));
+  PetscCall(shoot_->Pack(z_, period_[i + 1], beta_[i + 1], Xb_));
+  PetscCall(StateFromRow(lat, rows_.data() + (size_t)i * 2 * N_, za_));
+  PetscCall(shoot_->Pack(za_, period_[i], beta_[i], Xa_));
+  PetscCall(VecWAXPY(d_, -1.0, Xa_, Xb_));
+  PetscCall(VecNormalize(d_, &chord_));
+  seg_ = i;
+  solved_.clear();
+  PetscFunctionReturn(0);
+}
+
+// The Newton start at sigma: the chord point, or the line through the
+// nearest orbits solved on either side of sigma in this segment (a small
+// bracket's ends, a far better start than the chord of the whole segment).
+PetscErrorCode BifurcationLocator::Predict(PetscReal sigma, Vec X)
+{
+  const std::vector<PetscScalar> *lo = nullptr, *hi = nullptr;
+  PetscReal slo = -1, shi = 2;
+  PetscFunctionBeginUser;
+  for (const auto &[sg, x] : solved_) {
+    if (sg <= sigma && sg > slo) slo = sg, lo = &x;
+    if (sg >= sigma && sg < shi) shi = sg, hi = &x;
+  }
+  if (!lo || !hi || shi - slo > 0.5) {
+    PetscCall(VecCopy(Xpred_, X));
+    PetscFunctionReturn(0);
+  }
+  const PetscReal w = shi > slo ? (sigma - slo) / (shi - slo) : 0;
+  PetscScalar *x;
+  PetscCall(VecGetArrayWrite(X, &x));
+  for (size_t k = 0; k < lo->size(); k++) x[k] = (1 - w) * (*lo)[k] + w * (*hi)[k];
+  PetscCall(VecRestoreArrayWrite(X, &x));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BifurcationLocator::Remember(PetscReal sigma, Vec X)
+{
+  const PetscScalar *x;
+  PetscInt n;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetLocalSize(X, &n));
+  PetscCall(VecGetArrayRead(X, &x));
+  solved_.push_back({sigma, std::vector<PetscScalar>(x, x + n)});
+  PetscCall(VecRestoreArrayRead(X, &x));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BifurcationLocator::Probe(PetscReal sigma, bool floquet, bool tangent, BifurcationSample *s, const PetscReal *target,
+                                         std::vector<PetscReal> *vec, std::vector<PetscReal> *tz)
+{
+  PeriodicFlow &flow = shoot_->Flow();
+  PetscReal T, beta;
+  PetscInt its;
+  bool ok;
+  PetscFunctionBeginUser;
+  *s = BifurcationSample();
+  s->sigma = sigma;
+  PetscCall(VecWAXPY(Xpred_, sigma * chord_, d_, Xa_));
+  PetscCall(shoot_->SetArclengthConstraint(za_, d_, Xpred_));
+  PetscCall(Predict(sigma, X_));
+  PetscCall(shoot_->Solve(X_, &ok, &its));
+  probes_++;
+  if (!ok) {
+    s->ok = false;
+    PetscFunctionReturn(0);
+  }
+  PetscCall(Remember(sigma, X_));
+  PetscCall(shoot_->Unpack(X_, z_, &T, &beta));
+  EnergyParts e;
+  PetscCall(flow.Effects().Energy(z_, &e));
+  s->omega = 2 * PETSC_PI / T;
+  s->energy = e.Total();
+  if (tangent) { // before anything else uses the solver: the tangent takes the last Jacobian
+    PetscReal dT, db;
+    PetscCall(shoot_->Tangent(X_, d_, t_));
+    PetscCall(shoot_->Unpack(t_, tz_, &dT, &db));
+    PetscCall(flow.GradEnergy(z_, g_));
+    PetscCall(VecDot(g_, tz_, &s->dEds));
+    if (tz) {
+      PetscReal nrm;
+      PetscCall(VecNormalize(tz_, &nrm));
+      tz->clear();
+      PetscCall(AppendStateRow(flow.Lat(), tz_, tz));
+      PetscInt n = (PetscInt)tz->size();
+      PetscCallMPI(MPI_Bcast(&n, 1, MPIU_INT, 0, flow.Lat().Comm()));
+      tz->resize(n);
+      PetscCallMPI(MPI_Bcast(tz->data(), (PetscMPIInt)n, MPIU_REAL, 0, flow.Lat().Comm()));
+    }
+  }
+  if (floquet) {
+    PetscCall(flow.IntegrateWithMonodromy(z_, T, flow.FloquetBeta(beta), zT_, S_));
+    PetscCall(FloquetAnalysis(flow.Lat(), S_, fo_, &s->fr, target, vec));
+    s->out = OutsideMultipliers(s->fr, fo_.tol, min_edge_);
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BifurcationLocator::Folds(const Branch &b, std::vector<BifurcationEvent> *ev)
+{
+  const PetscInt np = (PetscInt)b.energy.size();
+  PetscInt last_seg = -1;
+  PetscFunctionBeginUser;
+  for (PetscInt i = 1; i + 1 < np; i++) {
+    if ((b.energy[i] - b.energy[i - 1]) * (b.energy[i + 1] - b.energy[i]) >= 0) continue;
+    // dE/ds at i - 1, i, i + 1: the fold lies in the segment where it changes sign
+    BifurcationSample a, c;
+    PetscInt seg = -1;
+    for (PetscInt j : {i - 1, i}) {
+      if (j <= last_seg) continue;
+      PetscCall(SetSegment(j));
+      PetscCall(Probe(0, false, true, &a));
+      PetscCall(Probe(1, false, true, &c));
+      if (a.ok && c.ok && Sign(a.dEds) * Sign(c.dEds) < 0) {
+        seg = j;
+        break;
+      }
+    }
+    if (seg < 0) continue;
+    last_seg = seg;
+    const PetscInt sa = Sign(a.dEds);
+    PetscInt used;
+    bool conv;
+    PetscCall(LocateChange([&](PetscReal sg, BifurcationSample *s) { return Probe(sg, false, true, s); },
+                           [&](const BifurcationSample &, const BifurcationSample &x) { return Sign(x.dEds) == sa; },
+                           [](const BifurcationSample &, const BifurcationSample &, const BifurcationSample &x) { return x.dEds; }, bo_.tol, bo_.max_probes, &a, &c,
+                           &used, &conv));
+    BifurcationEvent e;
+    BifurcationSample tip;
+    e.kind = EventKind::Fold;
+    e.direction = sa > 0 ? 1 : -1;
+    e.point = seg;
+    e.energy = 0.5 * (a.energy + c.energy);
+    e.omega = 0.5 * (a.omega + c.omega);
+    e.s = s_[seg] + 0.5 * (a.sigma + c.sigma) * chord_;
+    e.omega_bracket = std::abs(c.omega - a.omega);
+    PetscCall(Probe(c.sigma, false, true, &tip, nullptr, nullptr, &e.vector)); // the family tangent there
+    if (!conv)
+      PetscCall(PetscPrintf(shoot_->Flow().Lat().Comm(), "  warning: the energy fold after point %" PetscInt_FMT " was bracketed only to %.1e in omega (%s)\n", seg,
+                            (double)e.omega_bracket, "Newton failed inside it, or -cont_bif_max_probes were spent"));
+    ev->push_back(std::move(e));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BifurcationLocator::StabilityChanges(PetscInt i, std::vector<BifurcationEvent> *ev)
+{
+  MPI_Comm comm = shoot_->Flow().Lat().Comm();
+  const PetscReal atol = bo_.angle_tol;
+  std::vector<BifurcationSample> seen(2); // every orbit probed in the segment, by sigma
+  PetscFunctionBeginUser;
+  PetscCall(SetSegment(i));
+  // the ends re-solved (Newton converges at once): the same computation as every probe
+  PetscCall(Probe(0, true, false, &seen[0]));
+  PetscCall(Probe(1, true, false, &seen[1]));
+  if (!seen[0].ok || !seen[1].ok) PetscFunctionReturn(0);
+  const SamePredicate same = [&](const BifurcationSample &a, const BifurcationSample &x) { return SameOutside(a.out, x.out, atol); };
+  // the test function of the first change between a and c
+  const TestFunction G = [&](const BifurcationSample &a, const BifurcationSample &c, const BifurcationSample &x) -> PetscReal {
+    const auto ch = OutsideChanges(a.out, c.out, atol);
+    if (ch.empty()) return NAN;
+    return CollisionFunction(x.fr, ch[0].first.kind, ch[0].first.angle, fo_.tol, atol, min_edge_);
+  };
+  const SampleProbe probe = [&](PetscReal sg, BifurcationSample *x) -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    PetscCall(Probe(sg, true, false, x));
+    if (x->ok) seen.insert(std::upper_bound(seen.begin(), seen.end(), sg, [](PetscReal v, const BifurcationSample &y) { return v < y.sigma; }), *x);
+    PetscFunctionReturn(0);
+  };
+  auto bracketed = [&](const BifurcationSample &a, const BifurcationSample &c) {
+    return std::abs(c.omega - a.omega) <= bo_.tol && std::abs(c.energy - a.energy) <= bo_.tol * std::abs(c.energy);
+  };
+  // Every change seen between two neighbouring probes is located: a probe of
+  // one search may reveal a change (a short bubble) the search itself steps over.
+  std::vector<PetscReal> given_up; // left ends of brackets given up on (a failed Newton, or max probes)
+  for (PetscInt round = 0; round < 64; round++) {
+    size_t k = 0;
+    for (; k + 1 < seen.size(); k++)
+      if (!same(seen[k], seen[k + 1]) && !bracketed(seen[k], seen[k + 1]) && std::find(given_up.begin(), given_up.end(), seen[k].sigma) == given_up.end()) break;
+    if (k + 1 >= seen.size()) break;
+    BifurcationSample a = seen[k], c = seen[k + 1];
+    PetscInt used;
+    bool conv;
+    PetscCall(LocateChange(probe, same, G, bo_.tol, bo_.max_probes, &a, &c, &used, &conv));
+    if (!conv) {
+      given_up.push_back(a.sigma);
+      PetscCall(PetscPrintf(comm, "  warning: a change of stability after point %" PetscInt_FMT " was bracketed only to %.1e in omega, %.1e in E/E, sigma %.3e (%" PetscInt_FMT " probes%s)\n",
+                            i, (double)std::abs(c.omega - a.omega), (double)std::abs((c.energy - a.energy) / c.energy), (double)(c.sigma - a.sigma), used, used < bo_.max_probes ? ", Newton failed inside it" : ": -cont_bif_max_probes"));
+    }
+  }
+  for (size_t k = 0; k + 1 < seen.size(); k++) {
+    const BifurcationSample &a = seen[k], &c = seen[k + 1];
+    for (const auto &[o, born] : OutsideChanges(a.out, c.out, atol)) {
+      BifurcationEvent e;
+      e.kind = o.kind;
+      e.direction = born;
+      const BifurcationSample &U = born > 0 ? c : a; // off the circle
+      e.point = i;
+      e.energy = 0.5 * (a.energy + c.energy);
+      e.omega = 0.5 * (a.omega + c.omega);
+      e.s = s_[i] + 0.5 * (a.sigma + c.sigma) * chord_;
+      e.omega_bracket = std::abs(c.omega - a.omega);
+      e.mu_re = U.fr.re[o.index], e.mu_im = std::abs(U.fr.im[o.index]);
+      // The signatures from the nearest orbit on the circle side where they are
+      // defined: next to the collision the two eigenvectors merge and their
+      // Krein values vanish (at +-1 the pair's eigenvalues may even round to real).
+      for (PetscInt q = born > 0 ? (PetscInt)k : (PetscInt)k + 1; q >= 0 && q < (PetscInt)seen.size(); q += born > 0 ? -1 : 1) {
+        CollidingSignatures(seen[q].fr, e.kind, o.angle, fo_.tol, e.krein, min_edge_);
+        if (e.krein[0] && e.krein[1]) break;
+      }
+      e.instability = Localisation(fo_, U.fr.edge[o.index]);
+      // The eigenvector from the nearest orbit on the unstable side where the
+      // multiplier has moved 1e-3 off the circle: at the collision itself the
+      // colliding eigenvectors merge (and at +1 mix with the trivial pair's
+      // Jordan block), so there they are not determined.
+      PetscInt qv = born > 0 ? (PetscInt)k + 1 : (PetscInt)k;
+      PetscReal target[2] = {e.mu_re, e.mu_im};
+      for (PetscInt q = qv; q >= 0 && q < (PetscInt)seen.size(); q += born > 0 ? 1 : -1) {
+        const Outside *m = nullptr;
+        for (const Outside &x : seen[q].out)
+          if (x.kind == o.kind && std::abs(x.angle - o.angle) <= atol) m = &x;
+        if (!m) break;
+        qv = q, target[0] = seen[q].fr.re[m->index], target[1] = std::abs(seen[q].fr.im[m->index]);
+        if (m->modulus >= 1 + 1e-3) break;
+      }
+      BifurcationSample u;
+      PetscCall(Probe(seen[qv].sigma, true, false, &u, target, &e.vector));
+      ev->push_back(std::move(e));
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BifurcationLocator::Report(const char *name, PetscInt k, const BifurcationEvent &e)
+{
+  static const char *const loc[] = {"", "B-B", "B-E", "E-E"};
+  MPI_Comm comm = shoot_->Flow().Lat().Comm();
+  PetscFunctionBeginUser;
+  if (e.kind == EventKind::Fold) {
+    PetscCall(PetscPrintf(comm, "  [%s] event %" PetscInt_FMT ": energy fold (E %s) at omega %.9f (bracket %.1e), E %.6g, s %.6g\n", name, k,
+                          e.direction > 0 ? "maximum" : "minimum", (double)e.omega, (double)e.omega_bracket, (double)e.energy, (double)e.s));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscPrintf(comm, "  [%s] event %" PetscInt_FMT ": %s %s, %s at omega %.9f (bracket %.1e), E %.6g, mu %.6f%+.6fi, Krein (%+d, %+d)\n", name, k,
+                        EventKindName(e.kind), loc[e.instability], e.direction > 0 ? "instability begins" : "instability ends", (double)e.omega,
+                        (double)e.omega_bracket, (double)e.energy, (double)e.mu_re, (double)e.mu_im, (int)e.krein[0], (int)e.krein[1]));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BifurcationLocator::Locate(const Branch &b, const std::vector<PetscReal> &re, const std::vector<PetscReal> &im, const std::vector<PetscReal> &edge,
+                                          const char *name, std::vector<BifurcationEvent> *events)
+{
+  const Lattice &lat = shoot_->Flow().Lat();
+  MPI_Comm comm = lat.Comm();
+  const PetscInt np = (PetscInt)b.energy.size(), n2 = 2 * N_;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(Log().bifurcations, 0, 0, 0, 0));
+  events->clear();
+  seg_ = -1;
+  // B-B events are left out unless asked for; a lattice without an interface has no edge region to tell them by
+  min_edge_ = bo_.bulk || lat.Params().layout != Layout::Interface ? 0 : 1 - fo_.edge_weight;
+  rows_ = b.z0; // rank 0's rows to every rank
+  PetscInt nr = (PetscInt)rows_.size();
+  PetscCallMPI(MPI_Bcast(&nr, 1, MPIU_INT, 0, comm));
+  rows_.resize(nr);
+  PetscCallMPI(MPI_Bcast(rows_.data(), (PetscMPIInt)nr, MPIU_REAL, 0, comm));
+  PetscCheck(nr == np * n2 && re.size() == (size_t)(np * n2) && im.size() == re.size(), comm, PETSC_ERR_PLIB,
+             "bifurcations: branch %s has %" PetscInt_FMT " points but %" PetscInt_FMT " orbit values and %zu multipliers", name, np, nr, re.size());
+  period_ = b.period, beta_ = b.beta;
+  s_.assign(np, 0);
+  for (PetscInt i = 1; i < np; i++) {
+    PetscReal d2 = (period_[i] - period_[i - 1]) * (period_[i] - period_[i - 1]) + (beta_[i] - beta_[i - 1]) * (beta_[i] - beta_[i - 1]);
+    for (PetscInt k = 0; k < n2; k++) d2 += std::pow(rows_[i * n2 + k] - rows_[(i - 1) * n2 + k], 2);
+    s_[i] = s_[i - 1] + std::sqrt(d2);
+  }
+  PetscCall(Folds(b, events));
+  std::vector<BifurcationEvent> changes;
+  for (PetscInt i = 0; i + 1 < np; i++) {
+    const PetscReal *r0 = re.data() + i * n2, *i0 = im.data() + i * n2;
+    const bool finite = std::all_of(r0, r0 + 2 * n2, [](PetscReal x) { return std::isfinite(x); }); // both points (a resumed branch may lack them)
+    if (!finite) continue;
+    FloquetResult fi, fj;
+    fi.re.assign(r0, r0 + n2), fi.im.assign(i0, i0 + n2), fj.re.assign(r0 + n2, r0 + 2 * n2), fj.im.assign(i0 + n2, i0 + 2 * n2);
+    if (edge.size() == re.size()) fi.edge.assign(edge.begin() + i * n2, edge.begin() + (i + 1) * n2), fj.edge.assign(edge.begin() + (i + 1) * n2, edge.begin() + (i + 2) * n2);
+    if (!SameOutside(OutsideMultipliers(fi, fo_.tol, min_edge_), OutsideMultipliers(fj, fo_.tol, min_edge_), bo_.angle_tol)) PetscCall(StabilityChanges(i, &changes));
+  }
+  // At an energy fold a pair passes +1 (the reduced map on the energy
+  // surface has a saddle-node there, and the multiplier +1 is fourfold): the
+  // changes of stability there, through +1 or of quadruplets near it, are the fold's.
+  for (BifurcationEvent &c : changes) {
+    bool at_fold = false;
+    for (const BifurcationEvent &f : *events)
+      if (f.kind == EventKind::Fold && std::hypot(c.mu_re - 1, c.mu_im) < 0.05 && std::abs(c.s - f.s) <= 1e-4 * std::max(s_.back(), (PetscReal)1e-300))
+        at_fold = true;
+    if (!at_fold) events->push_back(std::move(c));
+  }
+  std::stable_sort(events->begin(), events->end(), [](const BifurcationEvent &x, const BifurcationEvent &y) { return x.s < y.s; });
+  for (size_t k = 0; k < events->size(); k++) PetscCall(Report(name, (PetscInt)k, (*events)[k]));
+  PetscCall(PetscLogEventEnd(Log().bifurcations, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+} // namespace nltopo

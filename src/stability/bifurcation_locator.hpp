@@ -1,0 +1,51 @@
+#pragma once
+// -cont_bifurcations: the events along a continued branch (stability/
+// bifurcations.hpp), located between its points. Between two points X_i and
+// X_{i+1} = (z0, T, beta) an orbit is found at any fraction sigma of the chord
+// by the shooting Newton with the pseudo-arclength constraint
+// d . (X - X_i - sigma (X_{i+1} - X_i)) = 0, d the unit chord, and the phase
+// condition through z0_i; its Floquet multipliers (dense route) or dE/ds
+// (from the family tangent there) are the test functions of the bisection.
+#include "orbits/continuation.hpp"
+#include "stability/bifurcations.hpp"
+#include "stability/floquet.hpp"
+
+namespace nltopo {
+
+class BifurcationLocator {
+public:
+  PetscErrorCode Setup(Shooting &shoot, const FloquetOptions &fo, const BifurcationOptions &bo);
+  // The events of branch b, given the dense Floquet multipliers of its points
+  // (re, im: 2N per point, on every rank), in the order of the branch.
+  // Prints one line per event (name: the branch label).
+  // edge: each eigenvector's edge share (2N per point; empty: unknown).
+  PetscErrorCode Locate(const Branch &b, const std::vector<PetscReal> &re, const std::vector<PetscReal> &im, const std::vector<PetscReal> &edge,
+                        const char *name, std::vector<BifurcationEvent> *events);
+  PetscInt Probes() const { return probes_; } // orbits solved so far
+
+private:
+  PetscErrorCode SetSegment(PetscInt i);
+  // The orbit at sigma of the current segment; with floquet its multipliers
+  // (and, given vec, the eigenvector nearest target), with tangent dE/ds and
+  // (given tz) the state part of the family tangent in natural order.
+  PetscErrorCode Probe(PetscReal sigma, bool floquet, bool tangent, BifurcationSample *s, const PetscReal *target = nullptr,
+                       std::vector<PetscReal> *vec = nullptr, std::vector<PetscReal> *tz = nullptr);
+  PetscErrorCode Predict(PetscReal sigma, Vec X);
+  PetscErrorCode Remember(PetscReal sigma, Vec X);
+  PetscErrorCode Folds(const Branch &b, std::vector<BifurcationEvent> *ev);
+  PetscErrorCode StabilityChanges(PetscInt i, std::vector<BifurcationEvent> *ev);
+  PetscErrorCode Report(const char *name, PetscInt k, const BifurcationEvent &e);
+
+  Shooting *shoot_ = nullptr;
+  FloquetOptions fo_;
+  BifurcationOptions bo_;
+  PetscInt N_ = 0, seg_ = -1, probes_ = 0;
+  std::vector<PetscReal> rows_, period_, beta_, s_; // z0 rows of every point (every rank), arclength at each point
+  OwnedVec Xa_, Xb_, d_, X_, Xpred_, t_, z_, za_, zT_, tz_, g_;
+  OwnedMat S_;
+  PetscReal chord_ = 0;
+  PetscReal min_edge_ = 0; // outside multipliers with a smaller edge share are not tracked (B-B, unless -cont_bif_bulk)
+  std::vector<std::pair<PetscReal, std::vector<PetscScalar>>> solved_; // orbits solved in this segment (sigma, local X): the predictors
+};
+
+} // namespace nltopo

@@ -1,0 +1,217 @@
+#include "stability/bifurcations.hpp"
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <numeric>
+
+namespace nltopo {
+
+const char *EventKindName(EventKind k)
+{
+  switch (k) {
+  case EventKind::Fold: return "energy fold";
+  case EventKind::BranchPoint: return "branch point (+1)";
+  case EventKind::PeriodDoubling: return "period doubling (-1)";
+  case EventKind::KreinCollision: return "Krein collision (equal signatures, pass)";
+  case EventKind::HamiltonianHopf: return "Hamiltonian-Hopf (opposite signatures)";
+  case EventKind::Resonance: return "internal resonance";
+  }
+  return "?";
+}
+
+std::vector<PetscInt> NontrivialIndices(const PetscReal *re, const PetscReal *im, PetscInt n)
+{
+  using C = std::complex<PetscReal>;
+  if (n < 2) return {};
+  std::vector<PetscReal> d(n);
+  for (PetscInt j = 0; j < n; j++) {
+    const C mu(re[j], im[j]);
+    d[j] = std::abs(mu) > 0 ? std::abs(0.5 * (mu + 1.0 / mu) - 1.0) : 1e300;
+    if (!std::isfinite(d[j])) d[j] = 1e300;
+  }
+  std::vector<PetscInt> idx(n);
+  std::iota(idx.begin(), idx.end(), 0);
+  std::partial_sort(idx.begin(), idx.begin() + 2, idx.end(), [&](PetscInt a, PetscInt b) { return d[a] < d[b]; });
+  idx.erase(idx.begin(), idx.begin() + 2);
+  std::sort(idx.begin(), idx.end());
+  return idx;
+}
+
+std::vector<Outside> OutsideMultipliers(const FloquetResult &r, PetscReal tol, PetscReal min_edge)
+{
+  std::vector<Outside> out;
+  const bool filter = min_edge > 0 && r.edge.size() == r.re.size();
+  for (PetscInt j : NontrivialIndices(r.re.data(), r.im.data(), (PetscInt)r.re.size())) {
+    const PetscReal m = std::hypot(r.re[j], r.im[j]);
+    if (!(m > 1 + tol)) continue; // NaN: not counted
+    if (filter && r.edge[j] < min_edge) continue;
+    if (std::abs(r.im[j]) <= tol * m) out.push_back({r.re[j] > 0 ? EventKind::BranchPoint : EventKind::PeriodDoubling, r.re[j] > 0 ? 0 : PETSC_PI, m, j});
+    else if (r.im[j] > 0) out.push_back({EventKind::HamiltonianHopf, std::atan2(r.im[j], r.re[j]), m, j});
+  }
+  std::sort(out.begin(), out.end(), [](const Outside &x, const Outside &y) { return x.kind != y.kind ? x.kind < y.kind : x.angle < y.angle; });
+  return out;
+}
+
+std::vector<std::pair<Outside, PetscInt>> OutsideChanges(const std::vector<Outside> &a, const std::vector<Outside> &b, PetscReal angle_tol)
+{
+  // greedy matching, closest pairs first
+  std::vector<std::pair<PetscReal, std::pair<size_t, size_t>>> cand;
+  for (size_t i = 0; i < a.size(); i++)
+    for (size_t j = 0; j < b.size(); j++)
+      if (a[i].kind == b[j].kind && std::abs(a[i].angle - b[j].angle) <= angle_tol) cand.push_back({std::abs(a[i].angle - b[j].angle), {i, j}});
+  std::sort(cand.begin(), cand.end());
+  std::vector<char> ua(a.size(), 0), ub(b.size(), 0);
+  for (const auto &c : cand)
+    if (!ua[c.second.first] && !ub[c.second.second]) ua[c.second.first] = ub[c.second.second] = 1;
+  std::vector<std::pair<Outside, PetscInt>> ch;
+  for (size_t j = 0; j < b.size(); j++)
+    if (!ub[j]) ch.push_back({b[j], 1});
+  for (size_t i = 0; i < a.size(); i++)
+    if (!ua[i]) ch.push_back({a[i], -1});
+  return ch;
+}
+
+bool SameOutside(const std::vector<Outside> &a, const std::vector<Outside> &b, PetscReal angle_tol)
+{
+  return a.size() == b.size() && OutsideChanges(a, b, angle_tol).empty();
+}
+
+namespace {
+
+// The nontrivial multipliers on the circle (|mu| <= 1 + tol): index and angle in (-pi, pi].
+std::vector<std::pair<PetscInt, PetscReal>> OnCircle(const FloquetResult &r, PetscReal tol, PetscReal min_edge)
+{
+  std::vector<std::pair<PetscInt, PetscReal>> c;
+  const bool filter = min_edge > 0 && r.edge.size() == r.re.size();
+  for (PetscInt j : NontrivialIndices(r.re.data(), r.im.data(), (PetscInt)r.re.size()))
+    if (std::hypot(r.re[j], r.im[j]) <= 1 + tol && !(filter && r.edge[j] < min_edge)) c.push_back({j, std::atan2(r.im[j], r.re[j])});
+  return c;
+}
+
+// The two circle multipliers that collide at e^{i angle}: for a collision in
+// the upper half plane the two nearest to it there; at +1 or -1 the pair
+// (upper member first) nearest to it, among those with an edge share of at
+// least min_edge (the pair keeps its eigenvector through +-1; a collision in
+// the upper half plane may be with a bulk pair). Fewer than 2: none.
+std::vector<std::pair<PetscInt, PetscReal>> Colliding(const FloquetResult &r, EventKind kind, PetscReal angle, PetscReal tol, PetscReal min_edge)
+{
+  std::vector<std::pair<PetscInt, PetscReal>> c = OnCircle(r, tol, kind == EventKind::HamiltonianHopf ? 0 : min_edge), pick;
+  auto dist = [&](PetscReal th) {
+    if (kind == EventKind::HamiltonianHopf) return std::abs(th - angle);
+    if (kind == EventKind::BranchPoint) return std::abs(th);
+    return PETSC_PI - std::abs(th); // period doubling: distance from pi
+  };
+  if (kind == EventKind::HamiltonianHopf) c.erase(std::remove_if(c.begin(), c.end(), [](const auto &x) { return x.second < 0; }), c.end());
+  std::sort(c.begin(), c.end(), [&](const auto &x, const auto &y) { return dist(x.second) < dist(y.second); });
+  if (c.size() < 2) return {};
+  pick = {c[0], c[1]};
+  if (kind != EventKind::HamiltonianHopf && pick[0].second < pick[1].second) std::swap(pick[0], pick[1]); // upper member first
+  return pick;
+}
+
+} // namespace
+
+PetscReal CollisionFunction(const FloquetResult &r, EventKind kind, PetscReal angle, PetscReal tol, PetscReal angle_tol, PetscReal min_edge)
+{
+  // off the circle: the matching outside multiplier
+  const Outside *best = nullptr;
+  const std::vector<Outside> out = OutsideMultipliers(r, tol, min_edge);
+  for (const Outside &o : out)
+    if (o.kind == kind && std::abs(o.angle - angle) <= angle_tol && (!best || std::abs(o.angle - angle) < std::abs(best->angle - angle))) best = &o;
+  if (best) return -std::pow(2 * std::log(best->modulus), 2);
+  const auto c = Colliding(r, kind, angle, tol, min_edge);
+  if (c.empty()) return NAN;
+  return std::pow(c[0].second - c[1].second, 2);
+}
+
+void CollidingSignatures(const FloquetResult &r, EventKind kind, PetscReal angle, PetscReal tol, PetscInt krein[2], PetscReal min_edge)
+{
+  krein[0] = krein[1] = 0;
+  const auto c = Colliding(r, kind, angle, tol, min_edge);
+  if (c.empty() || r.kappa.size() != r.re.size()) return;
+  for (int k = 0; k < 2; k++) {
+    const PetscReal v = r.kappa[c[k].first];
+    krein[k] = v > 0 ? 1 : (v < 0 ? -1 : 0);
+  }
+}
+
+EventKind KreinCollisionOutcome(PetscInt k1, PetscInt k2) { return k1 * k2 < 0 ? EventKind::HamiltonianHopf : EventKind::KreinCollision; }
+
+PetscErrorCode BifurcationOptionsFromOptions(MPI_Comm comm, PetscBool dense_floquet, BifurcationOptions *o)
+{
+  PetscBool set;
+  PetscFunctionBeginUser;
+  o->enabled = dense_floquet;
+  PetscOptionsBegin(comm, "cont_", "Bifurcations along the branches", NULL);
+  PetscCall(PetscOptionsBool("-bifurcations",
+                             "Detect and locate energy folds, branch points (+1), period doublings (-1) and Hamiltonian-Hopf collisions along each "
+                             "branch (needs -floquet without -floquet_mf; on with it)",
+                             NULL, o->enabled, &o->enabled, &set));
+  PetscCall(PetscOptionsReal("-bif_tol", "Located event: the final bracket spans at most this in omega and this times E in energy", NULL, o->tol, &o->tol,
+                             NULL));
+  PetscCall(PetscOptionsInt("-bif_max_probes", "Orbits solved at most to locate one event", NULL, o->max_probes, &o->max_probes, NULL));
+  PetscCall(PetscOptionsBool("-bif_bulk",
+                             "Also locate the events of bulk eigenvectors (B-B: collisions among band pairs, which shrink as the lattice grows); off: "
+                             "only those with an edge part (B-E, E-E) and folds",
+                             NULL, o->bulk, &o->bulk, NULL));
+  PetscCall(PetscOptionsReal("-bif_angle_tol", "Unstable multipliers of two orbits within this angle (rad) are the same one", NULL, o->angle_tol,
+                             &o->angle_tol, NULL));
+  PetscOptionsEnd();
+  PetscCheck(!(set && o->enabled && !dense_floquet), comm, PETSC_ERR_USER,
+             "-cont_bifurcations needs -floquet without -floquet_mf (the events are read from all 2N Floquet multipliers of every orbit)");
+  PetscCheck(o->tol >= 1e-14 && o->tol <= 1e-2, comm, PETSC_ERR_USER, "-cont_bif_tol must lie in [1e-14, 1e-2], got %g", (double)o->tol);
+  PetscCheck(o->max_probes >= 1 && o->max_probes <= 1000, comm, PETSC_ERR_USER, "-cont_bif_max_probes must lie in [1, 1000], got %" PetscInt_FMT,
+             o->max_probes);
+  PetscCheck(o->angle_tol > 0 && o->angle_tol < 1, comm, PETSC_ERR_USER, "-cont_bif_angle_tol must lie in (0, 1), got %g", (double)o->angle_tol);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LocateChange(const SampleProbe &probe, const SamePredicate &same, const TestFunction &G, PetscReal tol, PetscInt max_probes,
+                            BifurcationSample *a, BifurcationSample *c, PetscInt *probes, bool *converged)
+{
+  PetscFunctionBeginUser;
+  *probes = 0;
+  *converged = false;
+  auto done = [&]() { return std::abs(c->omega - a->omega) <= tol && std::abs(c->energy - a->energy) <= tol * std::abs(c->energy); };
+  // Illinois (regula falsi whose retained end has its value halved when it is
+  // kept twice in a row): superlinear, and bracketing throughout. A bisection
+  // after every secant step that did not halve the bracket (G is linear only
+  // near the change: far from it the pair nearest a collision may be another),
+  // so that two probes at least halve it.
+  PetscReal fa = 1, fc = 1;
+  PetscInt kept = 0;        // +1: a was kept last, -1: c
+  bool secant_failed = false;
+  while (!done()) {
+    const PetscReal w = c->sigma - a->sigma;
+    if (*probes >= max_probes || w < 1e-15) PetscFunctionReturn(0);
+    const PetscReal ga = fa * G(*a, *c, *a), gc = fc * G(*a, *c, *c);
+    PetscReal sigma = 0.5 * (a->sigma + c->sigma);
+    const bool secant = std::isfinite(ga) && std::isfinite(gc) && ga * gc < 0 && !secant_failed;
+    if (secant) {
+      // a quarter of the tolerance from either end at least (a probe closer than that cannot shrink the bracket usefully)
+      const PetscReal rate = std::max(std::abs(c->omega - a->omega) / tol, std::abs(c->energy - a->energy) / (tol * std::abs(c->energy)));
+      const PetscReal h = std::min(0.25 * w / std::max(rate, (PetscReal)1), 0.25 * w);
+      sigma = std::min(std::max(a->sigma + w * ga / (ga - gc), a->sigma + h), c->sigma - h);
+    }
+    BifurcationSample m;
+    PetscCall(probe(sigma, &m));
+    ++*probes;
+    if (!m.ok) PetscFunctionReturn(0);
+    if (same(*a, m)) {
+      *a = std::move(m);
+      fa = 1;
+      fc = kept == -1 ? 0.5 * fc : 1; // c kept twice
+      kept = -1;
+    } else {
+      *c = std::move(m);
+      fc = 1;
+      fa = kept == 1 ? 0.5 * fa : 1;
+      kept = 1;
+    }
+    secant_failed = secant && c->sigma - a->sigma > 0.5 * w;
+  }
+  *converged = true;
+  PetscFunctionReturn(0);
+}
+
+} // namespace nltopo

@@ -1,0 +1,291 @@
+// Bifurcations along NNM branches against known truth: the Krein rule on
+// constructed symplectic matrices (a Hamiltonian-Hopf collision where linear
+// algebra puts it), the pitchfork of two coupled dimers where averaging puts
+// it, and the energy folds of a folded branch (extrema of E).
+#include "dimers.hpp"
+#include "helpers.hpp"
+#include "stability/bifurcation_locator.hpp"
+#include "stability/bifurcations.hpp"
+#include <petscmat.h>
+#include <slepceps.h>
+#include <algorithm>
+#include <cmath>
+
+using namespace nltopo;
+using namespace nltopo::test;
+
+namespace {
+
+// exp(A) of a small dense matrix (row-major n x n) by scaling and squaring of its Taylor series.
+std::vector<PetscReal> Expm(std::vector<PetscReal> A, int n)
+{
+  auto mul = [n](const std::vector<PetscReal> &x, const std::vector<PetscReal> &y) {
+    std::vector<PetscReal> z(n * n, 0);
+    for (int i = 0; i < n; i++)
+      for (int k = 0; k < n; k++)
+        for (int j = 0; j < n; j++) z[i * n + j] += x[i * n + k] * y[k * n + j];
+    return z;
+  };
+  PetscReal norm = 0;
+  for (PetscReal a : A) norm = std::max(norm, std::abs(a));
+  int sq = 0;
+  while (norm * n > 0.5) norm /= 2, sq++;
+  for (PetscReal &a : A) a = std::ldexp(a, -sq);
+  std::vector<PetscReal> E(n * n, 0), term(n * n, 0);
+  for (int i = 0; i < n; i++) E[i * n + i] = term[i * n + i] = 1;
+  for (int k = 1; k < 30; k++) {
+    term = mul(term, A);
+    for (int i = 0; i < n * n; i++) term[i] /= k, E[i] += term[i];
+  }
+  for (int s = 0; s < sq; s++) E = mul(E, E);
+  return E;
+}
+
+// The monodromy over T = 1 of H = p^T D p / 2 + q^T K q / 2 in canonical
+// z = (q1, q2, q3, p1, p2, p3): oscillators 1 and 2 (D = diag(1, sign),
+// K = [[1, eps], [eps, sign (1 + s)]]) and a free particle 3, whose double
+// multiplier at +1 plays the trivial pair of an NNM. sign = -1 gives oscillator
+// 2 negative energy, hence the opposite Krein signature; its pairs then leave
+// the circle where the eigenvalues (1 + b -+ sqrt((1 - b)^2 - 4 eps^2)) / 2 of
+// D K turn complex, |s| < 2 eps. sign = +1: D K symmetric, never.
+FloquetResult Constructed(PetscReal s, PetscReal sign, PetscReal eps)
+{
+  const int n = 6;
+  std::vector<PetscReal> A(n * n, 0);
+  const PetscReal D[3] = {1, sign, 1};
+  const PetscReal K[3][3] = {{1, eps, 0}, {eps, sign * (1 + s), 0}, {0, 0, 0}};
+  for (int i = 0; i < 3; i++) {
+    A[i * n + 3 + i] = D[i];                                             // dq/dt = D p
+    for (int j = 0; j < 3; j++) A[(3 + i) * n + j] = -K[i][j];           // dp/dt = -K q
+  }
+  const std::vector<PetscReal> M = Expm(A, n);
+  Mat m;
+  EPS e;
+  MatCreateSeqDense(PETSC_COMM_SELF, n, n, NULL, &m);
+  for (int i = 0; i < n; i++)
+    for (int j = 0; j < n; j++) MatSetValue(m, i, j, M[i * n + j], INSERT_VALUES);
+  MatAssemblyBegin(m, MAT_FINAL_ASSEMBLY);
+  MatAssemblyEnd(m, MAT_FINAL_ASSEMBLY);
+  EPSCreate(PETSC_COMM_SELF, &e);
+  EPSSetOperators(e, m, NULL);
+  EPSSetProblemType(e, EPS_NHEP);
+  EPSSetType(e, EPSLAPACK);
+  EPSSetDimensions(e, n, PETSC_DEFAULT, PETSC_DEFAULT);
+  EPSSolve(e);
+  Vec xr, xi;
+  MatCreateVecs(m, &xr, &xi);
+  FloquetResult r;
+  for (int k = 0; k < n; k++) {
+    PetscScalar kr, ki;
+    const PetscScalar *a, *b;
+    EPSGetEigenpair(e, k, &kr, &ki, xr, xi);
+    if (ki == 0) VecZeroEntries(xi);
+    VecGetArrayRead(xr, &a);
+    VecGetArrayRead(xi, &b);
+    PetscReal sums[2];
+    KreinSums(a, b, 3, sums);
+    VecRestoreArrayRead(xi, &b);
+    VecRestoreArrayRead(xr, &a);
+    const PetscReal kap = sums[1] > 0 ? sums[0] / sums[1] : 0;
+    r.re.push_back(kr);
+    r.im.push_back(ki);
+    r.kappa.push_back(kap);
+    r.krein.push_back(std::abs(kap) < 1e-6 ? 0 : (kap > 0 ? 1 : -1));
+    r.edge.push_back(1);
+  }
+  VecDestroy(&xr);
+  VecDestroy(&xi);
+  EPSDestroy(&e);
+  MatDestroy(&m);
+  return r;
+}
+
+// A branch of the continuation and its dense Floquet data, point by point.
+struct Record : public PointHook {
+  PeriodicFlow &flow;
+  OwnedMat S;
+  OwnedVec zT;
+  std::vector<PetscReal> re, im, edge;
+  explicit Record(PeriodicFlow &f) : flow(f) {}
+  PetscErrorCode Point(Vec z0, PetscReal T, PetscReal beta, Vec) override
+  {
+    FloquetResult r;
+    PetscFunctionBeginUser;
+    if (!S) {
+      PetscCall(flow.CreateSensitivityMatrix(S.out()));
+      PetscCall(VecDuplicate(z0, zT.out()));
+    }
+    PetscCall(flow.IntegrateWithMonodromy(z0, T, flow.FloquetBeta(beta), zT, S));
+    PetscCall(FloquetAnalysis(flow.Lat(), S, FloquetOptions(), &r));
+    re.insert(re.end(), r.re.begin(), r.re.end());
+    im.insert(im.end(), r.im.begin(), r.im.end());
+    edge.insert(edge.end(), r.edge.begin(), r.edge.end());
+    PetscFunctionReturn(0);
+  }
+};
+
+} // namespace
+
+TEST_CASE("the Krein rule on constructed symplectic matrices: opposite signatures leave the circle where theory says, equal ones pass", "[bifurcations]")
+{
+  const PetscReal eps = 0.05, tol = 1e-9;
+  // equal signatures: every multiplier stays on the circle through the closest approach, no event
+  PetscReal worst = 0;
+  for (PetscReal s = -0.3; s <= 0.3; s += 0.01) {
+    const FloquetResult r = Constructed(s, +1, eps);
+    for (size_t k = 0; k < r.re.size(); k++) worst = std::max(worst, std::hypot(r.re[k], r.im[k]) - 1);
+    REQUIRE(OutsideMultipliers(r, 1e-6).empty());
+    PetscInt kr[2];
+    CollidingSignatures(r, EventKind::HamiltonianHopf, 1.0, 1e-6, kr);
+    REQUIRE(kr[0] == kr[1]); // both pairs near e^{i} carry the same signature ...
+    REQUIRE(KreinCollisionOutcome(kr[0], kr[1]) == EventKind::KreinCollision); // ... so they pass
+  }
+  REQUIRE(worst < 1e-10);
+  // opposite signatures: the pairs leave the circle at s = -2 eps (and return at +2 eps), located to tol
+  const FloquetResult before = Constructed(-0.3, -1, eps);
+  PetscInt kr[2];
+  CollidingSignatures(before, EventKind::HamiltonianHopf, 1.0, 1e-6, kr);
+  REQUIRE(kr[0] * kr[1] == -1);
+  REQUIRE(KreinCollisionOutcome(kr[0], kr[1]) == EventKind::HamiltonianHopf);
+  const PetscReal angle_tol = 0.15;
+  auto probe = [&](PetscReal sigma, BifurcationSample *x) -> PetscErrorCode {
+    const PetscReal s = -0.3 + 0.6 * sigma;
+    x->sigma = sigma, x->omega = s, x->energy = 1; // "omega" carries s: the tolerance applies to it
+    x->fr = Constructed(s, -1, eps);
+    x->out = OutsideMultipliers(x->fr, 1e-9); // (LAPACK's rounding near the defective collision is ~1e-11)
+    return 0;
+  };
+  BifurcationSample a, c;
+  PCHK(probe(0, &a));
+  PCHK(probe(0.5, &c));
+  REQUIRE(a.out.empty());
+  REQUIRE(c.out.size() == 1);
+  REQUIRE(c.out[0].kind == EventKind::HamiltonianHopf);
+  auto same = [&](const BifurcationSample &x, const BifurcationSample &y) { return SameOutside(x.out, y.out, angle_tol); };
+  auto G = [&](const BifurcationSample &x, const BifurcationSample &y, const BifurcationSample &z) {
+    const auto ch = OutsideChanges(x.out, y.out, angle_tol);
+    return ch.empty() ? NAN : CollisionFunction(z.fr, ch[0].first.kind, ch[0].first.angle, 1e-9, angle_tol);
+  };
+  PetscInt probes;
+  bool conv;
+  PCHK(LocateChange(probe, same, G, tol, 60, &a, &c, &probes, &conv));
+  INFO("located between s = " << a.omega << " and " << c.omega << " in " << probes << " probes");
+  REQUIRE(conv);
+  REQUIRE(a.omega <= -2 * eps + tol);
+  REQUIRE(c.omega >= -2 * eps - tol);
+  REQUIRE(c.omega - a.omega <= tol);
+  REQUIRE(probes < 20); // bisection alone needs 29 from a bracket of 0.3 to 1e-9
+  // and the return to the circle at +2 eps
+  PCHK(probe(0.5, &a));
+  PCHK(probe(1, &c));
+  PCHK(LocateChange(probe, same, G, tol, 60, &a, &c, &probes, &conv));
+  REQUIRE(conv);
+  REQUIRE(std::abs(0.5 * (a.omega + c.omega) - 2 * eps) < tol);
+}
+
+TEST_CASE("the pitchfork of two coupled dimers is located where averaging puts it, and breaks their mirror symmetry", "[bifurcations]")
+{
+  CoupledDimers d;
+  PCHK(d.Setup());
+  const auto &w = d.modes.Omega();
+  const PetscReal lam_hi = w[3] * w[3], kappa = (lam_hi - w[2] * w[2]) / 2;
+  BifurcationOptions bo;
+  bo.tol = 1e-9;
+  FloquetOptions fo;
+  BifurcationLocator loc;
+  PCHK(loc.Setup(d.shoot, fo, bo));
+  for (PetscInt j : {2, 3}) {
+    Record rec(d.flow);
+    Branch b;
+    PCHK(d.Continue(j, std::sqrt(lam_hi + 3 * kappa), &rec, &b));
+    std::vector<BifurcationEvent> ev;
+    PCHK(loc.Locate(b, rec.re, rec.im, rec.edge, "dimers", &ev));
+    INFO("mode " << j << ": " << ev.size() << " events");
+    if (j == 2) { // the lower NNM: stable at every amplitude, and its trivial pair never triggers an event
+      REQUIRE(ev.empty());
+      continue;
+    }
+    REQUIRE(ev.size() == 1);
+    const BifurcationEvent &e = ev[0];
+    REQUIRE(e.kind == EventKind::BranchPoint);
+    REQUIRE(e.direction == 1);
+    REQUIRE(e.omega_bracket <= bo.tol);
+    // First-order averaging: the real pair leaves +1 at Omega^2 - lambda_hi = kappa; its error is O(kappa / Omega^2) ~ 1e-2.
+    const PetscReal onset = (e.omega * e.omega - lam_hi) / kappa;
+    INFO("located onset s/kappa = " << onset);
+    REQUIRE(std::abs(onset - 1) < 0.05);
+    REQUIRE(std::abs(e.mu_re - 1) < 1e-3);
+    REQUIRE(e.mu_im == 0);
+    REQUIRE(e.krein[0] * e.krein[1] == -1); // the pair at +1: conjugate members
+    // The critical eigenvector has the other mirror parity than the orbit (u_i <-> u_{N-1-i}):
+    // the family it starts breaks the symmetry.
+    const PetscInt N = d.lat.N();
+    std::vector<PetscReal> z0(b.z0);
+    PetscInt nz = (PetscInt)z0.size();
+    MPI_Bcast(&nz, 1, MPIU_INT, 0, PETSC_COMM_WORLD);
+    z0.resize(nz);
+    MPI_Bcast(z0.data(), (int)nz, MPIU_REAL, 0, PETSC_COMM_WORLD);
+    const PetscReal *u = z0.data() + (size_t)e.point * 2 * N;
+    PetscReal even = 0, odd = 0, veven = 0, vodd = 0;
+    for (PetscInt i = 0; i < N; i++) {
+      even += std::pow(u[i] + u[N - 1 - i], 2), odd += std::pow(u[i] - u[N - 1 - i], 2);
+      const PetscReal *x = e.vector.data();
+      veven += std::pow(x[i] + x[N - 1 - i], 2) + std::pow(x[N + i] + x[2 * N - 1 - i], 2);
+      vodd += std::pow(x[i] - x[N - 1 - i], 2) + std::pow(x[N + i] - x[2 * N - 1 - i], 2);
+    }
+    const bool orbit_even = even > odd;
+    INFO("orbit even/odd " << even << " " << odd << ", vector even/odd " << veven << " " << vodd);
+    REQUIRE(std::min(even, odd) < 1e-20 * std::max(even, odd) + 1e-24);
+    REQUIRE((orbit_even ? veven : vodd) < 1e-12 * (veven + vodd));
+  }
+}
+
+TEST_CASE("energy folds of a folded branch are located at the extrema of E, and the pair crossing +1 there is not a branch point", "[bifurcations]")
+{
+  // Mode 0 of the N = 6 interface lattice: E rises to ~66, falls to ~8, rises again (test_continuation.cpp;
+  // to 1e3 it folds twice more).
+  LatticeParams p;
+  p.cells = 1;
+  Lattice lat;
+  PCHK(lat.Setup(PETSC_COMM_WORLD, p));
+  LinearModes modes;
+  PCHK(modes.Compute(lat, LinearModesOptions()));
+  EffectList fx(lat);
+  PCHK(BuildLatticeEffects(lat, &fx));
+  PeriodicFlow flow;
+  PCHK(flow.Setup(fx, FlowOptions()));
+  Shooting shoot;
+  PCHK(shoot.Setup(flow, ShootingOptions()));
+  ContinuationOptions co;
+  co.verbose = PETSC_FALSE;
+  co.energy_max = 300;
+  Record rec(flow);
+  Branch b;
+  PCHK(ContinueBranch(shoot, modes.Mode(0), 2 * PETSC_PI / modes.Omega()[0], co, "folds", &b, &rec));
+  BifurcationOptions bo;
+  bo.tol = 1e-9;
+  BifurcationLocator loc;
+  PCHK(loc.Setup(shoot, FloquetOptions(), bo));
+  std::vector<BifurcationEvent> ev;
+  PCHK(loc.Locate(b, rec.re, rec.im, rec.edge, "folds", &ev));
+  std::vector<const BifurcationEvent *> folds;
+  for (const BifurcationEvent &e : ev)
+    if (e.kind == EventKind::Fold) folds.push_back(&e);
+  REQUIRE(folds.size() == 2);
+  for (const BifurcationEvent &e : ev) // the change of stability at a fold is the fold's: no other event at it
+    for (const BifurcationEvent *f : folds) {
+      INFO("event kind " << (int)e.kind << " at omega " << e.omega << ", fold at " << f->omega);
+      if (&e != f) REQUIRE(std::abs(e.s - f->s) > 1e-6 * f->s);
+    }
+  REQUIRE(folds[0]->direction == 1);  // maximum of E first
+  REQUIRE(folds[1]->direction == -1); // then the minimum
+  for (const BifurcationEvent *f : folds) {
+    REQUIRE(f->omega_bracket <= bo.tol);
+    // an extremum of E along the branch: beyond every stored neighbour
+    for (PetscInt k = std::max<PetscInt>(0, f->point - 2); k <= std::min<PetscInt>(f->point + 3, (PetscInt)b.energy.size() - 1); k++) {
+      INFO("fold at E " << f->energy << ", point " << k << " E " << b.energy[k]);
+      REQUIRE(f->direction * (f->energy - b.energy[k]) >= -1e-9 * f->energy);
+    }
+    REQUIRE(f->vector.size() == (size_t)(2 * lat.N())); // the family tangent there
+  }
+}
