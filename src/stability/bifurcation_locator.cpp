@@ -95,6 +95,7 @@ PetscErrorCode BifurcationLocator::Probe(PetscReal sigma, bool floquet, bool tan
   PetscCall(Predict(sigma, X_));
   PetscCall(shoot_->Solve(X_, &ok, &its));
   probes_++;
+  if (!ok && getenv("BIFDBG")) PetscPrintf(PETSC_COMM_WORLD, "DBG newton failed at sigma %.15f: %s after %d\n", (double)sigma, shoot_->LastReason(), (int)its);
   if (!ok) {
     s->ok = false;
     PetscFunctionReturn(0);

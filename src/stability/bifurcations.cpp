@@ -196,6 +196,13 @@ PetscErrorCode LocateChange(const SampleProbe &probe, const SamePredicate &same,
     BifurcationSample m;
     PetscCall(probe(sigma, &m));
     ++*probes;
+    // Newton fails right at a branch point (the shooting Jacobian is singular
+    // there), where a good secant step may land: step a little aside, twice
+    for (PetscReal aside : {0.25 * (c->sigma - sigma), -0.25 * (sigma - a->sigma)}) {
+      if (m.ok || *probes >= max_probes) break;
+      PetscCall(probe(sigma + aside, &m));
+      ++*probes;
+    }
     if (!m.ok) PetscFunctionReturn(0);
     if (same(*a, m)) {
       *a = std::move(m);

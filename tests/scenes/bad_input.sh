@@ -104,6 +104,10 @@ expect_error "-kcorr_nc" o.h5 $W -sweep_kcorr -kcorr_nc 0
 expect_error "-zak_theta_tol" o.h5 -study zak -zak_energy_list 0.01 -sim_t_final 300 -lattice_cells 4 -zak_theta_tol 4
 expect_error "-stability_periods" o.h5 -study stability -lattice_cells 5 -stability_periods 0
 expect_error "-cont_checkpoint_seconds" o.h5 $C -cont_checkpoint_seconds -1
+expect_error "-cont_bifurcations needs -floquet without -floquet_mf" o.h5 $C -cont_bifurcations
+expect_error "-cont_bifurcations needs -floquet without -floquet_mf" o.h5 $C -floquet -floquet_mf -cont_bifurcations 1
+expect_error "-cont_bif_tol must lie in \[1e-14, 1e-2\], got 0." o.h5 $C -floquet -cont_bif_tol 0
+expect_error "-cont_bif_angle_tol must lie in (0, 1), got 2." o.h5 $C -floquet -cont_bif_angle_tol 2
 expect_error "-sim_store_u_stride" o.h5 $S -sim_store_u_stride 0
 expect_error "-nnm_mf_pc_parametric_weight 0" o.h5 -study continuation -lattice_cells 5 -nnm_jacobian mf -nnm_mf_pc parametric -nnm_mf_pc_parametric_weight 0
 expect_error "-nnm_orbit_rtol -1" o.h5 -study continuation -lattice_cells 5 -nnm_orbit_rtol -1

@@ -1,0 +1,59 @@
+# -cont_bifurcations (on with -floquet): events along the insulated branch of
+# options/fep.opts, located between its points. Checked against the stored
+# Floquet data itself (each located change of stability lies between two
+# points whose multipliers show it, to -cont_bif_tol in omega), against the
+# Krein rule (a Hamiltonian-Hopf pair has opposite signatures) and across
+# 1 and 2 ranks; the FEP plot marks the events.
+source "$(dirname "$0")/common.bash"
+run1 -options_file "$SRC/options/fep.opts" -cont_branch insulated -cont_energy_max 300 -cont_verbose 0 -output paper.h5 | tee paper.txt
+small="-cont_branch insulated -lattice_cells 5 -cont_energy_max 300 -cont_verbose 0"
+run1 -options_file "$SRC/options/fep.opts" $small -output s1.h5 > s1.txt
+run2 -options_file "$SRC/options/fep.opts" $small -output s2.h5 > s2.txt
+grep -q "event .*: branch point (+1) E-E, instability begins at omega 2.41824" paper.txt
+$PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_fep.py" paper.h5 fep.png
+$PY - <<'PYEOF'
+import h5py, numpy as np
+def load(fn):
+    b = h5py.File(fn, "r")["continuation/insulated"]
+    return b, b["bifurcations"]
+b, e = load("paper.h5")
+tol = e.attrs["tol"]
+assert tol == 1e-7 and e.attrs["probes"] > 0
+n = e["kind"].shape[0]
+for k in ("kind", "energy", "omega", "s", "multiplier_re", "multiplier_im", "direction", "point", "instability", "omega_bracket"):
+    assert e[k].shape == (n,), k
+assert e["krein"].shape == (n, 2) and e["vector"].shape == (n, 204) and e["kind"].dtype.kind == "i"
+w, kind, d, pt = e["omega"][:], e["kind"][:], e["direction"][:], e["point"][:]
+assert np.all(e["omega_bracket"][:] <= tol)
+assert np.all(np.diff(e["s"][:]) >= 0)   # in the order of the branch
+omega = b["omega"][:]
+mu = b["multipliers_re"][:] + 1j * b["multipliers_im"][:]
+for i in range(n):
+    # each event lies between the two points it is reported after
+    lo, hi = sorted((omega[pt[i]], omega[pt[i] + 1]))
+    assert lo - tol <= w[i] <= hi + tol, (i, w[i], lo, hi)
+    v = e["vector"][i]
+    assert abs(np.linalg.norm(v) - 1) < 1e-10
+    if kind[i] == 5:  # Hamiltonian-Hopf: two pairs of opposite Krein signature collide
+        assert e["krein"][i][0] * e["krein"][i][1] == -1, (i, e["krein"][i])
+        assert abs(abs(e["multiplier_re"][i] + 1j * e["multiplier_im"][i]) - 1) < 1e-3
+# the weak B-E collisions of omega 1.7-1.9 (paper: B-E instabilities below the optical band)
+be = [(w[i], d[i]) for i in range(n) if kind[i] == 5 and e["instability"][i] == 2 and 1.7 < w[i] < 1.9]
+assert len(be) >= 4, be
+# the real E-E instability: one branch point, located to tol, where the stored points turn unstable
+bp = [i for i in range(n) if kind[i] == 2]
+assert len(bp) == 1, bp
+i = bp[0]
+assert d[i] == 1 and e["instability"][i] == 3 and abs(w[i] - 2.418248) < 1e-5, w[i]
+assert abs(e["multiplier_re"][i] - 1) < 1e-3 and e["multiplier_im"][i] == 0
+before, after = mu[pt[i]], mu[pt[i] + 1]
+assert np.abs(before).max() < 1 + 1e-6                                  # stable before
+assert np.any((np.abs(after.imag) < 1e-12) & (after.real > 1.1))        # a real pair beyond
+# 1 and 2 ranks: the same events on the small lattice
+(_, e1), (_, e2) = load("s1.h5"), load("s2.h5")
+k1, k2 = e1["kind"][:], e2["kind"][:]
+assert len(k1) > 0 and np.array_equal(k1, k2), (k1, k2)
+assert np.abs(e1["omega"][:] - e2["omega"][:]).max() < 2 * tol
+assert np.array_equal(e1["direction"][:], e2["direction"][:])
+print("bifurcations scene OK:", n, "events, E-E branch point at omega", w[i])
+PYEOF
