@@ -21,6 +21,7 @@ PetscErrorCode LogRegister()
   PetscCall(PetscLogEventRegister("Floquet", cid, &g_log.floquet));
   PetscCall(PetscLogEventRegister("Bifurcations", cid, &g_log.bifurcations));
   PetscCall(PetscLogEventRegister("ShootLinPC", cid, &g_log.mf_pc));
+  PetscCall(PetscLogEventRegister("LinearTransition", cid, &g_log.transition));
   PetscCall(PetscLogStageRegister("Setup", &g_log.setup));
   PetscCall(PetscLogStageRegister("Solve", &g_log.solve));
   PetscCall(PetscLogStageRegister("Write", &g_log.write));

@@ -249,6 +249,17 @@ std::vector<Schema> Build()
                 {"amplitude", A, R, "scalar", "simulate scene: forcing amplitude"},
                 {"omega_ext", A, R, "scalar", "simulate scene: forcing frequency"},
                 {"energy_star", A, R, "scalar", "simulate scene: E*"}}});
+  s.push_back({"/linear/transition", "",
+               {{"gamma", D, R, "ng", "dimerisation values of -linear_gamma_list"},
+                {"omega", D, R, "ng x N", "finite-lattice frequencies at each gamma, ascending"},
+                {"zak_left", D, R, "ng x 2", "Zak phase of the left cell (intra k2, inter k1): acoustic, optical; NaN where k1 = k2"},
+                {"zak_right", D, R, "ng x 2", "Zak phase of the right cell (intra k1, inter k2): acoustic, optical; NaN where k1 = k2"},
+                {"bands_inf", D, R, "ng x 4", "infinite lattice at each gamma: acoustic bottom, top, optical bottom, top (rad/s)"},
+                {"lambda_min", D, R, "ng", "smallest eigenvalue of K at each gamma (< 0: K not positive definite, omega clamped to 0 there)"},
+                {"N", A, I, "scalar", "sites"},
+                {"layout", A, S, "scalar", "lattice layout"},
+                {"nq", A, I, "scalar", "-linear_nq: the Zak loop uses 2 nq points"},
+                {"zak_rule", A, S, "scalar", "how the Zak phases were computed, and what NaN means"}}});
   return s;
 }
 

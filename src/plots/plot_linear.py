@@ -1,7 +1,10 @@
 #!/usr/bin/python3
 """Paper-style figure of -study linear: finite-lattice spectrum with the named
 modes, infinite-lattice Bloch bands with the Zak phases, and the insulated and
-interface mode shapes.  usage: plot_linear.py linear.h5 [out.png]"""
+interface mode shapes; with /linear/transition (-linear_gamma_list) also paper
+Fig. 2a into <out>_transition.png (plot_transition.py).
+usage: plot_linear.py linear.h5 [out.png]"""
+import os
 import sys
 import h5py
 import matplotlib
@@ -39,3 +42,8 @@ ax[2].legend(fontsize=8)
 fig.tight_layout()
 fig.savefig(out, dpi=120)
 print("wrote", out)
+if "linear/transition" in f:
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import plot_transition
+    base, ext = os.path.splitext(out)
+    plot_transition.draw(f, base + "_transition" + (ext or ".png"))

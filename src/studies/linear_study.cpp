@@ -1,6 +1,11 @@
 // -study linear: eigenpairs of K, the named modes (README.md "Mode
 // identification"), infinite-lattice Bloch bands and Zak phases; /linear of outputs.md.
+// With -linear_gamma_list, also the topological transition over gamma
+// (paper Fig. 2a, bands/transition.hpp): /linear/transition.
 #include "bands/linear_modes.hpp"
+#include "bands/transition.hpp"
+#include "studies/linear_transition.hpp"
+#include "core/memory_guard.hpp"
 #include "effects/effect.hpp"
 #include "core/log.hpp"
 #include "core/options_audit.hpp"
@@ -10,6 +15,7 @@
 #include "studies/study.hpp"
 #include <petscviewerhdf5.h>
 #include <cmath>
+#include <cstring>
 
 namespace nltopo {
 
@@ -19,13 +25,23 @@ PetscReal OmegaOf(const LinearModes &m, PetscInt j) { return j >= 0 ? m.Omega()[
 
 const PetscInt kBlochDefaultNq = 201; // -linear_nq
 
-PetscErrorCode BlochOptionsFromOptions(MPI_Comm comm, PetscInt *nq)
+// The linear study's own block: -linear_nq and -linear_gamma_list (off unless given).
+PetscErrorCode LinearStudyOptionsFromOptions(MPI_Comm comm, PetscInt *nq, GammaList *gl)
 {
+  char list[256] = "";
+  PetscBool set = PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "linear_", "Linear study", NULL);
   PetscCall(PetscOptionsInt("-nq", "Wavenumbers for the Bloch bands; the Zak loop uses 2 nq points", NULL, *nq, nq, NULL));
+  PetscCall(PetscOptionsString("-gamma_list",
+                               "Topological transition (paper Fig. 2a): min:max:n values of gamma in [-1, 1], the finite spectrum and the Zak phases at each "
+                               "-> /linear/transition (default: none, off)",
+                               NULL, list, list, sizeof(list), &set));
   PetscOptionsEnd();
   PetscCheck(*nq >= 4 && *nq <= 1000000, comm, PETSC_ERR_USER, "-linear_nq must lie in [4, 1e6], got %" PetscInt_FMT, *nq);
+  PetscCheck(std::strlen(list) < sizeof(list) - 1, comm, PETSC_ERR_USER, "-linear_gamma_list %s...: too long, expected min:max:n", list);
+  *gl = GammaList();
+  if (set) PetscCall(ParseGammaList(comm, list, gl));
   PetscFunctionReturn(0);
 }
 
@@ -36,7 +52,12 @@ protected:
     PetscFunctionBeginUser;
     PetscCall(LatticeParamsFromOptions(comm_, &lp_));
     PetscCall(LinearModesOptionsFromOptions(comm_, &mo_));
-    PetscCall(BlochOptionsFromOptions(comm_, &nq_));
+    PetscCall(LinearStudyOptionsFromOptions(comm_, &nq_, &gl_));
+    // The transition needs all N eigenfrequencies (an O(N^2) tridiagonal solve per gamma): the dense path's N.
+    if (!declaring_ && gl_.n)
+      PetscCheck(lp_.N() <= mo_.dense_max, comm_, PETSC_ERR_USER,
+                 "-linear_gamma_list %s needs all N eigenfrequencies: N = %" PetscInt_FMT " exceeds -linear_dense_max %" PetscInt_FMT, gl_.text.c_str(),
+                 lp_.N(), mo_.dense_max);
     PetscFunctionReturn(0);
   }
   PetscErrorCode DeclareSolvers(MPI_Comm comm) override { return DeclareEPS(comm, "linear_"); }
@@ -47,6 +68,8 @@ protected:
     EffectList fx(lat_); // the undamped modes of K: no non-conservative effect belongs here
     PetscCall(BuildEffects(lat_, nullptr, &fx));
     PetscCall(fx.RequireConservative("-study linear (the normal modes of K)"));
+    // The transition's arrays, held on every rank (each computes them all).
+    if (gl_.n) PetscCall(CheckMemory(comm_, 8.0 * (double)gl_.n * (double)(lat_.N() + 12), "/linear/transition (-linear_gamma_list n x N sites)"));
     PetscFunctionReturn(0);
   }
   PetscErrorCode Solve() override
@@ -68,6 +91,15 @@ protected:
                           (double)OmegaOf(modes_, nm.optical_bottom), (double)OmegaOf(modes_, nm.optical_top)));
     PetscCall(PetscPrintf(comm_, "  Zak phase  left cell: acoustic %.6f optical %.6f | right cell: acoustic %.6f optical %.6f\n", (double)bl_.zak_left[0],
                           (double)bl_.zak_left[1], (double)bl_.zak_right[0], (double)bl_.zak_right[1]));
+    if (gl_.n) { // without -linear_gamma_list nothing of the transition is computed
+      PetscLogDouble t0, t1;
+      PetscCall(PetscTime(&t0));
+      PetscCall(PetscLogEventBegin(Log().transition, 0, 0, 0, 0));
+      PetscCall(ComputeTransition(lp_, GammaGrid(gl_.lo, gl_.hi, gl_.n), nq_, &tr_));
+      PetscCall(PetscLogEventEnd(Log().transition, 0, 0, 0, 0));
+      PetscCall(PetscTime(&t1));
+      PetscCall(PrintTransitionSummary(comm_, lp_, tr_, t1 - t0));
+    }
     PetscFunctionReturn(0);
   }
   PetscErrorCode Write(PetscViewer v) override
@@ -105,6 +137,19 @@ protected:
     PetscCall(WriteAttr(v, "/linear/bloch", "zak_right_acoustic", bl_.zak_right[0]));
     PetscCall(WriteAttr(v, "/linear/bloch", "zak_right_optical", bl_.zak_right[1]));
     PetscCall(WriteBandEdges(v, "/linear/bloch", be_));
+    if (gl_.n) {
+      const char *g = "/linear/transition";
+      PetscCall(WriteArray(v, g, "gamma", tr_.gamma));
+      PetscCall(WriteArray(v, g, "omega", tr_.omega, tr_.N));
+      PetscCall(WriteArray(v, g, "zak_left", tr_.zak_left, 2));
+      PetscCall(WriteArray(v, g, "zak_right", tr_.zak_right, 2));
+      PetscCall(WriteArray(v, g, "bands_inf", tr_.bands_inf, 4));
+      PetscCall(WriteArray(v, g, "lambda_min", tr_.lambda_min));
+      PetscCall(WriteAttr(v, g, "N", tr_.N));
+      PetscCall(WriteAttr(v, g, "layout", LayoutName(lp_.layout)));
+      PetscCall(WriteAttr(v, g, "nq", nq_));
+      PetscCall(WriteAttr(v, g, "zak_rule", "Wilson loop over 2 nq points of the Brillouin zone, wrapped to [-pi/2, 3 pi/2); NaN where k1 = k2 (gamma = 0: the gap closes, the Zak phase is undefined)"));
+    }
     PetscFunctionReturn(0);
   }
 
@@ -112,6 +157,8 @@ private:
   LatticeParams lp_;
   LinearModesOptions mo_;
   PetscInt nq_ = kBlochDefaultNq;
+  GammaList gl_; // -linear_gamma_list (n = 0: off)
+  TransitionResult tr_;
   Lattice lat_;
   LinearModes modes_;
   BlochResult bl_{};

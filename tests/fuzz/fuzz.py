@@ -72,7 +72,7 @@ T = {
     "lattice_perturbation": ("enum", 0, 0, ["none", "chiral", "achiral"]),
     "lattice_delta": ("real", 0.0, 0.3), "lattice_seed": ("int", 0, 1000), "lattice_damping": ("real", 0.0, 0.2),
     "linear_dense_max": ("int", 0, 60), "linear_nev": ("int", 1, 8), "linear_target_offset": ("real", 1e-8, 0.05),
-    "linear_nq": ("int", 4, 40),
+    "linear_nq": ("int", 4, 40), "linear_gamma_list": ("enum", 0, 0, ["-1:1:5", "-0.5:0.5:3", "0:1:2", "-1:0:4"]),
     "force_profile": ("enum", 0, 0, ["site", "mode", "none", "exponential"]),
     "force_omega": ("real", 0.5, 3.0), "force_energy": ("real", 1e-3, 1.0), "force_amplitude": ("real", 0.0, 2.0),
     "force_amplitude_safety": ("real", 0.5, 4.0), "force_amplitude_retries": ("int", 0, 8),

@@ -100,6 +100,17 @@ expect_error "-lattice_cells 4294967301: out of the integer range" o.h5 -study l
 expect_error "-sim_ts_max_steps 99999999999: out of the integer range" o.h5 $S -sim_ts_max_steps 99999999999
 # ranges
 expect_error "-linear_nq" o.h5 -study linear -lattice_cells 5 -linear_nq 2
+# -linear_gamma_list min:max:n (the topological transition)
+L="-study linear -lattice_cells 5"
+expect_error "-linear_gamma_list 0.5:1: expected min:max:n" o.h5 $L -linear_gamma_list 0.5:1
+expect_error "-linear_gamma_list abc: expected min:max:n" o.h5 $L -linear_gamma_list abc
+expect_error "-linear_gamma_list -1:1:2.5: expected min:max:n" o.h5 $L -linear_gamma_list -1:1:2.5
+expect_error "-linear_gamma_list -1:1:1: n must lie in \[2, 100000\]" o.h5 $L -linear_gamma_list -1:1:1
+expect_error "-linear_gamma_list -1.5:1:5: min and max must satisfy -1 <= min < max <= 1" o.h5 $L -linear_gamma_list -1.5:1:5
+expect_error "-linear_gamma_list 0.5:0.5:3: min and max must satisfy" o.h5 $L -linear_gamma_list 0.5:0.5:3
+expect_error "-linear_gamma_list nan:1:3: min and max must satisfy" o.h5 $L -linear_gamma_list nan:1:3
+expect_error "-linear_gamma_list -1:1:3 needs all N eigenfrequencies: N = 22 exceeds -linear_dense_max 10" o.h5 $L -linear_dense_max 10 -linear_gamma_list -1:1:3
+expect_error "-linear_gamma_list -1:1:3: not an option of -study simulate (it belongs to -study linear)" o.h5 $S -linear_gamma_list -1:1:3
 expect_error "-kcorr_nc" o.h5 $W -sweep_kcorr -kcorr_nc 0
 expect_error "-zak_theta_tol" o.h5 -study zak -zak_energy_list 0.01 -sim_t_final 300 -lattice_cells 4 -zak_theta_tol 4
 expect_error "-stability_periods" o.h5 -study stability -lattice_cells 5 -stability_periods 0

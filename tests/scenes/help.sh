@@ -7,7 +7,7 @@ for opt in -study -output -lattice_k -lattice_gamma -lattice_gamma0 -lattice_cub
            -force_t0_taus -force_site -force_mode_index -sim_t_final -sim_sample_dt -sim_store_u -sim_progress -sim_ts_type; do
   grep -qE -- "$opt[ :]" help_sim.txt || { echo "missing in -help: $opt"; exit 1; }
 done
-for opt in -linear_dense_max -linear_nev -linear_target_offset -linear_nq -linear_eps_type; do
+for opt in -linear_dense_max -linear_nev -linear_target_offset -linear_nq -linear_gamma_list -linear_eps_type; do
   grep -qE -- "$opt[ :]" help_lin.txt || { echo "missing in -help: $opt"; exit 1; }
 done
 "$NLTOPO" -help -study sweep -sweep_omega_n 1 -sweep_energy_n 1 -sim_t_final 1 -output h3.h5 > help_sweep.txt

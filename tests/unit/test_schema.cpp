@@ -178,7 +178,7 @@ TEST_CASE("outputs.md: every name of every written group is in its schema, of th
   }
   CHECK(checked >= 65);
   // Groups of outputs.md no study writes yet: a schema for one must come with its writer.
-  CHECK(unwritten == std::set<std::string>{"/linear/transition"});
+  CHECK(unwritten.empty()); // every group of outputs.md has its schema and its writer
 }
 
 TEST_CASE("the output schemas are well formed", "[schema]")
