@@ -3,8 +3,8 @@
 # one command, on the options files, with the built nltopo (README.md
 # "Figures of the paper"):
 #
-#   bash figures/make_all.sh                    # small runs (default): about 2 minutes on 2 cores
-#   FIG_SIZE=paper bash figures/make_all.sh     # the paper's sizes: about 4 minutes
+#   bash figures/make_all.sh                    # small runs (default): 2.4 min on 2 shared cores
+#   FIG_SIZE=paper bash figures/make_all.sh     # the paper's sizes: 5.4 min (same machine)
 #
 # Environment:
 #   FIG_SIZE   small (default) | paper | test (the ctest scene's tiny runs)
