@@ -1,7 +1,14 @@
 #!/usr/bin/python3
-"""Paper-style frequency-energy plot of -study continuation: omega vs energy of
-every branch over the linear bands (shaded), the MCR of each orbit, and the
-flagged modal interactions.  usage: plot_fep.py fep.h5 [out.png]"""
+"""Paper-style frequency-energy plot of -study continuation (the paper's Fig. 3):
+(a) omega vs energy of every branch over the linear bands (grey), the
+    nonlinear optical band shaded between its edge NNMs (the optical_bottom and
+    optical_top branches), Floquet-unstable orbits, flagged modal interactions,
+    and lettered points on the insulated branch;
+(b) the MCR of each orbit along the branches;
+(c) the insulated NNM's shape u0 at the lettered points (normalised, offset);
+(d) the band-edge NNMs' shapes at the lowest and the highest energy of their
+    branches (only with acoustic_top, optical_bottom or optical_top).
+usage: plot_fep.py fep.h5 [out.png]"""
 import sys
 import h5py
 import matplotlib
@@ -12,26 +19,86 @@ import nltopo_plot
 
 f = h5py.File(sys.argv[1], "r")
 out = sys.argv[2] if len(sys.argv) > 2 else sys.argv[1].replace(".h5", "") + "_fep.png"
-bands = nltopo_plot.bands(f["continuation"])
-fig, ax = plt.subplots(1, 2, figsize=(13, 5))
-for lo, hi in bands:
-    ax[0].axhspan(lo, hi, color="0.9")
-for name, grp in f["continuation"].items():
-    E, w, mcr = grp["energy"][:], grp["omega"][:], grp["mcr"][:]
-    line, = ax[0].semilogx(E, w, ".-", ms=3, label=f"{name} ({grp.attrs['points']} pts)")
-    ax[1].semilogx(E, mcr, ".-", ms=3, color=line.get_color(), label=name)
-    if "stable" in grp:  # unstable orbits in red, as in the paper's figure
-        bad = grp["stable"][:] == 0
-        ax[0].plot(E[bad], w[bad], "o", mfc="none", mec="r", ms=5)
-    inter = grp["interactions"][:].astype(int) if "interactions" in grp else []
+C = f["continuation"]
+bands = nltopo_plot.bands(C)
+names = list(C.keys())
+colour = {name: f"C{k}" for k, name in enumerate(names)}
+edges = [n for n in ("acoustic_top", "optical_bottom", "optical_top") if n in C]
+npan = 4 if edges else 3
+fig, ax = plt.subplots(1, npan, figsize=(5.4 * npan, 6))
+ax = list(ax)
+Emax = max(float(C[n]["energy"][:].max()) for n in names)
+
+# (a) the FEP
+for k, (lo, hi) in enumerate(bands):
+    ax[0].axhspan(lo, hi, color="0.88", label="linear bands (infinite lattice)" if k == 0 else "_nolegend_")
+if "optical_bottom" in C and "optical_top" in C:  # the nonlinear optical band between its edge NNMs, on their common energies
+    b, t = C["optical_bottom"], C["optical_top"]
+    lo_e, hi_e = max(b["energy"][:].min(), t["energy"][:].min()), min(b["energy"][:].max(), t["energy"][:].max())
+    if hi_e > lo_e:
+        e = np.geomspace(lo_e, hi_e, 200)
+        ax[0].fill_between(e, nltopo_plot.branch_omega(b, e), nltopo_plot.branch_omega(t, e), color="tab:cyan", alpha=0.25, lw=0,
+                           label="nonlinear optical band (edge NNMs)")
+unstable_label, inter_label = "Floquet-unstable orbit", "modal interaction"
+for name in names:
+    g = C[name]
+    E, w = g["energy"][:], g["omega"][:]
+    ax[0].plot(E, w, ".-", ms=3, color=colour[name], label=f"{name} ({g.attrs['points']} pts)")
+    ax[1].plot(E, g["mcr"][:], ".-", ms=3, color=colour[name], label=name)
+    if "stable" in g:
+        bad = g["stable"][:] == 0
+        if bad.any():
+            ax[0].plot(E[bad], w[bad], "o", mfc="none", mec="r", ms=5, label=unstable_label)
+            unstable_label = "_" + unstable_label
+    inter = g["interactions"][:].astype(int) if "interactions" in g else []
     if len(inter):
-        ax[0].plot(E[inter], w[inter], "x", color=line.get_color(), ms=8)
-ax[0].axvline(12, color="k", ls="--", lw=0.8)
-ax[0].set(xlabel="energy E", ylabel=r"$\omega$ (rad/s)", title="NNM branches (red o: Floquet-unstable; x: modal interaction; grey: bands)")
-ax[0].legend(fontsize=8)
-ax[1].axvline(12, color="k", ls="--", lw=0.8, label="E = 12 (paper)")
-ax[1].set(xlabel="energy E", ylabel="MCR of u0", title="localisation along the branches")
-ax[1].legend(fontsize=8)
+        ax[0].plot(E[inter], w[inter], "x", color=colour[name], ms=8, label=inter_label)
+        inter_label = "_" + inter_label
+
+# the lettered orbits of the insulated branch (or of the first branch): the
+# first one, E ~ 1, the first inside the linear optical band, and the last
+ref = "insulated" if "insulated" in C else names[0]
+g = C[ref]
+E, w = g["energy"][:], g["omega"][:]
+picks = [0, int(np.argmin(np.abs(np.log(E / 1.0))))]
+inside = np.nonzero(w >= bands[1][0])[0]
+if len(inside):
+    picks.append(int(inside[0]))
+picks.append(len(E) - 1)
+picks = sorted(set(picks))
+letters = [chr(ord("a") + k) for k in range(len(picks))]
+ax[0].plot(E[picks], w[picks], "ks", mfc="none", ms=8, label=f"lettered {ref} orbits (panel c)")
+for L, i in zip(letters, picks):
+    ax[0].annotate(L, (E[i], w[i]), textcoords="offset points", xytext=(-10, 6), fontsize=9, weight="bold")
+if E.min() < 12 < Emax:
+    ax[0].axvline(12, color="k", ls="--", lw=0.8, label="E = 12 (paper)")
+    ax[1].axvline(12, color="k", ls="--", lw=0.8, label="E = 12 (paper)")
+ax[0].set(xscale="log", xlabel="energy E", ylabel=r"$\omega$ (rad/s)", title="(a) NNM branches and the nonlinear optical band")
+ax[0].legend(fontsize=7, loc="upper left")
+ax[1].set(xscale="log", xlabel="energy E", ylabel="MCR of u0", title="(b) localisation along the branches")
+ax[1].legend(fontsize=7)
+
+# (c) the shapes at the lettered orbits
+N = g["z0"].shape[1] // 2
+sites = np.arange(1, N + 1)
+for k, (L, i) in enumerate(zip(letters, picks)):
+    u = g["z0"][i, :N]
+    u = u / np.abs(u).max()
+    ax[2].plot(sites, u - 2.2 * k, ".-", ms=2.5, lw=0.8, label=rf"{L}: E = {E[i]:.3g}, $\omega$ = {w[i]:.4f}")
+ax[2].set(xlabel="site", ylabel=r"$u_0 / \max|u_0|$ (offset by 2.2)", title=f"(c) {ref} NNM shapes")
+ax[2].legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2)
+
+# (d) the band-edge NNMs at the two ends of their branches
+if edges:
+    for k, name in enumerate(edges):
+        ge = C[name]
+        Ee = ge["energy"][:]
+        for j, style in ((0, "--"), (len(Ee) - 1, "-")):
+            u = ge["z0"][j, :N]
+            u = u / np.abs(u).max()
+            ax[3].plot(sites, u - 2.5 * k, style, lw=0.8, color=colour[name], label=f"{name}, E = {Ee[j]:.3g}")
+    ax[3].set(xlabel="site", ylabel=r"$u_0 / \max|u_0|$ (offset by 2.5)", title="(d) band-edge NNMs: lowest (dashed), highest E")
+    ax[3].legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2)
 fig.tight_layout()
 fig.savefig(out, dpi=120)
 print("wrote", out)

@@ -13,7 +13,7 @@ import numpy as np
 
 f = h5py.File(sys.argv[1], "r")
 out = sys.argv[2] if len(sys.argv) > 2 else sys.argv[1].replace(".h5", "") + "_perturb.png"
-kinds = list(f["perturb"].keys())
+kinds = sorted(f["perturb"].keys(), key=lambda k: (k != "chiral", k))  # chiral left, as in the paper
 fig, ax = plt.subplots(2, len(kinds), figsize=(6 * len(kinds), 8.5), squeeze=False)
 for c, kind in enumerate(kinds):
     g = f["perturb"][kind]
@@ -26,9 +26,10 @@ for c, kind in enumerate(kinds):
     ax[0, c].set(xlabel="E*", ylabel="MCR (ensemble mean +- std)", title=f"{kind}: {mcr.shape[2]} realisations per delta")
     ax[0, c].legend(fontsize=7)
     for i, di in enumerate(d):
-        ax[1, c].plot(np.full(w.shape[1], di), w[i], "k.", ms=4)
-    ax[1, c].axhline(np.sqrt(3), color="tab:red", lw=0.8, label=r"$\sqrt{3}$")
-    ax[1, c].set(xlabel="delta", ylabel="linear insulated omega", title=f"{kind}: linear insulated frequency")
+        ax[1, c].plot(np.full(w.shape[1], di), w[i] - np.sqrt(3), "k.", ms=4)
+    ax[1, c].axhline(0, color="tab:red", lw=0.8, label=r"$\sqrt{3}$ (unperturbed)")
+    ax[1, c].ticklabel_format(axis="y", useOffset=False, style="sci", scilimits=(-3, 3))
+    ax[1, c].set(xlabel="delta", ylabel=r"linear insulated $\omega - \sqrt{3}$ (rad/s)", title=f"{kind}: linear insulated frequency of each realisation")
     ax[1, c].legend(fontsize=7)
 fig.tight_layout()
 fig.savefig(out, dpi=120)

@@ -1,15 +1,21 @@
 #!/usr/bin/python3
-"""Paper-style forced-response map of -study sweep: the MCR over (E*, omega_ext)
-with the linear bands marked, the 0-1 test's kcorr = 0.7 contour (chaos), points
-that never reached E* crossed out, points an accuracy-aware sweep
-(-sweep_mcr_tol) found unpredictable dotted (their MCR is a twins' mean), and,
-when a continuation file is given, its
-NNM branches (the frequency-energy plot) overlaid.
+"""Paper-style forced-response maps of -study sweep (the paper's Fig. 6, and
+Fig. 8 for the exponential forcing), over (E*, omega_ext) with the linear bands
+dotted and E = 12 dashed:
+(a) the nonlinear / linear energy ratio (log colours) with the 0-1 test's
+    kcorr = 0.7 contour (chaos, white) when the sweep computed it;
+(b) the MCR, points that never reached E* crossed out, points an
+    accuracy-aware sweep (-sweep_mcr_tol) found unpredictable dotted (their MCR
+    is a twins' mean), and, when a continuation file is given, its NNM branches
+    (the frequency-energy plot) overlaid within the map, Floquet-unstable
+    orbits in red;
+(c) the 0-1 test's kcorr (only when the sweep computed it).
 usage: plot_sweep.py sweep.h5 [fep.h5] [out.png]"""
 import sys
 import h5py
 import matplotlib
 matplotlib.use("Agg")
+import matplotlib.colors
 import matplotlib.pyplot as plt
 import numpy as np
 import nltopo_plot
@@ -24,38 +30,75 @@ w, E = s["omega"][:], s["energy"][:]
 done = s["done"][:].astype(bool)
 mcr = np.where(done, s["mcr"][:], np.nan)
 kc = np.where(done, s["kcorr"][:], np.nan)
+ratio = np.where(done, s["nl_ratio"][:], np.nan)
+ratio = np.where(ratio > 0, ratio, np.nan)
+has_kc = bool(s.attrs.get("kcorr_computed", 0)) and np.isfinite(kc).any()
+Elog = len(E) < 2 or E.min() > 0 and E.max() / E.min() > 20  # the paper's E* axis is logarithmic
 bands = nltopo_plot.bands(s)
+opts = f.attrs.get("options", b"")
+opts = (opts.decode() if isinstance(opts, bytes) else str(opts)).split()
+profile = opts[opts.index("-force_profile") + 1] if "-force_profile" in opts[:-1] else "site"
 
-fig, ax = plt.subplots(1, 2, figsize=(13, 5.2))
-pc = ax[0].pcolormesh(E, w, mcr.T, shading="nearest", cmap="viridis", vmin=0, vmax=np.nanmax(mcr))
-fig.colorbar(pc, ax=ax[0], label="MCR")
-if s.attrs.get("kcorr_computed", 0) and np.isfinite(kc).sum() > 3 and len(E) > 1 and len(w) > 1:
-    ax[0].contour(E, w, kc.T, levels=[0.7], colors="w", linewidths=1.2)
-missed = done & (s["reached"][:] == 0)
-if missed.any():
-    ee, ww = np.meshgrid(E, w, indexing="ij")
-    ax[0].plot(ee[missed], ww[missed], "rx", ms=5, label="E* not reached")
-for lo, hi in bands:
-    for a in ax:
+npan = 3 if has_kc else 2
+fig, ax = plt.subplots(1, npan, figsize=(6.6 * npan, 5.4))
+
+
+def decorate(a, e12_label="_E = 12"):
+    for lo, hi in bands:
         a.axhline(lo, color="0.6", lw=0.6, ls=":")
         a.axhline(hi, color="0.6", lw=0.6, ls=":")
+    if min(a.get_xlim()) < 12 < max(a.get_xlim()):
+        a.axvline(12, color="k", ls="--", lw=0.9, label=e12_label)
+    a.set(xlabel="E* (energy at the cut-off)", ylabel=r"$\omega_{ext}$ (rad/s)")
+
+
+# (a) the nonlinear / linear energy ratio, and where the response is chaotic
+if np.isfinite(ratio).any():
+    norm = matplotlib.colors.LogNorm(vmin=np.nanmin(ratio), vmax=max(np.nanmax(ratio), np.nanmin(ratio) * 10))
+    pr = nltopo_plot.grid_map(ax[0], E, w, ratio.T, xlog=Elog, cmap="cividis", norm=norm)
+    fig.colorbar(pr, ax=ax[0], label="nonlinear / linear potential energy")
+kc_line = ""
+if has_kc and np.isfinite(kc).sum() > 3 and len(E) > 1 and len(w) > 1 and np.nanmax(kc) > 0.7 > np.nanmin(kc):
+    ax[0].contour(E, w, kc.T, levels=[0.7], colors="w", linewidths=1.5)
+    kc_line = "; white: kcorr = 0.7"
+decorate(ax[0])
+ax[0].set_title(f"(a) energy ratio{kc_line}", fontsize=10)
+
+# (b) the MCR with the FEP
+pc = nltopo_plot.grid_map(ax[1], E, w, mcr.T, xlog=Elog, cmap="viridis", vmin=0, vmax=np.nanmax(mcr))
+fig.colorbar(pc, ax=ax[1], label="MCR")
+xlim, ylim = ax[1].get_xlim(), ax[1].get_ylim()
+ee, ww = np.meshgrid(E, w, indexing="ij")
+missed = done & (s["reached"][:] == 0)
+if missed.any():
+    ax[1].plot(ee[missed], ww[missed], "rx", ms=5, label="E* not reached")
 unpredictable = done & (s["predictable"][:] == 0) if "predictable" in s else np.zeros_like(done)
 if unpredictable.any():
-    ee, ww = np.meshgrid(E, w, indexing="ij")
-    ax[0].plot(ee[unpredictable], ww[unpredictable], ".", color="0.85", ms=2.5, label="unpredictable (twins' mean)")
+    ax[1].plot(ee[unpredictable], ww[unpredictable], ".", color="0.85", ms=2.5, label="unpredictable (twins' mean)")
 if fep is not None:
-    for name, grp in fep["continuation"].items():
-        ax[0].plot(grp["energy"][:], grp["omega"][:], "-", lw=1.4, label=name)
-ax[0].axvline(12, color="k", ls="--", lw=0.8)
-ax[0].set(xscale="log", xlabel="E*", ylabel=r"$\omega_{ext}$ (rad/s)", title="MCR of the forced response (white: kcorr = 0.7; dotted: bands)",
-          ylim=(w.min(), w.max()), xlim=(E.min(), E.max()))
-if fep is not None or missed.any() or unpredictable.any():
-    ax[0].legend(fontsize=7, loc="upper left")
-pk = ax[1].pcolormesh(E, w, kc.T, shading="nearest", cmap="magma", vmin=0, vmax=1)
-fig.colorbar(pk, ax=ax[1], label="kcorr (0-1 test, max over sites)")
-ax[1].set(xscale="log", xlabel="E*", ylabel=r"$\omega_{ext}$ (rad/s)", title="0-1 test for chaos")
-if not s.attrs.get("kcorr_computed", 0):
-    ax[1].text(0.5, 0.5, "not computed (run with -sweep_kcorr)", transform=ax[1].transAxes, ha="center")
+    red = "Floquet-unstable NNM"
+    for k, (name, grp) in enumerate(fep["continuation"].items()):
+        x, y = nltopo_plot.clip_to(grp["energy"][:], grp["omega"][:], xlim, ylim)
+        if not np.isfinite(x).any():
+            continue
+        ax[1].plot(x, y, "-", lw=1.5, color=f"C{k + 1}", label=name)
+        if "stable" in grp:
+            bad = grp["stable"][:] == 0
+            if (bad & np.isfinite(x)).any():
+                ax[1].plot(np.where(bad, x, np.nan), np.where(bad, y, np.nan), "r.-", lw=2.5, ms=4, label=red)
+                red = "_" + red
+decorate(ax[1], "E = 12 (paper)")
+ax[1].set_title(f"(b) MCR of the forced response ({profile} forcing)" + ("; NNM branches" if fep is not None else ""), fontsize=10)
+h, l = ax[1].get_legend_handles_labels()  # the red key last
+order = sorted(range(len(l)), key=lambda i: l[i].startswith("Floquet") or l[i].startswith("E = 12"))
+ax[1].legend([h[i] for i in order], [l[i] for i in order], fontsize=7, loc="upper left", framealpha=0.6)
+
+# (c) the 0-1 test
+if has_kc:
+    pk = nltopo_plot.grid_map(ax[2], E, w, kc.T, xlog=Elog, cmap="magma", vmin=0, vmax=1)
+    fig.colorbar(pk, ax=ax[2], label="kcorr (0-1 test, max over sites)")
+    decorate(ax[2])
+    ax[2].set_title("(c) 0-1 test for chaos (1: chaotic)", fontsize=10)
 fig.tight_layout()
 fig.savefig(out, dpi=120)
 print("wrote", out)

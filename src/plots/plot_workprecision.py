@@ -49,7 +49,8 @@ def figure(f):
             ax.axvspan(lo, floor, color="0.85", zorder=0, label="predictability floor")
         ax.set(xlabel=name if obs == "det" else f"relative error of the {name}", ylabel="wall time (s, median)")
         ax.grid(True, which="major", alpha=0.3)
-    axes.flat[0].legend(fontsize=7)
+    for ax in axes.flat:  # every panel names its curves (tests/scenes/plot_check.py, rule 4)
+        ax.legend(fontsize=6)
     ref = text(a["reference"])
     conv = "converged" if a["reference_converged"] else "NOT converged"
     if text(a.get("scene", "simulate")) == "shooting":

@@ -27,11 +27,11 @@ for a, stat in zip(ax, ("median", "mean")):
     a.axvline(12, color="k", ls="--", lw=0.8, label="E = 12 (paper)")
     if thr > 0:
         a.axvline(thr, color="tab:green", lw=1.2, label=f"threshold here: E = {thr:.3g}")
-    a.set(xlabel="E*", title=f"{stat} over unit cells and windows", ylim=(-np.pi / 2, 1.5 * np.pi))
+    a.set(xlabel="E*", ylabel=rf"{stat} of phase(even) - phase(odd) per cell", title=f"{stat} over unit cells and windows", ylim=(-np.pi / 2, 1.5 * np.pi))
     a.set_yticks([-np.pi / 2, 0, np.pi / 2, np.pi, 1.5 * np.pi])
     a.set_yticklabels([r"$-\pi/2$", "0", r"$\pi/2$", r"$\pi$", r"$3\pi/2$"])
-ax[0].set_ylabel(r"phase(even) - phase(odd) per cell")
-ax[0].legend(fontsize=7, loc="lower left")
+for a in ax:
+    a.legend(fontsize=7, loc="lower left")
 fig.tight_layout()
 fig.savefig(out, dpi=120)
 print("wrote", out)

@@ -6,6 +6,7 @@ run1 -options_file "$SRC/options/linear.opts" -output lin.h5 > /dev/null
 run1 -options_file "$SRC/options/fep.opts" $short -output fep1.h5 | tee out1.txt
 run2 -options_file "$SRC/options/fep.opts" $short -output fep2.h5 > out2.txt
 $PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_fep.py" fep1.h5 fep.png
+$PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_floquet.py" fep1.h5 floquet.png
 $PY - <<'PYEOF'
 import h5py, numpy as np
 lin = h5py.File("lin.h5", "r")["linear"].attrs

@@ -65,4 +65,5 @@ assert err < 1e-8, err
 print("matrix-free Floquet, E <= 1: max |mu| - 1 = %.1e; nontrivial pair = edge mode's to %.1e (%d orbits)" % (np.abs(mm - 1).max(), err, sel.sum()))
 PYEOF
 $PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_fep.py" floquet.h5 floquet.png > /dev/null
+$PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_floquet.py" floquet.h5 multipliers.png > /dev/null
 test -s floquet.png

@@ -40,3 +40,4 @@ for o in ("omega", "closure", "max_modulus", "det"):
 print("workprecision shooting scene OK")
 PYEOF
 $PY "$SRC/tests/scenes/wp_figure_check.py" "$SRC" s1.h5
+$PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_workprecision.py" s1.h5 s1.png > /dev/null

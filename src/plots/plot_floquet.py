@@ -1,0 +1,98 @@
+#!/usr/bin/python3
+"""Floquet figure of a continuation branch (the paper's Fig. 4a-b; the
+insulated branch by default), from -study continuation -floquet:
+(a) the arguments of the Floquet multipliers against omega, coloured by their
+    Krein signature (+1, -1, 0: real, or off the unit circle);
+(b) every |mu| against omega, coloured by the orbit's instability class
+    (stable, B-B, B-E, E-E: the eigenvector of its largest multiplier);
+(c) max |mu| - 1 along the branch (log), coloured by class;
+(d) the branch's FEP coloured by class, with the orbits of a -study stability
+    file (the 30,000-period runs, Fig. 4c) marked when one is given.
+A matrix-free Floquet branch (-floquet_mf: no Krein signatures or classes) is
+drawn with (b) and (c) only, every orbit by its stability.
+usage: plot_floquet.py fep.h5 [stability.h5] [branch] [out.png]"""
+import sys
+import h5py
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+import matplotlib.ticker
+import numpy as np
+import nltopo_plot
+
+h5 = [a for a in sys.argv[1:] if a.endswith(".h5")]
+png = [a for a in sys.argv[1:] if a.endswith(".png")]
+rest = [a for a in sys.argv[1:] if not a.endswith(".h5") and not a.endswith(".png")]
+f = h5py.File(h5[0], "r")
+st = h5py.File(h5[1], "r") if len(h5) > 1 else None
+branch = rest[0] if rest else "insulated"
+out = png[0] if png else h5[0].replace(".h5", "") + "_floquet.png"
+g = f["continuation"][branch]
+if "multipliers_re" not in g:
+    sys.exit(f"plot_floquet.py: /continuation/{branch} has no Floquet multipliers (run with -floquet)")
+E, w = g["energy"][:], g["omega"][:]
+mu = g["multipliers_re"][:] + 1j * g["multipliers_im"][:]
+mm = g["max_modulus"][:]
+if "instability" in g:
+    cls = g["instability"][:].astype(int)
+else:  # matrix-free multipliers: stable or not
+    cls = np.where(g["stable"][:] == 1, 0, -1)
+classes = dict(nltopo_plot.INSTABILITY)
+classes[-1] = ("unstable (kind not computed)", "tab:red")
+has_krein = "krein" in g
+npan = 4 if has_krein else 2
+fig, ax = plt.subplots(1, npan, figsize=(5.2 * npan, 4.8))
+ax = list(ax)
+W = np.broadcast_to(w[:, None], mu.shape)
+ok = np.isfinite(mu)
+
+if has_krein:  # (a) arguments by Krein signature
+    K = g["krein"][:]
+    for k, lab, c in ((1, r"$\mathcal{K}$ = +1", "tab:blue"), (-1, r"$\mathcal{K}$ = -1", "tab:orange"), (0, r"$\mathcal{K}$ = 0 (real, or off the circle)", "k")):
+        sel = ok & (K == k)
+        if sel.any():
+            ax[0].scatter(W[sel], np.angle(mu[sel]) / np.pi, s=3 if k else 8, color=c, label=lab, zorder=3 if k == 0 else 2)
+    ax[0].set(xlabel=r"$\omega$ (rad/s)", ylabel=r"arg $\mu$ / $\pi$", title=f"(a) Krein signatures, {branch} branch")
+    ax[0].legend(fontsize=7, loc="lower left", markerscale=2)
+    a_mod, a_max = ax[1], ax[2]
+else:
+    a_mod, a_max = ax[0], ax[1]
+
+# (b) |mu| by the orbit's class; (c) |max |mu| - 1| (numerical floor ~1e-13 .. 1e-8 on the circle)
+excess = np.maximum(np.abs(mm - 1), 1e-16)
+a_max.plot(w, excess, "-", color="0.7", lw=0.8, zorder=0)
+for c in sorted(set(cls.tolist())):
+    lab, col = classes[c]
+    rows = cls == c
+    sel = ok & rows[:, None]
+    a_mod.scatter(W[sel], np.abs(mu[sel]), s=3, color=col, label=f"{lab} ({rows.sum()} orbits)")
+    a_max.plot(w[rows], excess[rows], "o", ms=4, color=col, label=lab)
+a_mod.set_yscale("log")
+a_mod.yaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
+a_mod.yaxis.set_minor_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
+a_mod.set(xlabel=r"$\omega$ (rad/s)", ylabel=r"|$\mu$|", title="(b) |Floquet multipliers| by instability class" if has_krein else "(a) |Floquet multipliers|")
+a_mod.legend(fontsize=7, loc="upper left", markerscale=2)
+opts = f.attrs.get("options", b"")
+opts = (opts.decode() if isinstance(opts, bytes) else str(opts)).split()
+tol = float(opts[opts.index("-floquet_tol") + 1]) if "-floquet_tol" in opts[:-1] else 1e-6
+a_max.axhline(tol, color="k", ls=":", lw=0.8, label=f"-floquet_tol {tol:g}")
+a_max.set(yscale="log", xlabel=r"$\omega$ (rad/s)", ylabel=r"|max |$\mu$| - 1|", title=("(c)" if has_krein else "(b)") + " largest multiplier: distance from the circle")
+a_max.legend(fontsize=7, loc="upper left")
+
+if has_krein:  # (d) the FEP by class, with the long runs
+    ax[3].plot(E, w, "-", color="0.6", lw=0.8, zorder=0)
+    for c in sorted(set(cls.tolist())):
+        lab, col = classes[c]
+        rows = cls == c
+        ax[3].plot(E[rows], w[rows], "o", ms=4, color=col, label=lab)
+    if st is not None:
+        cases = sorted(st["stability"].keys(), key=lambda c: int(c[4:]))
+        sE = [st["stability/" + c].attrs["energy"] for c in cases]
+        sw = [st["stability/" + c].attrs["omega"] for c in cases]
+        ax[3].plot(sE, sw, "k*", ms=11, mfc="none", label="long runs (Fig. 4c)")
+    ax[3].axhline(nltopo_plot.bands(f["continuation"])[1][0], color="0.6", ls=":", lw=0.8)
+    ax[3].set(xscale="log", xlabel="energy E", ylabel=r"$\omega$ (rad/s)", title=f"(d) {branch} branch by stability")
+    ax[3].legend(fontsize=7, loc="upper left")
+fig.tight_layout()
+fig.savefig(out, dpi=120)
+print("wrote", out)
