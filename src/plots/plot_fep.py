@@ -3,7 +3,9 @@
 (a) omega vs energy of every branch over the linear bands (grey), the
     nonlinear optical band shaded between its edge NNMs (the optical_bottom and
     optical_top branches), Floquet-unstable orbits, flagged modal interactions,
-    and lettered points on the insulated branch;
+    the located bifurcations (-cont_bifurcations: folds, branch points, period
+    doublings, Hamiltonian-Hopf onsets and ends) and lettered points on the
+    insulated branch;
 (b) the MCR of each orbit along the branches;
 (c) the insulated NNM's shape u0 at the lettered points (normalised, offset);
 (d) the band-edge NNMs' shapes at the lowest and the highest energy of their
@@ -50,6 +52,16 @@ for name in names:
         if bad.any():
             ax[0].plot(E[bad], w[bad], "o", mfc="none", mec="r", ms=5, label=unstable_label)
             unstable_label = "_" + unstable_label
+    if "bifurcations" in g and g["bifurcations"]["kind"].shape[0]:
+        ev = g["bifurcations"]
+        kind, d, eE, ew = ev["kind"][:], ev["direction"][:], ev["energy"][:], ev["omega"][:]
+        for sel, marker, size, what in (((kind == 1), "D", 7, "energy fold"), ((kind == 2), "*", 13, "branch point (+1)"),
+                                          ((kind == 3), "P", 9, "period doubling (-1)"),
+                                          ((kind == 5) & (d > 0), "^", 7, "Hamiltonian-Hopf onset"), ((kind == 5) & (d < 0), "v", 7, "Hamiltonian-Hopf end")):
+            if sel.any():
+                label = f"{what} (located)"
+                seen = {t.get_label() for t in ax[0].get_lines()}
+                ax[0].plot(eE[sel], ew[sel], marker, ms=size, mfc="gold", mec="k", mew=0.7, ls="none", label=label if label not in seen else "_" + label)
     inter = g["interactions"][:].astype(int) if "interactions" in g else []
     if len(inter):
         ax[0].plot(E[inter], w[inter], "x", color=colour[name], ms=8, label=inter_label)
