@@ -168,6 +168,7 @@ PetscErrorCode BifurcationLocator::Folds(const Branch &b, std::vector<Bifurcatio
     e.energy = 0.5 * (a.energy + c.energy);
     e.omega = 0.5 * (a.omega + c.omega);
     e.s = s_[seg] + 0.5 * (a.sigma + c.sigma) * chord_;
+    e.sigma = 0.5 * (a.sigma + c.sigma);
     e.omega_bracket = std::abs(c.omega - a.omega);
     PetscCall(Probe(c.sigma, false, true, &tip, nullptr, nullptr, &e.vector)); // the family tangent there
     if (!conv)
@@ -234,6 +235,7 @@ PetscErrorCode BifurcationLocator::StabilityChanges(PetscInt i, std::vector<Bifu
       e.energy = 0.5 * (a.energy + c.energy);
       e.omega = 0.5 * (a.omega + c.omega);
       e.s = s_[i] + 0.5 * (a.sigma + c.sigma) * chord_;
+      e.sigma = 0.5 * (a.sigma + c.sigma);
       e.omega_bracket = std::abs(c.omega - a.omega);
       e.mu_re = U.fr.re[o.index], e.mu_im = std::abs(U.fr.im[o.index]);
       // The signatures from the nearest orbit on the circle side where they are
@@ -263,6 +265,21 @@ PetscErrorCode BifurcationLocator::StabilityChanges(PetscInt i, std::vector<Bifu
       ev->push_back(std::move(e));
     }
   }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BifurcationLocator::OrbitAt(PetscInt segment, PetscReal sigma, Vec X, bool *converged)
+{
+  PetscInt its;
+  PetscFunctionBeginUser;
+  PetscCheck(segment >= 0 && (size_t)(segment + 1) < period_.size(), shoot_->Flow().Lat().Comm(), PETSC_ERR_ARG_OUTOFRANGE,
+             "bifurcations: no segment %" PetscInt_FMT " in the last located branch", segment);
+  PetscCall(SetSegment(segment));
+  PetscCall(VecWAXPY(Xpred_, sigma * chord_, d_, Xa_));
+  PetscCall(shoot_->SetArclengthConstraint(za_, d_, Xpred_));
+  PetscCall(Predict(sigma, X));
+  PetscCall(shoot_->Solve(X, converged, &its));
+  probes_++;
   PetscFunctionReturn(0);
 }
 

@@ -22,6 +22,9 @@ public:
   PetscErrorCode Locate(const Branch &b, const std::vector<PetscReal> &re, const std::vector<PetscReal> &im, const std::vector<PetscReal> &edge,
                         const char *name, std::vector<BifurcationEvent> *events);
   PetscInt Probes() const { return probes_; } // orbits solved so far
+  // The orbit X = (z0, T, beta) at sigma of a segment of the branch last
+  // given to Locate (e.g. an event's point and sigma).
+  PetscErrorCode OrbitAt(PetscInt segment, PetscReal sigma, Vec X, bool *converged);
 
 private:
   PetscErrorCode SetSegment(PetscInt i);

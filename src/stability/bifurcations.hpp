@@ -92,6 +92,7 @@ struct BifurcationEvent {
   PetscInt krein[2] = {0, 0};             // signatures of the colliding pairs (upper-half-plane members), on the circle side
   PetscInt instability = 0;               // localisation of the critical eigenvector: 1 B-B, 2 B-E, 3 E-E (0 fold)
   std::vector<PetscReal> vector;          // the critical eigenvector (2N, natural order; fold: the family tangent)
+  PetscReal sigma = 0;                    // the located point in its segment (BifurcationLocator::OrbitAt)
 };
 
 // One probed orbit of a segment between two continuation points.

@@ -23,6 +23,7 @@ struct FloquetColumns {
 // or matrix-free hook) and its cost.
 struct BranchRecord {
   std::string label;
+  std::string parent; // -cont_switch: the branch point it starts from, "<branch>:<event>"; empty for a linear mode's
   PetscReal omega = 0, seconds = 0;
   Branch b;
   FloquetColumns f;

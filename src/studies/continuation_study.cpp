@@ -11,6 +11,7 @@
 #include "orbits/continuation.hpp"
 #include "stability/floquet.hpp"
 #include "stability/bifurcation_locator.hpp"
+#include "stability/branch_switch.hpp"
 #include "stability/floquet_mf.hpp"
 #include "studies/continuation_record.hpp"
 #include "studies/registry.hpp"
@@ -204,7 +205,7 @@ PetscErrorCode ReadStudyChoices(MPI_Comm comm, StudyChoices *c)
 // The branch being continued, live: what a checkpoint or an interrupt writes
 // of it, and the counters its cost is measured from.
 struct LiveBranch {
-  std::string label;
+  std::string label, parent; // parent: the branch point a -cont_switch branch starts from
   PetscReal omega = 0;
   Branch b;
   PetscInt j0 = 0, r0 = 0, p0 = 0, k0 = 0;
@@ -230,6 +231,7 @@ protected:
     if (declaring_ || (ch_.floquet && ch_.floquet_mf)) PetscCall(FloquetMfOptionsFromOptions(comm_, &fmo_));
     fk_ = !ch_.floquet ? FloquetKind::None : ch_.floquet_mf ? FloquetKind::MatrixFree : FloquetKind::Dense;
     PetscCall(BifurcationOptionsFromOptions(comm_, (PetscBool)(fk_ == FloquetKind::Dense), &bo_));
+    PetscCall(SwitchOptions());
     if (!declaring_ && ch_.resume) PetscCall(CheckResumeOptions(comm_, ch_.resume_file, name_, "-cont_resume")); // the same physics and numerics, or one line naming the first difference
     PetscFunctionReturn(0);
   }
@@ -273,6 +275,8 @@ protected:
       PetscCall(ReadResume(comm_, ch_.resume_file, label, fk_, n2_, fmo_.nev, &resumes_[k].b, &resumes_[k].f, &resumes_[k].found));
     }
     for (PetscInt k = 0; k < ch_.nb; k++) PetscCall(ContinueOne(k));
+    for (const Switch &sw : switches_)
+      PetscCheck(sw.used, comm_, PETSC_ERR_USER, "-cont_switch %s:%" PetscInt_FMT ": no branch %s among -cont_branch", sw.branch.c_str(), sw.event, sw.branch.c_str());
     PetscFunctionReturn(0);
   }
   PetscErrorCode Write(PetscViewer v) override
@@ -284,6 +288,35 @@ protected:
   }
 
 private:
+  PetscErrorCode SwitchOptions()
+  {
+    char *list[16] = {};
+    PetscInt n = 16;
+    PetscBool set;
+    PetscFunctionBeginUser;
+    PetscOptionsBegin(comm_, "cont_", "Branch switching", NULL);
+    PetscCall(PetscOptionsStringArray("-switch",
+                                      "Follow the families born at these located branch points, <branch>:<event index> (the event list of -cont_bifurcations), "
+                                      "on both sides of the critical eigenvector",
+                                      NULL, list, &n, &set));
+    PetscCall(PetscOptionsReal("-switch_step", "The first orbit of a switched family: this times |z*| along the critical eigenvector from the branch point", NULL,
+                               switch_step_, &switch_step_, NULL));
+    PetscOptionsEnd();
+    PetscCheck(switch_step_ > 0 && switch_step_ < 1, comm_, PETSC_ERR_USER, "-cont_switch_step must lie in (0, 1), got %g", (double)switch_step_);
+    switches_.clear();
+    for (PetscInt i = 0; set && i < n; i++) {
+      const std::string item = list[i];
+      PetscCall(PetscFree(list[i]));
+      const size_t colon = item.rfind(':');
+      char *end = nullptr;
+      const long ev = colon == std::string::npos ? -1 : std::strtol(item.c_str() + colon + 1, &end, 10);
+      PetscCheck(colon != std::string::npos && colon > 0 && end && !*end && ev >= 0 && end != item.c_str() + colon + 1, comm_, PETSC_ERR_USER,
+                 "-cont_switch %s: expected <branch>:<event index>, e.g. insulated:12", item.c_str());
+      switches_.push_back({item.substr(0, colon), (PetscInt)ev});
+    }
+    PetscCheck(switches_.empty() || declaring_ || bo_.enabled, comm_, PETSC_ERR_USER, "-cont_switch needs -cont_bifurcations (on with -floquet): the branch points are its events");
+    PetscFunctionReturn(0);
+  }
   PointHook *FloquetPointHook() { return fk_ == FloquetKind::None ? nullptr : fk_ == FloquetKind::MatrixFree ? static_cast<PointHook *>(mf_hook_.get()) : hook_.get(); }
   // The record of a branch from its live data (also mid-branch, for a checkpoint).
   // (b by value: the final record moves the branch in, a checkpoint copies it).
@@ -358,15 +391,27 @@ private:
     }
     PetscCall(ic);
     PetscCall(PetscTime(&b1));
-    const size_t npts = b.energy.size();
+    const size_t nnew = b.energy.size() - (resumed ? rb.energy.size() : 0); // seconds and costs cover this run's points
+    PetscCall(Finish(cur, b1, nnew));
+    PetscCall(SwitchFrom(ch_.names[k], label));
+    PetscFunctionReturn(0);
+  }
+
+  // The branch just continued into done_: its events (-cont_bifurcations), the
+  // Floquet summary and the time per new point.
+  PetscErrorCode Finish(LiveBranch &cur, PetscLogDouble b1, size_t nnew)
+  {
+    const std::string &label = cur.label;
+    PetscFunctionBeginUser;
     BranchRecord rec;
-    if (bo_.enabled) PetscCall(LocateEvents(b, label, &rec)); // (the location's solves count in the branch's cost)
-    done_.push_back(Snapshot(cur, std::move(b)));
-    done_.back().seconds = b1 - cur.b0;
-    done_.back().located = rec.located, done_.back().events = std::move(rec.events);
-    done_.back().bif_tol = rec.bif_tol, done_.back().bif_seconds = rec.bif_seconds, done_.back().bif_probes = rec.bif_probes;
+    if (bo_.enabled) PetscCall(LocateEvents(cur.b, label, &rec)); // (the location's solves count in the branch's cost)
+    done_.push_back(Snapshot(cur, std::move(cur.b)));
+    BranchRecord &d = done_.back();
+    d.seconds = b1 - cur.b0;
+    d.located = rec.located, d.events = std::move(rec.events), d.parent = cur.parent;
+    d.bif_tol = rec.bif_tol, d.bif_seconds = rec.bif_seconds, d.bif_probes = rec.bif_probes;
     if (fk_ != FloquetKind::None) {
-      const FloquetColumns &f = done_.back().f;
+      const FloquetColumns &f = d.f;
       PetscInt ns = 0;
       for (PetscInt s : f.stable) ns += s;
       PetscCall(PetscPrintf(comm_, "  [%s] Floquet%s: %" PetscInt_FMT " of %zu orbits stable (|mu| <= 1 + %g)", label.c_str(),
@@ -374,13 +419,70 @@ private:
       if (fk_ == FloquetKind::MatrixFree) PetscCall(PetscPrintf(comm_, ", %" PetscInt_FMT " monodromy products", f.products));
       else {
         PetscReal dmax = 0;
-        for (PetscReal d : f.det_error) dmax = std::max(dmax, d); // NaN (resumed from an older file) ignored
+        for (PetscReal x : f.det_error) dmax = std::max(dmax, x); // NaN (resumed from an older file) ignored
         PetscCall(PetscPrintf(comm_, ", max |det M - 1| = %.1e", (double)dmax));
       }
       PetscCall(PetscPrintf(comm_, "\n"));
     }
-    const size_t nnew = npts - (resumed ? rb.energy.size() : 0); // seconds and costs cover this run's points
     PetscCall(PetscPrintf(comm_, "  [%s] %.2f s, %.3f s per new point\n", label.c_str(), (double)(b1 - cur.b0), (double)(b1 - cur.b0) / std::max<size_t>(nnew, 1)));
+    PetscFunctionReturn(0);
+  }
+
+  // -cont_switch: the families born at the asked branch points of the branch
+  // just done (given as name, recorded as label), on both sides of the critical eigenvector.
+  PetscErrorCode SwitchFrom(const char *name, const std::string &label)
+  {
+    PetscFunctionBeginUser;
+    for (Switch &sw : switches_) {
+      if (sw.branch != name && sw.branch != label) continue;
+      sw.used = true;
+      const std::vector<BifurcationEvent> &ev = done_.back().events;
+      PetscCheck(sw.event < (PetscInt)ev.size(), comm_, PETSC_ERR_USER, "-cont_switch %s:%" PetscInt_FMT ": branch %s has %zu located events (0 .. %zu)",
+                 sw.branch.c_str(), sw.event, label.c_str(), ev.size(), ev.size() ? ev.size() - 1 : 0);
+      const BifurcationEvent e = ev[sw.event];
+      PetscCheck(e.kind == EventKind::BranchPoint, comm_, PETSC_ERR_USER, "-cont_switch %s:%" PetscInt_FMT ": that event is a %s; branch switching follows branch points (kind 2)",
+                 sw.branch.c_str(), sw.event, EventKindName(e.kind));
+      const std::string parent = label + ":" + std::to_string(sw.event);
+      OwnedVec Xs; // the orbit at the branch point, on the parent
+      bool found;
+      PetscCall(nnm_.shoot.CreateUnknowns(Xs.out()));
+      PetscCall(locator_.OrbitAt(e.point, e.sigma, Xs, &found));
+      PetscCheck(found, comm_, PETSC_ERR_NOT_CONVERGED, "-cont_switch %s: the orbit at the branch point (omega %g) was not found again", parent.c_str(), (double)e.omega);
+      for (PetscInt sign : {1, -1}) {
+        LiveBranch cur;
+        Branch start;
+        bool pinned;
+        PetscReal away;
+        PetscCall(PetscTime(&cur.b0));
+        cur.label = label + "_bp" + std::to_string(sw.event) + (sign > 0 ? "_plus" : "_minus");
+        cur.omega = e.omega, cur.parent = parent;
+        Shooting &shoot = nnm_.shoot;
+        cur.j0 = shoot.JacobianEvaluations(), cur.r0 = shoot.ResidualEvaluations(), cur.p0 = shoot.TangentProducts(), cur.k0 = shoot.KrylovIterations();
+        PetscCall(StartSwitchedBranch(shoot, Xs, e, switch_step_, sign, &start, &pinned, &away));
+        PetscCheck(pinned, comm_, PETSC_ERR_NOT_CONVERGED,
+                   "-cont_switch %s: no orbit found %g |z*| off the branch point along its critical eigenvector (Newton failed); try another -cont_switch_step",
+                   parent.c_str(), (double)switch_step_);
+        PetscCall(PetscPrintf(comm_, "  [%s] from the branch point %s at omega %.9f (E %.6g): first orbit at %g |z*| along the critical eigenvector, E %.6g, omega %.9f\n",
+                              cur.label.c_str(), parent.c_str(), (double)e.omega, (double)e.energy, (double)switch_step_, (double)start.energy[1], (double)start.omega[1]));
+        // the Floquet data of the two start points, as of every other
+        hook_->Clear();
+        OwnedVec z;
+        PetscCall(nnm_.lat.CreateStateVector(z.out()));
+        std::vector<PetscReal> rows = start.z0;
+        PetscInt nr = (PetscInt)rows.size();
+        PetscCallMPI(MPI_Bcast(&nr, 1, MPIU_INT, 0, comm_));
+        rows.resize(nr);
+        PetscCallMPI(MPI_Bcast(rows.data(), (PetscMPIInt)nr, MPIU_REAL, 0, comm_));
+        for (size_t q = 0; q < 2; q++) {
+          PetscCall(StateFromRow(nnm_.lat, rows.data() + q * n2_, z));
+          PetscCall(hook_->Point(z, start.period[q], start.beta[q], z));
+        }
+        PetscCall(ContinueBranch(shoot, nullptr, 0, nnm_.co, cur.label.c_str(), &cur.b, hook_.get(), &start));
+        PetscLogDouble b1;
+        PetscCall(PetscTime(&b1));
+        PetscCall(Finish(cur, b1, cur.b.energy.size()));
+      }
+    }
     PetscFunctionReturn(0);
   }
 
@@ -398,6 +500,15 @@ private:
                           (double)bo_.tol, rec->bif_probes, (double)(t1 - t0)));
     PetscFunctionReturn(0);
   }
+
+  // -cont_switch <branch>:<event>
+  struct Switch {
+    std::string branch;
+    PetscInt event = 0;
+    bool used = false;
+  };
+  std::vector<Switch> switches_;
+  PetscReal switch_step_ = 0.02;
 
   NnmSetup nnm_;
   StudyChoices ch_;

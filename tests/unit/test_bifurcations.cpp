@@ -6,6 +6,7 @@
 #include "helpers.hpp"
 #include "stability/bifurcation_locator.hpp"
 #include "stability/bifurcations.hpp"
+#include "stability/branch_switch.hpp"
 #include <petscmat.h>
 #include <slepceps.h>
 #include <algorithm>
@@ -287,5 +288,90 @@ TEST_CASE("energy folds of a folded branch are located at the extrema of E, and 
       REQUIRE(f->direction * (f->energy - b.energy[k]) >= -1e-9 * f->energy);
     }
     REQUIRE(f->vector.size() == (size_t)(2 * lat.N())); // the family tangent there
+  }
+}
+
+TEST_CASE("branch switching at the dimer pitchfork: the new family breaks the mirror symmetry, its asymmetry grows like the root of the distance, and it meets the parent at the located point", "[bifurcations][switch]")
+{
+  CoupledDimers d;
+  PCHK(d.Setup());
+  const auto &w = d.modes.Omega();
+  const PetscReal lam_hi = w[3] * w[3], kappa = (lam_hi - w[2] * w[2]) / 2;
+  BifurcationOptions bo;
+  bo.tol = 1e-9;
+  BifurcationLocator loc;
+  PCHK(loc.Setup(d.shoot, FloquetOptions(), bo));
+  Record rec(d.flow);
+  Branch parent;
+  PCHK(d.Continue(3, std::sqrt(lam_hi + 3 * kappa), &rec, &parent));
+  std::vector<BifurcationEvent> ev;
+  PCHK(loc.Locate(parent, rec.re, rec.im, rec.edge, "dimers", &ev));
+  REQUIRE(ev.size() == 1);
+  const PetscInt N = d.lat.N();
+  OwnedVec Xs;
+  bool found;
+  PCHK(d.shoot.CreateUnknowns(Xs.out()));
+  PCHK(loc.OrbitAt(ev[0].point, ev[0].sigma, Xs, &found));
+  REQUIRE(found);
+  for (PetscInt sign : {1, -1}) {
+    Branch start, b;
+    bool pinned;
+    PetscReal away;
+    PCHK(StartSwitchedBranch(d.shoot, Xs, ev[0], 0.02, sign, &start, &pinned, &away));
+    REQUIRE(pinned);
+    INFO("sign " << sign << ": first step " << away << " along the critical eigenvector");
+    REQUIRE(away > 0.9);
+    ContinuationOptions co;
+    co.verbose = PETSC_FALSE;
+    co.max_change = 0.05;
+    co.max_points = 25;
+    PCHK(ContinueBranch(d.shoot, nullptr, 0, co, "switched", &b, nullptr, &start));
+    REQUIRE(b.energy.size() == 25);
+    // every orbit: the parity the parent has not (asymmetry), relative to |u0|
+    std::vector<PetscReal> z0(b.z0);
+    PetscInt nz = (PetscInt)z0.size();
+    MPI_Bcast(&nz, 1, MPIU_INT, 0, PETSC_COMM_WORLD);
+    z0.resize(nz);
+    MPI_Bcast(z0.data(), (int)nz, MPIU_REAL, 0, PETSC_COMM_WORLD);
+    std::vector<PetscReal> asym;
+    for (size_t k = 0; k < b.energy.size(); k++) {
+      const PetscReal *u = z0.data() + k * 2 * N;
+      PetscReal even = 0, all = 0;
+      for (PetscInt i = 0; i < N; i++) even += std::pow(0.5 * (u[i] + u[N - 1 - i]), 2), all += u[i] * u[i];
+      asym.push_back(std::sqrt(even / all)); // the parent (mode 3) is mirror-odd: this is 0 on it
+    }
+    INFO("asymmetry at the branch point " << asym[0] << ", then " << asym[1] << " " << asym[5] << " " << asym.back());
+    // point 0 is the parent's orbit at the located point, symmetric up to Newton's
+    // tolerance amplified by the Jacobian singular in the null direction there
+    REQUIRE(asym[0] < 1e-6);
+    for (size_t k = 1; k < asym.size(); k++) REQUIRE(asym[k] > 1e-3); // off the parent family
+    // a pitchfork: asym^2 is linear in the frequency shift omega - omega*, so that its
+    // fit over the first points returns to zero at the located point
+    PetscReal sx = 0, sy = 0, sxx = 0, sxy = 0;
+    const int m = 5;
+    for (int k = 1; k <= m; k++) {
+      const PetscReal x = b.omega[k] - ev[0].omega, y = asym[k] * asym[k];
+      sx += x, sy += y, sxx += x * x, sxy += x * y;
+    }
+    const PetscReal slope = (m * sxy - sx * sy) / (m * sxx - sx * sx), icpt = (sy - slope * sx) / m;
+    const PetscReal x0 = -icpt / slope; // where the fitted asym^2 vanishes, relative to omega*
+    INFO("asym^2 = " << slope << " (omega - omega*) + " << icpt << ": zero at omega* + " << x0 << ", first shift " << b.omega[1] - ev[0].omega);
+    REQUIRE(std::abs(x0) < 0.05 * std::abs(b.omega[m] - ev[0].omega));
+    // the orbits close: each is a fixed point of the period map to the Newton tolerance
+    OwnedVec z, zT;
+    PCHK(d.lat.CreateStateVector(z.out()));
+    PCHK(VecDuplicate(z, zT.out()));
+    PetscReal worst = 0;
+    for (size_t k = 1; k < b.energy.size(); k += 6) {
+      PCHK(StateFromRow(d.lat, z0.data() + k * 2 * N, z));
+      PCHK(d.flow.Integrate(z, b.period[k], b.beta[k], zT));
+      PetscReal nz0, dz;
+      PCHK(VecNorm(z, NORM_2, &nz0));
+      PCHK(VecAXPY(zT, -1.0, z));
+      PCHK(VecNorm(zT, NORM_2, &dz));
+      worst = std::max(worst, dz / nz0);
+    }
+    INFO("worst closure " << worst);
+    REQUIRE(worst < 1e-9);
   }
 }

@@ -1,0 +1,90 @@
+#include "stability/branch_switch.hpp"
+#include "diagnostics/mcr.hpp"
+#include <cmath>
+
+namespace nltopo {
+
+namespace {
+
+// One point of the start branch: orbit X's record (z0 row on rank 0).
+PetscErrorCode AppendPoint(Shooting &shoot, Vec X, Vec z, PetscInt its, Branch *b)
+{
+  PeriodicFlow &flow = shoot.Flow();
+  PetscReal T, beta;
+  EnergyParts e;
+  PetscFunctionBeginUser;
+  PetscCall(shoot.Unpack(X, z, &T, &beta));
+  PetscCall(flow.Effects().Energy(z, &e));
+  b->energy.push_back(e.Total());
+  b->period.push_back(T);
+  b->omega.push_back(2 * PETSC_PI / T);
+  b->beta.push_back(beta);
+  b->newton_its.push_back(its);
+  b->krylov_its.push_back(0);
+  b->shape_corr.push_back(1);
+  Vec u;
+  PetscReal mcr;
+  PetscCall(VecGetSubVector(z, flow.Lat().PositionIS(), &u));
+  PetscCall(Mcr(u, &mcr)); // of u0, as the continuation records it
+  PetscCall(VecRestoreSubVector(z, flow.Lat().PositionIS(), &u));
+  b->mcr.push_back(mcr);
+  PetscCall(AppendStateRow(flow.Lat(), z, &b->z0));
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode StartSwitchedBranch(Shooting &shoot, Vec Xs, const BifurcationEvent &e, PetscReal step, PetscInt sign, Branch *start, bool *pinned,
+                                   PetscReal *away)
+{
+  const Lattice &lat = shoot.Flow().Lat();
+  MPI_Comm comm = lat.Comm();
+  OwnedVec X1, t, Xpred, zs, z1, phi, d;
+  bool ok;
+  PetscInt its;
+  PetscFunctionBeginUser;
+  *start = Branch();
+  *pinned = false;
+  PetscCheck(e.kind == EventKind::BranchPoint, comm, PETSC_ERR_SUP, "-cont_switch follows branch points (kind 2); this event is a %s", EventKindName(e.kind));
+  PetscCheck(e.vector.size() == (size_t)(2 * lat.N()), comm, PETSC_ERR_PLIB, "-cont_switch: the event has no critical eigenvector");
+  for (OwnedVec *v : {&X1, &t, &Xpred, &d}) PetscCall(VecDuplicate(Xs, v->out()));
+  PetscCall(lat.CreateStateVector(zs.out()));
+  PetscCall(VecDuplicate(zs, z1.out()));
+  PetscCall(VecDuplicate(zs, phi.out()));
+  PetscReal Ts, bs, zn;
+  PetscCall(shoot.Unpack(Xs, zs, &Ts, &bs));
+  PetscCall(VecNorm(zs, NORM_2, &zn));
+  // X1: pinned at eps along (phi, 0, 0)
+  PetscCall(StateFromRow(lat, e.vector.data(), phi));
+  PetscCall(shoot.Pack(phi, 0.0, 0.0, t));
+  const PetscReal eps = sign * step * zn;
+  PetscCall(VecWAXPY(Xpred, eps, t, Xs));
+  PetscCall(shoot.SetArclengthConstraint(zs, t, Xpred));
+  PetscCall(VecCopy(Xpred, X1));
+  PetscCall(shoot.Solve(X1, &ok, &its));
+  *pinned = ok;
+  if (!ok) PetscFunctionReturn(0);
+  // the share of the first step along phi
+  PetscReal T1, b1, dz, along;
+  PetscCall(shoot.Unpack(X1, z1, &T1, &b1));
+  PetscCall(VecWAXPY(d, -1.0, Xs, X1));
+  PetscCall(VecAXPY(z1, -1.0, zs));
+  PetscCall(VecNorm(z1, NORM_2, &dz));
+  PetscCall(VecDot(z1, phi, &along));
+  *away = dz > 0 ? std::abs(along) / dz : 0;
+  // the two points and the next step (the resume state of orbits/continuation.hpp)
+  PetscCall(AppendPoint(shoot, Xs, zs, 0, start));
+  PetscCall(AppendPoint(shoot, X1, z1, its, start));
+  PetscReal ds;
+  PetscCall(VecNormalize(d, &ds));
+  PetscReal dT, db;
+  std::vector<PetscReal> row;
+  PetscCall(shoot.Unpack(d, z1, &dT, &db));
+  PetscCall(AppendStateRow(lat, z1, &row));
+  if (!row.empty()) row.push_back(dT), row.push_back(db);
+  start->next_tangent = std::move(row);
+  start->next_ds = ds;
+  PetscFunctionReturn(0);
+}
+
+} // namespace nltopo
