@@ -313,6 +313,12 @@ private:
       PetscCheck(colon != std::string::npos && colon > 0 && end && !*end && ev >= 0 && end != item.c_str() + colon + 1, comm_, PETSC_ERR_USER,
                  "-cont_switch %s: expected <branch>:<event index>, e.g. insulated:12", item.c_str());
       switches_.push_back({item.substr(0, colon), (PetscInt)ev});
+      bool known = false; // a branch of -cont_branch, by its name or its label (k or mode<k>)
+      for (PetscInt k = 0; k < ch_.nb && !declaring_; k++) {
+        const std::string nk = ch_.names[k];
+        known |= nk == switches_.back().branch || "mode" + nk == switches_.back().branch || nk == "mode" + switches_.back().branch;
+      }
+      PetscCheck(known || declaring_, comm_, PETSC_ERR_USER, "-cont_switch %s: no branch %s among -cont_branch", item.c_str(), switches_.back().branch.c_str());
     }
     PetscCheck(switches_.empty() || declaring_ || bo_.enabled, comm_, PETSC_ERR_USER, "-cont_switch needs -cont_bifurcations (on with -floquet): the branch points are its events");
     PetscFunctionReturn(0);
@@ -377,24 +383,30 @@ private:
       PetscFunctionReturn(0);
     });
     const PetscErrorCode ic = ContinueBranch(shoot, u_, 2 * PETSC_PI / cur.omega, nnm_.co, label.c_str(), &b, &ck, resumed ? &rb : nullptr);
-    if (IsInterrupt(ic)) {
-      // A stop signal during the solve of the next point: the points so far
-      // (every earlier branch, this one's recorded points with the step to
-      // take next) are the checkpoint a -cont_resume continues bit for bit.
-      const char *sn = SignalName(StopSignalSeen());
-      PetscCheck(!done_.empty() || !b.energy.empty(), comm_, PETSC_ERR_SIG, "interrupted by %s before the first orbit of branch %s; no output written", sn,
-                 label.c_str());
-      const std::string reason = std::string("interrupted by ") + sn + ": -cont_resume continues it";
-      PetscCall(WritePartial(cur, reason.c_str()));
-      SETERRQ(comm_, PETSC_ERR_SIG, "interrupted by %s after %zu points of branch %s (last E = %g); partial output %s (complete = 0); -cont_resume %s continues it", sn,
-              b.energy.size(), label.c_str(), b.energy.empty() ? 0.0 : (double)b.energy.back(), path_.c_str(), path_.c_str());
-    }
+    if (IsInterrupt(ic)) PetscCall(Interrupted(cur, "")); // the points so far are the checkpoint a -cont_resume continues bit for bit
     PetscCall(ic);
     PetscCall(PetscTime(&b1));
     const size_t nnew = b.energy.size() - (resumed ? rb.energy.size() : 0); // seconds and costs cover this run's points
     PetscCall(Finish(cur, b1, nnew));
     PetscCall(SwitchFrom(ch_.names[k], label));
     PetscFunctionReturn(0);
+  }
+
+  // A stop signal while branch cur is under way (doing: "" while its points
+  // are continued, else what): every earlier branch and this one's recorded
+  // points, with the step to take next, go to the partial output; returns
+  // the silent stop error.
+  PetscErrorCode Interrupted(const LiveBranch &cur, const char *doing)
+  {
+    const char *sn = SignalName(StopSignalSeen());
+    const Branch &b = cur.b;
+    PetscFunctionBeginUser;
+    PetscCheck(!done_.empty() || !b.energy.empty(), comm_, PETSC_ERR_SIG, "interrupted by %s before the first orbit of branch %s; no output written", sn,
+               cur.label.c_str());
+    const std::string reason = std::string("interrupted by ") + sn + (*doing ? std::string(" ") + doing : "") + ": -cont_resume continues it";
+    PetscCall(WritePartial(cur, reason.c_str()));
+    SETERRQ(comm_, PETSC_ERR_SIG, "interrupted by %s%s%s after %zu points of branch %s (last E = %g); partial output %s (complete = 0); -cont_resume %s continues it", sn,
+            *doing ? " " : "", doing, b.energy.size(), cur.label.c_str(), b.energy.empty() ? 0.0 : (double)b.energy.back(), path_.c_str(), path_.c_str());
   }
 
   // The branch just continued into done_: its events (-cont_bifurcations), the
@@ -404,7 +416,11 @@ private:
     const std::string &label = cur.label;
     PetscFunctionBeginUser;
     BranchRecord rec;
-    if (bo_.enabled) PetscCall(LocateEvents(cur.b, label, &rec)); // (the location's solves count in the branch's cost)
+    if (bo_.enabled) { // (the location's solves count in the branch's cost)
+      const PetscErrorCode il = LocateEvents(cur.b, label, &rec);
+      if (IsInterrupt(il)) PetscCall(Interrupted(cur, "while locating its bifurcations")); // the branch is whole: a resume locates them again
+      PetscCall(il);
+    }
     done_.push_back(Snapshot(cur, std::move(cur.b)));
     BranchRecord &d = done_.back();
     d.seconds = b1 - cur.b0;
@@ -437,8 +453,8 @@ private:
       if (sw.branch != name && sw.branch != label) continue;
       sw.used = true;
       const std::vector<BifurcationEvent> &ev = done_.back().events;
-      PetscCheck(sw.event < (PetscInt)ev.size(), comm_, PETSC_ERR_USER, "-cont_switch %s:%" PetscInt_FMT ": branch %s has %zu located events (0 .. %zu)",
-                 sw.branch.c_str(), sw.event, label.c_str(), ev.size(), ev.size() ? ev.size() - 1 : 0);
+      PetscCheck(sw.event < (PetscInt)ev.size(), comm_, PETSC_ERR_USER, "-cont_switch %s:%" PetscInt_FMT ": branch %s has %zu located events%s", sw.branch.c_str(),
+                 sw.event, label.c_str(), ev.size(), ev.empty() ? "" : (" (0 .. " + std::to_string(ev.size() - 1) + ")").c_str());
       const BifurcationEvent e = ev[sw.event];
       PetscCheck(e.kind == EventKind::BranchPoint, comm_, PETSC_ERR_USER, "-cont_switch %s:%" PetscInt_FMT ": that event is a %s; branch switching follows branch points (kind 2)",
                  sw.branch.c_str(), sw.event, EventKindName(e.kind));
@@ -477,7 +493,9 @@ private:
           PetscCall(StateFromRow(nnm_.lat, rows.data() + q * n2_, z));
           PetscCall(hook_->Point(z, start.period[q], start.beta[q], z));
         }
-        PetscCall(ContinueBranch(shoot, nullptr, 0, nnm_.co, cur.label.c_str(), &cur.b, hook_.get(), &start));
+        const PetscErrorCode ic = ContinueBranch(shoot, nullptr, 0, nnm_.co, cur.label.c_str(), &cur.b, hook_.get(), &start);
+        if (IsInterrupt(ic)) PetscCall(Interrupted(cur, "")); // (a resume does not recreate switched branches: README)
+        PetscCall(ic);
         PetscLogDouble b1;
         PetscCall(PetscTime(&b1));
         PetscCall(Finish(cur, b1, cur.b.energy.size()));

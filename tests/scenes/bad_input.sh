@@ -119,6 +119,12 @@ expect_error "-cont_bifurcations needs -floquet without -floquet_mf" o.h5 $C -co
 expect_error "-cont_bifurcations needs -floquet without -floquet_mf" o.h5 $C -floquet -floquet_mf -cont_bifurcations 1
 expect_error "-cont_bif_tol must lie in \[1e-14, 1e-2\], got 0." o.h5 $C -floquet -cont_bif_tol 0
 expect_error "-cont_bif_angle_tol must lie in (0, 1), got 2." o.h5 $C -floquet -cont_bif_angle_tol 2
+expect_error "-cont_switch insulated: expected <branch>:<event index>" o.h5 $C -floquet -cont_switch insulated
+expect_error "-cont_switch insulated:x: expected <branch>:<event index>" o.h5 $C -floquet -cont_switch insulated:x
+expect_error "-cont_switch needs -cont_bifurcations" o.h5 $C -cont_switch insulated:0
+expect_error "-cont_switch optical_top:0: no branch optical_top among -cont_branch" o.h5 $C -floquet -cont_switch optical_top:0
+expect_error "-cont_switch insulated:5: branch insulated has 0 located events" o.h5 $C -floquet -cont_switch insulated:5
+expect_error "-cont_switch_step must lie in (0, 1), got 0." o.h5 $C -floquet -cont_switch_step 0
 expect_error "-sim_store_u_stride" o.h5 $S -sim_store_u_stride 0
 expect_error "-nnm_mf_pc_parametric_weight 0" o.h5 -study continuation -lattice_cells 5 -nnm_jacobian mf -nnm_mf_pc parametric -nnm_mf_pc_parametric_weight 0
 expect_error "-nnm_orbit_rtol -1" o.h5 -study continuation -lattice_cells 5 -nnm_orbit_rtol -1

@@ -3,7 +3,9 @@
 # Floquet data itself (each located change of stability lies between two
 # points whose multipliers show it, to -cont_bif_tol in omega), against the
 # Krein rule (a Hamiltonian-Hopf pair has opposite signatures) and across
-# 1 and 2 ranks; the FEP plot marks the events.
+# 1 and 2 ranks; the FEP plot marks the events. Then -cont_switch at the
+# branch point of the small lattice: the two families born there start at the
+# located point, carry the parent and are time-reversal images of each other.
 source "$(dirname "$0")/common.bash"
 run1 -options_file "$SRC/options/fep.opts" -cont_branch insulated -cont_energy_max 300 -cont_verbose 0 -output paper.h5 | tee paper.txt
 small="-cont_branch insulated -lattice_cells 5 -cont_energy_max 300 -cont_verbose 0"
@@ -56,4 +58,32 @@ assert len(k1) > 0 and np.array_equal(k1, k2), (k1, k2)
 assert np.abs(e1["omega"][:] - e2["omega"][:]).max() < 2 * tol
 assert np.array_equal(e1["direction"][:], e2["direction"][:])
 print("bifurcations scene OK:", n, "events, E-E branch point at omega", w[i])
+open("bp_index.txt", "w").write(str(int([k for k in range(len(k1)) if k1[k] == 2][0])))
+PYEOF
+bp=$(cat bp_index.txt)
+run1 -options_file "$SRC/options/fep.opts" $small -cont_switch insulated:$bp -output sw.h5 > sw.txt
+$PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_fep.py" sw.h5 sw.png
+$PY - "$bp" <<'PYEOF'
+import h5py, sys, numpy as np
+bp = int(sys.argv[1])
+C = h5py.File("sw.h5", "r")["continuation"]
+P, e = C["insulated"], C["insulated/bifurcations"]
+N = P["z0"].shape[1] // 2
+for side in ("plus", "minus"):
+    b = C[f"insulated_bp{bp}_{side}"]
+    assert b.attrs["parent"] in (f"insulated:{bp}", f"insulated:{bp}".encode())
+    assert b.attrs["reached_energy_max"] == 1 and b["energy"].shape[0] > 5
+    # it starts at the located point: the parent's orbit there, at rest (v = 0 on the parent family)
+    assert abs(b["omega"][0] - e["omega"][bp]) < 1e-6 and abs(b["energy"][0] / e["energy"][bp] - 1) < 1e-6
+    assert np.abs(b["z0"][0, N:]).max() < 1e-6 * np.abs(b["z0"][0, :N]).max()
+    # and leaves the parent family: its orbits are not at rest at the section (the parent's all are)
+    assert np.all(np.abs(b["z0"][1:, N:]).max(axis=1) > 1e-3 * np.abs(b["z0"][1:, :N]).max(axis=1))
+    assert "bifurcations" in b and "multipliers_re" in b
+pl, mi = C[f"insulated_bp{bp}_plus"], C[f"insulated_bp{bp}_minus"]
+n = min(pl["energy"].shape[0], mi["energy"].shape[0])
+# the two sides are time-reversal images: same u0, opposite v0, same frequency-energy curve
+assert np.abs(pl["z0"][:n, :N] - mi["z0"][:n, :N]).max() < 1e-6 * np.abs(pl["z0"][:n, :N]).max()
+assert np.abs(pl["z0"][:n, N:] + mi["z0"][:n, N:]).max() < 1e-6 * np.abs(pl["z0"][:n, :N]).max()
+assert np.abs(pl["omega"][:n] - mi["omega"][:n]).max() < 1e-7   # two continuations: rounding apart
+print("branch switching OK:", pl["energy"].shape[0], "points on each side from omega", pl["omega"][0])
 PYEOF
