@@ -243,15 +243,17 @@ static PetscErrorCode WriteRootDataset(PetscViewer v, const char *group, const c
   H5CHK(grp = H5Gopen2(file, group, H5P_DEFAULT));
   H5CHK(space = H5Screate_simple((int)dims.size(), dims.data(), NULL));
   H5CHK(dset = H5Dcreate2(grp, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
-  if (rank) H5CHK(H5Sselect_none(space));
-  static const double none = 0;
-  if (!buf) buf = &none; // a dataset with no rows: HDF5 wants a buffer all the same
-  H5CHK(xfer = H5Pcreate(H5P_DATASET_XFER));
+  hsize_t count = 1;
+  for (hsize_t d : dims) count *= d;
+  if (count) { // (every rank has the same dims; a dataset with no rows is created, not written)
+    if (rank) H5CHK(H5Sselect_none(space));
+    H5CHK(xfer = H5Pcreate(H5P_DATASET_XFER));
 #if defined(H5_HAVE_PARALLEL)
-  if (size > 1) H5CHK(H5Pset_dxpl_mpio(xfer, H5FD_MPIO_COLLECTIVE));
+    if (size > 1) H5CHK(H5Pset_dxpl_mpio(xfer, H5FD_MPIO_COLLECTIVE));
 #endif
-  AGREE(comm, H5Dwrite(dset, type, rank ? space : H5S_ALL, space, xfer, buf) < 0, "H5Dwrite");
-  H5CHK(H5Pclose(xfer));
+    AGREE(comm, H5Dwrite(dset, type, rank ? space : H5S_ALL, space, xfer, buf) < 0, "H5Dwrite");
+    H5CHK(H5Pclose(xfer));
+  }
   H5CHK(H5Dclose(dset));
   H5CHK(H5Sclose(space));
   H5CHK(H5Gclose(grp));

@@ -131,6 +131,17 @@ PetscErrorCode BifurcationLocator::Probe(PetscReal sigma, bool floquet, bool tan
   PetscFunctionReturn(0);
 }
 
+// An event located in segment seg between a and c: at the middle of the bracket.
+void BifurcationLocator::Place(PetscInt seg, const BifurcationSample &a, const BifurcationSample &c, BifurcationEvent *e) const
+{
+  e->point = seg;
+  e->energy = 0.5 * (a.energy + c.energy);
+  e->omega = 0.5 * (a.omega + c.omega);
+  e->sigma = 0.5 * (a.sigma + c.sigma);
+  e->s = s_[seg] + e->sigma * chord_;
+  e->omega_bracket = std::abs(c.omega - a.omega);
+}
+
 PetscErrorCode BifurcationLocator::Folds(const Branch &b, std::vector<BifurcationEvent> *ev)
 {
   const PetscInt np = (PetscInt)b.energy.size();
@@ -164,12 +175,7 @@ PetscErrorCode BifurcationLocator::Folds(const Branch &b, std::vector<Bifurcatio
     BifurcationSample tip;
     e.kind = EventKind::Fold;
     e.direction = sa > 0 ? 1 : -1;
-    e.point = seg;
-    e.energy = 0.5 * (a.energy + c.energy);
-    e.omega = 0.5 * (a.omega + c.omega);
-    e.s = s_[seg] + 0.5 * (a.sigma + c.sigma) * chord_;
-    e.sigma = 0.5 * (a.sigma + c.sigma);
-    e.omega_bracket = std::abs(c.omega - a.omega);
+    Place(seg, a, c, &e);
     PetscCall(Probe(c.sigma, false, true, &tip, nullptr, nullptr, &e.vector)); // the family tangent there
     if (!conv)
       PetscCall(PetscPrintf(shoot_->Flow().Lat().Comm(), "  warning: the energy fold after point %" PetscInt_FMT " was bracketed only to %.1e in omega (%s)\n", seg,
@@ -231,12 +237,7 @@ PetscErrorCode BifurcationLocator::StabilityChanges(PetscInt i, std::vector<Bifu
       e.kind = o.kind;
       e.direction = born;
       const BifurcationSample &U = born > 0 ? c : a; // off the circle
-      e.point = i;
-      e.energy = 0.5 * (a.energy + c.energy);
-      e.omega = 0.5 * (a.omega + c.omega);
-      e.s = s_[i] + 0.5 * (a.sigma + c.sigma) * chord_;
-      e.sigma = 0.5 * (a.sigma + c.sigma);
-      e.omega_bracket = std::abs(c.omega - a.omega);
+      Place(i, a, c, &e);
       e.mu_re = U.fr.re[o.index], e.mu_im = std::abs(U.fr.im[o.index]);
       // The signatures from the nearest orbit on the circle side where they are
       // defined: next to the collision the two eigenvectors merge and their

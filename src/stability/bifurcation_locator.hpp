@@ -35,6 +35,7 @@ private:
                        std::vector<PetscReal> *vec = nullptr, std::vector<PetscReal> *tz = nullptr);
   PetscErrorCode Predict(PetscReal sigma, Vec X);
   PetscErrorCode Remember(PetscReal sigma, Vec X);
+  void Place(PetscInt seg, const BifurcationSample &a, const BifurcationSample &c, BifurcationEvent *e) const;
   PetscErrorCode Folds(const Branch &b, std::vector<BifurcationEvent> *ev);
   PetscErrorCode StabilityChanges(PetscInt i, std::vector<BifurcationEvent> *ev);
   PetscErrorCode Report(const char *name, PetscInt k, const BifurcationEvent &e);

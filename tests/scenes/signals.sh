@@ -100,7 +100,7 @@ PYEOF
 points_printed() { [ "$(grep -c ' E = ' "$1" || true)" -ge "$2" ]; }
 
 # 2a. Serial, dense Floquet multipliers at every point: SIGTERM to nltopo itself.
-C1=(-options_file "$SRC/options/fep.opts" -cont_branch insulated -cont_energy_max 10 -cont_verbose 1)
+C1=(-options_file "$SRC/options/fep.opts" -cont_branch insulated -cont_energy_max 10 -cont_verbose 1 -cont_bifurcations 0)
 timeout "$LIMIT" "$NLTOPO" "${C1[@]}" -output c1_full.h5 -options_left > c1_full.txt
 "$NLTOPO" "${C1[@]}" -output c1_int.h5 -options_left > c1_int.txt 2> c1_int.err &
 pid=$!

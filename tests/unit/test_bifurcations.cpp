@@ -125,6 +125,44 @@ struct Record : public PointHook {
   }
 };
 
+// The coupled dimers, their upper (3) or lower (2) optical NNM continued up
+// to Omega^2 = lambda_hi + 3 kappa, and the events located along it.
+struct DimerEvents {
+  CoupledDimers d;
+  PetscReal lam_hi = 0, kappa = 0;
+  BifurcationOptions bo;
+  BifurcationLocator loc;
+  PetscErrorCode Setup()
+  {
+    PetscFunctionBeginUser;
+    PetscCall(d.Setup());
+    const auto &w = d.modes.Omega();
+    lam_hi = w[3] * w[3], kappa = (lam_hi - w[2] * w[2]) / 2;
+    bo.tol = 1e-9;
+    PetscCall(loc.Setup(d.shoot, FloquetOptions(), bo));
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode Locate(PetscInt j, Branch *b, std::vector<BifurcationEvent> *ev)
+  {
+    Record rec(d.flow);
+    PetscFunctionBeginUser;
+    PetscCall(d.Continue(j, std::sqrt(lam_hi + 3 * kappa), &rec, b));
+    PetscCall(loc.Locate(*b, rec.re, rec.im, rec.edge, "dimers", ev));
+    PetscFunctionReturn(0);
+  }
+};
+
+// Rank 0's z0 rows of a branch, on every rank.
+std::vector<PetscReal> AllRows(const Branch &b)
+{
+  std::vector<PetscReal> z0(b.z0);
+  PetscInt nz = (PetscInt)z0.size();
+  MPI_Bcast(&nz, 1, MPIU_INT, 0, PETSC_COMM_WORLD);
+  z0.resize(nz);
+  MPI_Bcast(z0.data(), (int)nz, MPIU_REAL, 0, PETSC_COMM_WORLD);
+  return z0;
+}
+
 } // namespace
 
 TEST_CASE("the Krein rule on constructed symplectic matrices: opposite signatures leave the circle where theory says, equal ones pass", "[bifurcations]")
@@ -186,21 +224,14 @@ TEST_CASE("the Krein rule on constructed symplectic matrices: opposite signature
 
 TEST_CASE("the pitchfork of two coupled dimers is located where averaging puts it, and breaks their mirror symmetry", "[bifurcations]")
 {
-  CoupledDimers d;
-  PCHK(d.Setup());
-  const auto &w = d.modes.Omega();
-  const PetscReal lam_hi = w[3] * w[3], kappa = (lam_hi - w[2] * w[2]) / 2;
-  BifurcationOptions bo;
-  bo.tol = 1e-9;
-  FloquetOptions fo;
-  BifurcationLocator loc;
-  PCHK(loc.Setup(d.shoot, fo, bo));
+  DimerEvents de;
+  PCHK(de.Setup());
+  const CoupledDimers &d = de.d;
+  const PetscReal lam_hi = de.lam_hi, kappa = de.kappa;
   for (PetscInt j : {2, 3}) {
-    Record rec(d.flow);
     Branch b;
-    PCHK(d.Continue(j, std::sqrt(lam_hi + 3 * kappa), &rec, &b));
     std::vector<BifurcationEvent> ev;
-    PCHK(loc.Locate(b, rec.re, rec.im, rec.edge, "dimers", &ev));
+    PCHK(de.Locate(j, &b, &ev));
     INFO("mode " << j << ": " << ev.size() << " events");
     if (j == 2) { // the lower NNM: stable at every amplitude, and its trivial pair never triggers an event
       REQUIRE(ev.empty());
@@ -210,7 +241,7 @@ TEST_CASE("the pitchfork of two coupled dimers is located where averaging puts i
     const BifurcationEvent &e = ev[0];
     REQUIRE(e.kind == EventKind::BranchPoint);
     REQUIRE(e.direction == 1);
-    REQUIRE(e.omega_bracket <= bo.tol);
+    REQUIRE(e.omega_bracket <= de.bo.tol);
     // First-order averaging: the real pair leaves +1 at Omega^2 - lambda_hi = kappa; its error is O(kappa / Omega^2) ~ 1e-2.
     const PetscReal onset = (e.omega * e.omega - lam_hi) / kappa;
     INFO("located onset s/kappa = " << onset);
@@ -221,11 +252,7 @@ TEST_CASE("the pitchfork of two coupled dimers is located where averaging puts i
     // The critical eigenvector has the other mirror parity than the orbit (u_i <-> u_{N-1-i}):
     // the family it starts breaks the symmetry.
     const PetscInt N = d.lat.N();
-    std::vector<PetscReal> z0(b.z0);
-    PetscInt nz = (PetscInt)z0.size();
-    MPI_Bcast(&nz, 1, MPIU_INT, 0, PETSC_COMM_WORLD);
-    z0.resize(nz);
-    MPI_Bcast(z0.data(), (int)nz, MPIU_REAL, 0, PETSC_COMM_WORLD);
+    const std::vector<PetscReal> z0 = AllRows(b);
     const PetscReal *u = z0.data() + (size_t)e.point * 2 * N;
     PetscReal even = 0, odd = 0, veven = 0, vodd = 0;
     for (PetscInt i = 0; i < N; i++) {
@@ -293,19 +320,13 @@ TEST_CASE("energy folds of a folded branch are located at the extrema of E, and 
 
 TEST_CASE("branch switching at the dimer pitchfork: the new family breaks the mirror symmetry, its asymmetry grows like the root of the distance, and it meets the parent at the located point", "[bifurcations][switch]")
 {
-  CoupledDimers d;
-  PCHK(d.Setup());
-  const auto &w = d.modes.Omega();
-  const PetscReal lam_hi = w[3] * w[3], kappa = (lam_hi - w[2] * w[2]) / 2;
-  BifurcationOptions bo;
-  bo.tol = 1e-9;
-  BifurcationLocator loc;
-  PCHK(loc.Setup(d.shoot, FloquetOptions(), bo));
-  Record rec(d.flow);
+  DimerEvents de;
+  PCHK(de.Setup());
+  CoupledDimers &d = de.d;
+  BifurcationLocator &loc = de.loc;
   Branch parent;
-  PCHK(d.Continue(3, std::sqrt(lam_hi + 3 * kappa), &rec, &parent));
   std::vector<BifurcationEvent> ev;
-  PCHK(loc.Locate(parent, rec.re, rec.im, rec.edge, "dimers", &ev));
+  PCHK(de.Locate(3, &parent, &ev));
   REQUIRE(ev.size() == 1);
   const PetscInt N = d.lat.N();
   OwnedVec Xs;
@@ -328,11 +349,7 @@ TEST_CASE("branch switching at the dimer pitchfork: the new family breaks the mi
     PCHK(ContinueBranch(d.shoot, nullptr, 0, co, "switched", &b, nullptr, &start));
     REQUIRE(b.energy.size() == 25);
     // every orbit: the parity the parent has not (asymmetry), relative to |u0|
-    std::vector<PetscReal> z0(b.z0);
-    PetscInt nz = (PetscInt)z0.size();
-    MPI_Bcast(&nz, 1, MPIU_INT, 0, PETSC_COMM_WORLD);
-    z0.resize(nz);
-    MPI_Bcast(z0.data(), (int)nz, MPIU_REAL, 0, PETSC_COMM_WORLD);
+    const std::vector<PetscReal> z0 = AllRows(b);
     std::vector<PetscReal> asym;
     for (size_t k = 0; k < b.energy.size(); k++) {
       const PetscReal *u = z0.data() + k * 2 * N;

@@ -39,6 +39,21 @@ void RequireSpectrum(const LatticeParams &p, const std::vector<PetscReal> &lambd
   }
 }
 
+// The finite spectrum of p equals the linear study's SLEPc modes (1e-12); returns it.
+std::vector<PetscReal> RequireSameAsModes(const LatticeParams &p)
+{
+  std::vector<PetscReal> w;
+  PCHK(FiniteSpectrum(p, &w));
+  Lattice lat;
+  PCHK(lat.Setup(PETSC_COMM_WORLD, p));
+  LinearModes modes;
+  PCHK(modes.Compute(lat, LinearModesOptions()));
+  REQUIRE(modes.Complete());
+  REQUIRE(modes.Omega().size() == w.size());
+  for (size_t j = 0; j < w.size(); j++) REQUIRE(std::abs(modes.Omega()[j] - w[j]) < 1e-12);
+  return w;
+}
+
 } // namespace
 
 TEST_CASE("transition: the gamma grid holds 0 and every +-gamma pair exactly", "[bands][transition]")
@@ -155,15 +170,7 @@ TEST_CASE("transition: the finite spectrum equals the linear study's SLEPc modes
       LatticeParams p;
       p.layout = l;
       p.gamma = gamma;
-      std::vector<PetscReal> w;
-      PCHK(FiniteSpectrum(p, &w));
-      Lattice lat;
-      PCHK(lat.Setup(PETSC_COMM_WORLD, p));
-      LinearModes modes;
-      PCHK(modes.Compute(lat, LinearModesOptions()));
-      REQUIRE(modes.Complete());
-      REQUIRE(modes.Omega().size() == w.size());
-      for (size_t j = 0; j < w.size(); j++) REQUIRE(std::abs(modes.Omega()[j] - w[j]) < 1e-12);
+      const std::vector<PetscReal> w = RequireSameAsModes(p);
       // every rank computes the whole spectrum itself: bit for bit rank 0's
       std::vector<PetscReal> w0 = w;
       MPI_Bcast(w0.data(), (int)w0.size(), MPIU_REAL, 0, PETSC_COMM_WORLD);
@@ -174,11 +181,5 @@ TEST_CASE("transition: the finite spectrum equals the linear study's SLEPc modes
   p.perturbation = Perturbation::Achiral;
   p.delta = 0.1;
   p.seed = 7;
-  std::vector<PetscReal> w;
-  PCHK(FiniteSpectrum(p, &w));
-  Lattice lat;
-  PCHK(lat.Setup(PETSC_COMM_WORLD, p));
-  LinearModes modes;
-  PCHK(modes.Compute(lat, LinearModesOptions()));
-  for (size_t j = 0; j < w.size(); j++) REQUIRE(std::abs(modes.Omega()[j] - w[j]) < 1e-12);
+  RequireSameAsModes(p);
 }
