@@ -9,7 +9,10 @@
 (b) the MCR of each orbit along the branches;
 (c) the insulated NNM's shape u0 at the lettered points (normalised, offset);
 (d) the band-edge NNMs' shapes at the lowest and the highest energy of their
-    branches (only with acoustic_top, optical_bottom or optical_top).
+    branches (only with acoustic_top, optical_bottom or optical_top);
+(e) families born at branch points (-cont_switch): how far each leaves its
+    parent, |v0| / |u0| at the section (0 on a family of orbits that start at
+    rest, as the linear modes' families do), against E, from the located point.
 usage: plot_fep.py fep.h5 [out.png]"""
 import sys
 import h5py
@@ -26,7 +29,11 @@ bands = nltopo_plot.bands(C)
 names = list(C.keys())
 colour = {name: f"C{k}" for k, name in enumerate(names)}
 edges = [n for n in ("acoustic_top", "optical_bottom", "optical_top") if n in C]
-npan = 4 if edges else 3
+def parent_of(name):
+    p = C[name].attrs.get("parent", b"")
+    return p.decode() if isinstance(p, bytes) else str(p)
+switched = [n for n in names if parent_of(n)]
+npan = 3 + bool(edges) + bool(switched)
 fig, ax = plt.subplots(1, npan, figsize=(5.4 * npan, 6))
 ax = list(ax)
 Emax = max(float(C[n]["energy"][:].max()) for n in names)
@@ -111,6 +118,20 @@ if edges:
             ax[3].plot(sites, u - 2.5 * k, style, lw=0.8, color=colour[name], label=f"{name}, E = {Ee[j]:.3g}")
     ax[3].set(xlabel="site", ylabel=r"$u_0 / \max|u_0|$ (offset by 2.5)", title="(d) band-edge NNMs: lowest (dashed), highest E")
     ax[3].legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2)
+# (e) the switched families: the order parameter of the broken symmetry
+if switched:
+    pe = ax[-1]
+    for name in switched:
+        g = C[name]
+        z = g["z0"][:]
+        n2 = z.shape[1] // 2
+        r = np.linalg.norm(z[:, n2:], axis=1) / np.linalg.norm(z[:, :n2], axis=1)
+        pe.plot(g["energy"][1:], r[1:], ".-", ms=4, color=colour[name], label=f"{name} (from {parent_of(name)})")
+        pe.plot(g["energy"][0], max(r[1:].min() * 0.1, 1e-12), "*", ms=13, mfc="gold", mec="k", ls="none",
+                label="_branch point" if name != switched[0] else "located branch point (|v0| = 0)")
+    pe.set(xscale="log", yscale="log", xlabel="energy E", ylabel=r"$|v_0| / |u_0|$ at the section",
+           title="(e) families born at branch points")
+    pe.legend(fontsize=7)
 fig.tight_layout()
 fig.savefig(out, dpi=120)
 print("wrote", out)
