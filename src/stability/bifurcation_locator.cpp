@@ -95,7 +95,6 @@ PetscErrorCode BifurcationLocator::Probe(PetscReal sigma, bool floquet, bool tan
   PetscCall(Predict(sigma, X_));
   PetscCall(shoot_->Solve(X_, &ok, &its));
   probes_++;
-  if (!ok && getenv("BIFDBG")) PetscPrintf(PETSC_COMM_WORLD, "DBG newton failed at sigma %.15f: %s after %d\n", (double)sigma, shoot_->LastReason(), (int)its);
   if (!ok) {
     s->ok = false;
     PetscFunctionReturn(0);
@@ -253,11 +252,13 @@ PetscErrorCode BifurcationLocator::StabilityChanges(PetscInt i, std::vector<Bifu
       // Jordan block), so there they are not determined.
       PetscInt qv = born > 0 ? (PetscInt)k + 1 : (PetscInt)k;
       PetscReal target[2] = {e.mu_re, e.mu_im};
+      PetscReal mod = o.modulus;
       for (PetscInt q = qv; q >= 0 && q < (PetscInt)seen.size(); q += born > 0 ? 1 : -1) {
-        const Outside *m = nullptr;
+        const Outside *m = nullptr; // the same member: its kind, near in angle, nearest in modulus
         for (const Outside &x : seen[q].out)
-          if (x.kind == o.kind && std::abs(x.angle - o.angle) <= atol) m = &x;
+          if (x.kind == o.kind && std::abs(x.angle - o.angle) <= atol && (!m || std::abs(std::log(x.modulus / mod)) < std::abs(std::log(m->modulus / mod)))) m = &x;
         if (!m) break;
+        mod = m->modulus;
         qv = q, target[0] = seen[q].fr.re[m->index], target[1] = std::abs(seen[q].fr.im[m->index]);
         if (m->modulus >= 1 + 1e-3) break;
       }

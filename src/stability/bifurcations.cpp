@@ -54,11 +54,12 @@ std::vector<Outside> OutsideMultipliers(const FloquetResult &r, PetscReal tol, P
 
 std::vector<std::pair<Outside, PetscInt>> OutsideChanges(const std::vector<Outside> &a, const std::vector<Outside> &b, PetscReal angle_tol)
 {
-  // greedy matching, closest pairs first
+  // greedy matching, closest pairs first (in angle and log-modulus)
   std::vector<std::pair<PetscReal, std::pair<size_t, size_t>>> cand;
   for (size_t i = 0; i < a.size(); i++)
     for (size_t j = 0; j < b.size(); j++)
-      if (a[i].kind == b[j].kind && std::abs(a[i].angle - b[j].angle) <= angle_tol) cand.push_back({std::abs(a[i].angle - b[j].angle), {i, j}});
+      if (a[i].kind == b[j].kind && std::abs(a[i].angle - b[j].angle) <= angle_tol) // near in angle; real ones (all at 0 or pi) by modulus
+        cand.push_back({std::abs(a[i].angle - b[j].angle) + std::abs(std::log(a[i].modulus / b[j].modulus)), {i, j}});
   std::sort(cand.begin(), cand.end());
   std::vector<char> ua(a.size(), 0), ub(b.size(), 0);
   for (const auto &c : cand)
@@ -78,13 +79,13 @@ bool SameOutside(const std::vector<Outside> &a, const std::vector<Outside> &b, P
 
 namespace {
 
-// The nontrivial multipliers on the circle (|mu| <= 1 + tol): index and angle in (-pi, pi].
+// The nontrivial multipliers on the circle (||mu| - 1| <= tol; not the inside partners of unstable ones): index and angle in (-pi, pi].
 std::vector<std::pair<PetscInt, PetscReal>> OnCircle(const FloquetResult &r, PetscReal tol, PetscReal min_edge)
 {
   std::vector<std::pair<PetscInt, PetscReal>> c;
   const bool filter = min_edge > 0 && r.edge.size() == r.re.size();
   for (PetscInt j : NontrivialIndices(r.re.data(), r.im.data(), (PetscInt)r.re.size()))
-    if (std::hypot(r.re[j], r.im[j]) <= 1 + tol && !(filter && r.edge[j] < min_edge)) c.push_back({j, std::atan2(r.im[j], r.re[j])});
+    if (std::abs(std::hypot(r.re[j], r.im[j]) - 1) <= tol && !(filter && r.edge[j] < min_edge)) c.push_back({j, std::atan2(r.im[j], r.re[j])});
   return c;
 }
 
@@ -117,11 +118,15 @@ PetscReal CollisionFunction(const FloquetResult &r, EventKind kind, PetscReal an
   const Outside *best = nullptr;
   const std::vector<Outside> out = OutsideMultipliers(r, tol, min_edge);
   for (const Outside &o : out)
-    if (o.kind == kind && std::abs(o.angle - angle) <= angle_tol && (!best || std::abs(o.angle - angle) < std::abs(best->angle - angle))) best = &o;
+    if (o.kind == kind && std::abs(o.angle - angle) <= angle_tol &&
+        (!best || std::abs(o.angle - angle) < std::abs(best->angle - angle) || (o.angle == best->angle && o.modulus < best->modulus)))
+      best = &o; // (real ones tie in angle: the one nearest the circle, the newest)
   if (best) return -std::pow(2 * std::log(best->modulus), 2);
   const auto c = Colliding(r, kind, angle, tol, min_edge);
   if (c.empty()) return NAN;
-  return std::pow(c[0].second - c[1].second, 2);
+  PetscReal d = std::abs(c[0].second - c[1].second);
+  d = std::min(d, 2 * PETSC_PI - d); // the pair near -1 at +-(pi - delta): 2 delta
+  return d * d;
 }
 
 void CollidingSignatures(const FloquetResult &r, EventKind kind, PetscReal angle, PetscReal tol, PetscInt krein[2], PetscReal min_edge)

@@ -14,8 +14,9 @@
 //   opposite signature may leave it as a complex quadruplet
 //   (Hamiltonian-Hopf), pairs of equal signature cannot and pass (Krein 1950;
 //   MacKay, in "Hamiltonian dynamical systems", 1987).
-// So the set of nontrivial multipliers outside the circle changes exactly at
-// these events. Each orbit's set (one representative per pair or quadruplet,
+// So the set of nontrivial multipliers outside the circle changes at these
+// events (and where two unstable ones meet off the circle, e.g. two real
+// pairs turning into a quadruplet: reported as one ending and one beginning). Each orbit's set (one representative per pair or quadruplet,
 // by kind and angle) is compared between orbits; where it changes, the event
 // is located on a test function that is smooth through it: near a
 // collision at e^{i theta*} the two colliding multipliers are
@@ -107,9 +108,10 @@ struct BifurcationSample {
 using SampleProbe = std::function<PetscErrorCode(PetscReal sigma, BifurcationSample *)>;
 
 // Locates where same(a, x) stops holding between a and c (a.sigma < c.sigma,
-// !same(a, c)): secant steps on the test function G(a, c, x) (smooth through
-// the change, opposite signs at a and c; NaN: not available), each followed by
-// a guard probe one tolerance beyond, else bisection. On return same(a, c) is
+// !same(a, c)): Illinois steps on the test function G(a, c, x) (smooth
+// through the change, opposite signs at a and c; NaN: not available), a
+// bisection after any step that did not halve the bracket; a probe where
+// Newton fails is retried a quarter bracket aside. On return same(a, c) is
 // false and |omega_c - omega_a| <= tol, |E_c - E_a| <= tol |E_c| (converged),
 // or max_probes were spent or a probe failed (not converged).
 using SamePredicate = std::function<bool(const BifurcationSample &a, const BifurcationSample &x)>;

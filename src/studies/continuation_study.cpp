@@ -288,6 +288,11 @@ protected:
   }
 
 private:
+  // Whether -cont_switch's branch names the -cont_branch entry name (as given, or as its label mode<k> for k)
+  static bool SwitchNames(const std::string &branch, const std::string &name)
+  {
+    return branch == name || branch == "mode" + name || "mode" + branch == name;
+  }
   PetscErrorCode SwitchOptions()
   {
     char *list[16] = {};
@@ -310,14 +315,13 @@ private:
       const size_t colon = item.rfind(':');
       char *end = nullptr;
       const long ev = colon == std::string::npos ? -1 : std::strtol(item.c_str() + colon + 1, &end, 10);
-      PetscCheck(colon != std::string::npos && colon > 0 && end && !*end && ev >= 0 && end != item.c_str() + colon + 1, comm_, PETSC_ERR_USER,
+      PetscCheck(colon != std::string::npos && colon > 0 && end && !*end && ev >= 0 && ev < 1000000 && end != item.c_str() + colon + 1, comm_, PETSC_ERR_USER,
                  "-cont_switch %s: expected <branch>:<event index>, e.g. insulated:12", item.c_str());
+      for (const Switch &o : switches_)
+        PetscCheck(!(SwitchNames(o.branch, item.substr(0, colon)) && o.event == ev), comm_, PETSC_ERR_USER, "-cont_switch %s: given twice", item.c_str());
       switches_.push_back({item.substr(0, colon), (PetscInt)ev});
       bool known = false; // a branch of -cont_branch, by its name or its label (k or mode<k>)
-      for (PetscInt k = 0; k < ch_.nb && !declaring_; k++) {
-        const std::string nk = ch_.names[k];
-        known |= nk == switches_.back().branch || "mode" + nk == switches_.back().branch || nk == "mode" + switches_.back().branch;
-      }
+      for (PetscInt k = 0; k < ch_.nb && !declaring_; k++) known |= SwitchNames(switches_.back().branch, ch_.names[k]);
       PetscCheck(known || declaring_, comm_, PETSC_ERR_USER, "-cont_switch %s: no branch %s among -cont_branch", item.c_str(), switches_.back().branch.c_str());
     }
     PetscCheck(switches_.empty() || declaring_ || bo_.enabled, comm_, PETSC_ERR_USER, "-cont_switch needs -cont_bifurcations (on with -floquet): the branch points are its events");
@@ -332,7 +336,7 @@ private:
     BranchRecord r;
     PetscLogDouble now;
     PetscTime(&now);
-    r.label = cur.label, r.omega = cur.omega, r.b = std::move(b), r.seconds = now - cur.b0;
+    r.label = cur.label, r.parent = cur.parent, r.omega = cur.omega, r.b = std::move(b), r.seconds = now - cur.b0;
     r.jac = shoot.JacobianEvaluations() - cur.j0, r.res = shoot.ResidualEvaluations() - cur.r0, r.tan = shoot.TangentProducts() - cur.p0,
     r.kry = shoot.KrylovIterations() - cur.k0;
     if (fk_ != FloquetKind::None) r.f = fk_ == FloquetKind::MatrixFree ? mf_hook_->c : hook_->c;
@@ -403,7 +407,8 @@ private:
     PetscFunctionBeginUser;
     PetscCheck(!done_.empty() || !b.energy.empty(), comm_, PETSC_ERR_SIG, "interrupted by %s before the first orbit of branch %s; no output written", sn,
                cur.label.c_str());
-    const std::string reason = std::string("interrupted by ") + sn + (*doing ? std::string(" ") + doing : "") + ": -cont_resume continues it";
+    const std::string reason = std::string("interrupted by ") + sn + (*doing ? std::string(" ") + doing : "") +
+                               (cur.parent.empty() ? ": -cont_resume continues it" : ": a switched branch, which -cont_resume does not recreate");
     PetscCall(WritePartial(cur, reason.c_str()));
     SETERRQ(comm_, PETSC_ERR_SIG, "interrupted by %s%s%s after %zu points of branch %s (last E = %g); partial output %s (complete = 0); -cont_resume %s continues it", sn,
             *doing ? " " : "", doing, b.energy.size(), cur.label.c_str(), b.energy.empty() ? 0.0 : (double)b.energy.back(), path_.c_str(), path_.c_str());
@@ -448,38 +453,66 @@ private:
   // just done (given as name, recorded as label), on both sides of the critical eigenvector.
   PetscErrorCode SwitchFrom(const char *name, const std::string &label)
   {
+    struct Job {
+      std::string parent;
+      BifurcationEvent e;
+      OwnedVec Xs; // the orbit at the branch point, on the parent
+    };
+    std::vector<Job> jobs;
     PetscFunctionBeginUser;
+    // Every asked event and its orbit first, while done_.back() and the locator hold this branch
+    const std::vector<BifurcationEvent> ev = done_.back().events;
     for (Switch &sw : switches_) {
-      if (sw.branch != name && sw.branch != label) continue;
+      if (!SwitchNames(sw.branch, name)) continue;
       sw.used = true;
-      const std::vector<BifurcationEvent> &ev = done_.back().events;
       PetscCheck(sw.event < (PetscInt)ev.size(), comm_, PETSC_ERR_USER, "-cont_switch %s:%" PetscInt_FMT ": branch %s has %zu located events%s", sw.branch.c_str(),
                  sw.event, label.c_str(), ev.size(), ev.empty() ? "" : (" (0 .. " + std::to_string(ev.size() - 1) + ")").c_str());
-      const BifurcationEvent e = ev[sw.event];
-      PetscCheck(e.kind == EventKind::BranchPoint, comm_, PETSC_ERR_USER, "-cont_switch %s:%" PetscInt_FMT ": that event is a %s; branch switching follows branch points (kind 2)",
-                 sw.branch.c_str(), sw.event, EventKindName(e.kind));
-      const std::string parent = label + ":" + std::to_string(sw.event);
-      OwnedVec Xs; // the orbit at the branch point, on the parent
-      bool found;
-      PetscCall(nnm_.shoot.CreateUnknowns(Xs.out()));
-      PetscCall(locator_.OrbitAt(e.point, e.sigma, Xs, &found));
-      PetscCheck(found, comm_, PETSC_ERR_NOT_CONVERGED, "-cont_switch %s: the orbit at the branch point (omega %g) was not found again", parent.c_str(), (double)e.omega);
+      Job job;
+      job.e = ev[sw.event];
+      PetscCheck(job.e.kind == EventKind::BranchPoint, comm_, PETSC_ERR_USER,
+                 "-cont_switch %s:%" PetscInt_FMT ": that event is a %s; branch switching follows branch points (kind 2)", sw.branch.c_str(), sw.event,
+                 EventKindName(job.e.kind));
+      job.parent = label + ":" + std::to_string(sw.event);
+      bool found = false;
+      PetscCall(nnm_.shoot.CreateUnknowns(job.Xs.out()));
+      // right at a branch point the shooting Jacobian is singular: a step aside if Newton fails there
+      for (PetscReal aside : {0.0, -1e-6, 1e-6, -1e-4, 1e-4}) {
+        const PetscErrorCode ierr = locator_.OrbitAt(job.e.point, job.e.sigma + aside, job.Xs, &found);
+        if (IsInterrupt(ierr)) PetscCall(Interrupted(LiveBranch{label, "", 0, Branch()}, "before switching"));
+        PetscCall(ierr);
+        if (found) break;
+      }
+      if (!found) {
+        PetscCall(PetscPrintf(comm_, "  warning: -cont_switch %s: the orbit at the branch point (omega %g) was not found again; not switched\n", job.parent.c_str(),
+                              (double)job.e.omega));
+        continue;
+      }
+      jobs.push_back(std::move(job));
+    }
+    for (const Job &job : jobs) {
+      const BifurcationEvent &e = job.e;
+      const std::string &parent = job.parent;
+      const Vec Xs = job.Xs;
       for (PetscInt sign : {1, -1}) {
         LiveBranch cur;
         Branch start;
         bool pinned;
         PetscReal away;
         PetscCall(PetscTime(&cur.b0));
-        cur.label = label + "_bp" + std::to_string(sw.event) + (sign > 0 ? "_plus" : "_minus");
+        cur.label = parent.substr(0, parent.rfind(':')) + "_bp" + parent.substr(parent.rfind(':') + 1) + (sign > 0 ? "_plus" : "_minus");
         cur.omega = e.omega, cur.parent = parent;
         Shooting &shoot = nnm_.shoot;
         cur.j0 = shoot.JacobianEvaluations(), cur.r0 = shoot.ResidualEvaluations(), cur.p0 = shoot.TangentProducts(), cur.k0 = shoot.KrylovIterations();
-        PetscCall(StartSwitchedBranch(shoot, Xs, e, switch_step_, sign, &start, &pinned, &away));
-        PetscCheck(pinned, comm_, PETSC_ERR_NOT_CONVERGED,
-                   "-cont_switch %s: no orbit found %g |z*| off the branch point along its critical eigenvector (Newton failed); try another -cont_switch_step",
-                   parent.c_str(), (double)switch_step_);
-        PetscCall(PetscPrintf(comm_, "  [%s] from the branch point %s at omega %.9f (E %.6g): first orbit at %g |z*| along the critical eigenvector, E %.6g, omega %.9f\n",
-                              cur.label.c_str(), parent.c_str(), (double)e.omega, (double)e.energy, (double)switch_step_, (double)start.energy[1], (double)start.omega[1]));
+        const PetscErrorCode is = StartSwitchedBranch(shoot, Xs, e, switch_step_, sign, &start, &pinned, &away);
+        if (IsInterrupt(is)) PetscCall(Interrupted(cur, "while switching"));
+        PetscCall(is);
+        if (!pinned) {
+          PetscCall(PetscPrintf(comm_, "  warning: -cont_switch %s: no orbit found %g |z*| off the branch point along its critical eigenvector (Newton failed); %s not followed, try another -cont_switch_step\n",
+                                parent.c_str(), (double)switch_step_, cur.label.c_str()));
+          continue;
+        }
+        PetscCall(PetscPrintf(comm_, "  [%s] from the branch point %s at omega %.9f (E %.6g): first orbit at %g |z*| along the critical eigenvector (%.0f %% of the step along it), E %.6g, omega %.9f\n",
+                              cur.label.c_str(), parent.c_str(), (double)e.omega, (double)e.energy, (double)switch_step_, (double)(100 * away), (double)start.energy[1], (double)start.omega[1]));
         // the Floquet data of the two start points, as of every other
         hook_->Clear();
         OwnedVec z;
@@ -491,10 +524,12 @@ private:
         PetscCallMPI(MPI_Bcast(rows.data(), (PetscMPIInt)nr, MPIU_REAL, 0, comm_));
         for (size_t q = 0; q < 2; q++) {
           PetscCall(StateFromRow(nnm_.lat, rows.data() + q * n2_, z));
-          PetscCall(hook_->Point(z, start.period[q], start.beta[q], z));
+          const PetscErrorCode ih = hook_->Point(z, start.period[q], start.beta[q], z);
+          if (IsInterrupt(ih)) PetscCall(Interrupted(cur, "while switching"));
+          PetscCall(ih);
         }
         const PetscErrorCode ic = ContinueBranch(shoot, nullptr, 0, nnm_.co, cur.label.c_str(), &cur.b, hook_.get(), &start);
-        if (IsInterrupt(ic)) PetscCall(Interrupted(cur, "")); // (a resume does not recreate switched branches: README)
+        if (IsInterrupt(ic)) PetscCall(Interrupted(cur, "")); // (what a resume does with it: Interrupted)
         PetscCall(ic);
         PetscLogDouble b1;
         PetscCall(PetscTime(&b1));

@@ -125,6 +125,7 @@ expect_error "-cont_switch needs -cont_bifurcations" o.h5 $C -cont_switch insula
 expect_error "-cont_switch optical_top:0: no branch optical_top among -cont_branch" o.h5 $C -floquet -cont_switch optical_top:0
 expect_error "-cont_switch insulated:5: branch insulated has 0 located events" o.h5 $C -floquet -cont_switch insulated:5
 expect_error "-cont_switch_step must lie in (0, 1), got 0." o.h5 $C -floquet -cont_switch_step 0
+expect_error "-cont_switch insulated:3: given twice" o.h5 $C -floquet -cont_switch insulated:3,insulated:3
 expect_error "-sim_store_u_stride" o.h5 $S -sim_store_u_stride 0
 expect_error "-nnm_mf_pc_parametric_weight 0" o.h5 -study continuation -lattice_cells 5 -nnm_jacobian mf -nnm_mf_pc parametric -nnm_mf_pc_parametric_weight 0
 expect_error "-nnm_orbit_rtol -1" o.h5 -study continuation -lattice_cells 5 -nnm_orbit_rtol -1
