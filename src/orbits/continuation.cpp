@@ -61,17 +61,6 @@ PetscErrorCode ShapeCorrelation(const Lattice &lat, Vec a, Vec b, PetscReal *cor
   PetscFunctionReturn(0);
 }
 
-// MCR of the displacement part of z (model.md's MCR on u0, the orbit at its section).
-PetscErrorCode DisplacementMcr(const Lattice &lat, Vec z, PetscReal *mcr)
-{
-  Vec u;
-  PetscFunctionBeginUser;
-  PetscCall(VecGetSubVector(z, lat.PositionIS(), &u));
-  PetscCall(Mcr(u, mcr));
-  PetscCall(VecRestoreSubVector(z, lat.PositionIS(), &u));
-  PetscFunctionReturn(0);
-}
-
 // The resume state after a point: the tangent t (natural order on rank 0) and ds.
 PetscErrorCode StoreNextStep(const Lattice &lat, Shooting &shoot, Vec t, Vec tz, PetscReal ds, Branch *b)
 {
@@ -120,6 +109,17 @@ PetscErrorCode StateFromRow(const Lattice &lat, const PetscReal *row, Vec z)
   }
   PetscCall(VecAssemblyBegin(z));
   PetscCall(VecAssemblyEnd(z));
+  PetscFunctionReturn(0);
+}
+
+// MCR of the displacement part of z (model.md's MCR on u0, the orbit at its section).
+PetscErrorCode DisplacementMcr(const Lattice &lat, Vec z, PetscReal *mcr)
+{
+  Vec u;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetSubVector(z, lat.PositionIS(), &u));
+  PetscCall(Mcr(u, mcr));
+  PetscCall(VecRestoreSubVector(z, lat.PositionIS(), &u));
   PetscFunctionReturn(0);
 }
 

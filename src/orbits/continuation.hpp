@@ -44,6 +44,8 @@ struct Branch {
 // store (other ranks: unchanged), or set from a row every rank holds.
 PetscErrorCode AppendStateRow(const Lattice &lat, Vec z, std::vector<PetscReal> *rows);
 PetscErrorCode StateFromRow(const Lattice &lat, const PetscReal *row, Vec z);
+// MCR of the displacement part of z (model.md's MCR on u0, as a branch records it).
+PetscErrorCode DisplacementMcr(const Lattice &lat, Vec z, PetscReal *mcr);
 
 // Called at every accepted orbit (z0, T, beta), e.g. for its Floquet
 // multipliers. dz0 is the state part of the family tangent there (the

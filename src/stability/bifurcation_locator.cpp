@@ -116,10 +116,7 @@ PetscErrorCode BifurcationLocator::Probe(PetscReal sigma, bool floquet, bool tan
       PetscCall(VecNormalize(tz_, &nrm));
       tz->clear();
       PetscCall(AppendStateRow(flow.Lat(), tz_, tz));
-      PetscInt n = (PetscInt)tz->size();
-      PetscCallMPI(MPI_Bcast(&n, 1, MPIU_INT, 0, flow.Lat().Comm()));
-      tz->resize(n);
-      PetscCallMPI(MPI_Bcast(tz->data(), (PetscMPIInt)n, MPIU_REAL, 0, flow.Lat().Comm()));
+      PetscCall(BroadcastFromRoot(flow.Lat().Comm(), MPIU_REAL, tz));
     }
   }
   if (floquet) {
@@ -314,10 +311,8 @@ PetscErrorCode BifurcationLocator::Locate(const Branch &b, const std::vector<Pet
   // B-B events are left out unless asked for; a lattice without an interface has no edge region to tell them by
   min_edge_ = bo_.bulk || lat.Params().layout != Layout::Interface ? 0 : 1 - fo_.edge_weight;
   rows_ = b.z0; // rank 0's rows to every rank
-  PetscInt nr = (PetscInt)rows_.size();
-  PetscCallMPI(MPI_Bcast(&nr, 1, MPIU_INT, 0, comm));
-  rows_.resize(nr);
-  PetscCallMPI(MPI_Bcast(rows_.data(), (PetscMPIInt)nr, MPIU_REAL, 0, comm));
+  PetscCall(BroadcastFromRoot(comm, MPIU_REAL, &rows_));
+  const PetscInt nr = (PetscInt)rows_.size();
   PetscCheck(nr == np * n2 && re.size() == (size_t)(np * n2) && im.size() == re.size(), comm, PETSC_ERR_PLIB,
              "bifurcations: branch %s has %" PetscInt_FMT " points but %" PetscInt_FMT " orbit values and %zu multipliers", name, np, nr, re.size());
   period_ = b.period, beta_ = b.beta;

@@ -1,5 +1,4 @@
 #include "stability/branch_switch.hpp"
-#include "diagnostics/mcr.hpp"
 #include <cmath>
 
 namespace nltopo {
@@ -22,11 +21,8 @@ PetscErrorCode AppendPoint(Shooting &shoot, Vec X, Vec z, PetscInt its, Branch *
   b->newton_its.push_back(its);
   b->krylov_its.push_back(0);
   b->shape_corr.push_back(1);
-  Vec u;
   PetscReal mcr;
-  PetscCall(VecGetSubVector(z, flow.Lat().PositionIS(), &u));
-  PetscCall(Mcr(u, &mcr)); // of u0, as the continuation records it
-  PetscCall(VecRestoreSubVector(z, flow.Lat().PositionIS(), &u));
+  PetscCall(DisplacementMcr(flow.Lat(), z, &mcr));
   b->mcr.push_back(mcr);
   PetscCall(AppendStateRow(flow.Lat(), z, &b->z0));
   PetscFunctionReturn(0);

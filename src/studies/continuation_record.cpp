@@ -1,4 +1,5 @@
 #include "studies/continuation_record.hpp"
+#include "core/gather.hpp"
 #include "io/input.hpp"
 #include "io/output.hpp"
 #include "io/schema.hpp"
@@ -113,17 +114,6 @@ PetscInt RowLength(const char *shape, PetscInt n2, PetscInt nev)
   return 0;
 }
 
-// Rank 0's vector to every rank.
-template <typename T>
-PetscErrorCode Broadcast(MPI_Comm comm, MPI_Datatype type, std::vector<T> *v)
-{
-  PetscFunctionBeginUser;
-  PetscInt n = (PetscInt)v->size();
-  PetscCallMPI(MPI_Bcast(&n, 1, MPIU_INT, 0, comm));
-  v->resize(n);
-  if (n) PetscCallMPI(MPI_Bcast(v->data(), (PetscMPIInt)n, type, 0, comm));
-  PetscFunctionReturn(0);
-}
 
 // /continuation/<branch>/bifurcations: each field of its schema from the events.
 struct EventColumn {
@@ -299,8 +289,8 @@ PetscErrorCode ReadResume(MPI_Comm comm, const std::string &file, const std::str
   for (const auto &[fd, c, floquet] : fields) {
     if (fd->kind != FieldKind::Dataset || (c->flags & kRank0)) continue;
     const Cells d = c->data(rec);
-    if (d.reals) PetscCall(Broadcast(comm, MPIU_REAL, d.reals));
-    if (d.ints) PetscCall(Broadcast(comm, MPIU_INT, d.ints));
+    if (d.reals) PetscCall(BroadcastFromRoot(comm, MPIU_REAL, d.reals));
+    if (d.ints) PetscCall(BroadcastFromRoot(comm, MPIU_INT, d.ints));
   }
   *b = std::move(rb);
   *f = std::move(rf);

@@ -1,6 +1,7 @@
 // -study continuation: NNM branches from linear modes by pseudo-arclength
 // continuation of periodic orbits (orbits/); /continuation/<branch> of outputs.md.
 #include "studies/nnm_setup.hpp"
+#include "core/gather.hpp"
 #include "core/log.hpp"
 #include "core/options_audit.hpp"
 #include "core/signals.hpp"
@@ -429,7 +430,7 @@ private:
     done_.push_back(Snapshot(cur, std::move(cur.b)));
     BranchRecord &d = done_.back();
     d.seconds = b1 - cur.b0;
-    d.located = rec.located, d.events = std::move(rec.events), d.parent = cur.parent;
+    d.located = rec.located, d.events = std::move(rec.events);
     d.bif_tol = rec.bif_tol, d.bif_seconds = rec.bif_seconds, d.bif_probes = rec.bif_probes;
     if (fk_ != FloquetKind::None) {
       const FloquetColumns &f = d.f;
@@ -518,10 +519,7 @@ private:
         OwnedVec z;
         PetscCall(nnm_.lat.CreateStateVector(z.out()));
         std::vector<PetscReal> rows = start.z0;
-        PetscInt nr = (PetscInt)rows.size();
-        PetscCallMPI(MPI_Bcast(&nr, 1, MPIU_INT, 0, comm_));
-        rows.resize(nr);
-        PetscCallMPI(MPI_Bcast(rows.data(), (PetscMPIInt)nr, MPIU_REAL, 0, comm_));
+        PetscCall(BroadcastFromRoot(comm_, MPIU_REAL, &rows));
         for (size_t q = 0; q < 2; q++) {
           PetscCall(StateFromRow(nnm_.lat, rows.data() + q * n2_, z));
           const PetscErrorCode ih = hook_->Point(z, start.period[q], start.beta[q], z);

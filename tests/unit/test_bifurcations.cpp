@@ -2,6 +2,7 @@
 // constructed symplectic matrices (a Hamiltonian-Hopf collision where linear
 // algebra puts it), the pitchfork of two coupled dimers where averaging puts
 // it, and the energy folds of a folded branch (extrema of E).
+#include "core/gather.hpp"
 #include "dimers.hpp"
 #include "helpers.hpp"
 #include "stability/bifurcation_locator.hpp"
@@ -156,10 +157,7 @@ struct DimerEvents {
 std::vector<PetscReal> AllRows(const Branch &b)
 {
   std::vector<PetscReal> z0(b.z0);
-  PetscInt nz = (PetscInt)z0.size();
-  MPI_Bcast(&nz, 1, MPIU_INT, 0, PETSC_COMM_WORLD);
-  z0.resize(nz);
-  MPI_Bcast(z0.data(), (int)nz, MPIU_REAL, 0, PETSC_COMM_WORLD);
+  PCHK(BroadcastFromRoot(PETSC_COMM_WORLD, MPIU_REAL, &z0));
   return z0;
 }
 
@@ -274,26 +272,19 @@ TEST_CASE("energy folds of a folded branch are located at the extrema of E, and 
   // to 1e3 it folds twice more).
   LatticeParams p;
   p.cells = 1;
-  Lattice lat;
-  PCHK(lat.Setup(PETSC_COMM_WORLD, p));
-  LinearModes modes;
-  PCHK(modes.Compute(lat, LinearModesOptions()));
-  EffectList fx(lat);
-  PCHK(BuildLatticeEffects(lat, &fx));
-  PeriodicFlow flow;
-  PCHK(flow.Setup(fx, FlowOptions()));
-  Shooting shoot;
-  PCHK(shoot.Setup(flow, ShootingOptions()));
+  NnmFixture nf;
+  PCHK(nf.Setup(p));
+  const PetscInt N = nf.lat.N();
   ContinuationOptions co;
   co.verbose = PETSC_FALSE;
   co.energy_max = 300;
-  Record rec(flow);
+  Record rec(nf.flow);
   Branch b;
-  PCHK(ContinueBranch(shoot, modes.Mode(0), 2 * PETSC_PI / modes.Omega()[0], co, "folds", &b, &rec));
+  PCHK(nf.Continue(0, co, &b, &rec));
   BifurcationOptions bo;
   bo.tol = 1e-9;
   BifurcationLocator loc;
-  PCHK(loc.Setup(shoot, FloquetOptions(), bo));
+  PCHK(loc.Setup(nf.shoot, FloquetOptions(), bo));
   std::vector<BifurcationEvent> ev;
   PCHK(loc.Locate(b, rec.re, rec.im, rec.edge, "folds", &ev));
   std::vector<const BifurcationEvent *> folds;
@@ -314,7 +305,7 @@ TEST_CASE("energy folds of a folded branch are located at the extrema of E, and 
       INFO("fold at E " << f->energy << ", point " << k << " E " << b.energy[k]);
       REQUIRE(f->direction * (f->energy - b.energy[k]) >= -1e-9 * f->energy);
     }
-    REQUIRE(f->vector.size() == (size_t)(2 * lat.N())); // the family tangent there
+    REQUIRE(f->vector.size() == (size_t)(2 * N)); // the family tangent there
   }
 }
 

@@ -3,6 +3,7 @@
 // orbit, and a branch with energy folds that is followed through them.
 #include "bands/linear_modes.hpp"
 #include "helpers.hpp"
+#include "nnm_fixture.hpp"
 #include "orbits/continuation.hpp"
 #include <cmath>
 
@@ -11,29 +12,7 @@ using namespace nltopo::test;
 
 namespace {
 
-struct Fixture {
-  Lattice lat;
-  EffectList fx{lat};
-  LinearModes modes;
-  PeriodicFlow flow;
-  Shooting shoot;
-  PetscErrorCode Setup(const LatticeParams &p)
-  {
-    PetscFunctionBeginUser;
-    PetscCall(lat.Setup(PETSC_COMM_WORLD, p));
-    PetscCall(modes.Compute(lat, LinearModesOptions()));
-    PetscCall(BuildLatticeEffects(lat, &fx));
-    PetscCall(flow.Setup(fx, FlowOptions()));
-    PetscCall(shoot.Setup(flow, ShootingOptions()));
-    PetscFunctionReturn(0);
-  }
-  PetscErrorCode Continue(PetscInt mode, const ContinuationOptions &o, Branch *b)
-  {
-    PetscFunctionBeginUser;
-    PetscCall(ContinueBranch(shoot, modes.Mode(mode), 2 * PETSC_PI / modes.Omega()[mode], o, "test", b));
-    PetscFunctionReturn(0);
-  }
-};
+using Fixture = NnmFixture;
 
 // Complete elliptic integral of the first kind K(m) by the arithmetic-geometric mean.
 PetscReal EllipticK(PetscReal m)
