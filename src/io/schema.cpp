@@ -138,6 +138,7 @@ std::vector<Schema> Build()
                 {"point", D, I, "nevents", "the continuation point the event follows"},
                 {"instability", D, I, "nevents", "localisation of the critical eigenvector: 1 B-B, 2 B-E, 3 E-E (0: fold)"},
                 {"omega_bracket", D, R, "nevents", "width in omega of the final bracket"},
+                {"resonance", D, I, "nevents x 2", "internal resonance (kind 6): p, q of the root of unity exp(2 pi i p/q) crossed; 0 0 otherwise"},
                 {"tol", A, R, "scalar", "-cont_bif_tol"},
                 {"probes", A, I, "scalar", "orbits solved to locate the events"},
                 {"seconds", A, R, "scalar", "wall time of the location"}}});

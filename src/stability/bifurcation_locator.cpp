@@ -40,7 +40,6 @@ PetscErrorCode BifurcationLocator::SetSegment(PetscInt i)
   PetscCall(VecWAXPY(d_, -1.0, Xa_, Xb_));
   PetscCall(VecNormalize(d_, &chord_));
   seg_ = i;
-  solved_.clear();
   PetscFunctionReturn(0);
 }
 
@@ -52,7 +51,7 @@ PetscErrorCode BifurcationLocator::Predict(PetscReal sigma, Vec X)
   const std::vector<PetscScalar> *lo = nullptr, *hi = nullptr;
   PetscReal slo = -1, shi = 2;
   PetscFunctionBeginUser;
-  for (const auto &[sg, x] : solved_) {
+  for (const auto &[sg, x] : solved_[seg_]) {
     if (sg <= sigma && sg > slo) slo = sg, lo = &x;
     if (sg >= sigma && sg < shi) shi = sg, hi = &x;
   }
@@ -75,7 +74,7 @@ PetscErrorCode BifurcationLocator::Remember(PetscReal sigma, Vec X)
   PetscFunctionBeginUser;
   PetscCall(VecGetLocalSize(X, &n));
   PetscCall(VecGetArrayRead(X, &x));
-  solved_.push_back({sigma, std::vector<PetscScalar>(x, x + n)});
+  solved_[seg_].push_back({sigma, std::vector<PetscScalar>(x, x + n)});
   PetscCall(VecRestoreArrayRead(X, &x));
   PetscFunctionReturn(0);
 }
@@ -105,6 +104,7 @@ PetscErrorCode BifurcationLocator::Probe(PetscReal sigma, bool floquet, bool tan
   PetscCall(flow.Effects().Energy(z_, &e));
   s->omega = 2 * PETSC_PI / T;
   s->energy = e.Total();
+  last_T_ = T, last_beta_ = beta;
   if (tangent) { // before anything else uses the solver: the tangent takes the last Jacobian
     PetscReal dT, db;
     PetscCall(shoot_->Tangent(X_, d_, t_));
@@ -121,7 +121,7 @@ PetscErrorCode BifurcationLocator::Probe(PetscReal sigma, bool floquet, bool tan
   }
   if (floquet) {
     PetscCall(flow.IntegrateWithMonodromy(z_, T, flow.FloquetBeta(beta), zT_, S_));
-    PetscCall(FloquetAnalysis(flow.Lat(), S_, fo_, &s->fr, target, vec));
+    PetscCall(FloquetAnalysis(flow.Lat(), S_, fo_, &s->fr, target, vec, vectors_));
     s->out = OutsideMultipliers(s->fr, fo_.tol, min_edge_);
   }
   PetscFunctionReturn(0);
@@ -267,6 +267,139 @@ PetscErrorCode BifurcationLocator::StabilityChanges(PetscInt i, std::vector<Bifu
   PetscFunctionReturn(0);
 }
 
+// Kind 4: each pair of circle multipliers that may pass between the
+// segment's ends (PassCandidates) is followed by its eigenvectors
+// (LocatePass); an avoided crossing is counted, not reported.
+PetscErrorCode BifurcationLocator::Passes(PetscInt i, const FloquetResult &fi, const FloquetResult &fj, std::vector<BifurcationEvent> *ev)
+{
+  const auto cand = PassCandidates(fi, fj, fo_.tol, min_edge_);
+  BifurcationSample a0, c0;
+  PetscFunctionBeginUser;
+  if (cand.empty()) PetscFunctionReturn(0);
+  PetscCall(SetSegment(i));
+  vectors_ = min_edge_;
+  PetscCall(Probe(0, true, false, &a0));
+  PetscCall(Probe(1, true, false, &c0));
+  const SampleProbe probe = [&](PetscReal sg, BifurcationSample *x) { return Probe(sg, true, false, x); };
+  for (const auto &[tha, thb] : cand) {
+    if (!a0.ok || !c0.ok) break;
+    PetscInt ia = -1, ib = -1; // the candidates' members at the segment's start, by angle
+    for (const auto &[k, th] : UpperCircle(a0.fr, fo_.tol, min_edge_)) {
+      if (ia < 0 || std::abs(th - tha) < std::abs(std::atan2(a0.fr.im[ia], a0.fr.re[ia]) - tha)) ia = k;
+      if (ib < 0 || std::abs(th - thb) < std::abs(std::atan2(a0.fr.im[ib], a0.fr.re[ib]) - thb)) ib = k;
+    }
+    if (ia < 0 || ia == ib || !(a0.fr.kappa[ia] * a0.fr.kappa[ib] > 0)) continue; // equal signatures only
+    BifurcationSample a, c;
+    PetscInt used;
+    TrackedOutcome out;
+    PetscCall(LocatePass(probe, a0, c0, ia, ib, bo_.tol, bo_.max_probes, &a, &c, &used, &out));
+    if (out == TrackedOutcome::Avoided) passes_avoided_++;
+    if (out != TrackedOutcome::Crossed) continue;
+    PetscInt ja, jb;
+    TrackPair(a0.fr, ia, ib, c.fr, &ja, &jb);
+    BifurcationEvent e;
+    e.kind = EventKind::KreinCollision;
+    e.direction = 0;
+    Place(i, a, c, &e);
+    const PetscReal th = 0.5 * (std::atan2(c.fr.im[ja], c.fr.re[ja]) + std::atan2(c.fr.im[jb], c.fr.re[jb]));
+    e.mu_re = std::cos(th), e.mu_im = std::sin(th);
+    e.krein[0] = e.krein[1] = a0.fr.kappa[ia] > 0 ? 1 : -1;
+    const PetscInt la = Localisation(fo_, c.fr.edge[ja]), lb = Localisation(fo_, c.fr.edge[jb]);
+    e.instability = la == lb ? la : 2;
+    e.vector = RealPhase(c.fr.vectors[ja]);
+    ev->push_back(std::move(e));
+  }
+  vectors_ = -1;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BifurcationLocator::HalfPeriod(bool *symmetric, FloquetResult *half)
+{
+  PeriodicFlow &flow = shoot_->Flow();
+  PetscReal n0, d;
+  PetscFunctionBeginUser;
+  PetscCall(flow.IntegrateWithMonodromy(z_, 0.5 * last_T_, flow.FloquetBeta(last_beta_), zT_, S_));
+  PetscCall(VecNorm(z_, NORM_2, &n0));
+  PetscCall(VecAXPY(zT_, 1.0, z_));
+  PetscCall(VecNorm(zT_, NORM_2, &d));
+  *symmetric = d <= 1e-6 * n0;
+  PetscCall(FloquetAnalysis(flow.Lat(), S_, fo_, half));
+  PetscFunctionReturn(0);
+}
+
+// Kind 6: where the number of circle multipliers below a root of unity
+// e^{i theta_r} (ResonanceRoots) differs between the segment's ends, each
+// member at the start is followed by its eigenvector to the end (a member
+// whose edge share crossed -cont_bif_bulk's threshold changes the count
+// without crossing anything); the crossing of a member that passes theta_r is
+// located on its angle minus theta_r, and kept when the orbit's harmonics
+// drive it (bifurcations.hpp, ResonanceDriven). On an orbit with the
+// half-period symmetry even orders are not searched.
+PetscErrorCode BifurcationLocator::Resonances(PetscInt i, const FloquetResult &fi, const FloquetResult &fj, std::vector<BifurcationEvent> *ev)
+{
+  std::vector<std::pair<PetscInt, PetscInt>> roots;
+  for (const auto &[p, q] : ResonanceRoots(bo_.resonance_order)) {
+    const PetscReal th = 2 * PETSC_PI * p / q;
+    if (CountBelow(fi, th, fo_.tol, min_edge_) != CountBelow(fj, th, fo_.tol, min_edge_)) roots.push_back({p, q});
+  }
+  BifurcationSample a0, c0;
+  bool symmetric = false;
+  FloquetResult half;
+  PetscFunctionBeginUser;
+  if (roots.empty()) PetscFunctionReturn(0);
+  PetscCall(SetSegment(i));
+  vectors_ = min_edge_;
+  PetscCall(Probe(0, true, false, &a0));
+  if (a0.ok) PetscCall(HalfPeriod(&symmetric, &half));
+  PetscCall(Probe(1, true, false, &c0));
+  const SampleProbe probe = [&](PetscReal sg, BifurcationSample *x) { return Probe(sg, true, false, x); };
+  auto angle = [](const FloquetResult &r, PetscInt k) { return std::atan2(r.im[k], r.re[k]); };
+  for (const auto &[ia, tha] : UpperCircle(a0.fr, fo_.tol, min_edge_)) {
+    if (!a0.ok || !c0.ok) break;
+    PetscInt jc;
+    if (TrackMember(a0.fr, ia, c0.fr, &jc) < 0.5) continue;
+    const PetscReal thc = angle(c0.fr, jc);
+    for (const auto &[p, q] : roots) {
+      const PetscReal th = 2 * PETSC_PI * p / q;
+      if (!((tha - th) * (thc - th) < 0) || (symmetric && q % 2 == 0)) continue;
+      BifurcationSample a, c;
+      PetscInt used;
+      TrackedOutcome out;
+      PetscCall(LocateRootCrossing(probe, a0, c0, ia, th, bo_.tol, bo_.max_probes, &a, &c, &used, &out));
+      if (out != TrackedOutcome::Crossed) continue;
+      // the crossing member's half-period multiplier nu (nu^2 = mu) at the crossing
+      const PetscInt k = c.aux_index;
+      BifurcationEvent e;
+      BifurcationSample u;
+      const PetscReal target[2] = {c.fr.re[k], c.fr.im[k]};
+      PetscCall(Probe(c.sigma, true, false, &u, target, &e.vector));
+      if (symmetric) {
+        bool sym;
+        PetscCall(HalfPeriod(&sym, &half));
+        size_t m = 0;
+        const std::complex<PetscReal> mu(c.fr.re[k], c.fr.im[k]);
+        auto miss = [&](size_t j) { return std::abs(std::pow(std::complex<PetscReal>(half.re[j], half.im[j]), 2) - mu); };
+        for (size_t j = 1; j < half.re.size(); j++)
+          if (miss(j) < miss(m)) m = j;
+        if (!ResonanceDriven(q, half.re[m], half.im[m])) {
+          resonances_undriven_++;
+          continue;
+        }
+      }
+      e.kind = EventKind::Resonance;
+      e.direction = thc > tha ? 1 : -1; // +1: the member's angle grows along the branch
+      Place(i, a, c, &e);
+      e.mu_re = std::cos(th), e.mu_im = std::sin(th);
+      e.krein[0] = c.fr.kappa[k] > 0 ? 1 : (c.fr.kappa[k] < 0 ? -1 : 0);
+      e.instability = Localisation(fo_, c.fr.edge[k]);
+      e.resonance[0] = p, e.resonance[1] = q;
+      ev->push_back(std::move(e));
+    }
+  }
+  vectors_ = -1;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode BifurcationLocator::OrbitAt(PetscInt segment, PetscReal sigma, Vec X, bool *converged)
 {
   PetscInt its;
@@ -292,6 +425,14 @@ PetscErrorCode BifurcationLocator::Report(const char *name, PetscInt k, const Bi
                           e.direction > 0 ? "maximum" : "minimum", (double)e.omega, (double)e.omega_bracket, (double)e.energy, (double)e.s));
     PetscFunctionReturn(0);
   }
+  if (e.kind == EventKind::KreinCollision || e.kind == EventKind::Resonance) {
+    char what[64] = "";
+    if (e.kind == EventKind::Resonance) PetscCall(PetscSNPrintf(what, sizeof(what), " through exp(2 pi i %" PetscInt_FMT "/%" PetscInt_FMT ")", e.resonance[0], e.resonance[1]));
+    PetscCall(PetscPrintf(comm, "  [%s] event %" PetscInt_FMT ": %s %s%s at omega %.9f (bracket %.1e), E %.6g, mu %.6f%+.6fi, Krein (%+d, %+d)\n", name, k,
+                          EventKindName(e.kind), loc[e.instability], what, (double)e.omega, (double)e.omega_bracket, (double)e.energy, (double)e.mu_re,
+                          (double)e.mu_im, (int)e.krein[0], (int)e.krein[1]));
+    PetscFunctionReturn(0);
+  }
   PetscCall(PetscPrintf(comm, "  [%s] event %" PetscInt_FMT ": %s %s, %s at omega %.9f (bracket %.1e), E %.6g, mu %.6f%+.6fi, Krein (%+d, %+d)\n", name, k,
                         EventKindName(e.kind), loc[e.instability], e.direction > 0 ? "instability begins" : "instability ends", (double)e.omega,
                         (double)e.omega_bracket, (double)e.energy, (double)e.mu_re, (double)e.mu_im, (int)e.krein[0], (int)e.krein[1]));
@@ -299,7 +440,7 @@ PetscErrorCode BifurcationLocator::Report(const char *name, PetscInt k, const Bi
 }
 
 PetscErrorCode BifurcationLocator::Locate(const Branch &b, const std::vector<PetscReal> &re, const std::vector<PetscReal> &im, const std::vector<PetscReal> &edge,
-                                          const char *name, std::vector<BifurcationEvent> *events)
+                                          const char *name, std::vector<BifurcationEvent> *events, const std::vector<PetscInt> &krein)
 {
   const Lattice &lat = shoot_->Flow().Lat();
   MPI_Comm comm = lat.Comm();
@@ -308,6 +449,8 @@ PetscErrorCode BifurcationLocator::Locate(const Branch &b, const std::vector<Pet
   PetscCall(PetscLogEventBegin(Log().bifurcations, 0, 0, 0, 0));
   events->clear();
   seg_ = -1;
+  passes_avoided_ = resonances_undriven_ = 0;
+  solved_.clear();
   // B-B events are left out unless asked for; a lattice without an interface has no edge region to tell them by
   min_edge_ = bo_.bulk || lat.Params().layout != Layout::Interface ? 0 : 1 - fo_.edge_weight;
   rows_ = b.z0; // rank 0's rows to every rank
@@ -332,19 +475,26 @@ PetscErrorCode BifurcationLocator::Locate(const Branch &b, const std::vector<Pet
     fi.re.assign(r0, r0 + n2), fi.im.assign(i0, i0 + n2), fj.re.assign(r0 + n2, r0 + 2 * n2), fj.im.assign(i0 + n2, i0 + 2 * n2);
     if (edge.size() == re.size()) fi.edge.assign(edge.begin() + i * n2, edge.begin() + (i + 1) * n2), fj.edge.assign(edge.begin() + (i + 1) * n2, edge.begin() + (i + 2) * n2);
     if (!SameOutside(OutsideMultipliers(fi, fo_.tol, min_edge_), OutsideMultipliers(fj, fo_.tol, min_edge_), bo_.angle_tol)) PetscCall(StabilityChanges(i, &changes));
+    if (krein.size() == re.size()) fi.kappa.assign(krein.begin() + i * n2, krein.begin() + (i + 1) * n2); // the signs are all PassCandidates needs
+    if (bo_.passes) PetscCall(Passes(i, fi, fj, &changes));
+    if (bo_.resonance_order >= 3) PetscCall(Resonances(i, fi, fj, &changes));
   }
   // At an energy fold a pair passes +1 (the reduced map on the energy
   // surface has a saddle-node there, and the multiplier +1 is fourfold): the
   // changes of stability there, through +1 or of quadruplets near it, are the fold's.
   for (BifurcationEvent &c : changes) {
     bool at_fold = false;
+    const bool stability = c.kind == EventKind::BranchPoint || c.kind == EventKind::PeriodDoubling || c.kind == EventKind::HamiltonianHopf;
     for (const BifurcationEvent &f : *events)
-      if (f.kind == EventKind::Fold && std::hypot(c.mu_re - 1, c.mu_im) < 0.05 && std::abs(c.s - f.s) <= 1e-4 * std::max(s_.back(), (PetscReal)1e-300))
+      if (stability && f.kind == EventKind::Fold && std::hypot(c.mu_re - 1, c.mu_im) < 0.05 && std::abs(c.s - f.s) <= 1e-4 * std::max(s_.back(), (PetscReal)1e-300))
         at_fold = true;
     if (!at_fold) events->push_back(std::move(c));
   }
   std::stable_sort(events->begin(), events->end(), [](const BifurcationEvent &x, const BifurcationEvent &y) { return x.s < y.s; });
   for (size_t k = 0; k < events->size(); k++) PetscCall(Report(name, (PetscInt)k, (*events)[k]));
+  if (passes_avoided_ || resonances_undriven_)
+    PetscCall(PetscPrintf(comm, "  [%s] not events: %" PetscInt_FMT " avoided crossings of equal signature, %" PetscInt_FMT " root-of-unity crossings no harmonic of the orbit drives\n",
+                          name, passes_avoided_, resonances_undriven_));
   PetscCall(PetscLogEventEnd(Log().bifurcations, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

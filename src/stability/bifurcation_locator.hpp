@@ -9,6 +9,7 @@
 #include "orbits/continuation.hpp"
 #include "stability/bifurcations.hpp"
 #include "stability/floquet.hpp"
+#include <map>
 
 namespace nltopo {
 
@@ -18,9 +19,10 @@ public:
   // The events of branch b, given the dense Floquet multipliers of its points
   // (re, im: 2N per point, on every rank), in the order of the branch.
   // Prints one line per event (name: the branch label).
-  // edge: each eigenvector's edge share (2N per point; empty: unknown).
+  // edge: each eigenvector's edge share, krein: each multiplier's Krein
+  // signature (2N per point; empty: unknown).
   PetscErrorCode Locate(const Branch &b, const std::vector<PetscReal> &re, const std::vector<PetscReal> &im, const std::vector<PetscReal> &edge,
-                        const char *name, std::vector<BifurcationEvent> *events);
+                        const char *name, std::vector<BifurcationEvent> *events, const std::vector<PetscInt> &krein = {});
   PetscInt Probes() const { return probes_; } // orbits solved so far
   // The orbit X = (z0, T, beta) at sigma of a segment of the branch last
   // given to Locate (e.g. an event's point and sigma).
@@ -38,6 +40,13 @@ private:
   void Place(PetscInt seg, const BifurcationSample &a, const BifurcationSample &c, BifurcationEvent *e) const;
   PetscErrorCode Folds(const Branch &b, std::vector<BifurcationEvent> *ev);
   PetscErrorCode StabilityChanges(PetscInt i, std::vector<BifurcationEvent> *ev);
+  // Krein collisions of equal signature (kind 4) and internal resonances
+  // (kind 6) in segment i, whose ends have multipliers fi and fj.
+  PetscErrorCode Passes(PetscInt i, const FloquetResult &fi, const FloquetResult &fj, std::vector<BifurcationEvent> *ev);
+  PetscErrorCode Resonances(PetscInt i, const FloquetResult &fi, const FloquetResult &fj, std::vector<BifurcationEvent> *ev);
+  // The orbit last probed over half its period: whether z(T/2) = -z(0)
+  // (to 1e-6 relative), and the multipliers of the half-period monodromy.
+  PetscErrorCode HalfPeriod(bool *symmetric, FloquetResult *half);
   PetscErrorCode Report(const char *name, PetscInt k, const BifurcationEvent &e);
 
   Shooting *shoot_ = nullptr;
@@ -48,8 +57,13 @@ private:
   OwnedVec Xa_, Xb_, d_, X_, Xpred_, t_, z_, za_, zT_, tz_, g_;
   OwnedMat S_;
   PetscReal chord_ = 0;
+  PetscReal vectors_ = -1;  // >= 0: probes also keep the circle eigenvectors of at least this edge share (FloquetResult::vectors)
+  PetscReal last_T_ = 0, last_beta_ = 0;
+  PetscInt passes_avoided_ = 0, resonances_undriven_ = 0; // candidates that proved not to be events
   PetscReal min_edge_ = 0; // outside multipliers with a smaller edge share are not tracked (B-B, unless -cont_bif_bulk)
-  std::vector<std::pair<PetscReal, std::vector<PetscScalar>>> solved_; // orbits solved in this segment (sigma, local X): the predictors
+  // orbits solved in each segment of the branch (sigma, local X): the predictors (kept for OrbitAt: at a
+  // branch point only a start on the orbit itself keeps Newton from drifting along the near-null direction)
+  std::map<PetscInt, std::vector<std::pair<PetscReal, std::vector<PetscScalar>>>> solved_;
 };
 
 } // namespace nltopo

@@ -140,6 +140,101 @@ void CollidingSignatures(const FloquetResult &r, EventKind kind, PetscReal angle
   }
 }
 
+std::vector<std::pair<PetscInt, PetscReal>> UpperCircle(const FloquetResult &r, PetscReal tol, PetscReal min_edge)
+{
+  std::vector<std::pair<PetscInt, PetscReal>> c = OnCircle(r, tol, min_edge);
+  c.erase(std::remove_if(c.begin(), c.end(), [&](const auto &x) { return !(r.im[x.first] > 0) || x.second >= PETSC_PI; }), c.end());
+  std::sort(c.begin(), c.end(), [](const auto &x, const auto &y) { return x.second < y.second; });
+  return c;
+}
+
+std::vector<std::pair<PetscReal, PetscReal>> PassCandidates(const FloquetResult &a, const FloquetResult &c, PetscReal tol, PetscReal min_edge)
+{
+  const auto la = UpperCircle(a, tol, min_edge), lc = UpperCircle(c, tol, min_edge);
+  std::vector<std::pair<PetscReal, PetscReal>> cand;
+  if (la.size() != lc.size() || la.size() < 2) return cand; // a pair joined or left the circle: the outside set changed there
+  PetscReal move = 0; // the largest move of a member (in order of angle, which a pass leaves as it is)
+  for (size_t k = 0; k < la.size(); k++) move = std::max(move, std::abs(lc[k].second - la[k].second));
+  const bool signs = a.kappa.size() == a.re.size();
+  for (size_t k = 0; k + 1 < la.size(); k++) {
+    if (signs) {
+      const PetscReal x = a.kappa[la[k].first], y = a.kappa[la[k + 1].first];
+      if (!(x * y > 0)) continue;
+    }
+    if (la[k + 1].second - la[k].second <= 2 * move && lc[k + 1].second - lc[k].second <= 2 * move) cand.push_back({la[k].second, la[k + 1].second});
+  }
+  return cand;
+}
+
+namespace {
+
+// |ref.vectors[i]^H x.vectors[j]| for every j (-1 where x has none; both of unit norm).
+std::vector<PetscReal> Overlaps(const FloquetResult &ref, PetscInt i, const FloquetResult &x)
+{
+  std::vector<PetscReal> o(x.vectors.size(), -1);
+  const auto &p = ref.vectors[i];
+  for (size_t j = 0; j < x.vectors.size(); j++) {
+    const auto &q = x.vectors[j];
+    if (q.size() != p.size()) continue;
+    std::complex<PetscReal> d = 0;
+    for (size_t k = 0; k < p.size(); k++) d += std::conj(p[k]) * q[k];
+    o[j] = std::abs(d);
+  }
+  return o;
+}
+
+bool HasVector(const FloquetResult &r, PetscInt i) { return i >= 0 && (size_t)i < r.vectors.size() && !r.vectors[i].empty(); }
+
+} // namespace
+
+PetscReal TrackMember(const FloquetResult &ref, PetscInt i, const FloquetResult &x, PetscInt *j)
+{
+  *j = -1;
+  if (!HasVector(ref, i)) return 0;
+  const std::vector<PetscReal> o = Overlaps(ref, i, x);
+  PetscReal best = 0;
+  for (size_t k = 0; k < o.size(); k++)
+    if (o[k] > best) best = o[k], *j = (PetscInt)k;
+  return best;
+}
+
+PetscReal TrackPair(const FloquetResult &ref, PetscInt ia, PetscInt ib, const FloquetResult &x, PetscInt *ja, PetscInt *jb)
+{
+  *ja = *jb = -1;
+  if (!HasVector(ref, ia) || !HasVector(ref, ib)) return 0;
+  const std::vector<PetscReal> oa = Overlaps(ref, ia, x), ob = Overlaps(ref, ib, x);
+  const PetscInt n = (PetscInt)oa.size();
+  PetscReal best = -1;
+  for (PetscInt j = 0; j < n; j++)
+    for (PetscInt k = 0; k < n; k++)
+      if (j != k && std::min(oa[j], ob[k]) > best) best = std::min(oa[j], ob[k]), *ja = j, *jb = k;
+  return std::max(best, (PetscReal)0);
+}
+
+std::vector<std::pair<PetscInt, PetscInt>> ResonanceRoots(PetscInt max_order)
+{
+  std::vector<std::pair<PetscInt, PetscInt>> roots;
+  for (PetscInt q = 3; q <= max_order; q++)
+    for (PetscInt p = 1; 2 * p < q; p++)
+      if (std::gcd(p, q) == 1) roots.push_back({p, q});
+  std::sort(roots.begin(), roots.end(), [](const auto &x, const auto &y) { return x.first * y.second < y.first * x.second; });
+  return roots;
+}
+
+PetscInt CountBelow(const FloquetResult &r, PetscReal angle, PetscReal tol, PetscReal min_edge)
+{
+  PetscInt n = 0;
+  for (const auto &x : UpperCircle(r, tol, min_edge)) n += x.second < angle;
+  return n;
+}
+
+bool ResonanceDriven(PetscInt q, PetscReal nu_re, PetscReal nu_im)
+{
+  if (q % 2 == 0) return false;
+  const std::complex<PetscReal> p = std::pow(std::complex<PetscReal>(nu_re, nu_im), (int)q);
+  return std::abs(p + 1.0) < std::abs(p - 1.0); // nu^q near (-1)^q = -1
+}
+
 EventKind KreinCollisionOutcome(PetscInt k1, PetscInt k2) { return k1 * k2 < 0 ? EventKind::HamiltonianHopf : EventKind::KreinCollision; }
 
 PetscErrorCode BifurcationOptionsFromOptions(MPI_Comm comm, PetscBool dense_floquet, BifurcationOptions *o)
@@ -159,6 +254,14 @@ PetscErrorCode BifurcationOptionsFromOptions(MPI_Comm comm, PetscBool dense_floq
                              "Also locate the events of bulk eigenvectors (B-B: collisions among band pairs, which shrink as the lattice grows); off: "
                              "only those with an edge part (B-E, E-E) and folds",
                              NULL, o->bulk, &o->bulk, NULL));
+  PetscCall(PetscOptionsBool("-bif_passes",
+                             "Also locate Krein collisions of equal signature, where two pairs on the circle meet and pass (kind 4; tracked by their "
+                             "eigenvectors)",
+                             NULL, o->passes, &o->passes, NULL));
+  PetscCall(PetscOptionsInt("-bif_resonance_order",
+                            "Locate internal resonances: crossings of exp(2 pi i p/q) for 3 <= q <= this that the orbit's harmonics drive (kind 6); "
+                            "below 3: none",
+                            NULL, o->resonance_order, &o->resonance_order, NULL));
   PetscCall(PetscOptionsReal("-bif_angle_tol", "Unstable multipliers of two orbits within this angle (rad) are the same one", NULL, o->angle_tol,
                              &o->angle_tol, NULL));
   PetscOptionsEnd();
@@ -167,6 +270,8 @@ PetscErrorCode BifurcationOptionsFromOptions(MPI_Comm comm, PetscBool dense_floq
   PetscCheck(o->tol >= 1e-14 && o->tol <= 1e-2, comm, PETSC_ERR_USER, "-cont_bif_tol must lie in [1e-14, 1e-2], got %g", (double)o->tol);
   PetscCheck(o->max_probes >= 1 && o->max_probes <= 1000, comm, PETSC_ERR_USER, "-cont_bif_max_probes must lie in [1, 1000], got %" PetscInt_FMT,
              o->max_probes);
+  PetscCheck(o->resonance_order >= 0 && o->resonance_order <= 12, comm, PETSC_ERR_USER, "-cont_bif_resonance_order must lie in [0, 12], got %" PetscInt_FMT,
+             o->resonance_order);
   PetscCheck(o->angle_tol > 0 && o->angle_tol < 1, comm, PETSC_ERR_USER, "-cont_bif_angle_tol must lie in (0, 1), got %g", (double)o->angle_tol);
   PetscFunctionReturn(0);
 }
@@ -224,6 +329,78 @@ PetscErrorCode LocateChange(const SampleProbe &probe, const SamePredicate &same,
   }
   *converged = true;
   PetscFunctionReturn(0);
+}
+
+namespace {
+
+// Both searches: aux(x, &index) is the test function on x's multipliers
+// (NaN: the member(s) not found); a probe where it is NaN counts as failed.
+using TrackedFunction = std::function<PetscReal(const FloquetResult &, PetscInt *)>;
+
+PetscErrorCode LocateTracked(const SampleProbe &probe, const BifurcationSample &a0, const BifurcationSample &c0, const TrackedFunction &aux, PetscReal tol,
+                             PetscInt max_probes, BifurcationSample *a, BifurcationSample *c, PetscInt *probes, TrackedOutcome *out)
+{
+  auto track = [&](BifurcationSample *x) {
+    if (x->ok) x->aux = aux(x->fr, &x->aux_index);
+    if (!std::isfinite(x->aux)) x->ok = false;
+  };
+  PetscFunctionBeginUser;
+  *probes = 0;
+  *a = a0, *c = c0;
+  track(a);
+  track(c);
+  if (!a->ok || !c->ok) {
+    *out = TrackedOutcome::Untracked;
+    PetscFunctionReturn(0);
+  }
+  if (!(a->aux * c->aux < 0)) {
+    *out = TrackedOutcome::NoCrossing;
+    PetscFunctionReturn(0);
+  }
+  const PetscReal slope = std::abs(c->aux - a->aux) / (c->sigma - a->sigma);
+  const PetscReal sa = a->aux > 0 ? 1 : -1;
+  const SampleProbe tracked = [&](PetscReal sg, BifurcationSample *x) -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    PetscCall(probe(sg, x));
+    track(x);
+    PetscFunctionReturn(0);
+  };
+  bool conv;
+  PetscCall(LocateChange(tracked, [&](const BifurcationSample &, const BifurcationSample &x) { return x.aux * sa > 0; },
+                         [](const BifurcationSample &, const BifurcationSample &, const BifurcationSample &x) { return x.aux; }, tol, max_probes, a, c, probes,
+                         &conv));
+  if (!conv) *out = TrackedOutcome::NotLocated;
+  else if (std::max(std::abs(a->aux), std::abs(c->aux)) > 10 * slope * (c->sigma - a->sigma) + 1e-12) *out = TrackedOutcome::Avoided;
+  else *out = TrackedOutcome::Crossed;
+  PetscFunctionReturn(0);
+}
+
+PetscReal Angle(const FloquetResult &r, PetscInt k) { return std::atan2(r.im[k], r.re[k]); }
+
+} // namespace
+
+PetscErrorCode LocatePass(const SampleProbe &probe, const BifurcationSample &a0, const BifurcationSample &c0, PetscInt ia, PetscInt ib, PetscReal tol,
+                          PetscInt max_probes, BifurcationSample *a, BifurcationSample *c, PetscInt *probes, TrackedOutcome *out)
+{
+  const TrackedFunction aux = [&](const FloquetResult &x, PetscInt *index) -> PetscReal {
+    PetscInt ja, jb;
+    if (TrackPair(a0.fr, ia, ib, x, &ja, &jb) < 0.5) return NAN;
+    *index = ja;
+    return Angle(x, ja) - Angle(x, jb);
+  };
+  return LocateTracked(probe, a0, c0, aux, tol, max_probes, a, c, probes, out);
+}
+
+PetscErrorCode LocateRootCrossing(const SampleProbe &probe, const BifurcationSample &a0, const BifurcationSample &c0, PetscInt ia, PetscReal angle,
+                                  PetscReal tol, PetscInt max_probes, BifurcationSample *a, BifurcationSample *c, PetscInt *probes, TrackedOutcome *out)
+{
+  const TrackedFunction aux = [&](const FloquetResult &x, PetscInt *index) -> PetscReal {
+    PetscInt j;
+    if (TrackMember(a0.fr, ia, x, &j) < 0.5) return NAN;
+    *index = j;
+    return Angle(x, j) - angle;
+  };
+  return LocateTracked(probe, a0, c0, aux, tol, max_probes, a, c, probes, out);
 }
 
 } // namespace nltopo

@@ -25,6 +25,24 @@ PetscErrorCode FloquetOptionsFromOptions(MPI_Comm comm, FloquetOptions *o)
   PetscFunctionReturn(0);
 }
 
+std::vector<PetscReal> RealPhase(const std::vector<std::complex<PetscReal>> &v)
+{
+  // e^{i phi} (a + i b) with the largest real part: tan 2 phi = -2 a.b / (|a|^2 - |b|^2).
+  PetscReal ab = 0, aa = 0, bb = 0;
+  for (const auto &x : v) ab += x.real() * x.imag(), aa += x.real() * x.real(), bb += x.imag() * x.imag();
+  const PetscReal phi = -0.5 * std::atan2(2 * ab, aa - bb), c = std::cos(phi), s = std::sin(phi);
+  std::vector<PetscReal> r(v.size());
+  PetscReal norm = 0, big = 0;
+  for (size_t i = 0; i < v.size(); i++) {
+    r[i] = c * v[i].real() - s * v[i].imag();
+    norm += r[i] * r[i];
+    if (std::abs(r[i]) > std::abs(big)) big = r[i];
+  }
+  const PetscReal scale = (big < 0 ? -1 : 1) / (norm > 0 ? std::sqrt(norm) : 1);
+  for (PetscReal &x : r) x *= scale;
+  return r;
+}
+
 void KreinSums(const PetscScalar *a, const PetscScalar *b, PetscInt n, PetscReal sums[2])
 {
   sums[0] = sums[1] = 0;
@@ -106,44 +124,48 @@ PetscErrorCode DeterminantError(Mat M, PetscInt n, PetscReal *err)
   PetscFunctionReturn(0);
 }
 
+// The eigenvector of eigenpair i of eps as a complex natural-order vector of unit norm, on every rank.
+PetscErrorCode NaturalEigenvector(const Lattice &lat, EPS eps, PetscInt i, Vec xr, Vec xi, std::vector<std::complex<PetscReal>> *v)
+{
+  PetscScalar kr, ki;
+  std::vector<PetscReal> a, b;
+  PetscFunctionBeginUser;
+  PetscCall(EPSGetEigenpair(eps, i, &kr, &ki, xr, xi));
+  if (ki == 0) PetscCall(VecZeroEntries(xi));
+  PetscCall(GatherVec(xr, true, &a));
+  PetscCall(GatherVec(xi, true, &b));
+  const PetscInt N = lat.N();
+  v->assign(2 * N, 0);
+  PetscReal norm = 0;
+  for (PetscInt s = 0; s < N; s++)
+    for (PetscInt part = 0; part < 2; part++) {
+      const PetscInt j = part ? lat.StateIndexV(s) : lat.StateIndexU(s);
+      (*v)[part * N + s] = {a[j], b[j]};
+      norm += a[j] * a[j] + b[j] * b[j];
+    }
+  for (auto &x : *v) x /= norm > 0 ? std::sqrt(norm) : 1;
+  PetscFunctionReturn(0);
+}
+
 // The eigenvector of the multiplier nearest target (see floquet.hpp).
 PetscErrorCode CriticalVector(const Lattice &lat, EPS eps, const std::vector<PetscReal> &re, const std::vector<PetscReal> &im, const PetscReal *target,
                               Vec xr, Vec xi, std::vector<PetscReal> *vec)
 {
-  PetscScalar kr, ki;
-  std::vector<PetscReal> a, b;
+  std::vector<std::complex<PetscReal>> v;
   PetscFunctionBeginUser;
   PetscCheck(target, lat.Comm(), PETSC_ERR_ARG_NULL, "FloquetAnalysis: an eigenvector needs a target multiplier");
   size_t k = 0;
   for (size_t i = 1; i < re.size(); i++)
     if (std::hypot(re[i] - target[0], im[i] - target[1]) < std::hypot(re[k] - target[0], im[k] - target[1])) k = i;
-  PetscCall(EPSGetEigenpair(eps, (PetscInt)k, &kr, &ki, xr, xi));
-  if (ki == 0) PetscCall(VecZeroEntries(xi)); // a real eigenvalue: xi is not set
-  PetscCall(GatherVec(xr, true, &a));
-  PetscCall(GatherVec(xi, true, &b));
-  // e^{i phi} (a + i b) with the largest real part: tan 2 phi = -2 a.b / (|a|^2 - |b|^2).
-  PetscReal ab = 0, aa = 0, bb = 0;
-  for (size_t i = 0; i < a.size(); i++) ab += a[i] * b[i], aa += a[i] * a[i], bb += b[i] * b[i];
-  const PetscReal phi = -0.5 * std::atan2(2 * ab, aa - bb), c = std::cos(phi), s = std::sin(phi);
-  const PetscInt N = lat.N();
-  vec->assign(2 * N, 0);
-  PetscReal norm = 0, big = 0;
-  for (PetscInt i = 0; i < N; i++)
-    for (PetscInt part = 0; part < 2; part++) {
-      const PetscInt j = part ? lat.StateIndexV(i) : lat.StateIndexU(i);
-      const PetscReal x = c * a[j] - s * b[j];
-      (*vec)[part * N + i] = x;
-      norm += x * x;
-      if (std::abs(x) > std::abs(big)) big = x;
-    }
-  const PetscReal scale = (big < 0 ? -1 : 1) / (norm > 0 ? std::sqrt(norm) : 1);
-  for (PetscReal &x : *vec) x *= scale;
+  PetscCall(NaturalEigenvector(lat, eps, (PetscInt)k, xr, xi, &v));
+  *vec = RealPhase(v);
   PetscFunctionReturn(0);
 }
 
 } // namespace
 
-PetscErrorCode FloquetAnalysis(const Lattice &lat, Mat S, const FloquetOptions &o, FloquetResult *r, const PetscReal *target, std::vector<PetscReal> *vec)
+PetscErrorCode FloquetAnalysis(const Lattice &lat, Mat S, const FloquetOptions &o, FloquetResult *r, const PetscReal *target, std::vector<PetscReal> *vec,
+                               PetscReal circle_vectors)
 {
   const PetscInt n = 2 * lat.N(), nl = 2 * lat.OwnedCount();
   OwnedMat M;
@@ -219,6 +241,13 @@ PetscErrorCode FloquetAnalysis(const Lattice &lat, Mat S, const FloquetOptions &
     r->instability = w > o.edge_weight ? 3 : (w < 1 - o.edge_weight ? 1 : 2);
   }
   if (vec) PetscCall(CriticalVector(lat, eps, re, im, target, xr, xi, vec));
+  if (circle_vectors >= 0) {
+    r->vectors.assign(n, {});
+    for (PetscInt k = 0; k < n; k++) {
+      const PetscInt i = order[k];
+      if (im[i] > 0 && std::abs(std::hypot(re[i], im[i]) - 1) <= o.tol && edge[i] >= circle_vectors) PetscCall(NaturalEigenvector(lat, eps, i, xr, xi, &r->vectors[k]));
+    }
+  }
   PetscCall(PetscLogEventEnd(Log().floquet, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

@@ -4,6 +4,7 @@
 // Krein signatures K = sign(-i v^H J v), J = [[0, I], [-I, 0]] (model.md), and
 // the kind of instability (README.md "Floquet").
 #include "lattice/lattice.hpp"
+#include <complex>
 #include <vector>
 
 namespace nltopo {
@@ -29,6 +30,12 @@ struct FloquetResult {
   PetscReal det_error = 0;       // |det M - 1| with det M from an LU factorisation in extended
                                  // precision (the product of the computed multipliers carries
                                  // their rounding, ~2N eps): Liouville's theorem says det M = 1
+  // Only when asked for (FloquetAnalysis circle_vectors): the eigenvectors of
+  // the multipliers on the unit circle (||mu| - 1| <= tol) in the open upper
+  // half plane with an edge share of at least circle_vectors, natural order
+  // [u_1..u_N, v_1..v_N], unit norm, on every rank; empty for the others. They
+  // tell the members of two orbits' spectra apart (Krein collisions that pass).
+  std::vector<std::vector<std::complex<PetscReal>>> vectors;
 };
 
 // M: the 2N x 2N monodromy in the state layout (columns 0..2N-1 of the
@@ -36,8 +43,13 @@ struct FloquetResult {
 // eigenvector of the multiplier nearest target (re, im): natural order
 // [u_1..u_N, v_1..v_N] on every rank, unit norm, its phase turned so that its
 // real part (written) is largest, the largest entry positive.
+// circle_vectors >= 0: also r->vectors (above), for edge shares >= it.
 PetscErrorCode FloquetAnalysis(const Lattice &lat, Mat S, const FloquetOptions &o, FloquetResult *r, const PetscReal *target = nullptr,
-                               std::vector<PetscReal> *vec = nullptr);
+                               std::vector<PetscReal> *vec = nullptr, PetscReal circle_vectors = -1);
+
+// The real vector e^{i phi} v with the largest real part, unit norm, its
+// largest entry positive (an eigenvector's shape, whatever its phase).
+std::vector<PetscReal> RealPhase(const std::vector<std::complex<PetscReal>> &v);
 
 // The Krein value -i v^H J v / |v|^2 of v = xr + i xi for J = [[0, I], [-I, 0]],
 // summed over n (u, v) pairs laid out as [u_1..u_n, v_1..v_n] (the owned part of

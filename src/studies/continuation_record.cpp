@@ -136,6 +136,7 @@ const EventColumn kEventColumns[] = {
   {"point", 1, [](const BifurcationEvent &e, const BranchRecord &, PetscReal *x) { x[0] = (PetscReal)e.point; }},
   {"instability", 1, [](const BifurcationEvent &e, const BranchRecord &, PetscReal *x) { x[0] = (PetscReal)e.instability; }},
   {"omega_bracket", 1, [](const BifurcationEvent &e, const BranchRecord &, PetscReal *x) { x[0] = e.omega_bracket; }},
+  {"resonance", 2, [](const BifurcationEvent &e, const BranchRecord &, PetscReal *x) { x[0] = (PetscReal)e.resonance[0], x[1] = (PetscReal)e.resonance[1]; }},
 };
 // clang-format on
 

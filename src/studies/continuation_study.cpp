@@ -544,7 +544,7 @@ private:
     PetscFunctionBeginUser;
     PetscCall(PetscTime(&t0));
     const PetscInt p0 = locator_.Probes();
-    PetscCall(locator_.Locate(b, hook_->c.re, hook_->c.im, hook_->c.edge, label.c_str(), &rec->events));
+    PetscCall(locator_.Locate(b, hook_->c.re, hook_->c.im, hook_->c.edge, label.c_str(), &rec->events, hook_->c.krein));
     PetscCall(PetscTime(&t1));
     rec->located = true, rec->bif_tol = bo_.tol, rec->bif_seconds = t1 - t0, rec->bif_probes = locator_.Probes() - p0;
     PetscCall(PetscPrintf(comm_, "  [%s] bifurcations: %zu event(s) located to %g in omega, %" PetscInt_FMT " orbits solved, %.2f s\n", label.c_str(), rec->events.size(),

@@ -2,7 +2,9 @@
 # options/fep.opts, located between its points. Checked against the stored
 # Floquet data itself (each located change of stability lies between two
 # points whose multipliers show it, to -cont_bif_tol in omega), against the
-# Krein rule (a Hamiltonian-Hopf pair has opposite signatures) and across
+# Krein rule (a Hamiltonian-Hopf pair has opposite signatures, a pass equal
+# ones), internal resonances (odd orders only on these symmetric orbits, on the
+# root, with stored circle multipliers near it on either side) and across
 # 1 and 2 ranks; the FEP plot marks the events. Then -cont_switch at the
 # branch point of the small lattice: the two families born there start at the
 # located point, carry the parent and are time-reversal images of each other.
@@ -24,7 +26,7 @@ assert tol == 1e-7 and e.attrs["probes"] > 0
 n = e["kind"].shape[0]
 for k in ("kind", "energy", "omega", "s", "multiplier_re", "multiplier_im", "direction", "point", "instability", "omega_bracket"):
     assert e[k].shape == (n,), k
-assert e["krein"].shape == (n, 2) and e["vector"].shape == (n, 204) and e["kind"].dtype.kind == "i"
+assert e["krein"].shape == (n, 2) and e["resonance"].shape == (n, 2) and e["vector"].shape == (n, 204) and e["kind"].dtype.kind == "i"
 w, kind, d, pt = e["omega"][:], e["kind"][:], e["direction"][:], e["point"][:]
 assert np.all(e["omega_bracket"][:] <= tol)
 assert np.all(np.diff(e["s"][:]) >= 0)   # in the order of the branch
@@ -39,12 +41,29 @@ for i in range(n):
     if kind[i] == 5:  # Hamiltonian-Hopf: two pairs of opposite Krein signature collide
         assert e["krein"][i][0] * e["krein"][i][1] == -1, (i, e["krein"][i])
         assert abs(abs(e["multiplier_re"][i] + 1j * e["multiplier_im"][i]) - 1) < 1e-3
+    if kind[i] == 4:  # Krein collision that passes: equal signatures, on the circle
+        assert e["krein"][i][0] == e["krein"][i][1] != 0
+    if kind[i] == 6:  # internal resonance: an odd order (the NNM has the half-period symmetry), on the root
+        p, q = e["resonance"][i]
+        assert q >= 3 and q % 2 == 1 and 0 < 2 * p < q, (p, q)
+        th = 2 * np.pi * p / q
+        assert abs(e["multiplier_re"][i] - np.cos(th)) < 1e-12 and abs(e["multiplier_im"][i] - np.sin(th)) < 1e-12
+        # the stored points on either side hold a circle multiplier near the root (the count below it
+        # is no check: bulk multipliers cross it too, and only edge ones are located by default)
+        for j in (pt[i], pt[i] + 1):
+            m = mu[j][(np.abs(np.abs(mu[j]) - 1) < 1e-6) & (mu[j].imag > 0)]
+            assert np.abs(np.angle(m) - th).min() < 0.1, (i, j)
+    else:
+        assert tuple(e["resonance"][i]) == (0, 0)
 # the weak B-E collisions of omega 1.7-1.9 (paper: B-E instabilities below the optical band)
 be = [(w[i], d[i]) for i in range(n) if kind[i] == 5 and e["instability"][i] == 2 and 1.7 < w[i] < 1.9]
 assert len(be) >= 4, be
 # the real E-E instability: one branch point, located to tol, where the stored points turn unstable
 bp = [i for i in range(n) if kind[i] == 2]
 assert len(bp) == 1, bp
+# the 1:3 internal resonance of the edge pair below the branch point (omega 2.0275, E 34)
+res = [i for i in range(n) if kind[i] == 6 and abs(w[i] - 2.027498) < 1e-5]
+assert len(res) == 1 and tuple(e["resonance"][res[0]]) == (1, 3) and e["instability"][res[0]] == 3, res
 i = bp[0]
 assert d[i] == 1 and e["instability"][i] == 3 and abs(w[i] - 2.418248) < 1e-5, w[i]
 assert abs(e["multiplier_re"][i] - 1) < 1e-3 and e["multiplier_im"][i] == 0

@@ -12,6 +12,8 @@
 #include <slepceps.h>
 #include <algorithm>
 #include <cmath>
+#include <complex>
+#include <numeric>
 
 using namespace nltopo;
 using namespace nltopo::test;
@@ -86,9 +88,15 @@ FloquetResult Constructed(PetscReal s, PetscReal sign, PetscReal eps)
     VecGetArrayRead(xi, &b);
     PetscReal sums[2];
     KreinSums(a, b, 3, sums);
+    const PetscReal kap = sums[1] > 0 ? sums[0] / sums[1] : 0;
+    std::vector<std::complex<PetscReal>> v;
+    if (ki > 0 && std::abs(std::hypot(kr, ki) - 1) < 1e-9) { // the circle members' eigenvectors (FloquetResult::vectors)
+      PetscReal nrm = std::sqrt(sums[1]);
+      for (int i = 0; i < n; i++) v.push_back(std::complex<PetscReal>(a[i], b[i]) / nrm);
+    }
+    r.vectors.push_back(v);
     VecRestoreArrayRead(xi, &b);
     VecRestoreArrayRead(xr, &a);
-    const PetscReal kap = sums[1] > 0 ? sums[0] / sums[1] : 0;
     r.re.push_back(kr);
     r.im.push_back(ki);
     r.kappa.push_back(kap);
@@ -218,6 +226,157 @@ TEST_CASE("the Krein rule on constructed symplectic matrices: opposite signature
   PCHK(LocateChange(probe, same, G, tol, 60, &a, &c, &probes, &conv));
   REQUIRE(conv);
   REQUIRE(std::abs(0.5 * (a.omega + c.omega) - 2 * eps) < tol);
+}
+
+TEST_CASE("Krein collisions of equal signature: two uncoupled oscillators pass where their frequencies meet, coupled ones avoid each other", "[bifurcations]")
+{
+  // Oscillator 1 at angle 1 and oscillator 2 at sqrt(1 + s) (T = 1): their
+  // pairs meet at s = 0 with the same signature. Uncoupled (eps = 0) they pass
+  // there; coupled by eps they avoid each other, the gap at s = 0 being
+  // sqrt(1 + eps) - sqrt(1 - eps) (the eigenvalues of D K are 1 + s/2 -+
+  // sqrt(s^2/4 + eps^2)).
+  const PetscReal tol = 1e-9;
+  for (PetscReal eps : {0.0, 0.05}) {
+    auto probe = [&](PetscReal sigma, BifurcationSample *x) -> PetscErrorCode {
+      const PetscReal s = -0.3 + 0.6 * sigma;
+      x->sigma = sigma, x->omega = s, x->energy = 1; // "omega" carries s: the tolerance applies to it
+      x->fr = Constructed(s, +1, eps);
+      return 0;
+    };
+    BifurcationSample a0, c0, a, c;
+    PCHK(probe(0, &a0));
+    PCHK(probe(1, &c0));
+    const auto cand = PassCandidates(a0.fr, c0.fr, 1e-9);
+    REQUIRE(cand.size() == 1);
+    const auto circle = UpperCircle(a0.fr, 1e-9);
+    REQUIRE(circle.size() == 2);
+    PetscInt probes;
+    TrackedOutcome out;
+    PCHK(LocatePass(probe, a0, c0, circle[0].first, circle[1].first, tol, 60, &a, &c, &probes, &out));
+    INFO("eps " << eps << ": bracket [" << a.omega << ", " << c.omega << "], |difference| " << a.aux << " " << c.aux << ", " << probes << " probes");
+    if (eps == 0) {
+      REQUIRE(out == TrackedOutcome::Crossed);
+      REQUIRE(a.omega <= tol);
+      REQUIRE(c.omega >= -tol);
+      REQUIRE(c.omega - a.omega <= tol);
+      REQUIRE(probes < 16); // the difference of angles is smooth through the pass: secant steps (bisection needs 30)
+      REQUIRE(a.fr.kappa[a.aux_index] * c.fr.kappa[c.aux_index] > 0);
+    } else {
+      REQUIRE(out == TrackedOutcome::Avoided);
+      // where the eigenvectors' overlaps with those at s = -0.3 tie, the
+      // difference jumps by twice the gap there, which is never below the
+      // closest approach at s = 0
+      const PetscReal sj = a.omega, h = std::sqrt(sj * sj / 4 + eps * eps);
+      const PetscReal gap = std::sqrt(1 + sj / 2 + h) - std::sqrt(1 + sj / 2 - h), closest = std::sqrt(1 + eps) - std::sqrt(1 - eps);
+      REQUIRE(std::abs(std::abs(a.aux) - gap) < 1e-6 * gap);
+      REQUIRE(std::abs(std::abs(c.aux) - gap) < 1e-6 * gap);
+      REQUIRE(gap >= closest);
+    }
+  }
+}
+
+TEST_CASE("internal resonances: a pair crosses exp(2 pi i/3) where its angle is 2 pi/3, and the orbit's harmonics drive odd orders with nu^q = -1 only", "[bifurcations]")
+{
+  // oscillator 2 at angle sqrt(1 + s): the root e^{2 pi i/3} at s* = (2 pi/3)^2 - 1
+  const PetscReal tol = 1e-10, sstar = std::pow(2 * PETSC_PI / 3, 2) - 1;
+  auto probe = [&](PetscReal sigma, BifurcationSample *x) -> PetscErrorCode {
+    const PetscReal s = 3 + sigma;
+    x->sigma = sigma, x->omega = s, x->energy = 1;
+    x->fr = Constructed(s, +1, 0);
+    return 0;
+  };
+  const auto roots = ResonanceRoots(5);
+  REQUIRE(roots == std::vector<std::pair<PetscInt, PetscInt>>{{1, 5}, {1, 4}, {1, 3}, {2, 5}});
+  BifurcationSample a0, c0, a, c;
+  PCHK(probe(0, &a0));
+  PCHK(probe(1, &c0));
+  const PetscReal th = 2 * PETSC_PI / 3;
+  REQUIRE(CountBelow(a0.fr, th, 1e-9) == 2);
+  REQUIRE(CountBelow(c0.fr, th, 1e-9) == 1);
+  PetscInt moving = -1;
+  for (const auto &[k, angle] : UpperCircle(a0.fr, 1e-9))
+    if (angle > 1.5) moving = k;
+  PetscInt probes;
+  TrackedOutcome out;
+  PCHK(LocateRootCrossing(probe, a0, c0, moving, th, tol, 60, &a, &c, &probes, &out));
+  INFO("bracket [" << a.omega << ", " << c.omega << "] against s* = " << sstar << ", " << probes << " probes");
+  REQUIRE(out == TrackedOutcome::Crossed);
+  REQUIRE(a.omega <= sstar + tol);
+  REQUIRE(c.omega >= sstar - tol);
+  REQUIRE(probes < 16); // bisection needs 34
+  // the other member (angle 1) does not cross it
+  for (const auto &[k, angle] : UpperCircle(a0.fr, 1e-9))
+    if (k != moving) {
+      PCHK(LocateRootCrossing(probe, a0, c0, k, th, tol, 60, &a, &c, &probes, &out));
+      REQUIRE(out == TrackedOutcome::NoCrossing);
+    }
+  // The selection rule on nu = e^{i pi n/q}: driven iff q is odd and n is odd.
+  for (PetscInt q : {3, 4, 5, 7})
+    for (PetscInt n = 1; n < 2 * q; n++) {
+      if (std::gcd(n, q) != 1) continue;
+      const PetscReal phi = PETSC_PI * n / q;
+      INFO("q " << q << " n " << n);
+      REQUIRE(ResonanceDriven(q, std::cos(phi), std::sin(phi)) == (q % 2 == 1 && n % 2 == 1));
+    }
+}
+
+TEST_CASE("an NNM of the lattice has the half-period symmetry, so its monodromy is the square of the half-period one", "[bifurcations]")
+{
+  // The selection rule of internal resonances rests on this: z(T/2) = -z(0)
+  // and the tangent is T/2-periodic (the force is odd in u), so M = M_{T/2}^2.
+  NnmFixture f;
+  LatticeParams p;
+  p.cells = 1; // interface layout, N = 6
+  PCHK(f.Setup(p));
+  ContinuationOptions co;
+  co.verbose = PETSC_FALSE;
+  co.energy_max = 5;
+  Branch b;
+  PCHK(f.Continue(3, co, &b));
+  const PetscInt N = f.lat.N(), np = (PetscInt)b.energy.size();
+  REQUIRE(np > 3);
+  const std::vector<PetscReal> rows = AllRows(b);
+  OwnedVec z0, zh, zT;
+  OwnedMat Sh, S;
+  PCHK(f.lat.CreateStateVector(z0.out()));
+  PCHK(VecDuplicate(z0, zh.out()));
+  PCHK(VecDuplicate(z0, zT.out()));
+  PCHK(f.flow.CreateSensitivityMatrix(Sh.out()));
+  PCHK(f.flow.CreateSensitivityMatrix(S.out()));
+  const PetscInt k = np - 1; // the most nonlinear orbit
+  PCHK(StateFromRow(f.lat, rows.data() + (size_t)k * 2 * N, z0));
+  const PetscReal T = b.period[k], beta = f.flow.FloquetBeta(b.beta[k]);
+  PCHK(f.flow.IntegrateWithMonodromy(z0, 0.5 * T, beta, zh, Sh));
+  PCHK(f.flow.IntegrateWithMonodromy(z0, T, beta, zT, S));
+  PetscReal n0, d;
+  PCHK(VecNorm(z0, NORM_2, &n0));
+  PCHK(VecAXPY(zh, 1.0, z0));
+  PCHK(VecNorm(zh, NORM_2, &d));
+  INFO("E " << b.energy[k] << ": |z(T/2) + z0| / |z0| = " << d / n0);
+  REQUIRE(d < 1e-6 * n0);
+  // M - Mh^2 on the state block (the sensitivity matrices' first 2N columns)
+  std::vector<PetscReal> M, H;
+  for (auto [mat, out] : {std::pair<Mat, std::vector<PetscReal> *>{S, &M}, {Sh, &H}}) {
+    for (PetscInt col = 0; col < 2 * N; col++) {
+      Vec c;
+      std::vector<PetscReal> x;
+      PCHK(MatDenseGetColumnVecRead(mat, col, &c));
+      PCHK(GatherVec(c, true, &x));
+      PCHK(MatDenseRestoreColumnVecRead(mat, col, &c));
+      out->insert(out->end(), x.begin(), x.begin() + 2 * N);
+    }
+  }
+  PetscReal err = 0, norm = 0;
+  const PetscInt n = 2 * N; // column-major: X[r + c n]
+  for (PetscInt r = 0; r < n; r++)
+    for (PetscInt c = 0; c < n; c++) {
+      PetscReal h2 = 0;
+      for (PetscInt j = 0; j < n; j++) h2 += H[r + j * n] * H[j + c * n];
+      err = std::max(err, std::abs(M[r + c * n] - h2));
+      norm = std::max(norm, std::abs(M[r + c * n]));
+    }
+  INFO("max |M - Mh^2| = " << err << " against max |M| = " << norm);
+  REQUIRE(err < 1e-7 * norm);
 }
 
 TEST_CASE("the pitchfork of two coupled dimers is located where averaging puts it, and breaks their mirror symmetry", "[bifurcations]")
