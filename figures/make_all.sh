@@ -48,11 +48,13 @@ SQRT3=1.7320508075688772
 # the paper's numbers (options files as shipped, sweep_paper.opts' 50 x 50
 # grid, 30,000 periods, 16 realisations); "small" keeps the physics and cuts
 # grids, periods and ensembles; "test" is the ctest scene's (seconds per figure).
+# ZAK_RUN_E: the E* whose zak runs Fig. 5a-b draws (the nearest grid energies).
 case "$SIZE" in
   paper)
     FEP=(-options_file "$OPT/fep.opts")
     STAB=(-options_file "$OPT/stability.opts" -stability_omega "$SQRT3,1.8245,2.1876,2.2654,2.5")
     ZAK=(-options_file "$OPT/zak.opts")
+    ZAK_RUN_E="0.01 1 10 100"
     SWEEP=(-options_file "$OPT/sweep_paper.opts")
     EXPO=(-options_file "$OPT/sweep_exponential.opts" -sweep_omega_n 50 -sweep_energy_n 50)
     HIST_E="0.01 1 5 10 30"
@@ -62,6 +64,7 @@ case "$SIZE" in
     FEP=(-options_file "$OPT/fep.opts")
     STAB=(-options_file "$OPT/stability.opts" -stability_omega "$SQRT3,1.8245,2.1876,2.2654,2.5" -stability_periods 3000)
     ZAK=(-options_file "$OPT/zak.opts")
+    ZAK_RUN_E="0.01 1 10 100"
     SWEEP=(-options_file "$OPT/sweep_quick.opts" -sweep_omega_n 25 -sweep_energy_n 25)
     EXPO=(-options_file "$OPT/sweep_exponential.opts")
     HIST_E="0.01 1 5 10 30"
@@ -71,6 +74,7 @@ case "$SIZE" in
     FEP=(-options_file "$OPT/fep.opts" -cont_energy_min 1e-3 -cont_energy_max 30 -cont_max_change 0.4 -cont_bif_tol 1e-5)
     STAB=(-options_file "$OPT/stability.opts" -stability_omega "$SQRT3,1.8245" -stability_periods 300)
     ZAK=(-options_file "$OPT/zak.opts" -zak_energy_n 7)
+    ZAK_RUN_E="0.01 100"
     SWEEP=(-options_file "$OPT/sweep_quick.opts" -sweep_omega_n 6 -sweep_energy_n 6)
     EXPO=(-options_file "$OPT/sweep_exponential.opts" -sweep_omega_n 6 -sweep_energy_n 6)
     HIST_E="0.01 1 10"
@@ -157,11 +161,22 @@ fig4() {
   plot plot_floquet.py "$DATA/fep.h5" "$DATA/stability.h5" insulated "$OUT/fig4ab_floquet.png" || return 1
   plot plot_stability.py "$DATA/stability.h5" "$OUT/fig4c_stability.png"
 }
-# Fig. 5: the half-lattice phases
+# Fig. 5: the half-lattice phases (c, d), and time series of the runs behind them (a, b):
+# the zak study keeps none, so -study simulate repeats its runs at ZAK_RUN_E
+# (its options, mode, frequency and exact E*; the same MCR to round-off)
 fig5() {
-  rm -f "$DATA/zak.h5"
+  rm -f "$DATA/zak.h5" "$DATA"/zak_run_*.h5
   runp "${ZAK[@]}" -output "$DATA/zak.h5" || return 1
-  plot plot_zak.py "$DATA/zak.h5" "$OUT/fig5_zak.png"
+  plot plot_zak.py "$DATA/zak.h5" "$OUT/fig5cd_zak.png" || return 1
+  local reruns name args files=()
+  reruns=$("$PY" -c "import sys; sys.path.insert(0, '$PLOTS'); import nltopo_plot
+for name, args in nltopo_plot.zak_reruns('$DATA/zak.h5', [float(e) for e in '$ZAK_RUN_E'.split()]): print(name, ' '.join(args))") || return 1
+  while read -r name args; do
+    # shellcheck disable=SC2086 # args: one option or value per word
+    run1 -study simulate $args -output "$DATA/$name.h5" || return 1
+    files+=("$DATA/$name.h5")
+  done <<< "$reruns"
+  plot plot_zak_runs.py "$DATA/zak.h5" "${files[@]}" "$OUT/fig5ab_zak_runs.png"
 }
 # Fig. 6: the forced-response map with the FEP, the energy ratio, the 0-1 test
 fig6() {
@@ -183,11 +198,12 @@ print(repr(float(nltopo_plot.branch_omega(h5py.File('$DATA/fep.h5', 'r')['contin
   done
   plot plot_timehistories.py "${files[@]}" "$OUT/fig7_time_histories.png"
 }
-# Fig. 8: the map under the exponential forcing profile
+# Fig. 8: the exponential forcing profile (a, b: the sweep writes it) and the map under it (c)
 fig8() {
   rm -f "$DATA/sweep_exponential.h5" "$DATA"/sweep_exponential.h5.journal.*
   runp "${EXPO[@]}" -output "$DATA/sweep_exponential.h5" || return 1
-  plot plot_sweep.py "$DATA/sweep_exponential.h5" "$OUT/fig8_exponential.png"
+  plot plot_forcing.py "$DATA/sweep_exponential.h5" "$OUT/fig8ab_forcing.png" || return 1
+  plot plot_sweep.py "$DATA/sweep_exponential.h5" "$OUT/fig8c_exponential.png" -letters _c # the paper's (c) is the MCR
 }
 # Fig. 9: chiral and achiral perturbation ensembles, forced at omega(E*) of the FEP's insulated branch
 fig9() {
@@ -197,8 +213,8 @@ fig9() {
   plot plot_perturb.py "$DATA/perturb.h5" "$OUT/fig9_perturb.png"
 }
 declare -A WHAT=([2]="linear modes (transition: slot)" [3]="FEP, nonlinear optical band, NNM shapes" [4]="Floquet: Krein, multipliers; long runs"
-  [5]="half-lattice phases" [6]="MCR map + FEP, energy ratio, 0-1 test" [7]="time histories on the insulated branch"
-  [8]="exponential forcing map" [9]="perturbation ensembles")
+  [5]="half-lattice runs (a, b), phases (c, d)" [6]="MCR map + FEP, energy ratio, 0-1 test" [7]="time histories on the insulated branch"
+  [8]="exponential forcing profile (a, b), its map (c)" [9]="perturbation ensembles")
 
 # ---- run them and time them -------------------------------------------------------
 TABLE=$OUT/timings.md

@@ -149,6 +149,15 @@ PetscErrorCode ToneBurst::Setup(const Lattice &lat, const ToneBurstOptions &o, c
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode ToneBurst::Profile(const Lattice &lat, std::vector<PetscReal> *eta) const
+{
+  PetscFunctionBeginUser;
+  eta->assign(lat.N(), 0.0);
+  for (size_t k = 0; k < idx_.size(); k++) (*eta)[idx_[k]] = PetscRealPart(eta_[k]);
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, eta->data(), (PetscMPIInt)lat.N(), MPIU_REAL, MPIU_SUM, lat.Comm())); // each site is owned once
+  PetscFunctionReturn(0);
+}
+
 PetscReal ToneBurst::Signal(PetscReal t) const
 {
   const PetscReal x = (t - t0_) / tau_;

@@ -47,6 +47,8 @@ public:
   // Fit of the exponential profile (0 for the other profiles).
   PetscReal ExponentialA() const { return exp_a_; }
   PetscReal ExponentialB() const { return exp_b_; }
+  // The profile eta of every site (0-based), on every rank of the lattice's communicator.
+  PetscErrorCode Profile(const Lattice &lat, std::vector<PetscReal> *eta) const;
 
   // Scalar signal S cos(omega t) exp(-((t - t0)/tau)^2).
   PetscReal Signal(PetscReal t) const;

@@ -179,7 +179,11 @@ std::vector<Schema> Build()
                               {"kcorr_rms_fraction", A, R, "scalar", "-kcorr_rms_fraction"},
                               {"kcorr_record", A, R, "scalar", "-kcorr_record"},
                               {"kcorr_lags", A, I, "scalar", "-kcorr_lags"},
-                              {"amplitude_rule", A, S, "scalar", "how S was chosen"}})});
+                              {"amplitude_rule", A, S, "scalar", "how S was chosen"},
+                              {"force_eta", D, R, "N", "forcing profile eta per site, the same at every point (S scales it)"},
+                              {"insulated_mode", D, R, "N", "linear insulated mode, the exponential profile's fit target (absent without one)"},
+                              {"force_exp_a", A, R, "scalar", "-force_profile exponential: fitted a of eta_n = a e^{b |n - m|} (-1)^{n/2}"},
+                              {"force_exp_b", A, R, "scalar", "-force_profile exponential: fitted b (per site)"}})});
   s.push_back({"/zak", "",
                {{"energy", D, R, "ne", "target energies E*"},
                 {"phi0_mean", D, R, "ne", "phi_0, mean over cells and windows"},
@@ -198,6 +202,9 @@ std::vector<Schema> Build()
                 {"energy_last_distinct", A, R, "scalar", "highest E below it still distinct"},
                 {"omega0", A, R, "scalar", "frequency of the mu = 0 edge mode"},
                 {"omegapi", A, R, "scalar", "frequency of the mu = pi edge mode"},
+                {"mode0", A, I, "scalar", "linear mode index (0-based, ascending omega) of the mu = 0 edge: the runs' -force_mode_index"},
+                {"modepi", A, I, "scalar", "linear mode index of the mu = pi edge"},
+                {"samples_per_period", A, I, "scalar", "-zak_samples_per_period"},
                 {"theta_tol", A, R, "scalar", "-zak_theta_tol"},
                 {"threshold_rule", A, S, "scalar", "the threshold's definition"}}});
   s.push_back({"/perturb/<kind>", "",

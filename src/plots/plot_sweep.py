@@ -10,7 +10,9 @@ dotted and E = 12 dashed:
     (the frequency-energy plot) overlaid within the map, Floquet-unstable
     orbits in red;
 (c) the 0-1 test's kcorr (only when the sweep computed it).
-usage: plot_sweep.py sweep.h5 [fep.h5] [out.png]"""
+-letters gives the panels' letters in order ("_": none), e.g. "_c" for the
+paper's Fig. 8, whose only map, (c), is the MCR (default "abc").
+usage: plot_sweep.py sweep.h5 [fep.h5] [out.png] [-letters abc]"""
 import sys
 import h5py
 import matplotlib
@@ -20,8 +22,15 @@ import matplotlib.pyplot as plt
 import numpy as np
 import nltopo_plot
 
-args = [a for a in sys.argv[1:] if a.endswith(".h5")]
-outs = [a for a in sys.argv[1:] if not a.endswith(".h5")]
+argv = sys.argv[1:]
+letters = "abc"
+if "-letters" in argv:
+    k = argv.index("-letters")
+    letters = (argv[k + 1] + "___")[:3]
+    del argv[k:k + 2]
+tag = ["" if c == "_" else f"({c}) " for c in letters]
+args = [a for a in argv if a.endswith(".h5")]
+outs = [a for a in argv if not a.endswith(".h5")]
 f = h5py.File(args[0], "r")
 fep = h5py.File(args[1], "r") if len(args) > 1 else None
 out = outs[0] if outs else args[0].replace(".h5", "") + "_map.png"
@@ -62,7 +71,7 @@ if has_kc and np.isfinite(kc).sum() > 3 and len(E) > 1 and len(w) > 1 and np.nan
     ax[0].contour(E, w, kc.T, levels=[0.7], colors="w", linewidths=1.5)
     kc_line = "; white: kcorr = 0.7"
 decorate(ax[0])
-ax[0].set_title(f"(a) energy ratio{kc_line}", fontsize=10)
+ax[0].set_title(f"{tag[0]}energy ratio{kc_line}", fontsize=10)
 
 # (b) the MCR with the FEP
 pc = nltopo_plot.grid_map(ax[1], E, w, mcr.T, xlog=Elog, cmap="viridis", vmin=0, vmax=np.nanmax(mcr))
@@ -88,7 +97,7 @@ if fep is not None:
                 ax[1].plot(np.where(bad, x, np.nan), np.where(bad, y, np.nan), "r.-", lw=2.5, ms=4, label=red)
                 red = "_" + red
 decorate(ax[1], "E = 12 (paper)")
-ax[1].set_title(f"(b) MCR of the forced response ({profile} forcing)" + ("; NNM branches" if fep is not None else ""), fontsize=10)
+ax[1].set_title(f"{tag[1]}MCR of the forced response ({profile} forcing)" + ("; NNM branches" if fep is not None else ""), fontsize=10)
 h, l = ax[1].get_legend_handles_labels()  # the red key last
 order = sorted(range(len(l)), key=lambda i: l[i].startswith("Floquet") or l[i].startswith("E = 12"))
 ax[1].legend([h[i] for i in order], [l[i] for i in order], fontsize=7, loc="upper left", framealpha=0.6)
@@ -98,7 +107,7 @@ if has_kc:
     pk = nltopo_plot.grid_map(ax[2], E, w, kc.T, xlog=Elog, cmap="magma", vmin=0, vmax=1)
     fig.colorbar(pk, ax=ax[2], label="kcorr (0-1 test, max over sites)")
     decorate(ax[2])
-    ax[2].set_title("(c) 0-1 test for chaos (1: chaotic)", fontsize=10)
+    ax[2].set_title(f"{tag[2]}0-1 test for chaos (1: chaotic)", fontsize=10)
 fig.tight_layout()
 fig.savefig(out, dpi=120)
 print("wrote", out)

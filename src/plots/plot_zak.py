@@ -1,7 +1,8 @@
 #!/usr/bin/python3
-"""Paper-style phase figure of -study zak: phi_0 and phi_pi (mean and median over
-unit cells and windows, with each window's median as small markers) against
-E*, the linear values 0 and pi, the detected threshold, and the paper's E = 12.
+"""Paper-style phase figure of -study zak (the paper's Fig. 5c-d): phi_0 and
+phi_pi (mean and median over unit cells and windows, with each window's
+median as small markers) against E*, the linear values 0 and pi, the
+detected threshold, and the paper's E = 12.
 usage: plot_zak.py zak.h5 [out.png]"""
 import sys
 import h5py
@@ -16,7 +17,7 @@ z = f["zak"]
 E = z["energy"][:]
 thr = float(z.attrs["energy_threshold"])
 fig, ax = plt.subplots(1, 2, figsize=(12, 4.6), sharey=True)
-for a, stat in zip(ax, ("median", "mean")):
+for a, stat, letter in zip(ax, ("median", "mean"), "cd"):  # the paper's Fig. 5c-d (a-b: plot_zak_runs.py)
     for key, color, label in (("phi0", "tab:blue", r"$\phi_0$ ($\mu = 0$, band bottom)"), ("phipi", "tab:red", r"$\phi_\pi$ ($\mu = \pi$, band top)")):
         a.semilogx(E, z[f"{key}_{stat}"][:], "o-", color=color, ms=4, label=label)
         wm = z[f"{key}_window_median"][:]
@@ -27,7 +28,7 @@ for a, stat in zip(ax, ("median", "mean")):
     a.axvline(12, color="k", ls="--", lw=0.8, label="E = 12 (paper)")
     if thr > 0:
         a.axvline(thr, color="tab:green", lw=1.2, label=f"threshold here: E = {thr:.3g}")
-    a.set(xlabel="E*", ylabel=rf"{stat} of phase(even) - phase(odd) per cell", title=f"{stat} over unit cells and windows", ylim=(-np.pi / 2, 1.5 * np.pi))
+    a.set(xlabel="E*", ylabel=rf"{stat} of phase(even) - phase(odd) per cell", title=f"({letter}) {stat} over unit cells and windows", ylim=(-np.pi / 2, 1.5 * np.pi))
     a.set_yticks([-np.pi / 2, 0, np.pi / 2, np.pi, 1.5 * np.pi])
     a.set_yticklabels([r"$-\pi/2$", "0", r"$\pi/2$", r"$\pi$", r"$3\pi/2$"])
 for a in ax:

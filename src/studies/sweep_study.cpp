@@ -7,6 +7,7 @@
 #include "bands/linear_modes.hpp"
 #include "core/cost.hpp"
 #include "core/errors.hpp"
+#include "core/gather.hpp"
 #include "core/log.hpp"
 #include "core/options_audit.hpp"
 #include "core/signals.hpp"
@@ -46,6 +47,12 @@ struct SweepOptions {
   PetscReal kcorr_sample_dt = 0; // 0: a quarter of the insulated period, pi / (2 sqrt(k_hat))
   McrAccuracyOptions mcr;        // -sweep_mcr_tol
   BandEdges bands{};             // of the infinite lattice, written with the map
+  // The forcing profile, the same at every point (S alone follows omega and E*),
+  // the linear insulated mode (empty without one) and the exponential fit:
+  // written with the map (the paper's Fig. 8a-b).
+  std::vector<PetscReal> eta, insulated;
+  bool exponential = false;
+  PetscReal exp_a = 0, exp_b = 0;
 };
 
 PetscErrorCode SweepOptionsFromOptions(MPI_Comm comm, SweepOptions *o)
@@ -123,6 +130,12 @@ PetscErrorCode WriteSweep(const std::string &path, const SweepGrid &g, const Swe
   for (const auto &f : SweepIntFields()) PetscCall(ints(f.name, f.field));
   PetscCall(WriteIntArray(w, grp, "done", g.done, no));
   PetscCall(WriteBandEdges(w, grp, so.bands));
+  PetscCall(WriteArray(w, grp, "force_eta", so.eta));
+  if (!so.insulated.empty()) PetscCall(WriteArray(w, grp, "insulated_mode", so.insulated));
+  if (so.exponential) {
+    PetscCall(WriteAttr(w, grp, "force_exp_a", so.exp_a));
+    PetscCall(WriteAttr(w, grp, "force_exp_b", so.exp_b));
+  }
   PetscCall(WriteAttr(w, grp, "points_done", g.Done()));
   PetscCall(WriteAttr(w, grp, "points_computed", computed)); // by this invocation (a resume computes only the missing ones)
   PetscCall(WriteAttr(w, grp, "kcorr_computed", (PetscInt)so.kcorr));
@@ -242,6 +255,14 @@ protected:
     // hardened) then map to c = omega dt inside the test's range (pi/5, 4 pi/5).
     if (so_.kcorr_sample_dt == 0) so_.kcorr_sample_dt = PETSC_PI / (2 * std::sqrt(lp_.KHat()));
     so_.bands = InfiniteBandEdges(lp_);
+    {
+      ToneBurst burst; // at the default omega and E*: the profile does not depend on them
+      PetscCall(burst.Setup(lat_, fo_, &modes_));
+      PetscCall(burst.Profile(lat_, &so_.eta));
+      so_.exponential = fo_.profile == ForceProfile::Exponential;
+      so_.exp_a = burst.ExponentialA(), so_.exp_b = burst.ExponentialB();
+      if (modes_.Insulated()) PetscCall(GatherVec(modes_.Insulated(), true, &so_.insulated));
+    }
     zero_one_ = std::make_unique<const ZeroOneTest>(so_.kcorr_nc, (unsigned long)so_.kcorr_seed, so_.kcorr_lags);
     PetscCall(StartGrid());
 

@@ -241,6 +241,9 @@ protected:
     PetscCall(WriteAttr(v, g, "energy_last_distinct", t_.last_distinct));
     PetscCall(WriteAttr(v, g, "omega0", modes_.Omega()[edge_mode_[0]]));
     PetscCall(WriteAttr(v, g, "omegapi", modes_.Omega()[edge_mode_[1]]));
+    PetscCall(WriteAttr(v, g, "mode0", edge_mode_[0])); // -force_mode_index of the runs: a -study simulate run repeats one
+    PetscCall(WriteAttr(v, g, "modepi", edge_mode_[1]));
+    PetscCall(WriteAttr(v, g, "samples_per_period", zo_.samples_per_period)); // with the run's t_off: the windows' samples
     PetscCall(WriteAttr(v, g, "theta_tol", zo_.theta_tol));
     PetscCall(WriteAttr(v, g, "threshold_rule",
                         "lowest E at which theta = phi_pi - phi_0 of the means or of the medians over cells and windows is more than theta_tol from pi (-1: never in range)"));

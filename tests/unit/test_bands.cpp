@@ -167,4 +167,13 @@ TEST_CASE("exponential forcing profile: the fit of the insulated mode's envelope
   PCHK(GatherVec(modes.Insulated(), true, &phi));
   const PetscInt m = p.InterfaceSite();
   REQUIRE(std::abs(a * std::exp(b) - std::abs(phi[m + 1])) < 1e-8);
+  // The whole profile on every rank (/sweep/force_eta): zero on the odd sites
+  // (1-based), the insulated mode itself on the even ones.
+  std::vector<PetscReal> eta;
+  PCHK(burst.Profile(lat, &eta));
+  REQUIRE((PetscInt)eta.size() == lat.N());
+  for (PetscInt i = 0; i < lat.N(); i++) {
+    if (i % 2 == 0) REQUIRE(eta[i] == 0.0);
+    else REQUIRE(std::abs(eta[i] - phi[i]) < 1e-6);
+  }
 }

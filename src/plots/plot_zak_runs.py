@@ -1,0 +1,84 @@
+#!/usr/bin/python3
+"""Time series of the half-lattice phase experiment (the paper's Fig. 5a-b):
+-study simulate runs that repeat runs of a -study zak file (nltopo_plot.
+zak_reruns: the same run, the same samples after the cut-off), (a) forced
+with the mu = 0 edge mode of the optical band at its frequency, (b) with the
+mu = pi edge mode. Per run one row, offset by E*: the two sites of one unit
+cell (2j-1, 2j) over the last periods of the zak study's last window, scaled
+to their largest |u|. The cell is the window's median cell: its phase
+phase(even) - phase(odd) at omega_ext over the window is the median over the
+cells, the window's marker in panels (c, d) (plot_zak.py). In phase at mu = 0,
+out of phase at mu = pi while the phase is quantised; neither at high E*.
+Each row names E*, the cell, its phase next to the zak study's value for that
+window, how many cells lie within pi/4 of the linear value (0 or pi), the zak
+median over every window, and the MCR.
+usage: plot_zak_runs.py zak.h5 run1.h5 [run2.h5 ...] out.png [-periods n]"""
+import sys
+import h5py
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+import numpy as np
+import nltopo_plot
+
+argv = sys.argv[1:]
+periods = 6.0
+if "-periods" in argv:
+    k = argv.index("-periods")
+    periods = float(argv[k + 1])
+    del argv[k:k + 2]
+files = [a for a in argv if a.endswith(".h5")]
+out = ([a for a in argv if a.endswith(".png")] or [files[0].replace(".h5", "") + "_runs.png"])[0]
+z = h5py.File(files[0], "r")["zak"]
+Ez = z["energy"][:]
+spp = int(z.attrs["samples_per_period"])
+edges = {"0": float(z.attrs["omega0"]), "pi": float(z.attrs["omegapi"])}
+
+runs = {"0": [], "pi": []}
+for name in files[1:]:
+    S = h5py.File(name, "r")["simulate"]
+    if "u" not in S:
+        sys.exit(f"plot_zak_runs.py: {name} has no /simulate/u (run with -sim_store_u 1)")
+    w = float(S.attrs["omega_ext"])
+    edge = min(edges, key=lambda e: abs(edges[e] - w))
+    if not np.isclose(edges[edge], w, rtol=1e-12):
+        sys.exit(f"plot_zak_runs.py: {name} is forced at {w}, at neither edge of {files[0]} ({edges})")
+    runs[edge].append(S)
+
+fig, ax = plt.subplots(1, 2, figsize=(13, 1.6 + 1.5 * max(len(r) for r in runs.values())), squeeze=False)
+for a, (edge, letter, mu) in zip(ax[0], (("0", "a", "0"), ("pi", "b", r"\pi"))):
+    rs = sorted(runs[edge], key=lambda S: S.attrs["energy_star"])
+    yt, ytl = [], []
+    for r, S in enumerate(rs):
+        t, u, w = S["t"][:], S["u"][:], float(S.attrs["omega_ext"])
+        E = float(S.attrs["energy_star"])
+        k = int(np.argmin(np.abs(np.log(Ez / E))))
+        zwin = z[f"phi{edge}_window_median"][k]
+        t_off = float(S.attrs["t_off"])
+        win = nltopo_plot.zak_windows(t, t_off if t_off >= 0 else t[0], spp, len(zwin))[-1]
+        phis = nltopo_plot.dimer_phases(t[win], u[win], w)
+        j = int(np.argsort(phis)[len(phis) // 2]) + 1  # the median cell (an odd count of cells: a cell's own value)
+        near = int((np.abs(phis - (0 if edge == "0" else np.pi)) <= np.pi / 4).sum())
+        show = win[t[win] >= t[win[-1]] - periods * 2 * np.pi / w]
+        odd, even = u[show, 2 * j - 2], u[show, 2 * j - 1]
+        scale = max(np.abs(odd).max(), np.abs(even).max()) or 1.0
+        y0 = -2.6 * r
+        first = r == 0
+        x = (t[show] - t[win[-1]]) * w / (2 * np.pi)  # periods before the window's end
+        a.plot(x, y0 + odd / scale, "-", color="tab:purple", lw=1.2, label="odd site 2j-1 of the cell" if first else "_")
+        a.plot(x, y0 + even / scale, "--", color="tab:orange", lw=1.2, label="even site 2j" if first else "_")
+        reached = "" if S.attrs["energy_reached"] else " (E* not reached)"
+        a.text(-periods, y0 + 1.12, rf"E* = {E:.3g}{reached}: cell {j}, $\phi$ = {phis[j - 1]:.2f} (zak {zwin[-1]:.2f}); {near}/{len(phis)} cells within $\pi/4$ of ${mu}$;"
+               rf" all windows: {float(z[f'phi{edge}_median'][k]):.2f}", fontsize=7, va="bottom")
+        yt.append(y0)
+        ytl.append(f"{E:.3g}")
+    a.set_yticks(yt)
+    a.set_yticklabels(ytl)
+    a.set(xlabel=r"t in periods $2\pi/\omega_{ext}$ before the end of the last phase window (free motion)", ylabel="E* (rows); u / max |u| of the cell")
+    a.set_title(rf"({letter}) $\mu = {mu}$: optical band {'bottom' if edge == '0' else 'top'} mode, $\omega_{{ext}}$ = {edges[edge]:.4f}", fontsize=10)
+    if rs:
+        a.set_ylim(-2.6 * (len(rs) - 1) - 1.3, 2.4)  # room above the first row for the legend
+        a.legend(fontsize=7, loc="upper right", ncol=2, framealpha=0.8)
+fig.tight_layout()
+fig.savefig(out, dpi=110)
+print("wrote", out)
