@@ -244,7 +244,7 @@ PetscErrorCode BifurcationOptionsFromOptions(MPI_Comm comm, PetscBool dense_floq
   o->enabled = dense_floquet;
   PetscOptionsBegin(comm, "cont_", "Bifurcations along the branches", NULL);
   PetscCall(PetscOptionsBool("-bifurcations",
-                             "Detect and locate energy folds, branch points (+1), period doublings (-1) and Hamiltonian-Hopf collisions along each "
+                             "Detect and locate energy folds, branch points (+1), period doublings (-1), Krein collisions and internal resonances along each "
                              "branch (needs -floquet without -floquet_mf; on with it)",
                              NULL, o->enabled, &o->enabled, &set));
   PetscCall(PetscOptionsReal("-bif_tol", "Located event: the final bracket spans at most this in omega and this times E in energy", NULL, o->tol, &o->tol,

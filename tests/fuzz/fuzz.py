@@ -104,6 +104,7 @@ T = {
     "cont_verbose": ("bool",), "cont_checkpoint_seconds": ("real", 0.0, 5.0), "cont_resume": ("path",),
     "cont_bifurcations": ("bool",), "cont_bif_tol": ("real", 1e-9, 1e-4), "cont_bif_max_probes": ("int", 1, 20),
     "cont_bif_angle_tol": ("real", 0.01, 0.5), "cont_bif_bulk": ("bool",),
+    "cont_bif_passes": ("bool",), "cont_bif_resonance_order": ("int", 0, 5),
     "cont_switch": ("enum", 0, 0, ["insulated:0", "insulated:1", "insulated", "optical_top:x"]), "cont_switch_step": ("real", 1e-3, 0.1),
     "cont_branch": ("strings", 0, 0, ["insulated", "interface", "acoustic_top", "optical_bottom", "optical_top", "mode3", "7"]),
     "nnm_steps_per_period": ("int", 8, 64), "nnm_monodromy": ("enum", 0, 0, ["variational", "tsforward"]),

@@ -119,6 +119,7 @@ expect_error "-cont_bifurcations needs -floquet without -floquet_mf" o.h5 $C -co
 expect_error "-cont_bifurcations needs -floquet without -floquet_mf" o.h5 $C -floquet -floquet_mf -cont_bifurcations 1
 expect_error "-cont_bif_tol must lie in \[1e-14, 1e-2\], got 0." o.h5 $C -floquet -cont_bif_tol 0
 expect_error "-cont_bif_angle_tol must lie in (0, 1), got 2." o.h5 $C -floquet -cont_bif_angle_tol 2
+expect_error "-cont_bif_resonance_order must lie in \[0, 12\], got 13" o.h5 $C -floquet -cont_bif_resonance_order 13
 expect_error "-cont_switch insulated: expected <branch>:<event index>" o.h5 $C -floquet -cont_switch insulated
 expect_error "-cont_switch insulated:x: expected <branch>:<event index>" o.h5 $C -floquet -cont_switch insulated:x
 expect_error "-cont_switch needs -cont_bifurcations" o.h5 $C -cont_switch insulated:0
