@@ -6,6 +6,16 @@ import numpy as np
 INSTABILITY = {0: ("stable", "tab:blue"), 1: ("B-B", "tab:orange"), 2: ("B-E", "tab:purple"), 3: ("E-E", "tab:red")}
 
 
+def pop_option(argv, name, default, kind=float):
+    """The value of "name value" in argv (removed from it), or default."""
+    if name not in argv:
+        return default
+    k = argv.index(name)
+    value = kind(argv[k + 1])
+    del argv[k:k + 2]
+    return value
+
+
 def bands(group):
     """The infinite lattice's bands [(acoustic bottom, top), (optical bottom, top)]
     in rad/s, from the *_inf attributes of a group (/linear/bloch, /continuation,

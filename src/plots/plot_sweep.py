@@ -23,11 +23,7 @@ import numpy as np
 import nltopo_plot
 
 argv = sys.argv[1:]
-letters = "abc"
-if "-letters" in argv:
-    k = argv.index("-letters")
-    letters = (argv[k + 1] + "___")[:3]
-    del argv[k:k + 2]
+letters = (nltopo_plot.pop_option(argv, "-letters", "abc", str) + "___")[:3]
 tag = ["" if c == "_" else f"({c}) " for c in letters]
 args = [a for a in argv if a.endswith(".h5")]
 outs = [a for a in argv if not a.endswith(".h5")]

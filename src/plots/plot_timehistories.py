@@ -12,13 +12,10 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
+import nltopo_plot
 
 argv = sys.argv[1:]
-window = 250.0
-if "-window" in argv:
-    k = argv.index("-window")
-    window = float(argv[k + 1])
-    del argv[k:k + 2]
+window = nltopo_plot.pop_option(argv, "-window", 250.0)
 files = [a for a in argv if a.endswith(".h5")]
 outs = [a for a in argv if a.endswith(".png")]
 out = outs[0] if outs else files[0].replace(".h5", "") + "_histories.png"

@@ -22,11 +22,7 @@ import numpy as np
 import nltopo_plot
 
 argv = sys.argv[1:]
-periods = 6.0
-if "-periods" in argv:
-    k = argv.index("-periods")
-    periods = float(argv[k + 1])
-    del argv[k:k + 2]
+periods = nltopo_plot.pop_option(argv, "-periods", 6.0)
 files = [a for a in argv if a.endswith(".h5")]
 out = ([a for a in argv if a.endswith(".png")] or [files[0].replace(".h5", "") + "_runs.png"])[0]
 z = h5py.File(files[0], "r")["zak"]
