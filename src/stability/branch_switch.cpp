@@ -45,8 +45,8 @@ PetscErrorCode StartSwitchedBranch(Shooting &shoot, Vec Xs, const BifurcationEve
   *pinned = false;
   const PetscInt m = SwitchedPeriodMultiple(e.kind);
   PetscCheck(m > 0, comm, PETSC_ERR_SUP, "-cont_switch follows branch points (kind 2) and period doublings (kind 3); this event is a %s", EventKindName(e.kind));
-  PetscCheck(shoot.Flow().PeriodMultiple() == m, comm, PETSC_ERR_PLIB, "-cont_switch: the family born at a %s is integrated with period multiple %" PetscInt_FMT ", not %" PetscInt_FMT,
-             EventKindName(e.kind), m, shoot.Flow().PeriodMultiple());
+  PetscCheck(shoot.Flow().PeriodMultiple() % m == 0, comm, PETSC_ERR_PLIB, "-cont_switch: the family born at a %s is integrated with period multiple %" PetscInt_FMT ", not a multiple of %" PetscInt_FMT,
+             EventKindName(e.kind), shoot.Flow().PeriodMultiple(), m);
   PetscCheck(e.vector.size() == (size_t)(2 * lat.N()), comm, PETSC_ERR_PLIB, "-cont_switch: the event has no critical eigenvector");
   for (OwnedVec *v : {&X1, &t, &Xpred, &d}) PetscCall(VecDuplicate(Xs, v->out()));
   PetscCall(lat.CreateStateVector(zs.out()));

@@ -33,9 +33,9 @@ PetscInt SwitchedPeriodMultiple(EventKind k);
 // |eps| = step |z*|: a Branch of two points (X* at period m T*, m =
 // SwitchedPeriodMultiple(e.kind), and X1; z0 rows on rank 0) with the step
 // to take next, for ContinueBranch's resume argument. The flow must
-// integrate with that multiple (PeriodMultipleScope(flow, m), orbits/flow.hpp)
-// here and for the whole family, so that its orbits have the parent's step
-// size and X* is an orbit of the same discrete map. *pinned: the residual of
+// integrate with m times the parent's period multiple (PeriodMultipleScope,
+// orbits/flow.hpp) here and for the whole family, so that its orbits have
+// the parent's step size and X* is an orbit of the same discrete map. *pinned: the residual of
 // X1's Newton converged; *away: |phi . (z1 - z*)| / |z1 - z*|, the share of
 // the first step along phi (1: straight off the parent).
 PetscErrorCode StartSwitchedBranch(Shooting &shoot, Vec Xs, const BifurcationEvent &e, PetscReal step, PetscInt sign, Branch *start, bool *pinned,
