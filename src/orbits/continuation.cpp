@@ -78,8 +78,10 @@ PetscErrorCode StoreNextStep(const Lattice &lat, Shooting &shoot, Vec t, Vec tz,
   PetscFunctionReturn(0);
 }
 
-// X0 = the first orbit of branch b (z0 rows on rank 0) and *far its largest distance from the others.
-PetscErrorCode FirstOrbit(const Lattice &lat, Shooting &shoot, const Branch &b, Vec X0, PetscReal *far)
+// X0 = the first orbit of branch b (z0 rows on rank 0), *far its largest distance
+// from the other orbits, and *closed whether its last step passes X0 (PassesFirst's
+// test: the branch stopped because the family closed).
+PetscErrorCode FirstOrbit(const Lattice &lat, Shooting &shoot, const Branch &b, Vec X0, PetscReal *far, bool *closed)
 {
   const PetscInt n2 = 2 * lat.N(), np = (PetscInt)b.energy.size();
   std::vector<PetscReal> row(n2);
@@ -87,17 +89,29 @@ PetscErrorCode FirstOrbit(const Lattice &lat, Shooting &shoot, const Branch &b, 
   OwnedVec z;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(lat.Comm(), &rank));
-  *far = 0;
+  PetscReal state[2] = {0, 0}; // far, closed
   if (rank == 0) {
+    // X_j - X_i over (z0, T, beta)
+    auto diff = [&](PetscInt j, PetscInt i, PetscInt k) {
+      return k < n2 ? b.z0[j * n2 + k] - b.z0[i * n2 + k] : k == n2 ? b.period[j] - b.period[i] : b.beta[j] - b.beta[i];
+    };
     std::copy(b.z0.begin(), b.z0.begin() + n2, row.begin());
     for (PetscInt j = 1; j < np; j++) {
-      PetscReal d2 = std::pow(b.period[j] - b.period[0], 2) + std::pow(b.beta[j] - b.beta[0], 2);
-      for (PetscInt k = 0; k < n2; k++) d2 += std::pow(b.z0[j * n2 + k] - row[k], 2);
-      *far = std::max(*far, std::sqrt(d2));
+      PetscReal d2 = 0, dd = 0, wd = 0;
+      for (PetscInt k = 0; k < n2 + 2; k++) d2 += diff(j, 0, k) * diff(j, 0, k);
+      if (j == np - 1 && np >= 3) { // the last step, as PassesFirst sees it
+        for (PetscInt k = 0; k < n2 + 2; k++) dd += diff(j, j - 1, k) * diff(j, j - 1, k), wd += diff(0, j - 1, k) * diff(j, j - 1, k);
+        PetscReal ww = 0;
+        for (PetscInt k = 0; k < n2 + 2; k++) ww += diff(0, j - 1, k) * diff(0, j - 1, k);
+        const PetscReal t = dd > 0 ? std::min(std::max(wd / dd, (PetscReal)0), (PetscReal)1) : 0;
+        state[1] = dd > 0 && state[0] > 4 * std::sqrt(dd) && ww - 2 * t * wd + t * t * dd <= 0.01 * dd;
+      }
+      state[0] = std::max(state[0], std::sqrt(d2));
     }
   }
   PetscCallMPI(MPI_Bcast(row.data(), (PetscMPIInt)n2, MPIU_REAL, 0, lat.Comm()));
-  PetscCallMPI(MPI_Bcast(far, 1, MPIU_REAL, 0, lat.Comm()));
+  PetscCallMPI(MPI_Bcast(state, 2, MPIU_REAL, 0, lat.Comm()));
+  *far = state[0], *closed = state[1] != 0;
   PetscCall(lat.CreateStateVector(z.out()));
   PetscCall(StateFromRow(lat, row.data(), z));
   PetscCall(shoot.Pack(z, b.period[0], b.beta[0], X0));
@@ -300,8 +314,9 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
   OwnedVec X0, w, d;
   for (OwnedVec *v : {&X0, &w, &d}) PetscCall(VecDuplicate(X, v->out()));
   PetscReal far = 0;
-  bool have_prev = false; // Xprev holds the previous point
-  if (resumed) PetscCall(FirstOrbit(lat, shoot, *b, X0, &far));
+  bool have_prev = false;     // Xprev holds the previous point
+  bool closed_before = false; // a resumed branch that had stopped there
+  if (resumed) PetscCall(FirstOrbit(lat, shoot, *b, X0, &far, &closed_before));
   for (;;) {
     // Record the point.
     EnergyParts e;
@@ -370,9 +385,9 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
       break;
     }
     if (b->energy.size() == 1) PetscCall(VecCopy(X, X0));
-    if (have_prev) {
-      bool closed = false;
-      PetscCall(PassesFirst(X0, Xprev, X, w, d, &far, &closed));
+    {
+      bool closed = closed_before && !have_prev;
+      if (have_prev) PetscCall(PassesFirst(X0, Xprev, X, w, d, &far, &closed));
       if (closed) {
         b->stop_reason = "the family closed: it returned to its first orbit";
         break;

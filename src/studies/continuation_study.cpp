@@ -455,7 +455,7 @@ private:
     PetscCheck(!done_.empty() || !b.energy.empty(), comm_, PETSC_ERR_SIG, "interrupted by %s before the first orbit of branch %s; no output written", sn,
                cur.label.c_str());
     const std::string reason = std::string("interrupted by ") + sn + (*doing ? std::string(" ") + doing : "") +
-                               (cur.parent.empty() ? ": -cont_resume continues it" : ": a switched branch, which -cont_resume does not recreate");
+                               (cur.parent.empty() ? ": -cont_resume continues it" : ": -cont_resume with the same -cont_switch continues it");
     PetscCall(WritePartial(cur, reason.c_str()));
     SETERRQ(comm_, PETSC_ERR_SIG, "interrupted by %s%s%s after %zu points of branch %s (last E = %g); partial output %s (complete = 0); -cont_resume %s continues it", sn,
             *doing ? " " : "", doing, b.energy.size(), cur.label.c_str(), b.energy.empty() ? 0.0 : (double)b.energy.back(), path_.c_str(), path_.c_str());
@@ -566,40 +566,60 @@ private:
         cur.omega = e.omega, cur.parent = parent, cur.period_multiple = nnm_.flow.PeriodMultiple();
         Shooting &shoot = nnm_.shoot;
         cur.j0 = shoot.JacobianEvaluations(), cur.r0 = shoot.ResidualEvaluations(), cur.p0 = shoot.TangentProducts(), cur.k0 = shoot.KrylovIterations();
-        const PetscErrorCode is = StartSwitchedBranch(shoot, Xs, e, switch_step_, sign, &start, &pinned, &away);
-        if (IsInterrupt(is)) PetscCall(Interrupted(cur, "while switching"));
-        PetscCall(is);
-        if (!pinned) {
-          if (pd && sign > 0)
-            PetscCall(PetscPrintf(comm_, "  warning: -cont_switch %s: no orbit found %g |z*| off the period doubling along +phi (Newton failed); trying -phi (the same family)\n",
-                                  parent.c_str(), (double)switch_step_));
-          else
-            PetscCall(PetscPrintf(comm_, "  warning: -cont_switch %s: no orbit found %g |z*| off the %s along %sits critical eigenvector (Newton failed); %s not followed, try another -cont_switch_step\n",
-                                  parent.c_str(), (double)switch_step_, what, pd ? "either side of " : "", cur.label.c_str()));
-          continue;
+        // -cont_resume: the family's points in that file (a checkpoint or an interrupted
+        // run), continued from its last one as a branch of -cont_branch is
+        FloquetColumns rf;
+        bool found = false;
+        if (ch_.resume) PetscCall(ReadResume(comm_, ch_.resume_file, cur.label, fk_, n2_, fmo_.nev, &start, &rf, &found));
+        const size_t kept = found && start.energy.size() >= 2 ? start.energy.size() : 0;
+        if (kept) {
+          followed = true;
+          hook_->c = rf;
+          PetscCall(PetscPrintf(comm_, "  [%s] -cont_resume %s: %zu points of the family born at the %s %s, continued from the last\n", cur.label.c_str(), ch_.resume_file,
+                                kept, what, parent.c_str()));
+        } else {
+          if (ch_.resume) PetscCall(PetscPrintf(comm_, "  [%s] -cont_resume %s: fewer than 2 points of this family there, starting afresh\n", cur.label.c_str(), ch_.resume_file));
+          const PetscErrorCode is = StartSwitchedBranch(shoot, Xs, e, switch_step_, sign, &start, &pinned, &away);
+          if (IsInterrupt(is)) PetscCall(Interrupted(cur, "while switching"));
+          PetscCall(is);
+          if (!pinned) {
+            if (pd && sign > 0)
+              PetscCall(PetscPrintf(comm_, "  warning: -cont_switch %s: no orbit found %g |z*| off the period doubling along +phi (Newton failed); trying -phi (the same family)\n",
+                                    parent.c_str(), (double)switch_step_));
+            else
+              PetscCall(PetscPrintf(comm_, "  warning: -cont_switch %s: no orbit found %g |z*| off the %s along %sits critical eigenvector (Newton failed); %s not followed, try another -cont_switch_step\n",
+                                    parent.c_str(), (double)switch_step_, what, pd ? "either side of " : "", cur.label.c_str()));
+            continue;
+          }
+          followed = true;
+          PetscCall(PetscPrintf(comm_, "  [%s] from the %s %s at omega %.9f (E %.6g): first orbit at %g |z*| along %sthe critical eigenvector (%.0f %% of the step along it), E %.6g, omega %.9f%s\n",
+                                cur.label.c_str(), what, parent.c_str(), (double)e.omega, (double)e.energy, (double)switch_step_, sign > 0 ? "" : "minus ", (double)(100 * away),
+                                (double)start.energy[1], (double)start.omega[1], pd ? " (period ~2 T*: the FEP plots it at 2 omega, attribute period_multiple 2)" : ""));
+          // the Floquet data of the two start points, as of every other
+          hook_->Clear();
+          OwnedVec z;
+          PetscCall(nnm_.lat.CreateStateVector(z.out()));
+          std::vector<PetscReal> rows = start.z0;
+          PetscCall(BroadcastFromRoot(comm_, MPIU_REAL, &rows));
+          for (size_t q = 0; q < 2; q++) {
+            PetscCall(StateFromRow(nnm_.lat, rows.data() + q * n2_, z));
+            const PetscErrorCode ih = hook_->Point(z, start.period[q], start.beta[q], z);
+            if (IsInterrupt(ih)) PetscCall(Interrupted(cur, "while switching"));
+            PetscCall(ih);
+          }
         }
-        followed = true;
-        PetscCall(PetscPrintf(comm_, "  [%s] from the %s %s at omega %.9f (E %.6g): first orbit at %g |z*| along %sthe critical eigenvector (%.0f %% of the step along it), E %.6g, omega %.9f%s\n",
-                              cur.label.c_str(), what, parent.c_str(), (double)e.omega, (double)e.energy, (double)switch_step_, sign > 0 ? "" : "minus ", (double)(100 * away),
-                              (double)start.energy[1], (double)start.omega[1], pd ? " (period ~2 T*: the FEP plots it at 2 omega, attribute period_multiple 2)" : ""));
-        // the Floquet data of the two start points, as of every other
-        hook_->Clear();
-        OwnedVec z;
-        PetscCall(nnm_.lat.CreateStateVector(z.out()));
-        std::vector<PetscReal> rows = start.z0;
-        PetscCall(BroadcastFromRoot(comm_, MPIU_REAL, &rows));
-        for (size_t q = 0; q < 2; q++) {
-          PetscCall(StateFromRow(nnm_.lat, rows.data() + q * n2_, z));
-          const PetscErrorCode ih = hook_->Point(z, start.period[q], start.beta[q], z);
-          if (IsInterrupt(ih)) PetscCall(Interrupted(cur, "while switching"));
-          PetscCall(ih);
-        }
-        const PetscErrorCode ic = ContinueBranch(shoot, nullptr, 0, co, cur.label.c_str(), &cur.b, hook_.get(), &start);
-        if (IsInterrupt(ic)) PetscCall(Interrupted(cur, "")); // (what a resume does with it: Interrupted)
+        CheckpointHook ck(comm_, hook_.get(), ch_.checkpoint_seconds, [&]() -> PetscErrorCode {
+          PetscFunctionBeginUser;
+          PetscCall(WritePartial(cur, "checkpoint: the run was still going"));
+          PetscCall(PetscPrintf(comm_, "  [%s] checkpoint: %zu points written to %s\n", cur.label.c_str(), cur.b.energy.size(), path_.c_str()));
+          PetscFunctionReturn(0);
+        });
+        const PetscErrorCode ic = ContinueBranch(shoot, nullptr, 0, co, cur.label.c_str(), &cur.b, &ck, &start);
+        if (IsInterrupt(ic)) PetscCall(Interrupted(cur, "")); // its points so far: -cont_resume (with the same -cont_switch) continues it
         PetscCall(ic);
         PetscLogDouble b1;
         PetscCall(PetscTime(&b1));
-        PetscCall(Finish(cur, b1, cur.b.energy.size()));
+        PetscCall(Finish(cur, b1, cur.b.energy.size() - kept));
         PetscCall(SwitchFrom(cur.label.c_str(), cur.label)); // the families born on this one (-cont_switch <label>:<event>)
       }
     }
