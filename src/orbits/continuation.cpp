@@ -78,6 +78,67 @@ PetscErrorCode StoreNextStep(const Lattice &lat, Shooting &shoot, Vec t, Vec tz,
   PetscFunctionReturn(0);
 }
 
+// X0 = the first orbit of branch b (z0 rows on rank 0), *far its largest distance
+// from the other orbits, and *closed whether its last step passes X0 (PassesFirst's
+// test: the branch stopped because the family closed).
+PetscErrorCode FirstOrbit(const Lattice &lat, Shooting &shoot, const Branch &b, Vec X0, PetscReal *far, bool *closed)
+{
+  const PetscInt n2 = 2 * lat.N(), np = (PetscInt)b.energy.size();
+  std::vector<PetscReal> row(n2);
+  PetscMPIInt rank;
+  OwnedVec z;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(lat.Comm(), &rank));
+  PetscReal state[2] = {0, 0}; // far, closed
+  if (rank == 0) {
+    // X_j - X_i over (z0, T, beta)
+    auto diff = [&](PetscInt j, PetscInt i, PetscInt k) {
+      return k < n2 ? b.z0[j * n2 + k] - b.z0[i * n2 + k] : k == n2 ? b.period[j] - b.period[i] : b.beta[j] - b.beta[i];
+    };
+    std::copy(b.z0.begin(), b.z0.begin() + n2, row.begin());
+    for (PetscInt j = 1; j < np; j++) {
+      PetscReal d2 = 0, dd = 0, wd = 0;
+      for (PetscInt k = 0; k < n2 + 2; k++) d2 += diff(j, 0, k) * diff(j, 0, k);
+      if (j == np - 1 && np >= 3) { // the last step, as PassesFirst sees it
+        for (PetscInt k = 0; k < n2 + 2; k++) dd += diff(j, j - 1, k) * diff(j, j - 1, k), wd += diff(0, j - 1, k) * diff(j, j - 1, k);
+        PetscReal ww = 0;
+        for (PetscInt k = 0; k < n2 + 2; k++) ww += diff(0, j - 1, k) * diff(0, j - 1, k);
+        const PetscReal t = dd > 0 ? std::min(std::max(wd / dd, (PetscReal)0), (PetscReal)1) : 0;
+        state[1] = dd > 0 && state[0] > 4 * std::sqrt(dd) && ww - 2 * t * wd + t * t * dd <= 0.01 * dd;
+      }
+      state[0] = std::max(state[0], std::sqrt(d2));
+    }
+  }
+  PetscCallMPI(MPI_Bcast(row.data(), (PetscMPIInt)n2, MPIU_REAL, 0, lat.Comm()));
+  PetscCallMPI(MPI_Bcast(state, 2, MPIU_REAL, 0, lat.Comm()));
+  *far = state[0], *closed = state[1] != 0;
+  PetscCall(lat.CreateStateVector(z.out()));
+  PetscCall(StateFromRow(lat, row.data(), z));
+  PetscCall(shoot.Pack(z, b.period[0], b.beta[0], X0));
+  PetscFunctionReturn(0);
+}
+
+// Whether the step d = X - Xprev passes X0 (within a tenth of its length) after the
+// branch has been farther than 4 steps from it; *far is then updated with |X - X0|.
+// w, d: work vectors.
+PetscErrorCode PassesFirst(Vec X0, Vec Xprev, Vec X, Vec w, Vec d, PetscReal *far, bool *closed)
+{
+  PetscReal dd, wd, ww, dx;
+  PetscFunctionBeginUser;
+  PetscCall(VecWAXPY(w, -1.0, X0, X));
+  PetscCall(VecNorm(w, NORM_2, &dx));
+  PetscCall(VecWAXPY(d, -1.0, Xprev, X));
+  PetscCall(VecWAXPY(w, -1.0, Xprev, X0));
+  PetscCall(VecDot(d, d, &dd));
+  PetscCall(VecDot(w, d, &wd));
+  PetscCall(VecDot(w, w, &ww));
+  const PetscReal t = dd > 0 ? std::min(std::max(wd / dd, (PetscReal)0), (PetscReal)1) : 0; // the point of the step nearest X0
+  const PetscReal dist2 = ww - 2 * t * wd + t * t * dd;                                      // |X0 - Xprev - t d|^2
+  *closed = dd > 0 && *far > 4 * std::sqrt(dd) && dist2 <= 0.01 * dd;
+  *far = std::max(*far, dx);
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
 // Appends z in natural [u, v] order to rank 0's row store.
@@ -246,6 +307,16 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
   }
   bool record = !resumed; // a resumed branch's last point is already recorded
   PetscInt newton_its = its;
+  // A closed family (e.g. one born at a period doubling that returns to it) would be
+  // followed round and round: it stops once it passes its first orbit X0 again, a step
+  // passing within a tenth of its length of X0 after the branch has been farther from
+  // X0 than 4 such steps (far: the largest |X - X0| so far).
+  OwnedVec X0, w, d;
+  for (OwnedVec *v : {&X0, &w, &d}) PetscCall(VecDuplicate(X, v->out()));
+  PetscReal far = 0;
+  bool have_prev = false;     // Xprev holds the previous point
+  bool closed_before = false; // a resumed branch that had stopped there
+  if (resumed) PetscCall(FirstOrbit(lat, shoot, *b, X0, &far, &closed_before));
   for (;;) {
     // Record the point.
     EnergyParts e;
@@ -313,6 +384,15 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
       b->stop_reason = "the MCR fell below -cont_mcr_min (the mode has delocalized)";
       break;
     }
+    if (b->energy.size() == 1) PetscCall(VecCopy(X, X0));
+    {
+      bool closed = closed_before && !have_prev;
+      if (have_prev) PetscCall(PassesFirst(X0, Xprev, X, w, d, &far, &closed));
+      if (closed) {
+        b->stop_reason = "the family closed: it returned to its first orbit";
+        break;
+      }
+    }
     if ((PetscInt)b->energy.size() >= o.max_points) {
       b->stop_reason = "reached -cont_max_points";
       break;
@@ -323,6 +403,7 @@ PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, c
     }
     // Next point: predictor + corrector, shrinking ds on failure or too large a change.
     PetscCall(VecCopy(X, Xprev));
+    have_prev = true;
     PetscCall(VecCopy(t, tprev));
     PetscCall(VecCopy(z, zprev));
     PetscCall(VecNorm(z, NORM_2, &znorm));

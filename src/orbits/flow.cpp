@@ -181,7 +181,7 @@ PetscErrorCode PeriodicFlow::Run(TS ts, Vec z0, PetscReal T, Vec zT)
 {
   PetscFunctionBeginUser;
   PetscCall(VecCopy(z0, zT));
-  PetscCall(SolvePeriod(ts, zT, T, opt_.steps, "periodic-orbit"));
+  PetscCall(SolvePeriod(ts, zT, T, Steps(), "periodic-orbit"));
   PetscFunctionReturn(0);
 }
 
@@ -228,8 +228,9 @@ PetscErrorCode PeriodicFlow::AccumulateStiffness(PetscInt step, Vec z)
   Vec ul;
   PetscFunctionBeginUser;
   if (!harm_) PetscFunctionReturn(0);
-  const PetscReal w = (step == 0 || step == opt_.steps ? 0.5 : 1.0) / opt_.steps;
-  const PetscReal phase = 4 * PETSC_PI * step / opt_.steps, wc = 2 * w * std::cos(phase), ws = 2 * w * std::sin(phase);
+  const PetscInt n = Steps();
+  const PetscReal w = (step == 0 || step == n ? 0.5 : 1.0) / n;
+  const PetscReal phase = 4 * PETSC_PI * step / n, wc = 2 * w * std::cos(phase), ws = 2 * w * std::sin(phase);
   const PetscInt xs = lat_->OwnedStart(), xm = lat_->OwnedCount();
   StiffnessHarmonics &h = *harm_;
   std::vector<PetscScalar> &kd = kd_, &kb = kb_; // K_T(u): owned diagonal, bonds xs-1 .. xs+xm-1
@@ -267,16 +268,18 @@ PetscErrorCode PeriodicFlow::IntegrateWithMonodromy(Vec z0, PetscReal T, PetscRe
   if (symplectic_) {
     if (!sym_dense_) {
       sym_dense_ = std::make_unique<SymplecticVariationalFlow>();
-      PetscCall(sym_dense_->Setup(*fx_, 2 * lat_->N(), opt_.steps));
+      PetscCall(sym_dense_->Setup(*fx_, 2 * lat_->N(), Steps()));
     }
+    sym_dense_->SetSteps(Steps());
     PetscCall(sym_dense_->Integrate(z0, T, beta, NULL, 1.0, 0.0, zT, S, NULL));
     PetscFunctionReturn(0);
   }
   if (opt_.route == MonodromyRoute::Variational) {
     if (!var_dense_) {
       var_dense_ = std::make_unique<VariationalFlow>();
-      PetscCall(var_dense_->Setup(*fx_, 2 * lat_->N() + 1, opt_.steps));
+      PetscCall(var_dense_->Setup(*fx_, 2 * lat_->N() + 1, Steps()));
     }
+    var_dense_->SetSteps(Steps());
     PetscCall(var_dense_->Integrate(z0, T, beta, NULL, 1.0, 0.0, zT, S, NULL));
     PetscFunctionReturn(0);
   }
@@ -300,16 +303,18 @@ PetscErrorCode PeriodicFlow::IntegrateWithTangent(Vec z0, PetscReal T, PetscReal
   if (symplectic_) {
     if (!sym_tlm_) {
       sym_tlm_ = std::make_unique<SymplecticVariationalFlow>();
-      PetscCall(sym_tlm_->Setup(*fx_, 1, opt_.steps));
+      PetscCall(sym_tlm_->Setup(*fx_, 1, Steps()));
     }
+    sym_tlm_->SetSteps(Steps());
     PetscCall(sym_tlm_->Integrate(z0, T, beta, dz, dbeta, dT, zT, NULL, w));
     PetscFunctionReturn(0);
   }
   if (opt_.route == MonodromyRoute::Variational) {
     if (!var_tlm_) { // one column: dbeta and dT enter as sources
       var_tlm_ = std::make_unique<VariationalFlow>();
-      PetscCall(var_tlm_->Setup(*fx_, 1, opt_.steps));
+      PetscCall(var_tlm_->Setup(*fx_, 1, Steps()));
     }
+    var_tlm_->SetSteps(Steps());
     PetscCall(var_tlm_->Integrate(z0, T, beta, dz, dbeta, dT, zT, NULL, w));
     PetscFunctionReturn(0);
   }

@@ -68,6 +68,14 @@ public:
 
   const Lattice &Lat() const { return *lat_; }
   const EffectList &Effects() const { return *fx_; }
+  // The orbits integrated are m times as long as the family's the step size
+  // was chosen for (a period-doubled family, -cont_switch at a period
+  // doubling: m = 2): every integration takes m times -nnm_steps_per_period
+  // steps, so the doubled orbit has its parent's step size and the parent's
+  // orbit traversed m times is a fixed point of the same discrete map.
+  void SetPeriodMultiple(PetscInt m) { multiple_ = m; }
+  PetscInt PeriodMultiple() const { return multiple_; }
+  PetscInt Steps() const { return opt_.steps * multiple_; } // fixed steps per integrated period
   // The symplectic route (-nnm_ts_type symsplit): Floquet multipliers are
   // taken at beta = 0, where the discrete monodromy is exactly symplectic.
   bool Symplectic() const { return symplectic_; }
@@ -97,9 +105,23 @@ private:
   std::unique_ptr<VariationalFlow> var_dense_, var_tlm_; // created on first use
   std::unique_ptr<SymplecticVariationalFlow> sym_dense_, sym_tlm_;
   bool symplectic_ = false;
+  PetscInt multiple_ = 1; // SetPeriodMultiple
   OwnedVec wb_;
   StiffnessHarmonics *harm_ = nullptr; // set while averaging K_T
   std::vector<PetscScalar> kd_, kb_;   // K_T at one step of the averaging (scratch)
+};
+
+// SetPeriodMultiple for one scope (a period-doubled family), restored on leaving it.
+class PeriodMultipleScope {
+public:
+  PeriodMultipleScope(PeriodicFlow &flow, PetscInt m) : flow_(flow), saved_(flow.PeriodMultiple()) { flow.SetPeriodMultiple(m); }
+  ~PeriodMultipleScope() { flow_.SetPeriodMultiple(saved_); }
+  PeriodMultipleScope(const PeriodMultipleScope &) = delete;
+  PeriodMultipleScope &operator=(const PeriodMultipleScope &) = delete;
+
+private:
+  PeriodicFlow &flow_;
+  PetscInt saved_;
 };
 
 } // namespace nltopo

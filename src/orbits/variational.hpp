@@ -23,6 +23,7 @@ public:
   // ncol columns of W; the last one carries the beta and T sources.
   // fx: the (conservative) effects whose flow this is; kept by reference.
   PetscErrorCode Setup(const EffectList &fx, PetscInt ncol, PetscInt steps);
+  void SetSteps(PetscInt steps) { steps_ = steps; } // fixed steps per period from the next Integrate on
   // W0 columns: identity on the state columns (dense monodromy, ncol = 2N + 1,
   // last column the beta column: s_beta = 1, s_T = 0) when dz is NULL, else
   // the one column (ncol = 1) starts at dz and returns in w the derivative of

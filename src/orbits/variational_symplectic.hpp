@@ -36,6 +36,7 @@ public:
   // tangent column (ncol = 1). steps = n fixed steps per period.
   // fx: the (conservative) effects whose flow this is; kept by reference.
   PetscErrorCode Setup(const EffectList &fx, PetscInt ncol, PetscInt steps);
+  void SetSteps(PetscInt steps) { steps_ = steps; } // fixed steps per period from the next Integrate on
   // Dense (dz NULL): zT = z(T) and S = [dz(T)/dz0 | dz(T)/dbeta] (2N x (2N+1),
   // dense, state-row layout). Tangent (dz given, ncol = 1): w = dz(T)/dz0 dz +
   // dz(T)/dbeta s_beta + dz(T)/dT s_T, the exact derivative of the discrete map.

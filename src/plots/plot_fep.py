@@ -10,9 +10,14 @@
 (c) the insulated NNM's shape u0 at the lettered points (normalised, offset);
 (d) the band-edge NNMs' shapes at the lowest and the highest energy of their
     branches (only with acoustic_top, optical_bottom or optical_top);
-(e) families born at branch points (-cont_switch): how far each leaves its
-    parent, |v0| / |u0| at the section (0 on a family of orbits that start at
-    rest, as the linear modes' families do), against E, from the located point.
+(e) families born at branch points and period doublings (-cont_switch): how
+    far each leaves its parent, |v0| / |u0| at the section (0 on a family of
+    orbits that start at rest, as the linear modes' families do), against E,
+    from the located point.
+A family born at a period doubling has orbits of about twice its parent's
+period: its omega (2 pi / period) is drawn times its period_multiple
+attribute, on the parent's frequency scale, so that it meets its parent at
+the located point.
 usage: plot_fep.py fep.h5 [out.png]"""
 import sys
 import h5py
@@ -33,6 +38,8 @@ def parent_of(name):
     p = C[name].attrs.get("parent", b"")
     return p.decode() if isinstance(p, bytes) else str(p)
 switched = [n for n in names if parent_of(n)]
+def multiple(name):  # omega x this: the frequency scale of the linear modes' families
+    return int(C[name].attrs.get("period_multiple", 1))
 npan = 3 + bool(edges) + bool(switched)
 fig, ax = plt.subplots(1, npan, figsize=(5.4 * npan, 6))
 ax = list(ax)
@@ -51,8 +58,9 @@ if "optical_bottom" in C and "optical_top" in C:  # the nonlinear optical band b
 unstable_label, inter_label = "Floquet-unstable orbit", "modal interaction"
 for name in names:
     g = C[name]
-    E, w = g["energy"][:], g["omega"][:]
-    ax[0].plot(E, w, ".-", ms=3, color=colour[name], label=f"{name} ({g.attrs['points']} pts)")
+    m = multiple(name)
+    E, w = g["energy"][:], m * g["omega"][:]
+    ax[0].plot(E, w, ".-", ms=3, color=colour[name], label=f"{name} ({g.attrs['points']} pts)" + (f", {m} x omega" if m > 1 else ""))
     ax[1].plot(E, g["mcr"][:], ".-", ms=3, color=colour[name], label=name)
     if "stable" in g:
         bad = g["stable"][:] == 0
@@ -61,7 +69,7 @@ for name in names:
             unstable_label = "_" + unstable_label
     if "bifurcations" in g and g["bifurcations"]["kind"].shape[0]:
         ev = g["bifurcations"]
-        kind, d, eE, ew = ev["kind"][:], ev["direction"][:], ev["energy"][:], ev["omega"][:]
+        kind, d, eE, ew = ev["kind"][:], ev["direction"][:], ev["energy"][:], m * ev["omega"][:]
         for sel, marker, size, what in (((kind == 1), "D", 7, "energy fold"), ((kind == 2), "*", 13, "branch point (+1)"),
                                           ((kind == 3), "P", 9, "period doubling (-1)"),
                                           ((kind == 5) & (d > 0), "^", 7, "Hamiltonian-Hopf onset"), ((kind == 5) & (d < 0), "v", 7, "Hamiltonian-Hopf end")):
@@ -127,10 +135,13 @@ if switched:
         n2 = z.shape[1] // 2
         r = np.linalg.norm(z[:, n2:], axis=1) / np.linalg.norm(z[:, :n2], axis=1)
         pe.plot(g["energy"][1:], r[1:], ".-", ms=4, color=colour[name], label=f"{name} (from {parent_of(name)})")
-        pe.plot(g["energy"][0], max(r[1:].min() * 0.1, 1e-12), "*", ms=13, mfc="gold", mec="k", ls="none",
-                label="_branch point" if name != switched[0] else "located branch point (|v0| = 0)")
+        # point 0 is the parent's orbit at the located event: at rest (|v0| = 0, drawn below the
+        # family) on a linear mode's family, not on a switched one
+        r0 = r[0] if r[0] > 1e-9 else max(r[1:].min() * 0.1, 1e-12)
+        pe.plot(g["energy"][0], r0, "*", ms=13, mfc="gold", mec="k", ls="none",
+                label="_located event" if name != switched[0] else "located event (the parent's orbit; |v0| = 0 drawn below)")
     pe.set(xscale="log", yscale="log", xlabel="energy E", ylabel=r"$|v_0| / |u_0|$ at the section",
-           title="(e) families born at branch points")
+           title="(e) families born at branch points and period doublings")
     pe.legend(fontsize=7)
 fig.tight_layout()
 fig.savefig(out, dpi=120)

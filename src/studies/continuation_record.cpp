@@ -62,6 +62,7 @@ const Column kColumns[] = {
   {"instability", 0, [](BranchRecord &r) { return Cells{nullptr, &r.f.instability}; }, nullptr},
   {"linear_omega", 0, nullptr, [](const BranchRecord &r, AttrValue *a) { a->r = r.omega; }},
   {"parent", 0, nullptr, [](const BranchRecord &r, AttrValue *a) { a->s = r.parent; }},
+  {"period_multiple", 0, nullptr, [](const BranchRecord &r, AttrValue *a) { a->i = r.period_multiple; }},
   {"stop_reason", 0, nullptr, [](const BranchRecord &r, AttrValue *a) { a->s = r.b.stop_reason; }},
   {"reached_energy_max", 0, nullptr, [](const BranchRecord &r, AttrValue *a) { a->i = r.b.reached_max; }},
   {"points", 0, nullptr, [](const BranchRecord &r, AttrValue *a) { a->i = (PetscInt)r.b.energy.size(); }},

@@ -17,6 +17,7 @@
 #include "studies/continuation_record.hpp"
 #include "studies/registry.hpp"
 #include "studies/study.hpp"
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -206,11 +207,12 @@ PetscErrorCode ReadStudyChoices(MPI_Comm comm, StudyChoices *c)
 // The branch being continued, live: what a checkpoint or an interrupt writes
 // of it, and the counters its cost is measured from.
 struct LiveBranch {
-  std::string label, parent; // parent: the branch point a -cont_switch branch starts from
+  std::string label, parent; // parent: the branch point or period doubling a -cont_switch branch starts from
   PetscReal omega = 0;
   Branch b;
   PetscInt j0 = 0, r0 = 0, p0 = 0, k0 = 0;
   PetscLogDouble b0 = 0;
+  PetscInt period_multiple = 1; // 2: the family born at a period doubling (its orbits last two of the parent's periods)
 };
 
 // -cont_resume: a branch as the earlier output holds it.
@@ -276,8 +278,14 @@ protected:
       PetscCall(ReadResume(comm_, ch_.resume_file, label, fk_, n2_, fmo_.nev, &resumes_[k].b, &resumes_[k].f, &resumes_[k].found));
     }
     for (PetscInt k = 0; k < ch_.nb; k++) PetscCall(ContinueOne(k));
-    for (const Switch &sw : switches_)
-      PetscCheck(sw.used, comm_, PETSC_ERR_USER, "-cont_switch %s:%" PetscInt_FMT ": no branch %s among -cont_branch", sw.branch.c_str(), sw.event, sw.branch.c_str());
+    for (const Switch &sw : switches_) {
+      if (sw.used) continue;
+      PetscCheck(!AmongBranches(sw.branch), comm_, PETSC_ERR_USER, "-cont_switch %s:%" PetscInt_FMT ": no branch %s among -cont_branch", sw.branch.c_str(), sw.event,
+                 sw.branch.c_str());
+      // a family of another switch that was not followed (a numerical failure, warned about) or has another name
+      PetscCall(PetscPrintf(comm_, "  warning: -cont_switch %s:%" PetscInt_FMT ": no branch %s was followed (its switch failed, or its event started a family of another name, e.g. _pd<k> at a period doubling); not switched\n",
+                            sw.branch.c_str(), sw.event, sw.branch.c_str()));
+    }
     PetscFunctionReturn(0);
   }
   PetscErrorCode Write(PetscViewer v) override
@@ -294,6 +302,40 @@ private:
   {
     return branch == name || branch == "mode" + name || "mode" + branch == name;
   }
+  // The switch a switched family's label comes from: <b>_bp<k>_plus, <b>_bp<k>_minus or <b>_pd<k> -> (b, k).
+  static bool SwitchedFrom(const std::string &label, std::string *branch, PetscInt *event)
+  {
+    for (const char *tag : {"_bp", "_pd"}) {
+      const size_t pos = label.rfind(tag);
+      if (pos == std::string::npos || pos == 0) continue;
+      size_t end = pos + 3;
+      while (end < label.size() && end < pos + 9 && std::isdigit((unsigned char)label[end])) end++;
+      const std::string tail = label.substr(end);
+      if (end == pos + 3 || !(tag[1] == 'b' ? tail == "_plus" || tail == "_minus" : tail.empty())) continue;
+      *branch = label.substr(0, pos);
+      *event = (PetscInt)std::stol(label.substr(pos + 3, end - pos - 3));
+      return true;
+    }
+    return false;
+  }
+  // Whether branch is one of -cont_branch (by its name or its label, k or mode<k>).
+  bool AmongBranches(const std::string &branch) const
+  {
+    for (PetscInt k = 0; k < ch_.nb; k++)
+      if (SwitchNames(branch, ch_.names[k])) return true;
+    return false;
+  }
+  // Whether branch will be continued: one of -cont_branch, or the family of another -cont_switch event of such a branch.
+  bool Followed(const std::string &branch, int depth = 0) const
+  {
+    std::string parent;
+    PetscInt ev;
+    if (AmongBranches(branch)) return true;
+    if (depth > 16 || !SwitchedFrom(branch, &parent, &ev)) return false;
+    for (const Switch &o : switches_)
+      if (SwitchNames(o.branch, parent) && o.event == ev) return Followed(o.branch, depth + 1);
+    return false;
+  }
   PetscErrorCode SwitchOptions()
   {
     char *list[16] = {};
@@ -302,8 +344,8 @@ private:
     PetscFunctionBeginUser;
     PetscOptionsBegin(comm_, "cont_", "Branch switching", NULL);
     PetscCall(PetscOptionsStringArray("-switch",
-                                      "Follow the families born at these located branch points, <branch>:<event index> (the event list of -cont_bifurcations), "
-                                      "on both sides of the critical eigenvector",
+                                      "Follow the families born at these located branch points (on both sides of the critical eigenvector) or period "
+                                      "doublings (the doubled-period family), <branch>:<event index> (the event list of -cont_bifurcations)",
                                       NULL, list, &n, &set));
     PetscCall(PetscOptionsReal("-switch_step", "The first orbit of a switched family: this times |z*| along the critical eigenvector from the branch point", NULL,
                                switch_step_, &switch_step_, NULL));
@@ -321,11 +363,15 @@ private:
       for (const Switch &o : switches_)
         PetscCheck(!(SwitchNames(o.branch, item.substr(0, colon)) && o.event == ev), comm_, PETSC_ERR_USER, "-cont_switch %s: given twice", item.c_str());
       switches_.push_back({item.substr(0, colon), (PetscInt)ev});
-      bool known = false; // a branch of -cont_branch, by its name or its label (k or mode<k>)
-      for (PetscInt k = 0; k < ch_.nb && !declaring_; k++) known |= SwitchNames(switches_.back().branch, ch_.names[k]);
-      PetscCheck(known || declaring_, comm_, PETSC_ERR_USER, "-cont_switch %s: no branch %s among -cont_branch", item.c_str(), switches_.back().branch.c_str());
     }
-    PetscCheck(switches_.empty() || declaring_ || bo_.enabled, comm_, PETSC_ERR_USER, "-cont_switch needs -cont_bifurcations (on with -floquet): the branch points are its events");
+    // each on a branch of -cont_branch, or on the family another switch starts
+    // (insulated:20,insulated_bp20_plus:7: the period doubling of a switched family)
+    for (const Switch &sw : switches_)
+      PetscCheck(declaring_ || Followed(sw.branch), comm_, PETSC_ERR_USER,
+                 "-cont_switch %s:%" PetscInt_FMT ": no branch %s among -cont_branch or the families of the other -cont_switch events", sw.branch.c_str(), sw.event,
+                 sw.branch.c_str());
+    PetscCheck(switches_.empty() || declaring_ || bo_.enabled, comm_, PETSC_ERR_USER,
+               "-cont_switch needs -cont_bifurcations (on with -floquet): the branch points and period doublings are its events");
     PetscFunctionReturn(0);
   }
   PointHook *FloquetPointHook() { return fk_ == FloquetKind::None ? nullptr : fk_ == FloquetKind::MatrixFree ? static_cast<PointHook *>(mf_hook_.get()) : hook_.get(); }
@@ -337,7 +383,7 @@ private:
     BranchRecord r;
     PetscLogDouble now;
     PetscTime(&now);
-    r.label = cur.label, r.parent = cur.parent, r.omega = cur.omega, r.b = std::move(b), r.seconds = now - cur.b0;
+    r.label = cur.label, r.parent = cur.parent, r.omega = cur.omega, r.b = std::move(b), r.seconds = now - cur.b0, r.period_multiple = cur.period_multiple;
     r.jac = shoot.JacobianEvaluations() - cur.j0, r.res = shoot.ResidualEvaluations() - cur.r0, r.tan = shoot.TangentProducts() - cur.p0,
     r.kry = shoot.KrylovIterations() - cur.k0;
     if (fk_ != FloquetKind::None) r.f = fk_ == FloquetKind::MatrixFree ? mf_hook_->c : hook_->c;
@@ -409,7 +455,7 @@ private:
     PetscCheck(!done_.empty() || !b.energy.empty(), comm_, PETSC_ERR_SIG, "interrupted by %s before the first orbit of branch %s; no output written", sn,
                cur.label.c_str());
     const std::string reason = std::string("interrupted by ") + sn + (*doing ? std::string(" ") + doing : "") +
-                               (cur.parent.empty() ? ": -cont_resume continues it" : ": a switched branch, which -cont_resume does not recreate");
+                               (cur.parent.empty() ? ": -cont_resume continues it" : ": -cont_resume with the same -cont_switch continues it");
     PetscCall(WritePartial(cur, reason.c_str()));
     SETERRQ(comm_, PETSC_ERR_SIG, "interrupted by %s%s%s after %zu points of branch %s (last E = %g); partial output %s (complete = 0); -cont_resume %s continues it", sn,
             *doing ? " " : "", doing, b.energy.size(), cur.label.c_str(), b.energy.empty() ? 0.0 : (double)b.energy.back(), path_.c_str(), path_.c_str());
@@ -451,7 +497,8 @@ private:
   }
 
   // -cont_switch: the families born at the asked branch points of the branch
-  // just done (given as name, recorded as label), on both sides of the critical eigenvector.
+  // just done (given as name, recorded as label), on both sides of the critical
+  // eigenvector, and at its asked period doublings (one doubled-period family each).
   PetscErrorCode SwitchFrom(const char *name, const std::string &label)
   {
     struct Job {
@@ -470,9 +517,9 @@ private:
                  sw.event, label.c_str(), ev.size(), ev.empty() ? "" : (" (0 .. " + std::to_string(ev.size() - 1) + ")").c_str());
       Job job;
       job.e = ev[sw.event];
-      PetscCheck(job.e.kind == EventKind::BranchPoint, comm_, PETSC_ERR_USER,
-                 "-cont_switch %s:%" PetscInt_FMT ": that event is a %s; branch switching follows branch points (kind 2)", sw.branch.c_str(), sw.event,
-                 EventKindName(job.e.kind));
+      PetscCheck(SwitchedPeriodMultiple(job.e.kind) > 0, comm_, PETSC_ERR_USER,
+                 "-cont_switch %s:%" PetscInt_FMT ": that event is a %s; branch switching follows branch points (kind 2) and period doublings (kind 3)",
+                 sw.branch.c_str(), sw.event, EventKindName(job.e.kind));
       job.parent = label + ":" + std::to_string(sw.event);
       bool found = false;
       PetscCall(nnm_.shoot.CreateUnknowns(job.Xs.out()));
@@ -494,44 +541,86 @@ private:
       const BifurcationEvent &e = job.e;
       const std::string &parent = job.parent;
       const Vec Xs = job.Xs;
+      // the family born at a period doubling has twice the parent's period: its orbits
+      // are integrated with the parent's step size, and -cont_omega_max bounds the
+      // frequency it is plotted at, period_multiple x omega
+      const PetscInt m = SwitchedPeriodMultiple(e.kind);
+      const bool pd = m == 2;
+      const char *what = pd ? "period doubling" : "branch point";
+      const std::string stem = parent.substr(0, parent.rfind(':')) + (pd ? "_pd" : "_bp") + parent.substr(parent.rfind(':') + 1);
+      PeriodMultipleScope multiple(nnm_.flow, nnm_.flow.PeriodMultiple() * m); // (of a family already doubled: 4, ...)
+      ContinuationOptions co = nnm_.co;
+      co.omega_max /= nnm_.flow.PeriodMultiple();
+      // A branch point starts a family on each side of phi. At a period doubling the
+      // two sides are one family (its orbit passes z* + eps phi and, T* later,
+      // z* - eps phi): the + side, the - side only if no orbit is found there.
+      bool followed = false;
       for (PetscInt sign : {1, -1}) {
+        if (pd && followed) break;
         LiveBranch cur;
         Branch start;
         bool pinned;
         PetscReal away;
         PetscCall(PetscTime(&cur.b0));
-        cur.label = parent.substr(0, parent.rfind(':')) + "_bp" + parent.substr(parent.rfind(':') + 1) + (sign > 0 ? "_plus" : "_minus");
-        cur.omega = e.omega, cur.parent = parent;
+        cur.label = stem + (pd ? "" : sign > 0 ? "_plus" : "_minus");
+        cur.omega = e.omega, cur.parent = parent, cur.period_multiple = nnm_.flow.PeriodMultiple();
         Shooting &shoot = nnm_.shoot;
         cur.j0 = shoot.JacobianEvaluations(), cur.r0 = shoot.ResidualEvaluations(), cur.p0 = shoot.TangentProducts(), cur.k0 = shoot.KrylovIterations();
-        const PetscErrorCode is = StartSwitchedBranch(shoot, Xs, e, switch_step_, sign, &start, &pinned, &away);
-        if (IsInterrupt(is)) PetscCall(Interrupted(cur, "while switching"));
-        PetscCall(is);
-        if (!pinned) {
-          PetscCall(PetscPrintf(comm_, "  warning: -cont_switch %s: no orbit found %g |z*| off the branch point along its critical eigenvector (Newton failed); %s not followed, try another -cont_switch_step\n",
-                                parent.c_str(), (double)switch_step_, cur.label.c_str()));
-          continue;
+        // -cont_resume: the family's points in that file (a checkpoint or an interrupted
+        // run), continued from its last one as a branch of -cont_branch is
+        FloquetColumns rf;
+        bool found = false;
+        if (ch_.resume) PetscCall(ReadResume(comm_, ch_.resume_file, cur.label, fk_, n2_, fmo_.nev, &start, &rf, &found));
+        const size_t kept = found && start.energy.size() >= 2 ? start.energy.size() : 0;
+        if (kept) {
+          followed = true;
+          hook_->c = rf;
+          PetscCall(PetscPrintf(comm_, "  [%s] -cont_resume %s: %zu points of the family born at the %s %s, continued from the last\n", cur.label.c_str(), ch_.resume_file,
+                                kept, what, parent.c_str()));
+        } else {
+          if (ch_.resume) PetscCall(PetscPrintf(comm_, "  [%s] -cont_resume %s: fewer than 2 points of this family there, starting afresh\n", cur.label.c_str(), ch_.resume_file));
+          const PetscErrorCode is = StartSwitchedBranch(shoot, Xs, e, switch_step_, sign, &start, &pinned, &away);
+          if (IsInterrupt(is)) PetscCall(Interrupted(cur, "while switching"));
+          PetscCall(is);
+          if (!pinned) {
+            if (pd && sign > 0)
+              PetscCall(PetscPrintf(comm_, "  warning: -cont_switch %s: no orbit found %g |z*| off the period doubling along +phi (Newton failed); trying -phi (the same family)\n",
+                                    parent.c_str(), (double)switch_step_));
+            else
+              PetscCall(PetscPrintf(comm_, "  warning: -cont_switch %s: no orbit found %g |z*| off the %s along %sits critical eigenvector (Newton failed); %s not followed, try another -cont_switch_step\n",
+                                    parent.c_str(), (double)switch_step_, what, pd ? "either side of " : "", cur.label.c_str()));
+            continue;
+          }
+          followed = true;
+          PetscCall(PetscPrintf(comm_, "  [%s] from the %s %s at omega %.9f (E %.6g): first orbit at %g |z*| along %sthe critical eigenvector (%.0f %% of the step along it), E %.6g, omega %.9f%s\n",
+                                cur.label.c_str(), what, parent.c_str(), (double)e.omega, (double)e.energy, (double)switch_step_, sign > 0 ? "" : "minus ", (double)(100 * away),
+                                (double)start.energy[1], (double)start.omega[1], pd ? " (period ~2 T*: the FEP plots it at 2 omega, attribute period_multiple 2)" : ""));
+          // the Floquet data of the two start points, as of every other
+          hook_->Clear();
+          OwnedVec z;
+          PetscCall(nnm_.lat.CreateStateVector(z.out()));
+          std::vector<PetscReal> rows = start.z0;
+          PetscCall(BroadcastFromRoot(comm_, MPIU_REAL, &rows));
+          for (size_t q = 0; q < 2; q++) {
+            PetscCall(StateFromRow(nnm_.lat, rows.data() + q * n2_, z));
+            const PetscErrorCode ih = hook_->Point(z, start.period[q], start.beta[q], z);
+            if (IsInterrupt(ih)) PetscCall(Interrupted(cur, "while switching"));
+            PetscCall(ih);
+          }
         }
-        PetscCall(PetscPrintf(comm_, "  [%s] from the branch point %s at omega %.9f (E %.6g): first orbit at %g |z*| along the critical eigenvector (%.0f %% of the step along it), E %.6g, omega %.9f\n",
-                              cur.label.c_str(), parent.c_str(), (double)e.omega, (double)e.energy, (double)switch_step_, (double)(100 * away), (double)start.energy[1], (double)start.omega[1]));
-        // the Floquet data of the two start points, as of every other
-        hook_->Clear();
-        OwnedVec z;
-        PetscCall(nnm_.lat.CreateStateVector(z.out()));
-        std::vector<PetscReal> rows = start.z0;
-        PetscCall(BroadcastFromRoot(comm_, MPIU_REAL, &rows));
-        for (size_t q = 0; q < 2; q++) {
-          PetscCall(StateFromRow(nnm_.lat, rows.data() + q * n2_, z));
-          const PetscErrorCode ih = hook_->Point(z, start.period[q], start.beta[q], z);
-          if (IsInterrupt(ih)) PetscCall(Interrupted(cur, "while switching"));
-          PetscCall(ih);
-        }
-        const PetscErrorCode ic = ContinueBranch(shoot, nullptr, 0, nnm_.co, cur.label.c_str(), &cur.b, hook_.get(), &start);
-        if (IsInterrupt(ic)) PetscCall(Interrupted(cur, "")); // (what a resume does with it: Interrupted)
+        CheckpointHook ck(comm_, hook_.get(), ch_.checkpoint_seconds, [&]() -> PetscErrorCode {
+          PetscFunctionBeginUser;
+          PetscCall(WritePartial(cur, "checkpoint: the run was still going"));
+          PetscCall(PetscPrintf(comm_, "  [%s] checkpoint: %zu points written to %s\n", cur.label.c_str(), cur.b.energy.size(), path_.c_str()));
+          PetscFunctionReturn(0);
+        });
+        const PetscErrorCode ic = ContinueBranch(shoot, nullptr, 0, co, cur.label.c_str(), &cur.b, &ck, &start);
+        if (IsInterrupt(ic)) PetscCall(Interrupted(cur, "")); // its points so far: -cont_resume (with the same -cont_switch) continues it
         PetscCall(ic);
         PetscLogDouble b1;
         PetscCall(PetscTime(&b1));
-        PetscCall(Finish(cur, b1, cur.b.energy.size()));
+        PetscCall(Finish(cur, b1, cur.b.energy.size() - kept));
+        PetscCall(SwitchFrom(cur.label.c_str(), cur.label)); // the families born on this one (-cont_switch <label>:<event>)
       }
     }
     PetscFunctionReturn(0);

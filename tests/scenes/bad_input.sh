@@ -127,6 +127,11 @@ expect_error "-cont_switch optical_top:0: no branch optical_top among -cont_bran
 expect_error "-cont_switch insulated:5: branch insulated has 0 located events" o.h5 $C -floquet -cont_switch insulated:5
 expect_error "-cont_switch_step must lie in (0, 1), got 0." o.h5 $C -floquet -cont_switch_step 0
 expect_error "-cont_switch insulated:3: given twice" o.h5 $C -floquet -cont_switch insulated:3,insulated:3
+# a switched family's events: only that of another -cont_switch (a period doubling's family has no _plus/_minus)
+expect_error "-cont_switch insulated_bp3_plus:2: no branch insulated_bp3_plus among -cont_branch or the families of the other -cont_switch events" o.h5 $C -floquet -cont_switch insulated_bp3_plus:2
+expect_error "-cont_switch insulated_pd3_minus:1: no branch insulated_pd3_minus among" o.h5 $C -floquet -cont_switch insulated:3,insulated_pd3_minus:1
+# switching follows branch points and period doublings only (event 0 of the N = 22 insulated branch: a Hamiltonian-Hopf onset at E 0.62)
+expect_error "-cont_switch insulated:0: that event is a Hamiltonian-Hopf (opposite signatures); branch switching follows branch points (kind 2) and period doublings (kind 3)" o.h5 -study continuation -lattice_cells 5 -cont_energy_max 1 -cont_verbose 0 -floquet -cont_switch insulated:0
 expect_error "-sim_store_u_stride" o.h5 $S -sim_store_u_stride 0
 expect_error "-nnm_mf_pc_parametric_weight 0" o.h5 -study continuation -lattice_cells 5 -nnm_jacobian mf -nnm_mf_pc parametric -nnm_mf_pc_parametric_weight 0
 expect_error "-nnm_orbit_rtol -1" o.h5 -study continuation -lattice_cells 5 -nnm_orbit_rtol -1

@@ -106,3 +106,65 @@ assert np.abs(pl["z0"][:n, N:] + mi["z0"][:n, N:]).max() < 1e-6 * np.abs(pl["z0"
 assert np.abs(pl["omega"][:n] - mi["omega"][:n]).max() < 1e-7   # two continuations: rounding apart
 print("branch switching OK:", pl["energy"].shape[0], "points on each side from omega", pl["omega"][0])
 PYEOF
+# -cont_switch at a period doubling. The lattice's own NNM families have none (x(t + T/2) = -x(t):
+# M is the square of the half-period map, README "Branch switching"); the switched family above
+# breaks that symmetry and has period-doubling windows. Switching at the first onset on its _plus
+# side (in the same run: insulated:<bp>,insulated_bp<bp>_plus:<pd>) starts the doubled-period family
+# insulated_bp<bp>_plus_pd<pd>: at the located point, at half its frequency, with period_multiple 2.
+pd=$($PY - "$bp" <<'PYEOF'
+import h5py, sys
+e = h5py.File("sw.h5", "r")[f"continuation/insulated_bp{sys.argv[1]}_plus/bifurcations"]
+k = [i for i in range(e["kind"].shape[0]) if e["kind"][i] == 3 and e["direction"][i] == 1]
+assert k, "no period doubling on the switched family"
+print(k[0])
+PYEOF
+)
+run1 -options_file "$SRC/options/fep.opts" $small -cont_switch insulated:$bp,insulated_bp${bp}_plus:$pd -output pd.h5 > pd.txt
+$PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_fep.py" pd.h5 pd.png
+$PY - "$bp" "$pd" <<'PYEOF'
+import h5py, sys, numpy as np
+bp, pd = sys.argv[1], int(sys.argv[2])
+C = h5py.File("pd.h5", "r")["continuation"]
+P = C[f"insulated_bp{bp}_plus"]
+e = P["bifurcations"]
+assert e["kind"][pd] == 3 and e["multiplier_re"][pd] < -1
+D = C[f"insulated_bp{bp}_plus_pd{pd}"]
+assert f"insulated_bp{bp}_plus_pd{pd}_plus" not in C and f"insulated_bp{bp}_plus_pd{pd}_minus" not in C  # one family
+assert D.attrs["parent"] in (f"insulated_bp{bp}_plus:{pd}", f"insulated_bp{bp}_plus:{pd}".encode())
+assert D.attrs["period_multiple"] == 2 and P.attrs["period_multiple"] == 1 and C["insulated"].attrs["period_multiple"] == 1
+n = D["energy"].shape[0]
+assert n > 5 and D.attrs["stop_reason"] in (b"the family closed: it returned to its first orbit", b"reached -cont_energy_max"), D.attrs["stop_reason"]
+# point 0 is the parent's orbit at the located point, traversed twice: half its frequency
+assert abs(2 * D["omega"][0] - e["omega"][pd]) < 1e-7 and abs(D["energy"][0] / e["energy"][pd] - 1) < 1e-6
+T0 = D["period"][0]
+assert np.all(np.abs(D["period"][:] / T0 - 1) < 0.05)  # orbits of about twice the parent's period
+# ... whose multipliers are the parent's squared: the pair at -1 joins the trivial pair at +1
+mu = D["multipliers_re"][0] + 1j * D["multipliers_im"][0]
+assert np.sum(np.abs(mu - 1) < 1e-2) >= 4, np.sort(np.abs(mu - 1))[:6]
+# the first step leaves along the critical eigenvector
+dz = D["z0"][1] - D["z0"][0]
+v = e["vector"][pd]
+assert abs(dz @ v) / np.linalg.norm(dz) > 0.9
+print("period doubling switching OK:", n, "points from omega", e["omega"][pd], "(", D.attrs["stop_reason"].decode(), ")")
+PYEOF
+# -cont_resume recreates the switched families: the same run stopped at E = 150 (every branch,
+# the doubled family closed below it) and resumed to 300 equals the run to 300 bit for bit
+sw2="-cont_switch insulated:$bp,insulated_bp${bp}_plus:$pd"
+small150="-cont_branch insulated -lattice_cells 5 -cont_energy_max 150 -cont_verbose 0"
+run1 -options_file "$SRC/options/fep.opts" $small150 $sw2 -output r150.h5 > r150.txt
+run1 -options_file "$SRC/options/fep.opts" $small $sw2 -cont_resume r150.h5 -output r300.h5 > r300.txt
+grep -q "\[insulated_bp${bp}_plus_pd$pd\] -cont_resume r150.h5: [0-9]* points of the family born at the period doubling" r300.txt
+$PY - <<'PYEOF'
+import h5py, numpy as np
+A, B, H = (h5py.File(f, "r")["continuation"] for f in ("pd.h5", "r300.h5", "r150.h5"))
+assert sorted(A.keys()) == sorted(B.keys()) and len(A.keys()) == 4, (list(A.keys()), list(B.keys()))
+for n in A.keys():
+    a, b = A[n], B[n]
+    if n != "insulated" and "_pd" not in n:
+        assert H[n]["energy"].shape[0] < a["energy"].shape[0], n   # resumed, not recomputed whole
+    for k in ("energy", "omega", "z0", "multipliers_re", "multipliers_im", "bifurcations/omega", "bifurcations/kind"):
+        assert np.array_equal(a[k][:], b[k][:]), (n, k)
+    for k in ("parent", "period_multiple", "stop_reason"):
+        assert a.attrs[k] == b.attrs[k], (n, k)
+print("resume of the switched families OK:", {n: B[n]["energy"].shape[0] for n in B.keys()})
+PYEOF
