@@ -138,7 +138,7 @@ void BifurcationLocator::Place(PetscInt seg, const BifurcationSample &a, const B
   e->omega_bracket = std::abs(c.omega - a.omega);
 }
 
-PetscErrorCode BifurcationLocator::Folds(const Branch &b, std::vector<BifurcationEvent> *ev)
+PetscErrorCode BifurcationLocator::Folds(const Branch &b, PetscInt first_segment, std::vector<BifurcationEvent> *ev)
 {
   const PetscInt np = (PetscInt)b.energy.size();
   PetscInt last_seg = -1;
@@ -149,7 +149,7 @@ PetscErrorCode BifurcationLocator::Folds(const Branch &b, std::vector<Bifurcatio
     BifurcationSample a, c;
     PetscInt seg = -1;
     for (PetscInt j : {i - 1, i}) {
-      if (j <= last_seg) continue;
+      if (j <= last_seg || j < first_segment) continue;
       PetscCall(SetSegment(j));
       PetscCall(Probe(0, false, true, &a));
       PetscCall(Probe(1, false, true, &c));
@@ -440,7 +440,7 @@ PetscErrorCode BifurcationLocator::Report(const char *name, PetscInt k, const Bi
 }
 
 PetscErrorCode BifurcationLocator::Locate(const Branch &b, const std::vector<PetscReal> &re, const std::vector<PetscReal> &im, const std::vector<PetscReal> &edge,
-                                          const char *name, std::vector<BifurcationEvent> *events, const std::vector<PetscInt> &krein)
+                                          const char *name, std::vector<BifurcationEvent> *events, const std::vector<PetscInt> &krein, PetscInt first_segment)
 {
   const Lattice &lat = shoot_->Flow().Lat();
   MPI_Comm comm = lat.Comm();
@@ -465,9 +465,9 @@ PetscErrorCode BifurcationLocator::Locate(const Branch &b, const std::vector<Pet
     for (PetscInt k = 0; k < n2; k++) d2 += std::pow(rows_[i * n2 + k] - rows_[(i - 1) * n2 + k], 2);
     s_[i] = s_[i - 1] + std::sqrt(d2);
   }
-  PetscCall(Folds(b, events));
+  PetscCall(Folds(b, first_segment, events));
   std::vector<BifurcationEvent> changes;
-  for (PetscInt i = 0; i + 1 < np; i++) {
+  for (PetscInt i = std::max(first_segment, (PetscInt)0); i + 1 < np; i++) {
     const PetscReal *r0 = re.data() + i * n2, *i0 = im.data() + i * n2;
     const bool finite = std::all_of(r0, r0 + 2 * n2, [](PetscReal x) { return std::isfinite(x); }); // both points (a resumed branch may lack them)
     if (!finite) continue;

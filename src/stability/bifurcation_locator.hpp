@@ -20,9 +20,11 @@ public:
   // (re, im: 2N per point, on every rank), in the order of the branch.
   // Prints one line per event (name: the branch label).
   // edge: each eigenvector's edge share, krein: each multiplier's Krein
-  // signature (2N per point; empty: unknown).
+  // signature (2N per point; empty: unknown). Segments before first_segment
+  // are not searched (a switched family's first one starts at the singular
+  // orbit of its parent's event, whose own change of stability it holds).
   PetscErrorCode Locate(const Branch &b, const std::vector<PetscReal> &re, const std::vector<PetscReal> &im, const std::vector<PetscReal> &edge,
-                        const char *name, std::vector<BifurcationEvent> *events, const std::vector<PetscInt> &krein = {});
+                        const char *name, std::vector<BifurcationEvent> *events, const std::vector<PetscInt> &krein = {}, PetscInt first_segment = 0);
   PetscInt Probes() const { return probes_; } // orbits solved so far
   // The orbit X = (z0, T, beta) at sigma of a segment of the branch last
   // given to Locate (e.g. an event's point and sigma).
@@ -38,7 +40,7 @@ private:
   PetscErrorCode Predict(PetscReal sigma, Vec X);
   PetscErrorCode Remember(PetscReal sigma, Vec X);
   void Place(PetscInt seg, const BifurcationSample &a, const BifurcationSample &c, BifurcationEvent *e) const;
-  PetscErrorCode Folds(const Branch &b, std::vector<BifurcationEvent> *ev);
+  PetscErrorCode Folds(const Branch &b, PetscInt first_segment, std::vector<BifurcationEvent> *ev);
   PetscErrorCode StabilityChanges(PetscInt i, std::vector<BifurcationEvent> *ev);
   // Krein collisions of equal signature (kind 4) and internal resonances
   // (kind 6) in segment i, whose ends have multipliers fi and fj.

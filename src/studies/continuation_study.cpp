@@ -469,7 +469,7 @@ private:
     PetscFunctionBeginUser;
     BranchRecord rec;
     if (bo_.enabled) { // (the location's solves count in the branch's cost)
-      const PetscErrorCode il = LocateEvents(cur.b, label, &rec);
+      const PetscErrorCode il = LocateEvents(cur.b, label, cur.parent.empty() ? 0 : 1, &rec);
       if (IsInterrupt(il)) PetscCall(Interrupted(cur, "while locating its bifurcations")); // the branch is whole: a resume locates them again
       PetscCall(il);
     }
@@ -626,14 +626,16 @@ private:
     PetscFunctionReturn(0);
   }
 
-  // -cont_bifurcations: the events of branch b into rec.
-  PetscErrorCode LocateEvents(const Branch &b, const std::string &label, BranchRecord *rec)
+  // -cont_bifurcations: the events of branch b into rec, from segment
+  // first_segment on (1 on a switched family: its first segment starts at the
+  // parent's event, whose change of stability it would report again).
+  PetscErrorCode LocateEvents(const Branch &b, const std::string &label, PetscInt first_segment, BranchRecord *rec)
   {
     PetscLogDouble t0, t1;
     PetscFunctionBeginUser;
     PetscCall(PetscTime(&t0));
     const PetscInt p0 = locator_.Probes();
-    PetscCall(locator_.Locate(b, hook_->c.re, hook_->c.im, hook_->c.edge, label.c_str(), &rec->events, hook_->c.krein));
+    PetscCall(locator_.Locate(b, hook_->c.re, hook_->c.im, hook_->c.edge, label.c_str(), &rec->events, hook_->c.krein, first_segment));
     PetscCall(PetscTime(&t1));
     rec->located = true, rec->bif_tol = bo_.tol, rec->bif_seconds = t1 - t0, rec->bif_probes = locator_.Probes() - p0;
     PetscCall(PetscPrintf(comm_, "  [%s] bifurcations: %zu event(s) located to %g in omega, %" PetscInt_FMT " orbits solved, %.2f s\n", label.c_str(), rec->events.size(),
