@@ -73,9 +73,13 @@ public:
   // doubling: m = 2): every integration takes m times -nnm_steps_per_period
   // steps, so the doubled orbit has its parent's step size and the parent's
   // orbit traversed m times is a fixed point of the same discrete map.
-  void SetPeriodMultiple(PetscInt m) { multiple_ = m; }
+  // A divisor d > 1 integrates 1/d of the family's period with the same step
+  // size (the half period of an orbit with a half-period symmetry); the steps
+  // must divide by it.
+  void SetPeriodMultiple(PetscInt m, PetscInt d = 1) { multiple_ = m, divisor_ = d; }
   PetscInt PeriodMultiple() const { return multiple_; }
-  PetscInt Steps() const { return opt_.steps * multiple_; } // fixed steps per integrated period
+  PetscInt PeriodDivisor() const { return divisor_; }
+  PetscInt Steps() const { return opt_.steps * multiple_ / divisor_; } // fixed steps per integrated period
   // The symplectic route (-nnm_ts_type symsplit): Floquet multipliers are
   // taken at beta = 0, where the discrete monodromy is exactly symplectic.
   bool Symplectic() const { return symplectic_; }
@@ -105,23 +109,27 @@ private:
   std::unique_ptr<VariationalFlow> var_dense_, var_tlm_; // created on first use
   std::unique_ptr<SymplecticVariationalFlow> sym_dense_, sym_tlm_;
   bool symplectic_ = false;
-  PetscInt multiple_ = 1; // SetPeriodMultiple
+  PetscInt multiple_ = 1, divisor_ = 1; // SetPeriodMultiple
   OwnedVec wb_;
   StiffnessHarmonics *harm_ = nullptr; // set while averaging K_T
   std::vector<PetscScalar> kd_, kb_;   // K_T at one step of the averaging (scratch)
 };
 
-// SetPeriodMultiple for one scope (a period-doubled family), restored on leaving it.
+// SetPeriodMultiple for one scope (a period-doubled family; a half period),
+// restored on leaving it.
 class PeriodMultipleScope {
 public:
-  PeriodMultipleScope(PeriodicFlow &flow, PetscInt m) : flow_(flow), saved_(flow.PeriodMultiple()) { flow.SetPeriodMultiple(m); }
-  ~PeriodMultipleScope() { flow_.SetPeriodMultiple(saved_); }
+  PeriodMultipleScope(PeriodicFlow &flow, PetscInt m, PetscInt d = 1) : flow_(flow), saved_(flow.PeriodMultiple()), saved_d_(flow.PeriodDivisor())
+  {
+    flow.SetPeriodMultiple(m, d);
+  }
+  ~PeriodMultipleScope() { flow_.SetPeriodMultiple(saved_, saved_d_); }
   PeriodMultipleScope(const PeriodMultipleScope &) = delete;
   PeriodMultipleScope &operator=(const PeriodMultipleScope &) = delete;
 
 private:
   PeriodicFlow &flow_;
-  PetscInt saved_;
+  PetscInt saved_, saved_d_;
 };
 
 } // namespace nltopo

@@ -3,6 +3,7 @@
 #include "core/log.hpp"
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 namespace nltopo {
 
@@ -288,7 +289,7 @@ PetscErrorCode BifurcationLocator::Passes(PetscInt i, const FloquetResult &fi, c
       if (ia < 0 || std::abs(th - tha) < std::abs(std::atan2(a0.fr.im[ia], a0.fr.re[ia]) - tha)) ia = k;
       if (ib < 0 || std::abs(th - thb) < std::abs(std::atan2(a0.fr.im[ib], a0.fr.re[ib]) - thb)) ib = k;
     }
-    if (ia < 0 || ia == ib || !(a0.fr.kappa[ia] * a0.fr.kappa[ib] > 0)) continue; // equal signatures only
+    if (ia < 0 || ia == ib || a0.fr.krein[ia] == 0 || a0.fr.krein[ia] != a0.fr.krein[ib]) continue; // equal (definite) signatures only
     BifurcationSample a, c;
     PetscInt used;
     TrackedOutcome out;
@@ -303,7 +304,7 @@ PetscErrorCode BifurcationLocator::Passes(PetscInt i, const FloquetResult &fi, c
     Place(i, a, c, &e);
     const PetscReal th = 0.5 * (std::atan2(c.fr.im[ja], c.fr.re[ja]) + std::atan2(c.fr.im[jb], c.fr.re[jb]));
     e.mu_re = std::cos(th), e.mu_im = std::sin(th);
-    e.krein[0] = e.krein[1] = a0.fr.kappa[ia] > 0 ? 1 : -1;
+    e.krein[0] = e.krein[1] = a0.fr.krein[ia];
     const PetscInt la = Localisation(fo_, c.fr.edge[ja]), lb = Localisation(fo_, c.fr.edge[jb]);
     e.instability = la == lb ? la : 2;
     e.vector = RealPhase(c.fr.vectors[ja]);
@@ -318,12 +319,20 @@ PetscErrorCode BifurcationLocator::HalfPeriod(bool *symmetric, FloquetResult *ha
   PeriodicFlow &flow = shoot_->Flow();
   PetscReal n0, d;
   PetscFunctionBeginUser;
-  PetscCall(flow.IntegrateWithMonodromy(z_, 0.5 * last_T_, flow.FloquetBeta(last_beta_), zT_, S_));
+  *symmetric = false;
+  if (flow.Steps() % 2) PetscFunctionReturn(0); // not the orbit's own step size: no verdict, every crossing kept
+  {
+    // half the steps over half the period: the orbit's own discrete map, on
+    // which z(T/2) = -z(0) holds to the Newton tolerance when the family has
+    // the symmetry (the step commutes with z -> -z: the force is odd)
+    PeriodMultipleScope half_period(flow, flow.PeriodMultiple(), 2 * flow.PeriodDivisor());
+    PetscCall(flow.IntegrateWithMonodromy(z_, 0.5 * last_T_, flow.FloquetBeta(last_beta_), zT_, S_));
+  }
   PetscCall(VecNorm(z_, NORM_2, &n0));
   PetscCall(VecAXPY(zT_, 1.0, z_));
   PetscCall(VecNorm(zT_, NORM_2, &d));
   *symmetric = d <= 1e-6 * n0;
-  PetscCall(FloquetAnalysis(flow.Lat(), S_, fo_, half));
+  PetscCall(FloquetAnalysis(flow.Lat(), S_, fo_, half, nullptr, nullptr, 0));
   PetscFunctionReturn(0);
 }
 
@@ -354,11 +363,24 @@ PetscErrorCode BifurcationLocator::Resonances(PetscInt i, const FloquetResult &f
   PetscCall(Probe(1, true, false, &c0));
   const SampleProbe probe = [&](PetscReal sg, BifurcationSample *x) { return Probe(sg, true, false, x); };
   auto angle = [](const FloquetResult &r, PetscInt k) { return std::atan2(r.im[k], r.re[k]); };
-  for (const auto &[ia, tha] : UpperCircle(a0.fr, fo_.tol, min_edge_)) {
-    if (!a0.ok || !c0.ok) break;
-    PetscInt jc;
-    if (TrackMember(a0.fr, ia, c0.fr, &jc) < 0.5) continue;
-    const PetscReal thc = angle(c0.fr, jc);
+  // each member at the start and its continuation at the end, one to one (a
+  // clash goes to the larger overlap; the other member is not followed)
+  std::vector<std::pair<PetscInt, PetscReal>> members; // (start index, end angle)
+  if (a0.ok && c0.ok) {
+    std::vector<std::tuple<PetscInt, PetscInt, PetscReal>> match; // (ia, jc, overlap)
+    for (const auto &[ia, tha] : UpperCircle(a0.fr, fo_.tol, min_edge_)) {
+      PetscInt jc;
+      const PetscReal o = TrackMember(a0.fr, ia, c0.fr, &jc);
+      if (o >= 0.5) match.push_back({ia, jc, o});
+    }
+    for (const auto &[ia, jc, o] : match) {
+      bool best = true;
+      for (const auto &[ib, jb, ob] : match) best = best && !(jb == jc && ib != ia && (ob > o || (ob == o && ib < ia)));
+      if (best) members.push_back({ia, angle(c0.fr, jc)});
+    }
+  }
+  for (const auto &[ia, thc] : members) {
+    const PetscReal tha = angle(a0.fr, ia);
     for (const auto &[p, q] : roots) {
       const PetscReal th = 2 * PETSC_PI * p / q;
       if (!((tha - th) * (thc - th) < 0) || (symmetric && q % 2 == 0)) continue;
@@ -367,32 +389,32 @@ PetscErrorCode BifurcationLocator::Resonances(PetscInt i, const FloquetResult &f
       TrackedOutcome out;
       PetscCall(LocateRootCrossing(probe, a0, c0, ia, th, bo_.tol, bo_.max_probes, &a, &c, &used, &out));
       if (out != TrackedOutcome::Crossed) continue;
-      // the crossing member's half-period multiplier nu (nu^2 = mu) at the crossing
       const PetscInt k = c.aux_index;
-      BifurcationEvent e;
-      BifurcationSample u;
-      const PetscReal target[2] = {c.fr.re[k], c.fr.im[k]};
-      PetscCall(Probe(c.sigma, true, false, &u, target, &e.vector));
       if (symmetric) {
+        // the crossing member's half-period multiplier nu at the crossing: the
+        // half-period map's member whose eigenvector is the crossing one's (or
+        // its conjugate: nu in the lower half plane)
+        BifurcationSample u;
+        PetscCall(Probe(c.sigma, false, false, &u));
+        if (!u.ok) continue;
         bool sym;
+        PetscReal nu_re = 0, nu_im = 0;
         PetscCall(HalfPeriod(&sym, &half));
-        size_t m = 0;
-        const std::complex<PetscReal> mu(c.fr.re[k], c.fr.im[k]);
-        auto miss = [&](size_t j) { return std::abs(std::pow(std::complex<PetscReal>(half.re[j], half.im[j]), 2) - mu); };
-        for (size_t j = 1; j < half.re.size(); j++)
-          if (miss(j) < miss(m)) m = j;
-        if (!ResonanceDriven(q, half.re[m], half.im[m])) {
+        if (HalfPeriodMultiplier(half, c.fr.vectors[k], &nu_re, &nu_im) < 0.5) continue;
+        if (!ResonanceDriven(q, nu_re, nu_im)) {
           resonances_undriven_++;
           continue;
         }
       }
+      BifurcationEvent e;
       e.kind = EventKind::Resonance;
       e.direction = thc > tha ? 1 : -1; // +1: the member's angle grows along the branch
       Place(i, a, c, &e);
       e.mu_re = std::cos(th), e.mu_im = std::sin(th);
-      e.krein[0] = c.fr.kappa[k] > 0 ? 1 : (c.fr.kappa[k] < 0 ? -1 : 0);
+      e.krein[0] = c.fr.krein[k];
       e.instability = Localisation(fo_, c.fr.edge[k]);
       e.resonance[0] = p, e.resonance[1] = q;
+      e.vector = RealPhase(c.fr.vectors[k]);
       ev->push_back(std::move(e));
     }
   }
@@ -428,9 +450,12 @@ PetscErrorCode BifurcationLocator::Report(const char *name, PetscInt k, const Bi
   if (e.kind == EventKind::KreinCollision || e.kind == EventKind::Resonance) {
     char what[64] = "";
     if (e.kind == EventKind::Resonance) PetscCall(PetscSNPrintf(what, sizeof(what), " through exp(2 pi i %" PetscInt_FMT "/%" PetscInt_FMT ")", e.resonance[0], e.resonance[1]));
-    PetscCall(PetscPrintf(comm, "  [%s] event %" PetscInt_FMT ": %s %s%s at omega %.9f (bracket %.1e), E %.6g, mu %.6f%+.6fi, Krein (%+d, %+d)\n", name, k,
+    char krein[32];
+    if (e.kind == EventKind::Resonance) PetscCall(PetscSNPrintf(krein, sizeof(krein), "Krein %+d", (int)e.krein[0]));
+    else PetscCall(PetscSNPrintf(krein, sizeof(krein), "Krein (%+d, %+d)", (int)e.krein[0], (int)e.krein[1]));
+    PetscCall(PetscPrintf(comm, "  [%s] event %" PetscInt_FMT ": %s %s%s at omega %.9f (bracket %.1e), E %.6g, mu %.6f%+.6fi, %s\n", name, k,
                           EventKindName(e.kind), loc[e.instability], what, (double)e.omega, (double)e.omega_bracket, (double)e.energy, (double)e.mu_re,
-                          (double)e.mu_im, (int)e.krein[0], (int)e.krein[1]));
+                          (double)e.mu_im, krein));
     PetscFunctionReturn(0);
   }
   PetscCall(PetscPrintf(comm, "  [%s] event %" PetscInt_FMT ": %s %s, %s at omega %.9f (bracket %.1e), E %.6g, mu %.6f%+.6fi, Krein (%+d, %+d)\n", name, k,
@@ -475,7 +500,7 @@ PetscErrorCode BifurcationLocator::Locate(const Branch &b, const std::vector<Pet
     fi.re.assign(r0, r0 + n2), fi.im.assign(i0, i0 + n2), fj.re.assign(r0 + n2, r0 + 2 * n2), fj.im.assign(i0 + n2, i0 + 2 * n2);
     if (edge.size() == re.size()) fi.edge.assign(edge.begin() + i * n2, edge.begin() + (i + 1) * n2), fj.edge.assign(edge.begin() + (i + 1) * n2, edge.begin() + (i + 2) * n2);
     if (!SameOutside(OutsideMultipliers(fi, fo_.tol, min_edge_), OutsideMultipliers(fj, fo_.tol, min_edge_), bo_.angle_tol)) PetscCall(StabilityChanges(i, &changes));
-    if (krein.size() == re.size()) fi.kappa.assign(krein.begin() + i * n2, krein.begin() + (i + 1) * n2); // the signs are all PassCandidates needs
+    if (krein.size() == re.size()) fi.krein.assign(krein.begin() + i * n2, krein.begin() + (i + 1) * n2);
     if (bo_.passes) PetscCall(Passes(i, fi, fj, &changes));
     if (bo_.resonance_order >= 3) PetscCall(Resonances(i, fi, fj, &changes));
   }

@@ -155,12 +155,9 @@ std::vector<std::pair<PetscReal, PetscReal>> PassCandidates(const FloquetResult 
   if (la.size() != lc.size() || la.size() < 2) return cand; // a pair joined or left the circle: the outside set changed there
   PetscReal move = 0; // the largest move of a member (in order of angle, which a pass leaves as it is)
   for (size_t k = 0; k < la.size(); k++) move = std::max(move, std::abs(lc[k].second - la[k].second));
-  const bool signs = a.kappa.size() == a.re.size();
+  const bool signs = a.krein.size() == a.re.size();
   for (size_t k = 0; k + 1 < la.size(); k++) {
-    if (signs) {
-      const PetscReal x = a.kappa[la[k].first], y = a.kappa[la[k + 1].first];
-      if (!(x * y > 0)) continue;
-    }
+    if (signs && (a.krein[la[k].first] == 0 || a.krein[la[k].first] != a.krein[la[k + 1].first])) continue;
     if (la[k + 1].second - la[k].second <= 2 * move && lc[k + 1].second - lc[k].second <= 2 * move) cand.push_back({la[k].second, la[k + 1].second});
   }
   return cand;
@@ -226,6 +223,20 @@ PetscInt CountBelow(const FloquetResult &r, PetscReal angle, PetscReal tol, Pets
   PetscInt n = 0;
   for (const auto &x : UpperCircle(r, tol, min_edge)) n += x.second < angle;
   return n;
+}
+
+PetscReal HalfPeriodMultiplier(const FloquetResult &half, const std::vector<std::complex<PetscReal>> &v, PetscReal *nu_re, PetscReal *nu_im)
+{
+  PetscReal best = 0;
+  for (size_t j = 0; j < half.vectors.size(); j++) {
+    const auto &w = half.vectors[j];
+    if (w.size() != v.size()) continue;
+    std::complex<PetscReal> h = 0, t = 0; // w^H v (nu = the member), w^T v (nu = its conjugate, eigenvector conj w)
+    for (size_t k = 0; k < v.size(); k++) h += std::conj(w[k]) * v[k], t += w[k] * v[k];
+    if (std::abs(h) > best) best = std::abs(h), *nu_re = half.re[j], *nu_im = half.im[j];
+    if (std::abs(t) > best) best = std::abs(t), *nu_re = half.re[j], *nu_im = -half.im[j];
+  }
+  return best;
 }
 
 bool ResonanceDriven(PetscInt q, PetscReal nu_re, PetscReal nu_im)

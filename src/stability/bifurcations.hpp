@@ -36,7 +36,8 @@
 //   Internal resonances (kind 6): a pair crosses e^{2 pi i p/q}, 3 <= q <=
 //     -cont_bif_resonance_order (q = 1, 2 are the branch point and the period
 //     doubling). An orbit with the half-period symmetry z(t + T/2) = -z(t)
-//     (every NNM of this lattice: the force is odd in u) has a T/2-periodic
+//     (the families continued from linear modes of this lattice: the force
+//     is odd in u; switched families may break it) has a T/2-periodic
 //     tangent, so its monodromy is the square of the half-period one, whose
 //     multiplier nu on the same eigenvector fixes the perturbation's frequency
 //     omega_j modulo 2 omega (nu = e^{i pi omega_j/omega}). A resonance
@@ -102,7 +103,7 @@ std::vector<std::pair<PetscInt, PetscReal>> UpperCircle(const FloquetResult &r, 
 
 // Pairs of circle multipliers that may pass each other between orbits a and
 // c (kind 4): neighbours in angle at both, of equal nonzero signature at a
-// (when a has signatures), closer at both than twice the largest move of a
+// (when a has krein), closer at both than twice the largest move of a
 // member from a to c. Their angles at a, lower first.
 std::vector<std::pair<PetscReal, PetscReal>> PassCandidates(const FloquetResult &a, const FloquetResult &c, PetscReal tol, PetscReal min_edge = 0);
 // The members of x that continue members ia and ib of ref (both with
@@ -122,6 +123,11 @@ PetscInt CountBelow(const FloquetResult &r, PetscReal angle, PetscReal tol, Pets
 // a pair whose half-period multiplier nu (nu^2 = mu) is given (see above):
 // q odd and nu^q nearer (-1)^q than -(-1)^q.
 bool ResonanceDriven(PetscInt q, PetscReal nu_re, PetscReal nu_im);
+// The multiplier nu of the half-period monodromy (half, with its circle
+// vectors) on eigenvector v of the monodromy: the member whose eigenvector
+// (or its conjugate, for nu in the lower half plane) overlaps v most. Returns
+// that overlap.
+PetscReal HalfPeriodMultiplier(const FloquetResult &half, const std::vector<std::complex<PetscReal>> &v, PetscReal *nu_re, PetscReal *nu_im);
 
 struct BifurcationOptions {
   PetscBool enabled = PETSC_FALSE; // -cont_bifurcations (on with the dense -floquet unless set)

@@ -365,7 +365,7 @@ private:
       switches_.push_back({item.substr(0, colon), (PetscInt)ev});
     }
     // each on a branch of -cont_branch, or on the family another switch starts
-    // (insulated:20,insulated_bp20_plus:7: the period doubling of a switched family)
+    // (insulated:34,insulated_bp34_plus:7 at N = 22: the period doubling of a switched family)
     for (const Switch &sw : switches_)
       PetscCheck(declaring_ || Followed(sw.branch), comm_, PETSC_ERR_USER,
                  "-cont_switch %s:%" PetscInt_FMT ": no branch %s among -cont_branch or the families of the other -cont_switch events", sw.branch.c_str(), sw.event,

@@ -13,6 +13,7 @@ run1 -options_file "$SRC/options/fep.opts" -cont_branch insulated -cont_energy_m
 small="-cont_branch insulated -lattice_cells 5 -cont_energy_max 300 -cont_verbose 0"
 run1 -options_file "$SRC/options/fep.opts" $small -output s1.h5 > s1.txt
 run2 -options_file "$SRC/options/fep.opts" $small -output s2.h5 > s2.txt
+run1 -options_file "$SRC/options/fep.opts" $small -cont_bif_passes 0 -cont_bif_resonance_order 0 -output s0.h5 > s0.txt
 grep -q "event .*: branch point (+1) E-E, instability begins at omega 2.41824" paper.txt
 $PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_fep.py" paper.h5 fep.png
 $PY - <<'PYEOF'
@@ -76,6 +77,23 @@ k1, k2 = e1["kind"][:], e2["kind"][:]
 assert len(k1) > 0 and np.array_equal(k1, k2), (k1, k2)
 assert np.abs(e1["omega"][:] - e2["omega"][:]).max() < 2 * tol
 assert np.array_equal(e1["direction"][:], e2["direction"][:])
+# Passes and resonances (kinds 4, 6) are found apart from the changes of stability: without them the
+# other events are the same ones, at the same omega
+(_, e0) = load("s0.h5")
+k0, keep = e0["kind"][:], ~np.isin(k1, (4, 6))
+assert not np.isin(k0, (4, 6)).any() and np.array_equal(k0, k1[keep]), (k0, k1)
+assert np.abs(e0["omega"][:] - e1["omega"][:][keep]).max() < 2 * tol
+assert np.isin(k1, (4,)).sum() >= 1 and np.isin(k1, (6,)).sum() >= 1   # N = 22: E-E passes and 1:3 resonances
+# each resonance of the small lattice (every multiplier counts there): the stored spectra on either
+# side of its segment differ in how many lie below the root, by at least as many as are located there
+b1 = h5py.File("s1.h5", "r")["continuation/insulated"]
+mu1 = b1["multipliers_re"][:] + 1j * b1["multipliers_im"][:]
+for i in np.flatnonzero(k1 == 6):
+    p, q = e1["resonance"][i]
+    th, j = 2 * np.pi * p / q, e1["point"][i]
+    below = [((np.abs(np.abs(m) - 1) < 1e-6) & (m.imag > 0) & (np.angle(m) < th)).sum() for m in (mu1[j], mu1[j + 1])]
+    same = [k for k in np.flatnonzero(k1 == 6) if e1["point"][k] == j and tuple(e1["resonance"][k]) == (p, q)]
+    assert abs(below[1] - below[0]) >= len(same), (i, below, same)   # (crossings no harmonic drives count too)
 print("bifurcations scene OK:", n, "events, E-E branch point at omega", w[i])
 open("bp_index.txt", "w").write(str(int([k for k in range(len(k1)) if k1[k] == 2][0])))
 PYEOF
@@ -133,7 +151,8 @@ assert f"insulated_bp{bp}_plus_pd{pd}_plus" not in C and f"insulated_bp{bp}_plus
 assert D.attrs["parent"] in (f"insulated_bp{bp}_plus:{pd}", f"insulated_bp{bp}_plus:{pd}".encode())
 assert D.attrs["period_multiple"] == 2 and P.attrs["period_multiple"] == 1 and C["insulated"].attrs["period_multiple"] == 1
 n = D["energy"].shape[0]
-assert n > 5 and D.attrs["stop_reason"] in (b"the family closed: it returned to its first orbit", b"reached -cont_energy_max"), D.attrs["stop_reason"]
+# this family is a closed loop (it rises to a fold, falls to another and retraces itself): it stops where it began
+assert n > 5 and D.attrs["stop_reason"] == b"the family closed: it returned to its first orbit", D.attrs["stop_reason"]
 # point 0 is the parent's orbit at the located point, traversed twice: half its frequency
 assert abs(2 * D["omega"][0] - e["omega"][pd]) < 1e-7 and abs(D["energy"][0] / e["energy"][pd] - 1) < 1e-6
 T0 = D["period"][0]

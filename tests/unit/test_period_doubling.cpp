@@ -17,6 +17,7 @@
 // square root of the distance from the located point.
 #include "bands/linear_modes.hpp"
 #include "core/gather.hpp"
+#include "branch_record.hpp"
 #include "helpers.hpp"
 #include "orbits/continuation.hpp"
 #include "stability/bifurcation_locator.hpp"
@@ -112,29 +113,6 @@ struct PumpedDimer {
   }
 };
 
-// The dense Floquet multipliers of every orbit of a branch.
-struct Record : public PointHook {
-  PeriodicFlow &flow;
-  OwnedMat S;
-  OwnedVec zT;
-  std::vector<PetscReal> re, im, edge;
-  explicit Record(PeriodicFlow &f) : flow(f) {}
-  PetscErrorCode Point(Vec z0, PetscReal T, PetscReal beta, Vec) override
-  {
-    FloquetResult r;
-    PetscFunctionBeginUser;
-    if (!S) {
-      PetscCall(flow.CreateSensitivityMatrix(S.out()));
-      PetscCall(VecDuplicate(z0, zT.out()));
-    }
-    PetscCall(flow.IntegrateWithMonodromy(z0, T, flow.FloquetBeta(beta), zT, S));
-    PetscCall(FloquetAnalysis(flow.Lat(), S, FloquetOptions(), &r));
-    re.insert(re.end(), r.re.begin(), r.re.end());
-    im.insert(im.end(), r.im.begin(), r.im.end());
-    edge.insert(edge.end(), r.edge.begin(), r.edge.end());
-    PetscFunctionReturn(0);
-  }
-};
 
 // Mathieu's first tongue, upper boundary: eps where eps/2 - eps^2/8 - eps^3/32 = d (Newton from 2 d).
 PetscReal TongueEps(PetscReal d)
@@ -186,16 +164,10 @@ void FitLine(const std::vector<PetscReal> &x, const std::vector<PetscReal> &y, P
   *zero = -((sy - *slope * sx) / m) / *slope;
 }
 
-std::vector<PetscReal> AllRows(const Branch &b)
-{
-  std::vector<PetscReal> z0(b.z0);
-  PCHK(BroadcastFromRoot(PETSC_COMM_WORLD, MPIU_REAL, &z0));
-  return z0;
-}
 
 } // namespace
 
-TEST_CASE("period doubling of a Mathieu-pumped dimer: located on the tongue boundary, the doubled family has period 2T, leaves the parent like the root of the distance and closes", "[bifurcations][switch][period_doubling]")
+TEST_CASE("period doubling of a Mathieu-pumped dimer: located on the tongue boundary, the doubled family has period 2T, leaves the parent like the root of the distance, and its orbits close over 2T", "[bifurcations][switch][period_doubling]")
 {
   PumpedDimer pd;
   PCHK(pd.Setup());
