@@ -20,6 +20,10 @@
 //          sites where |E e_j| > -bench_window_tol |M|, i.e. what a method that
 //          uses only the window's columns of M and exact linear algebra on
 //          M_lin would return
+//  cheb    -bench_cheb m,k,max_products: Chebyshev-filtered subspace iteration on B
+//  sinv    -bench_sinv s1,s2,...: shift-and-invert on B at these real shifts
+//          (inner GMRES; an inner solve that does not converge stops the run
+//          with SLEPc's error)
 // One line per point and method (bench: ...), to be read by a script.
 // Serial (1 rank): the window part reads the state layout [u | v].
 #include "core/handle.hpp"
