@@ -88,12 +88,12 @@ assert np.isin(k1, (4,)).sum() >= 1 and np.isin(k1, (6,)).sum() >= 1   # N = 22:
 # side of its segment differ in how many lie below the root, by at least as many as are located there
 b1 = h5py.File("s1.h5", "r")["continuation/insulated"]
 mu1 = b1["multipliers_re"][:] + 1j * b1["multipliers_im"][:]
-for i in np.flatnonzero(k1 == 6):
-    p, q = e1["resonance"][i]
-    th, j = 2 * np.pi * p / q, e1["point"][i]
+for r in np.flatnonzero(k1 == 6):
+    p, q = e1["resonance"][r]
+    th, j = 2 * np.pi * p / q, e1["point"][r]
     below = [((np.abs(np.abs(m) - 1) < 1e-6) & (m.imag > 0) & (np.angle(m) < th)).sum() for m in (mu1[j], mu1[j + 1])]
     same = [k for k in np.flatnonzero(k1 == 6) if e1["point"][k] == j and tuple(e1["resonance"][k]) == (p, q)]
-    assert abs(below[1] - below[0]) >= len(same), (i, below, same)   # (crossings no harmonic drives count too)
+    assert abs(below[1] - below[0]) >= len(same), (r, below, same)   # (crossings no harmonic drives count too)
 print("bifurcations scene OK:", n, "events, E-E branch point at omega", w[i])
 open("bp_index.txt", "w").write(str(int([k for k in range(len(k1)) if k1[k] == 2][0])))
 PYEOF
