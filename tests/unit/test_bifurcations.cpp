@@ -414,12 +414,9 @@ TEST_CASE("energy folds of a folded branch are located at the extrema of E, and 
   Record rec(nf.flow);
   Branch b;
   PCHK(nf.Continue(0, co, &b, &rec));
-  BifurcationOptions bo;
-  bo.tol = 1e-9;
   BifurcationLocator loc;
-  PCHK(loc.Setup(nf.shoot, FloquetOptions(), bo));
   std::vector<BifurcationEvent> ev;
-  PCHK(loc.Locate(b, rec.re, rec.im, rec.edge, "folds", &ev));
+  PCHK(LocateRecorded(loc, nf.shoot, b, rec, "folds", &ev));
   std::vector<const BifurcationEvent *> folds;
   for (const BifurcationEvent &e : ev)
     if (e.kind == EventKind::Fold) folds.push_back(&e);
@@ -432,7 +429,7 @@ TEST_CASE("energy folds of a folded branch are located at the extrema of E, and 
   REQUIRE(folds[0]->direction == 1);  // maximum of E first
   REQUIRE(folds[1]->direction == -1); // then the minimum
   for (const BifurcationEvent *f : folds) {
-    REQUIRE(f->omega_bracket <= bo.tol);
+    REQUIRE(f->omega_bracket <= 1e-9); // LocateRecorded's tolerance
     // an extremum of E along the branch: beyond every stored neighbour
     for (PetscInt k = std::max<PetscInt>(0, f->point - 2); k <= std::min<PetscInt>(f->point + 3, (PetscInt)b.energy.size() - 1); k++) {
       INFO("fold at E " << f->energy << ", point " << k << " E " << b.energy[k]);

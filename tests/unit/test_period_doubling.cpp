@@ -189,12 +189,9 @@ TEST_CASE("period doubling of a Mathieu-pumped dimer: located on the tongue boun
   const PetscReal Tp = parent.period.front();
   for (PetscReal T : parent.period) REQUIRE(std::abs(T / Tp - 1) < 1e-9); // a linear family: the period of w_a at every amplitude
   REQUIRE(std::abs(Tp * pd.wa / (2 * PETSC_PI) - 1) < 1e-8);
-  BifurcationOptions bo;
-  bo.tol = 1e-9;
   BifurcationLocator loc;
-  PCHK(loc.Setup(pd.shoot, FloquetOptions(), bo));
   std::vector<BifurcationEvent> ev;
-  PCHK(loc.Locate(parent, rec.re, rec.im, rec.edge, "pumped", &ev));
+  PCHK(LocateRecorded(loc, pd.shoot, parent, rec, "pumped", &ev));
   REQUIRE(ev.size() == 1);
   const BifurcationEvent &e = ev[0];
   REQUIRE(e.kind == EventKind::PeriodDoubling);
