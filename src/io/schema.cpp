@@ -147,9 +147,11 @@ std::vector<Schema> Build()
                {{"multipliers_re", D, R, "npts x nev", "leading multipliers (|mu| >= 1 of each pair), real part; NaN: not converged"},
                 {"multipliers_im", D, R, "npts x nev", "leading multipliers, imaginary part"},
                 {"max_modulus", D, R, "npts", "largest |mu| (NaN: not converged)"},
-                {"stable", D, I, "npts", "1 if max |mu| <= 1 + tol"},
+                {"stable", D, I, "npts", "1 stable (dense route only), 0 unstable (a multiplier beyond 1 + tol), -1 not decided (matrix-free: a complex quadruplet cannot be excluded)"},
                 {"floquet_products", A, I, "scalar", "monodromy products"},
-                {"floquet_unconverged", A, I, "scalar", "orbits with unconverged multipliers"}}});
+                {"floquet_unconverged", A, I, "scalar", "orbits with unconverged multipliers"},
+                {"floquet_undecided", A, I, "scalar", "orbits with stable = -1"},
+                {"floquet_route", A, S, "scalar", "dense (2N <= -floquet_mf_dense_max) or matrix-free"}}});
   s.push_back({"/sweep", "",
                WithBandEdges({{"omega", D, R, "no", "forcing frequencies"},
                               {"energy", D, R, "ne", "target energies E*"},

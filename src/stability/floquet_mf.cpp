@@ -1,9 +1,11 @@
 #include "stability/floquet_mf.hpp"
+#include "core/gather.hpp"
 #include "core/log.hpp"
 #include <algorithm>
 #include <cmath>
 #include <complex>
 #include <numeric>
+#include <petscblaslapack.h>
 #include <slepceps.h>
 
 namespace nltopo {
@@ -32,12 +34,92 @@ PetscErrorCode FloquetMfOptionsFromOptions(MPI_Comm comm, FloquetMfOptions *o)
   PetscCall(PetscOptionsReal("-circle_tol",
                              "critical: b = (mu + 1/mu)/2 within this of [-1, 1] is on the unit circle (|mu| - 1 is resolved down to sqrt(2 circle_tol))",
                              NULL, o->circle_tol, &o->circle_tol, NULL));
+  PetscCall(PetscOptionsInt("-dense_max",
+                            "Orbits with 2N at most this take the dense monodromy (all 2N multipliers: the only route that can call an orbit stable; "
+                            "its cost grows as (2N)^3); 0: always matrix-free",
+                            NULL, o->dense_max, &o->dense_max, NULL));
   PetscCall(PetscOptionsBool("-deflate", "Deflate the trivial pair mu = 1 (span of f(z0) and the family tangent) so that the nev multipliers are nontrivial",
                              NULL, o->deflate, &o->deflate, NULL));
   PetscOptionsEnd();
   PetscCheck(o->circle_tol > 0 && o->circle_tol < 1, comm, PETSC_ERR_USER, "-floquet_mf_circle_tol must lie in (0, 1), got %g", (double)o->circle_tol);
   PetscCheck(o->nev >= 1 && o->nev <= 1000, comm, PETSC_ERR_USER, "-floquet_mf_nev must lie in [1, 1000], got %" PetscInt_FMT, o->nev);
+  PetscCheck(o->dense_max >= 0 && o->dense_max <= 20000, comm, PETSC_ERR_USER, "-floquet_mf_dense_max must lie in [0, 20000], got %" PetscInt_FMT, o->dense_max);
   o->which = static_cast<FloquetMfWhich>(w);
+  PetscFunctionReturn(0);
+}
+
+PetscInt MatrixFreeVerdict(const LeadingMultipliers &r, PetscReal tol)
+{
+  for (size_t k = 0; k < r.re.size(); k++)
+    if (std::hypot(r.re[k], r.im[k]) > 1 + tol) return kUnstable; // NaN compares false
+  return kUndecided;
+}
+
+PetscErrorCode FloquetLeadingDense(const Lattice &lat, Mat S, PetscInt nev, PetscReal tol, LeadingMultipliers *r)
+{
+  const PetscInt n = 2 * lat.N();
+  const MPI_Comm comm = lat.Comm();
+  PetscMPIInt rank;
+  std::vector<PetscReal> a, wr, wi;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(Log().floquet, 0, 0, 0, 0));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rank == 0) a.resize((size_t)n * n);
+  for (PetscInt c = 0; c < n; c++) { // column c of M, in PETSc's order on rows and columns alike (a similarity)
+    Vec col;
+    std::vector<PetscReal> x;
+    PetscCall(MatDenseGetColumnVecRead(S, c, &col));
+    PetscCall(GatherVec(col, false, &x));
+    PetscCall(MatDenseRestoreColumnVecRead(S, c, &col));
+    if (rank == 0) std::copy(x.begin(), x.begin() + n, a.begin() + (size_t)c * n);
+  }
+  std::vector<PetscReal> out(2 * nev + 1, NAN); // rank 0's answer: nev multipliers, then max |mu|
+  if (rank == 0) {
+    PetscBLASInt bn, one = 1, lwork = -1, info = 0;
+    PetscReal wq;
+    PetscCall(PetscBLASIntCast(n, &bn));
+    wr.resize(n), wi.resize(n);
+    PetscCallBLAS("LAPACKgeev", LAPACKgeev_("N", "N", &bn, a.data(), &bn, wr.data(), wi.data(), NULL, &one, NULL, &one, &wq, &lwork, &info));
+    std::vector<PetscReal> work((size_t)wq + 1);
+    PetscCall(PetscBLASIntCast((PetscInt)work.size(), &lwork));
+    PetscCallBLAS("LAPACKgeev", LAPACKgeev_("N", "N", &bn, a.data(), &bn, wr.data(), wi.data(), NULL, &one, NULL, &one, work.data(), &lwork, &info));
+    PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet (dense): LAPACK geev failed, info %d (2N = %" PetscInt_FMT ")", (int)info, n);
+    std::vector<std::complex<PetscReal>> mu(n);
+    for (PetscInt i = 0; i < n; i++) mu[i] = {wr[i], wi[i]};
+    // the trivial pair: the two multipliers nearest 1
+    std::sort(mu.begin(), mu.end(), [](auto x, auto y) { return std::abs(x - 1.0) < std::abs(y - 1.0); });
+    mu.erase(mu.begin(), mu.begin() + std::min<PetscInt>(2, n));
+    PetscReal big = 0;
+    for (const auto &m : mu) big = std::max(big, std::abs(m));
+    // one member of each pair: |mu| >= 1 off the circle, the upper half plane (or real) on it
+    std::vector<std::complex<PetscReal>> lead;
+    for (const auto &m : mu) {
+      const bool off = std::abs(std::abs(m) - 1) > tol;
+      if (off ? std::abs(m) > 1 && m.imag() >= 0 : m.imag() >= 0) lead.push_back(m);
+    }
+    std::sort(lead.begin(), lead.end(), [tol](auto x, auto y) {
+      const bool ox = std::abs(x) > 1 + tol, oy = std::abs(y) > 1 + tol;
+      if (ox != oy) return ox;
+      return ox ? std::abs(x) > std::abs(y) : std::abs(x.real()) > std::abs(y.real());
+    });
+    // a real pair on the circle at +-1 is a double root: keep one
+    for (PetscInt k = 0, j = 0; k < nev && j < (PetscInt)lead.size(); j++) {
+      if (k > 0 && std::abs(lead[j] - std::complex<PetscReal>(out[2 * k - 2], out[2 * k - 1])) <= 1e-6) continue;
+      out[2 * k] = lead[j].real(), out[2 * k + 1] = lead[j].imag(), k++;
+    }
+    out[2 * nev] = big;
+  }
+  PetscCallMPI(MPI_Bcast(out.data(), (PetscMPIInt)out.size(), MPIU_REAL, 0, comm));
+  r->re.assign(nev, NAN), r->im.assign(nev, NAN);
+  r->converged = 0;
+  for (PetscInt k = 0; k < nev; k++) {
+    r->re[k] = out[2 * k], r->im[k] = out[2 * k + 1];
+    if (std::isfinite(out[2 * k])) r->converged++;
+  }
+  r->max_modulus = out[2 * nev];
+  r->products = 0;
+  r->verdict = r->max_modulus <= 1 + tol ? kStable : kUnstable;
+  PetscCall(PetscLogEventEnd(Log().floquet, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

@@ -67,15 +67,43 @@ struct FloquetMfOptions {
   // dense route (all 2N multipliers) down to -floquet_tol.
   PetscReal circle_tol = 1e-9;
   PetscBool deflate = PETSC_TRUE; // deflate the trivial pair when the family tangent is known
+  // Orbits with 2N <= dense_max take the dense route (FloquetLeadingDense):
+  // where the 2N x 2N monodromy is affordable it is the only route whose
+  // "stable" is a verdict (below), and at N = 102 it is also the cheaper one.
+  PetscInt dense_max = 2048;
 };
 PetscErrorCode FloquetMfOptionsFromOptions(MPI_Comm comm, FloquetMfOptions *o);
 
+// The stability verdict a route can give (the `stable` column of floquet_mf).
+// A Krylov method on M or B can prove an orbit unstable (a converged
+// multiplier off the circle) but never stable: a complex quadruplet from a
+// Krein collision inside the spectrum has b = (mu + 1/mu)/2 inside [-1, 1],
+// where the critical route does not look, and "largest" on M does not separate
+// |mu| = 1 + 1e-3 from the circle within an affordable Krylov space
+// (benchmarks/README.md "Matrix-free Floquet inside the band"). Only the dense
+// route, which has all 2N multipliers, says "stable".
+enum FloquetVerdict : PetscInt { kUndecided = -1, kUnstable = 0, kStable = 1 };
+
 struct LeadingMultipliers {
-  std::vector<PetscReal> re, im; // the multipliers (|mu| >= 1 member of each pair for "critical")
+  std::vector<PetscReal> re, im; // the multipliers (|mu| >= 1 member of each pair)
   PetscReal max_modulus = 0; // NaN unless all nev converged
   PetscInt converged = 0;    // < nev: the rest are NaN (-floquet_mf_eps_max_it reached)
   PetscInt products = 0;     // monodromy actions used (two per product of B)
+  PetscInt verdict = kUndecided;
 };
+
+// The verdict of a matrix-free result at -floquet_tol tol: unstable when a
+// converged multiplier lies beyond 1 + tol, otherwise undecided.
+PetscInt MatrixFreeVerdict(const LeadingMultipliers &r, PetscReal tol);
+
+// The dense route's answer in the same form: all 2N multipliers of the
+// monodromy (the first 2N columns of the sensitivity matrix S) by LAPACK
+// (eigenvalues only, on rank 0), the trivial pair (the two nearest 1) left
+// out; the nev leading pairs, |mu| >= 1 member of each (upper half plane on
+// the circle): the multipliers beyond 1 + tol by modulus, then those on the
+// circle nearest +-1 (largest |Re mu|), as the critical route orders them.
+// max_modulus: the largest nontrivial |mu|; verdict stable or unstable.
+PetscErrorCode FloquetLeadingDense(const Lattice &lat, Mat S, PetscInt nev, PetscReal tol, LeadingMultipliers *r);
 
 // warm (optional, in/out): eigenvectors of the previous orbit of a branch as
 // the initial Krylov space; replaced by this orbit's. dz0 (optional): the

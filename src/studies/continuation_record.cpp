@@ -73,6 +73,8 @@ const Column kColumns[] = {
   {"seconds", 0, nullptr, [](const BranchRecord &r, AttrValue *a) { a->r = r.seconds; }},
   {"floquet_products", 0, nullptr, [](const BranchRecord &r, AttrValue *a) { a->i = r.f.products; }},
   {"floquet_unconverged", 0, nullptr, [](const BranchRecord &r, AttrValue *a) { a->i = r.f.unconverged; }},
+  {"floquet_undecided", 0, nullptr, [](const BranchRecord &r, AttrValue *a) { a->i = (PetscInt)std::count(r.f.stable.begin(), r.f.stable.end(), -1); }},
+  {"floquet_route", 0, nullptr, [](const BranchRecord &r, AttrValue *a) { a->s = r.f.route; }},
 };
 // clang-format on
 

@@ -17,6 +17,7 @@ struct FloquetColumns {
   std::vector<PetscInt> krein, stable, instability;
   std::vector<PetscReal> edge; // dense route: each eigenvector's edge share (kept in memory for -cont_bifurcations, not written)
   PetscInt products = 0, unconverged = 0;
+  std::string route; // matrix-free hook: "dense" (2N <= -floquet_mf_dense_max) or "matrix-free"
 };
 
 // Everything /continuation/<label> holds: the branch, its Floquet data (dense

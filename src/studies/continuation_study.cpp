@@ -96,28 +96,45 @@ private:
 };
 
 // Long lattices: the -floquet_mf_nev leading multipliers of every orbit,
-// matrix-free (stability/floquet_mf.hpp); no Krein signatures or instability kind.
+// matrix-free (stability/floquet_mf.hpp), or from the dense monodromy where
+// 2N <= -floquet_mf_dense_max; no Krein signatures or instability kind. The
+// `stable` column holds the route's verdict: only the dense route can say
+// "stable" (1); the matrix-free one says "unstable" (0) or "not decided" (-1).
 class FloquetMfHook : public PointHook {
 public:
   FloquetMfHook(PeriodicFlow &flow, const FloquetOptions &o, const FloquetMfOptions &mo) : flow_(flow), opt_(o), mopt_(mo) {}
+  bool Dense() const { return 2 * flow_.Lat().N() <= mopt_.dense_max; }
   PetscErrorCode Point(Vec z0, PetscReal T, PetscReal beta, Vec dz0) override
   {
     LeadingMultipliers r;
+    const MPI_Comm comm = flow_.Lat().Comm();
     PetscFunctionBeginUser;
-    PetscCall(FloquetLeading(flow_, z0, T, flow_.FloquetBeta(beta), mopt_, &r, &warm_, dz0));
+    if (Dense()) {
+      if (!S_) {
+        PetscCall(flow_.CreateSensitivityMatrix(S_.out()));
+        PetscCall(VecDuplicate(z0, zT_.out()));
+      }
+      PetscCall(flow_.IntegrateWithMonodromy(z0, T, flow_.FloquetBeta(beta), zT_, S_));
+      PetscCall(FloquetLeadingDense(flow_.Lat(), S_, mopt_.nev, opt_.tol, &r));
+    } else {
+      PetscCall(FloquetLeading(flow_, z0, T, flow_.FloquetBeta(beta), mopt_, &r, &warm_, dz0));
+      r.verdict = MatrixFreeVerdict(r, opt_.tol);
+    }
     c.re.insert(c.re.end(), r.re.begin(), r.re.end());
     c.im.insert(c.im.end(), r.im.begin(), r.im.end());
     c.max_modulus.push_back(r.max_modulus);
-    c.stable.push_back(r.max_modulus <= 1 + opt_.tol); // NaN (a multiplier did not converge): not shown stable, 0
+    c.stable.push_back(r.verdict);
     c.products += r.products;
-    if (r.converged < mopt_.nev) {
+    c.route = Route();
+    if (r.converged < mopt_.nev && !Dense()) {
       c.unconverged++;
-      PetscCall(PetscPrintf(flow_.Lat().Comm(), "  matrix-free Floquet: %" PetscInt_FMT " of %" PetscInt_FMT " multipliers converged at omega %.6f (written as NaN; raise -floquet_mf_eps_max_it)\n",
+      PetscCall(PetscPrintf(comm, "  matrix-free Floquet: %" PetscInt_FMT " of %" PetscInt_FMT " multipliers converged at omega %.6f (written as NaN; raise -floquet_mf_eps_max_it)\n",
                             r.converged, mopt_.nev, (double)(2 * PETSC_PI / T)));
     }
     PetscFunctionReturn(0);
   }
-  void Clear() { c = FloquetColumns(), warm_.clear(); }
+  const char *Route() const { return Dense() ? "dense" : "matrix-free"; }
+  void Clear() { c = FloquetColumns(), c.route = Route(), warm_.clear(); }
   FloquetColumns c;
 
 private:
@@ -125,6 +142,8 @@ private:
   FloquetOptions opt_;
   FloquetMfOptions mopt_;
   std::vector<OwnedVec> warm_; // the previous orbit's eigenvectors: the next solve's initial space
+  OwnedMat S_;                 // the dense route's sensitivity matrix
+  OwnedVec zT_;
 };
 
 // Forwards every orbit to the Floquet hook (if any), then, every
@@ -425,6 +444,7 @@ private:
     Branch &rb = resumes_[k].b;
     const bool resumed = resumes_[k].found && rb.energy.size() >= 2;
     if (resumed && fk_ != FloquetKind::None) (fk_ == FloquetKind::MatrixFree ? mf_hook_->c : hook_->c) = resumes_[k].f;
+    if (resumed && fk_ == FloquetKind::MatrixFree) mf_hook_->c.route = mf_hook_->Route();
     if (ch_.resume && !resumed)
       PetscCall(PetscPrintf(comm_, "  [%s] -cont_resume %s: fewer than 2 points of this branch there, starting afresh\n", label.c_str(), ch_.resume_file));
     CheckpointHook ck(comm_, FloquetPointHook(), ch_.checkpoint_seconds, [&]() -> PetscErrorCode {
@@ -480,12 +500,16 @@ private:
     d.bif_tol = rec.bif_tol, d.bif_seconds = rec.bif_seconds, d.bif_probes = rec.bif_probes;
     if (fk_ != FloquetKind::None) {
       const FloquetColumns &f = d.f;
-      PetscInt ns = 0;
-      for (PetscInt s : f.stable) ns += s;
+      PetscInt ns = 0, nu = 0;
+      for (PetscInt s : f.stable) ns += s == kStable, nu += s == kUndecided;
       PetscCall(PetscPrintf(comm_, "  [%s] Floquet%s: %" PetscInt_FMT " of %zu orbits stable (|mu| <= 1 + %g)", label.c_str(),
-                            fk_ == FloquetKind::MatrixFree ? " (matrix-free, leading pairs)" : "", ns, f.stable.size(), (double)flo_.tol));
-      if (fk_ == FloquetKind::MatrixFree) PetscCall(PetscPrintf(comm_, ", %" PetscInt_FMT " monodromy products", f.products));
-      else {
+                            fk_ != FloquetKind::MatrixFree ? "" : mf_hook_->Dense() ? " (-floquet_mf, dense: 2N <= -floquet_mf_dense_max)" : " (matrix-free, leading pairs)",
+                            ns, f.stable.size(), (double)flo_.tol));
+      if (fk_ == FloquetKind::MatrixFree) {
+        if (!mf_hook_->Dense())
+          PetscCall(PetscPrintf(comm_, ", %" PetscInt_FMT " not decided (a complex quadruplet cannot be excluded matrix-free), %" PetscInt_FMT " monodromy products",
+                                nu, f.products));
+      } else {
         PetscReal dmax = 0;
         for (PetscReal x : f.det_error) dmax = std::max(dmax, x); // NaN (resumed from an older file) ignored
         PetscCall(PetscPrintf(comm_, ", max |det M - 1| = %.1e", (double)dmax));

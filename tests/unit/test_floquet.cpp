@@ -222,6 +222,17 @@ TEST_CASE("matrix-free monodromy action and leading multiplier equal the dense o
   PCHK(FloquetLeading(flow, last.z, last.T, last.beta, mo, &crit));
   INFO("critical route: " << crit.re[0] << " + " << crit.im[0] << " i, " << crit.products << " products");
   REQUIRE(std::abs(crit.max_modulus - dense.max_modulus) < 1e-7);
+  // A converged multiplier off the circle proves the orbit unstable, on either route.
+  REQUIRE(MatrixFreeVerdict(lead, 1e-6) == kUnstable);
+  REQUIRE(MatrixFreeVerdict(crit, 1e-6) == kUnstable);
+  // The dense leading pair (-floquet_mf_dense_max): the same real multiplier, from the same S.
+  LeadingMultipliers dl;
+  PCHK(FloquetLeadingDense(lat, S, 1, 1e-6, &dl));
+  INFO("dense leading " << dl.re[0] << " + " << dl.im[0] << " i");
+  REQUIRE(dl.verdict == kUnstable);
+  REQUIRE(dl.im[0] == 0);
+  REQUIRE(std::abs(dl.re[0] - dense.max_modulus) < 1e-12 * dense.max_modulus);
+  REQUIRE(std::abs(dl.max_modulus - dense.max_modulus) < 1e-12 * dense.max_modulus);
 }
 
 // On a stable orbit every multiplier lies on the unit circle, where "largest
@@ -292,9 +303,23 @@ TEST_CASE("deflating the trivial pair, the critical route returns the leading no
     if (deflate) {
       REQUIRE(std::abs(b0 - distinct[0]) < 1e-8);
       REQUIRE(std::abs(b1 - distinct[1]) < 1e-8);
+      // all on the circle: matrix-free, that is no verdict (a quadruplet inside the spectrum cannot be excluded)
+      REQUIRE(MatrixFreeVerdict(lead, 1e-6) == kUndecided);
     } else { // the control: undeflated, the trivial pair takes the first place
       REQUIRE(std::abs(b0 - 1.0) < 1e-6);
       REQUIRE(std::abs(b1 - distinct[0]) < 1e-8);
     }
+  }
+  // The dense leading pairs: the trivial pair left out, the same two pairs in
+  // the same order (nearest +-1 on the circle), and the verdict "stable".
+  LeadingMultipliers dl;
+  PCHK(FloquetLeadingDense(d.lat, cap.S, 2, 1e-6, &dl));
+  REQUIRE(dl.converged == 2);
+  REQUIRE(dl.verdict == kStable);
+  REQUIRE(std::abs(dl.max_modulus - 1) < 1e-8); // the dense floor (rounding of 2N eigenvalues on the circle)
+  for (int k = 0; k < 2; k++) {
+    INFO("dense leading pair " << k << ": b = " << bval(cplx(dl.re[k], dl.im[k])) << ", expected " << distinct[k]);
+    REQUIRE(dl.im[k] >= 0);
+    REQUIRE(std::abs(bval(cplx(dl.re[k], dl.im[k])) - distinct[k]) < 1e-10);
   }
 }
