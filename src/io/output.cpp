@@ -274,7 +274,7 @@ PetscErrorCode WriteArrayND(PetscViewer v, const char *group, const char *name, 
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode WriteIntArray(PetscViewer v, const char *group, const char *name, const std::vector<PetscInt> &data, PetscInt bs)
+PetscErrorCode WriteIntArray(PetscViewer v, const char *group, const char *name, const std::vector<PetscInt> &data, PetscInt bs, bool two_d)
 {
   MPI_Comm comm = PetscObjectComm((PetscObject)v);
   PetscInt n = (PetscInt)data.size();
@@ -283,7 +283,7 @@ PetscErrorCode WriteIntArray(PetscViewer v, const char *group, const char *name,
   PetscCallMPI(MPI_Bcast(&n, 1, MPIU_INT, 0, comm));
   PetscCheck(n >= 0 && bs > 0 && n % bs == 0, comm, PETSC_ERR_ARG_SIZ, "integer dataset %s/%s: %" PetscInt_FMT " values, block %" PetscInt_FMT, group, name, n, bs);
   std::vector<hsize_t> dims = {(hsize_t)(n / bs)};
-  if (bs != 1) dims.push_back((hsize_t)bs);
+  if (bs != 1 || two_d) dims.push_back((hsize_t)bs);
   const std::vector<int> buf(data.begin(), data.end());
   PetscCall(WriteRootDataset(v, group, name, H5T_NATIVE_INT, dims, buf.data()));
   PetscFunctionReturn(0);

@@ -54,8 +54,8 @@ PetscErrorCode WriteColumnBlock(PetscViewer v, const char *group, const char *na
                                 const std::vector<PetscReal> &local);
 // A float64 dataset of any rank (dims, row-major) whose values are given on rank 0.
 PetscErrorCode WriteArrayND(PetscViewer v, const char *group, const char *name, const std::vector<PetscReal> &data, const std::vector<PetscInt> &dims);
-// An integer dataset (bs = 1: 1-D; else n/bs x bs) whose values are given on rank 0.
-PetscErrorCode WriteIntArray(PetscViewer v, const char *group, const char *name, const std::vector<PetscInt> &data, PetscInt bs = 1);
+// An integer dataset (bs = 1: 1-D unless two_d; else n/bs x bs) whose values are given on rank 0.
+PetscErrorCode WriteIntArray(PetscViewer v, const char *group, const char *name, const std::vector<PetscInt> &data, PetscInt bs = 1, bool two_d = false);
 // A 1-D dataset of fixed-length strings (the longest + 1; h5py reads bytes)
 // whose values are given on rank 0.
 PetscErrorCode WriteStringArray(PetscViewer v, const char *group, const char *name, const std::vector<std::string> &data);

@@ -8,8 +8,9 @@ insulated branch by default), from -study continuation -floquet:
 (c) max |mu| - 1 along the branch (log), coloured by class;
 (d) the branch's FEP coloured by class, with the orbits of a -study stability
     file (the 30,000-period runs, Fig. 4c) marked when one is given.
-A matrix-free Floquet branch (-floquet_mf: no Krein signatures or classes) is
-drawn with (b) and (c) only, every orbit by its stability.
+A -floquet_mf branch (no Krein signatures or classes) is drawn with (b) and
+(c) only, every orbit by its verdict: stable (dense route only), unstable, or
+not decided (the matrix-free route cannot exclude a Krein quadruplet).
 usage: plot_floquet.py fep.h5 [stability.h5] [branch] [out.png]"""
 import sys
 import h5py
@@ -35,10 +36,11 @@ mu = g["multipliers_re"][:] + 1j * g["multipliers_im"][:]
 mm = g["max_modulus"][:]
 if "instability" in g:
     cls = g["instability"][:].astype(int)
-else:  # matrix-free multipliers: stable or not
-    cls = np.where(g["stable"][:] == 1, 0, -1)
+else:  # -floquet_mf: stable 1 (dense route only), 0 unstable, -1 not decided (matrix-free)
+    cls = np.select([g["stable"][:] == 1, g["stable"][:] == 0], [0, -1], -2)
 classes = dict(nltopo_plot.INSTABILITY)
 classes[-1] = ("unstable (kind not computed)", "tab:red")
+classes[-2] = ("not decided (matrix-free: a Krein quadruplet is not excluded)", "0.55")
 has_krein = "krein" in g
 npan = 4 if has_krein else 2
 fig, ax = plt.subplots(1, npan, figsize=(5.2 * npan, 4.8))

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <complex>
 #include <numeric>
-#include <petscblaslapack.h>
 #include <slepceps.h>
 
 namespace nltopo {
@@ -55,12 +54,125 @@ PetscInt MatrixFreeVerdict(const LeadingMultipliers &r, PetscReal tol)
   return kUndecided;
 }
 
-PetscErrorCode FloquetLeadingDense(const Lattice &lat, Mat S, PetscInt nev, PetscReal tol, LeadingMultipliers *r)
+
+extern "C" { // LAPACK (Debian liblapack): Hessenberg reduction, eigenvectors of selected eigenvalues, Q applied
+void dgehrd_(const int *n, const int *ilo, const int *ihi, double *a, const int *lda, double *tau, double *work, const int *lwork, int *info);
+void dhseqr_(const char *job, const char *compz, const int *n, const int *ilo, const int *ihi, double *h, const int *ldh, double *wr, double *wi, double *z,
+             const int *ldz, double *work, const int *lwork, int *info, size_t, size_t);
+void dhsein_(const char *side, const char *eigsrc, const char *initv, int *select, const int *n, const double *h, const int *ldh, double *wr, const double *wi,
+             double *vl, const int *ldvl, double *vr, const int *ldvr, const int *mm, int *m, double *work, int *ifaill, int *ifailr, int *info, size_t, size_t,
+             size_t);
+void dormhr_(const char *side, const char *trans, const int *m, const int *n, const int *ilo, const int *ihi, const double *a, const int *lda, const double *tau,
+             double *c, const int *ldc, double *work, const int *lwork, int *info, size_t, size_t);
+}
+
+PetscErrorCode DenseLeadingPairs(PetscInt n_, PetscReal *a, PetscInt nev, const FloquetOptions &o, const std::vector<PetscInt> &uidx,
+                                 const std::vector<PetscInt> &vidx, PetscInt iface, LeadingPairs *out)
 {
-  const PetscInt n = 2 * lat.N();
+  const int n = (int)n_, one = 1;
+  int info = 0, lwork = -1;
+  PetscReal wq;
+  PetscFunctionBeginUser;
+  // H = Q^T M Q (upper Hessenberg; a keeps the reflectors below the subdiagonal)
+  std::vector<PetscReal> tau(std::max(1, n - 1)), wr(n), wi(n);
+  dgehrd_(&n, &one, &n, a, &n, tau.data(), &wq, &lwork, &info);
+  std::vector<PetscReal> work((size_t)wq + 1);
+  lwork = (int)work.size();
+  dgehrd_(&n, &one, &n, a, &n, tau.data(), work.data(), &lwork, &info);
+  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet (dense): LAPACK dgehrd failed, info %d (2N = %d)", info, n);
+  std::vector<PetscReal> h((size_t)n * n, 0.0), hq;
+  for (int c = 0; c < n; c++)
+    for (int i = 0; i <= std::min(c + 1, n - 1); i++) h[(size_t)c * n + i] = a[(size_t)c * n + i];
+  hq = h; // eigenvalues only (QR overwrites its copy)
+  lwork = -1;
+  dhseqr_("E", "N", &n, &one, &n, hq.data(), &n, wr.data(), wi.data(), NULL, &one, &wq, &lwork, &info, 1, 1);
+  work.resize(std::max<size_t>(work.size(), (size_t)wq + 1));
+  lwork = (int)work.size();
+  dhseqr_("E", "N", &n, &one, &n, hq.data(), &n, wr.data(), wi.data(), NULL, &one, work.data(), &lwork, &info, 1, 1);
+  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet (dense): LAPACK dhseqr failed, info %d (2N = %d)", info, n);
+  std::vector<std::complex<PetscReal>> mu(n);
+  for (int i = 0; i < n; i++) mu[i] = {wr[i], wi[i]};
+  std::vector<int> idx(n);
+  std::iota(idx.begin(), idx.end(), 0);
+  // the trivial pair: the two multipliers nearest 1
+  std::sort(idx.begin(), idx.end(), [&](int x, int y) { return std::abs(mu[x] - 1.0) < std::abs(mu[y] - 1.0); });
+  idx.erase(idx.begin(), idx.begin() + std::min(2, n));
+  out->max_modulus = 0;
+  for (int i : idx) out->max_modulus = std::max(out->max_modulus, std::abs(mu[i]));
+  // one member of each pair: |mu| > 1 off the circle, the upper half plane (or real) on it
+  std::vector<int> cand;
+  for (int i : idx) {
+    const bool off = std::abs(std::abs(mu[i]) - 1) > o.tol;
+    if (off ? std::abs(mu[i]) > 1 && mu[i].imag() >= 0 : mu[i].imag() >= 0) cand.push_back(i);
+  }
+  std::stable_sort(cand.begin(), cand.end(), [&](int x, int y) {
+    const bool ox = std::abs(mu[x]) > 1 + o.tol, oy = std::abs(mu[y]) > 1 + o.tol;
+    if (ox != oy) return ox;
+    return ox ? std::abs(mu[x]) > std::abs(mu[y]) : std::abs(mu[x].real()) > std::abs(mu[y].real());
+  });
+  std::vector<int> pick; // a real pair on the circle at +-1 is a double root: keep one
+  for (int i : cand) {
+    if ((PetscInt)pick.size() >= nev) break;
+    if (!pick.empty() && std::abs(mu[i] - mu[pick.back()]) <= 1e-6) continue;
+    pick.push_back(i);
+  }
+  // their eigenvectors: inverse iteration on H, then Q applied
+  std::vector<int> select(n, 0);
+  int cols = 0;
+  for (int i : pick) select[i] = 1, cols += mu[i].imag() > 0 ? 2 : 1;
+  std::vector<PetscReal> vr((size_t)n * std::max(cols, 1)), hw((size_t)(n + 2) * n);
+  std::vector<int> ifl(std::max(cols, 1)), ifr(std::max(cols, 1));
+  int got = 0;
+  if (cols) {
+    std::vector<PetscReal> wr2 = wr;
+    dhsein_("R", "Q", "N", select.data(), &n, h.data(), &n, wr2.data(), wi.data(), NULL, &one, vr.data(), &n, &cols, &got, hw.data(), ifl.data(), ifr.data(), &info, 1,
+            1, 1);
+    PetscCheck(info >= 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet (dense): LAPACK dhsein failed, info %d (2N = %d)", info, n);
+    lwork = -1;
+    dormhr_("L", "N", &n, &cols, &one, &n, a, &n, tau.data(), vr.data(), &n, &wq, &lwork, &info, 1, 1);
+    work.resize(std::max<size_t>(work.size(), (size_t)wq + 1));
+    lwork = (int)work.size();
+    dormhr_("L", "N", &n, &cols, &one, &n, a, &n, tau.data(), vr.data(), &n, work.data(), &lwork, &info, 1, 1);
+    PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet (dense): LAPACK dormhr failed, info %d (2N = %d)", info, n);
+  }
+  // columns come in the order of the eigenvalues (a complex one: real and imaginary parts)
+  std::vector<int> first(n, -1);
+  for (int i = 0, c = 0; i < n; i++)
+    if (select[i]) first[i] = c, c += mu[i].imag() > 0 ? 2 : 1;
+  const PetscInt N = (PetscInt)uidx.size();
+  out->mu.clear(), out->krein.clear(), out->edge.clear();
+  for (int i : pick) {
+    const PetscReal *xr = &vr[(size_t)first[i] * n], *xi = mu[i].imag() > 0 ? xr + n : nullptr;
+    std::vector<PetscScalar> re(2 * N), im(2 * N, 0.0);
+    PetscReal disp = 0, near = 0;
+    for (PetscInt s = 0; s < N; s++) {
+      re[s] = xr[uidx[s]], re[N + s] = xr[vidx[s]];
+      if (xi) im[s] = xi[uidx[s]], im[N + s] = xi[vidx[s]];
+      const PetscReal d = re[s] * re[s] + im[s] * im[s];
+      disp += d;
+      if (iface >= 0 && s >= iface - o.edge_sites && s <= iface + 1 + o.edge_sites) near += d;
+    }
+    PetscReal sums[2];
+    KreinSums(re.data(), im.data(), N, sums);
+    const PetscReal kappa = sums[1] > 0 ? sums[0] / sums[1] : 0;
+    out->mu.push_back(mu[i]);
+    out->krein.push_back(std::abs(kappa) < o.krein_tol ? 0 : (kappa > 0 ? 1 : -1));
+    out->edge.push_back(disp > 0 ? near / disp : 0);
+  }
+  out->instability = 0;
+  if (out->max_modulus > 1 + o.tol && !out->edge.empty()) { // the leading multiplier is then the most unstable
+    const PetscReal w = out->edge[0];
+    out->instability = w > o.edge_weight ? 3 : (w < 1 - o.edge_weight ? 1 : 2);
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FloquetLeadingDense(const Lattice &lat, Mat S, PetscInt nev, const FloquetOptions &o, LeadingMultipliers *r)
+{
+  const PetscInt n = 2 * lat.N(), N = lat.N();
   const MPI_Comm comm = lat.Comm();
   PetscMPIInt rank;
-  std::vector<PetscReal> a, wr, wi;
+  std::vector<PetscReal> a;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(Log().floquet, 0, 0, 0, 0));
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
@@ -73,52 +185,27 @@ PetscErrorCode FloquetLeadingDense(const Lattice &lat, Mat S, PetscInt nev, Pets
     PetscCall(MatDenseRestoreColumnVecRead(S, c, &col));
     if (rank == 0) std::copy(x.begin(), x.begin() + n, a.begin() + (size_t)c * n);
   }
-  std::vector<PetscReal> out(2 * nev + 1, NAN); // rank 0's answer: nev multipliers, then max |mu|
+  // rank 0's answer, broadcast: per pair re, im, krein; then max |mu|, instability
+  std::vector<PetscReal> out(3 * nev + 2, NAN);
   if (rank == 0) {
-    PetscBLASInt bn, one = 1, lwork = -1, info = 0;
-    PetscReal wq;
-    PetscCall(PetscBLASIntCast(n, &bn));
-    wr.resize(n), wi.resize(n);
-    PetscCallBLAS("LAPACKgeev", LAPACKgeev_("N", "N", &bn, a.data(), &bn, wr.data(), wi.data(), NULL, &one, NULL, &one, &wq, &lwork, &info));
-    std::vector<PetscReal> work((size_t)wq + 1);
-    PetscCall(PetscBLASIntCast((PetscInt)work.size(), &lwork));
-    PetscCallBLAS("LAPACKgeev", LAPACKgeev_("N", "N", &bn, a.data(), &bn, wr.data(), wi.data(), NULL, &one, NULL, &one, work.data(), &lwork, &info));
-    PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet (dense): LAPACK geev failed, info %d (2N = %" PetscInt_FMT ")", (int)info, n);
-    std::vector<std::complex<PetscReal>> mu(n);
-    for (PetscInt i = 0; i < n; i++) mu[i] = {wr[i], wi[i]};
-    // the trivial pair: the two multipliers nearest 1
-    std::sort(mu.begin(), mu.end(), [](auto x, auto y) { return std::abs(x - 1.0) < std::abs(y - 1.0); });
-    mu.erase(mu.begin(), mu.begin() + std::min<PetscInt>(2, n));
-    PetscReal big = 0;
-    for (const auto &m : mu) big = std::max(big, std::abs(m));
-    // one member of each pair: |mu| >= 1 off the circle, the upper half plane (or real) on it
-    std::vector<std::complex<PetscReal>> lead;
-    for (const auto &m : mu) {
-      const bool off = std::abs(std::abs(m) - 1) > tol;
-      if (off ? std::abs(m) > 1 && m.imag() >= 0 : m.imag() >= 0) lead.push_back(m);
-    }
-    std::sort(lead.begin(), lead.end(), [tol](auto x, auto y) {
-      const bool ox = std::abs(x) > 1 + tol, oy = std::abs(y) > 1 + tol;
-      if (ox != oy) return ox;
-      return ox ? std::abs(x) > std::abs(y) : std::abs(x.real()) > std::abs(y.real());
-    });
-    // a real pair on the circle at +-1 is a double root: keep one
-    for (PetscInt k = 0, j = 0; k < nev && j < (PetscInt)lead.size(); j++) {
-      if (k > 0 && std::abs(lead[j] - std::complex<PetscReal>(out[2 * k - 2], out[2 * k - 1])) <= 1e-6) continue;
-      out[2 * k] = lead[j].real(), out[2 * k + 1] = lead[j].imag(), k++;
-    }
-    out[2 * nev] = big;
+    std::vector<PetscInt> u(N), v(N); // natural site -> PETSc state index
+    for (PetscInt s = 0; s < N; s++) u[s] = lat.StateIndexU(s), v[s] = lat.StateIndexV(s);
+    LeadingPairs lead;
+    PetscCall(DenseLeadingPairs(n, a.data(), nev, o, u, v, lat.Params().layout == Layout::Interface ? lat.Params().InterfaceSite() : -1, &lead));
+    for (PetscInt k = 0; k < (PetscInt)lead.mu.size(); k++) out[3 * k] = lead.mu[k].real(), out[3 * k + 1] = lead.mu[k].imag(), out[3 * k + 2] = lead.krein[k];
+    out[3 * nev] = lead.max_modulus, out[3 * nev + 1] = lead.instability;
   }
   PetscCallMPI(MPI_Bcast(out.data(), (PetscMPIInt)out.size(), MPIU_REAL, 0, comm));
-  r->re.assign(nev, NAN), r->im.assign(nev, NAN);
+  r->re.assign(nev, NAN), r->im.assign(nev, NAN), r->krein.assign(nev, 0);
   r->converged = 0;
   for (PetscInt k = 0; k < nev; k++) {
-    r->re[k] = out[2 * k], r->im[k] = out[2 * k + 1];
-    if (std::isfinite(out[2 * k])) r->converged++;
+    r->re[k] = out[3 * k], r->im[k] = out[3 * k + 1];
+    if (std::isfinite(out[3 * k])) r->converged++, r->krein[k] = (PetscInt)out[3 * k + 2];
   }
-  r->max_modulus = out[2 * nev];
+  r->max_modulus = out[3 * nev];
+  r->instability = (PetscInt)out[3 * nev + 1];
   r->products = 0;
-  r->verdict = r->max_modulus <= 1 + tol ? kStable : kUnstable;
+  r->verdict = r->max_modulus <= 1 + o.tol ? kStable : kUnstable;
   PetscCall(PetscLogEventEnd(Log().floquet, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

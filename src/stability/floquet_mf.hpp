@@ -32,6 +32,8 @@
 // it (the eigensolve runs on the orthogonal complement), so the nev returned
 // multipliers are nontrivial ones.
 #include "orbits/flow.hpp"
+#include "stability/floquet.hpp"
+#include <complex>
 #include <vector>
 
 namespace nltopo {
@@ -90,20 +92,9 @@ struct LeadingMultipliers {
   PetscInt converged = 0;    // < nev: the rest are NaN (-floquet_mf_eps_max_it reached)
   PetscInt products = 0;     // monodromy actions used (two per product of B)
   PetscInt verdict = kUndecided;
+  std::vector<PetscInt> krein; // per multiplier: sign(-i v^H J v) as in FloquetResult; 0 when not computed (matrix-free)
+  PetscInt instability = -1;   // the leading unstable eigenvector's class as in FloquetResult (0 stable); -1 not computed
 };
-
-// The verdict of a matrix-free result at -floquet_tol tol: unstable when a
-// converged multiplier lies beyond 1 + tol, otherwise undecided.
-PetscInt MatrixFreeVerdict(const LeadingMultipliers &r, PetscReal tol);
-
-// The dense route's answer in the same form: all 2N multipliers of the
-// monodromy (the first 2N columns of the sensitivity matrix S) by LAPACK
-// (eigenvalues only, on rank 0), the trivial pair (the two nearest 1) left
-// out; the nev leading pairs, |mu| >= 1 member of each (upper half plane on
-// the circle): the multipliers beyond 1 + tol by modulus, then those on the
-// circle nearest +-1 (largest |Re mu|), as the critical route orders them.
-// max_modulus: the largest nontrivial |mu|; verdict stable or unstable.
-PetscErrorCode FloquetLeadingDense(const Lattice &lat, Mat S, PetscInt nev, PetscReal tol, LeadingMultipliers *r);
 
 // warm (optional, in/out): eigenvectors of the previous orbit of a branch as
 // the initial Krylov space; replaced by this orbit's. dz0 (optional): the
@@ -111,5 +102,34 @@ PetscErrorCode FloquetLeadingDense(const Lattice &lat, Mat S, PetscInt nev, Pets
 // trivial pair is deflated and the nev multipliers returned are nontrivial.
 PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, const FloquetMfOptions &o, LeadingMultipliers *r,
                               std::vector<OwnedVec> *warm = nullptr, Vec dz0 = nullptr);
+
+// The verdict of a matrix-free result at -floquet_tol tol: unstable when a
+// converged multiplier lies beyond 1 + tol, otherwise undecided.
+PetscInt MatrixFreeVerdict(const LeadingMultipliers &r, PetscReal tol);
+
+// The dense route's answer in the same form: all 2N multipliers of the
+// monodromy (the first 2N columns of the sensitivity matrix S) on rank 0 by
+// LAPACK (Hessenberg reduction and QR, eigenvalues only), the trivial pair
+// (the two nearest 1) left out; the nev leading pairs, |mu| >= 1 member of
+// each (upper half plane on the circle): the multipliers beyond 1 + tol by
+// modulus, then those on the circle nearest +-1 (largest |Re mu|), as the
+// critical route orders them. Only their eigenvectors are computed (inverse
+// iteration on the Hessenberg form), for the Krein signatures and the kind.
+// max_modulus: the largest nontrivial |mu|; verdict stable or unstable.
+PetscErrorCode FloquetLeadingDense(const Lattice &lat, Mat S, PetscInt nev, const FloquetOptions &o, LeadingMultipliers *r);
+
+// Its serial kernel: a (n x n, column-major, overwritten) on one process; uidx,
+// vidx: the row of u_s and v_s for each site s (natural order); iface: the
+// interface site (-1: no edge region). The leading pairs, their Krein
+// signatures and edge shares, the largest nontrivial |mu| and the class.
+struct LeadingPairs {
+  std::vector<std::complex<PetscReal>> mu;
+  std::vector<PetscInt> krein;
+  std::vector<PetscReal> edge;
+  PetscReal max_modulus = 0;
+  PetscInt instability = 0;
+};
+PetscErrorCode DenseLeadingPairs(PetscInt n, PetscReal *a, PetscInt nev, const FloquetOptions &o, const std::vector<PetscInt> &uidx, const std::vector<PetscInt> &vidx,
+                                 PetscInt iface, LeadingPairs *out);
 
 } // namespace nltopo

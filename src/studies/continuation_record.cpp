@@ -210,7 +210,7 @@ PetscErrorCode WriteRecord(PetscViewer v, const BranchRecord &r, FloquetKind fk,
     const Cells d = c->data(const_cast<BranchRecord &>(r)); // the accessors only point, the record is not changed
     const PetscInt row = RowLength(fd->shape, n2, nev);
     if (d.scalar) PetscCall(WriteArray(v, gc, fd->name, std::vector<PetscReal>{*d.scalar}));
-    else if (d.ints && fd->type == FieldType::Int) PetscCall(WriteIntArray(v, gc, fd->name, *d.ints, row ? row : 1));
+    else if (d.ints && fd->type == FieldType::Int) PetscCall(WriteIntArray(v, gc, fd->name, *d.ints, row ? row : 1, !std::strcmp(fd->shape, "npts x nev")));
     else {
       const std::vector<PetscReal> conv = d.ints ? std::vector<PetscReal>(d.ints->begin(), d.ints->end()) : std::vector<PetscReal>();
       const std::vector<PetscReal> &x = d.ints ? conv : *d.reals;

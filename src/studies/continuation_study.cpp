@@ -97,7 +97,8 @@ private:
 
 // Long lattices: the -floquet_mf_nev leading multipliers of every orbit,
 // matrix-free (stability/floquet_mf.hpp), or from the dense monodromy where
-// 2N <= -floquet_mf_dense_max; no Krein signatures or instability kind. The
+// 2N <= -floquet_mf_dense_max (then with their Krein signatures and the
+// leading instability's class; -1 and 0 matrix-free). The
 // `stable` column holds the route's verdict: only the dense route can say
 // "stable" (1); the matrix-free one says "unstable" (0) or "not decided" (-1).
 class FloquetMfHook : public PointHook {
@@ -115,7 +116,7 @@ public:
         PetscCall(VecDuplicate(z0, zT_.out()));
       }
       PetscCall(flow_.IntegrateWithMonodromy(z0, T, flow_.FloquetBeta(beta), zT_, S_));
-      PetscCall(FloquetLeadingDense(flow_.Lat(), S_, mopt_.nev, opt_.tol, &r));
+      PetscCall(FloquetLeadingDense(flow_.Lat(), S_, mopt_.nev, opt_, &r));
     } else {
       PetscCall(FloquetLeading(flow_, z0, T, flow_.FloquetBeta(beta), mopt_, &r, &warm_, dz0));
       r.verdict = MatrixFreeVerdict(r, opt_.tol);
@@ -124,6 +125,9 @@ public:
     c.im.insert(c.im.end(), r.im.begin(), r.im.end());
     c.max_modulus.push_back(r.max_modulus);
     c.stable.push_back(r.verdict);
+    r.krein.resize(mopt_.nev, 0); // matrix-free: not computed
+    c.krein.insert(c.krein.end(), r.krein.begin(), r.krein.end());
+    c.instability.push_back(r.instability);
     c.products += r.products;
     c.route = Route();
     if (r.converged < mopt_.nev && !Dense()) {

@@ -114,7 +114,7 @@ T = {
     "floquet": ("bool",), "floquet_mf": ("bool",), "floquet_tol": ("real", 1e-9, 1e-3), "floquet_krein_tol": ("real", 1e-9, 1e-3),
     "floquet_edge_sites": ("int", 0, 10), "floquet_edge_weight": ("real", 0.55, 0.95), "floquet_mf_nev": ("int", 1, 4),
     "floquet_mf_which": ("enum", 0, 0, ["largest", "critical"]), "floquet_mf_circle_tol": ("real", 1e-12, 1e-6),
-    "floquet_mf_deflate": ("bool",),
+    "floquet_mf_deflate": ("bool",), "floquet_mf_dense_max": ("int", 0, 4096),
     "sim_dt_quartic_energy": ("real", 0.0, 10.0),
     "sweep_mcr_tol": ("real", 0.0, 0.1), "sweep_mcr_levels": ("int", 0, 2), "sweep_mcr_twins": ("int", 1, 3),
     "sweep_mcr_twin_eps": ("real", 1e-12, 1e-6),

@@ -117,6 +117,7 @@ expect_error "-stability_periods" o.h5 -study stability -lattice_cells 5 -stabil
 expect_error "-cont_checkpoint_seconds" o.h5 $C -cont_checkpoint_seconds -1
 expect_error "-cont_bifurcations needs -floquet without -floquet_mf" o.h5 $C -cont_bifurcations
 expect_error "-cont_bifurcations needs -floquet without -floquet_mf" o.h5 $C -floquet -floquet_mf -cont_bifurcations 1
+expect_error "-floquet_mf_dense_max must lie in \[0, 20000\], got -1" o.h5 $C -floquet -floquet_mf -floquet_mf_dense_max -1
 expect_error "-cont_bif_tol must lie in \[1e-14, 1e-2\], got 0." o.h5 $C -floquet -cont_bif_tol 0
 expect_error "-cont_bif_angle_tol must lie in (0, 1), got 2." o.h5 $C -floquet -cont_bif_angle_tol 2
 expect_error "-cont_bif_resonance_order must lie in \[0, 12\], got 13" o.h5 $C -floquet -cont_bif_resonance_order 13

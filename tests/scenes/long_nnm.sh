@@ -15,8 +15,15 @@ common=(-cont_energy_max 3 -cont_verbose 0 -cont_max_change 0.2)
 run1 -options_file "$SRC/options/fep.opts" -cont_branch insulated -floquet 0 -cont_energy_max 5 -cont_verbose 0 -cont_max_change 0.04 -output dense.h5 > dense.txt
 run1 -options_file "$SRC/options/fep_long.opts" -lattice_cells 25 -floquet 0 "${common[@]}" -output mf102.h5 > mf102.txt
 run2 -options_file "$SRC/options/fep_long.opts" -lattice_cells 250 -floquet 0 "${common[@]}" -output mf1002.h5 > mf1002.txt
-# enough eigensolver restarts that every multiplier converges (an unconverged one makes the orbit "not shown stable")
-run1 -options_file "$SRC/options/fep_long.opts" -lattice_cells 25 -cont_energy_max 1 -cont_verbose 0 -cont_max_change 0.2 -floquet_mf_eps_max_it 40 -output floquet.h5 > floquet.txt
+# the matrix-free route (forced at this N by -floquet_mf_dense_max 0), with enough eigensolver restarts that every multiplier converges
+run1 -options_file "$SRC/options/fep_long.opts" -lattice_cells 25 -cont_energy_max 1 -cont_verbose 0 -cont_max_change 0.2 -floquet_mf_eps_max_it 40 -floquet_mf_dense_max 0 -output floquet.h5 > floquet.txt
+# issue 20's check at N = 102: fep_long.opts as shipped to E = 20 (2N = 204 <= -floquet_mf_dense_max: the
+# dense leading pairs) on 2 ranks, against the full dense analysis (-floquet_mf 0: every multiplier, SLEPc) and
+# against the matrix-free route on the same branch
+long20=(-options_file "$SRC/options/fep_long.opts" -lattice_cells 25 -cont_energy_max 20 -cont_checkpoint_seconds 0)
+run2 "${long20[@]}" -output lead20.h5 > lead20.txt
+run1 "${long20[@]}" -floquet_mf 0 -output dense20.h5 > dense20.txt
+run1 "${long20[@]}" -floquet_mf_dense_max 0 -output mf20.h5 > mf20.txt
 # -cont_resume on 2 ranks: the E <= 1 branch above, continued to E = 3 (with
 # the numerics it was computed with: a resume refuses others), without the
 # multipliers (-floquet 0: their options then do not count)
@@ -53,7 +60,9 @@ ka, kb = A.attrs["krylov_iterations"], B.attrs["krylov_iterations"]
 assert kb <= 1.2 * ka + 10, (ka, kb)   # N = 1002 needs no more Krylov iterations than N = 102
 mm, w = F["max_modulus"][:], F["omega"][:]
 assert F["multipliers_re"].shape == (len(mm), 1)   # -floquet_mf_nev 1: the leading nontrivial pair
-assert np.all(np.abs(mm - 1) < 1e-4) and np.all(F["stable"][:] == 1), mm
+assert F.attrs["floquet_route"] == b"matrix-free" or F.attrs["floquet_route"] == "matrix-free", F.attrs["floquet_route"]
+# matrix-free, all on the circle: no verdict (a complex quadruplet inside the spectrum cannot be excluded)
+assert np.all(np.abs(mm - 1) < 1e-4) and np.all(F["stable"][:] == -1) and F.attrs["floquet_undecided"] == len(mm), mm
 mu = F["multipliers_re"][:] + 1j * F["multipliers_im"][:]
 b = ((mu + 1 / mu) / 2).real
 b_edge = np.cos(2 * np.pi * np.sqrt(3) / w)
@@ -63,6 +72,36 @@ assert sel.sum() >= 6, sel.sum()
 err = np.abs(b[sel, 0] - b_edge[sel]).max()
 assert err < 1e-8, err
 print("matrix-free Floquet, E <= 1: max |mu| - 1 = %.1e; nontrivial pair = edge mode's to %.1e (%d orbits)" % (np.abs(mm - 1).max(), err, sel.sum()))
+
+# N = 102 to E = 20: the leading pair against every dense multiplier of the same orbits
+L, D20, M20 = g("lead20.h5"), g("dense20.h5"), g("mf20.h5")
+route = lambda X: X.attrs["floquet_route"].decode() if isinstance(X.attrs["floquet_route"], bytes) else X.attrs["floquet_route"]
+assert route(L) == "dense" and route(M20) == "matrix-free", (route(L), route(M20))
+n = len(D20["energy"])
+assert n >= 20 and len(L["energy"]) == n and len(M20["energy"]) == n, (n, len(L["energy"]), len(M20["energy"]))
+assert np.allclose(L["energy"][:], D20["energy"][:], rtol=1e-8, atol=0)   # 2 ranks: the same orbits
+mu = D20["multipliers_re"][:] + 1j * D20["multipliers_im"][:]
+unstable_quads = 0
+for i in range(n):
+    m = mu[i][np.argsort(np.abs(mu[i] - 1))][2:]      # the trivial pair: the two nearest 1
+    lead = m[np.argmax(np.abs(m))]
+    ref_stable = np.abs(lead) <= 1 + 1e-4
+    assert abs(L["max_modulus"][i] - np.abs(lead)) < 1e-6, (i, L["max_modulus"][i], np.abs(lead))
+    assert L["stable"][i] == int(ref_stable) == D20["stable"][i], (i, L["stable"][i], D20["stable"][i])
+    # the leading pair's Krein signature: that of the same multiplier in the full analysis
+    lm = L["multipliers_re"][i, 0] + 1j * L["multipliers_im"][i, 0]
+    j = np.argmin(np.abs(mu[i] - lm))
+    assert abs(mu[i][j] - lm) < 1e-6 and L["krein"][i, 0] == D20["krein"][i, j], (i, lm, L["krein"][i, 0], D20["krein"][i, j])
+    assert L["instability"][i] == D20["instability"][i], (i, L["instability"][i], D20["instability"][i])
+    if not ref_stable:   # the kind: the leading multiplier itself (complex: a Krein-collision quadruplet)
+        assert abs(abs(lm) - abs(lead)) < 1e-6 and (abs(lead.imag) > 1e-6) == (abs(lm.imag) > 1e-6), (i, lm, lead)
+        if abs(lead.imag) > 1e-6:
+            unstable_quads += 1
+            assert M20["stable"][i] == -1, (i, M20["stable"][i])   # matrix-free: never "stable" here
+    assert M20["stable"][i] in (-1, 0) and M20["instability"][i] == -1, (M20["stable"][i], M20["instability"][i])
+assert unstable_quads >= 3, unstable_quads   # E = 0.94, 1.86, 3.72 (benchmarks/README.md)
+print("N = 102 to E = 20: dense leading pairs on 2 ranks = full dense analysis at %d orbits (%d unstable quadruplets); matrix-free: %d not decided"
+      % (n, unstable_quads, (M20["stable"][:] == -1).sum()))
 PYEOF
 $PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_fep.py" floquet.h5 floquet.png > /dev/null
 $PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_floquet.py" floquet.h5 multipliers.png > /dev/null

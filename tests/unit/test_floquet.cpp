@@ -227,12 +227,16 @@ TEST_CASE("matrix-free monodromy action and leading multiplier equal the dense o
   REQUIRE(MatrixFreeVerdict(crit, 1e-6) == kUnstable);
   // The dense leading pair (-floquet_mf_dense_max): the same real multiplier, from the same S.
   LeadingMultipliers dl;
-  PCHK(FloquetLeadingDense(lat, S, 1, 1e-6, &dl));
+  PCHK(FloquetLeadingDense(lat, S, 1, FloquetOptions(), &dl));
   INFO("dense leading " << dl.re[0] << " + " << dl.im[0] << " i");
   REQUIRE(dl.verdict == kUnstable);
   REQUIRE(dl.im[0] == 0);
   REQUIRE(std::abs(dl.re[0] - dense.max_modulus) < 1e-12 * dense.max_modulus);
   REQUIRE(std::abs(dl.max_modulus - dense.max_modulus) < 1e-12 * dense.max_modulus);
+  // its kind: a real pair (Krein form 0) and the dense route's class of the same eigenvector
+  REQUIRE(dl.krein[0] == 0);
+  REQUIRE(dense.instability > 0);
+  REQUIRE(dl.instability == dense.instability);
 }
 
 // On a stable orbit every multiplier lies on the unit circle, where "largest
@@ -313,7 +317,7 @@ TEST_CASE("deflating the trivial pair, the critical route returns the leading no
   // The dense leading pairs: the trivial pair left out, the same two pairs in
   // the same order (nearest +-1 on the circle), and the verdict "stable".
   LeadingMultipliers dl;
-  PCHK(FloquetLeadingDense(d.lat, cap.S, 2, 1e-6, &dl));
+  PCHK(FloquetLeadingDense(d.lat, cap.S, 2, FloquetOptions(), &dl));
   REQUIRE(dl.converged == 2);
   REQUIRE(dl.verdict == kStable);
   REQUIRE(std::abs(dl.max_modulus - 1) < 1e-8); // the dense floor (rounding of 2N eigenvalues on the circle)
@@ -321,5 +325,12 @@ TEST_CASE("deflating the trivial pair, the critical route returns the leading no
     INFO("dense leading pair " << k << ": b = " << bval(cplx(dl.re[k], dl.im[k])) << ", expected " << distinct[k]);
     REQUIRE(dl.im[k] >= 0);
     REQUIRE(std::abs(bval(cplx(dl.re[k], dl.im[k])) - distinct[k]) < 1e-10);
+    // the Krein signature of the same multiplier in the full dense analysis
+    size_t j = 0;
+    for (size_t i = 1; i < dense.re.size(); i++)
+      if (std::abs(cplx(dense.re[i], dense.im[i]) - cplx(dl.re[k], dl.im[k])) < std::abs(cplx(dense.re[j], dense.im[j]) - cplx(dl.re[k], dl.im[k]))) j = i;
+    REQUIRE(dense.krein[j] != 0);
+    REQUIRE(dl.krein[k] == dense.krein[j]);
   }
+  REQUIRE(dl.instability == 0);
 }
