@@ -1,5 +1,9 @@
 #pragma once
-// Matrix-free Floquet multipliers for long lattices: SLEPc Krylov-Schur on a
+// Leading Floquet multipliers for long lattices (-floquet_mf): from the dense
+// monodromy where 2N <= -floquet_mf_dense_max (FloquetLeadingDense, the only
+// route that can call an orbit stable), matrix-free beyond.
+//
+// Matrix-free Floquet multipliers: SLEPc Krylov-Schur on a
 // MATSHELL whose MatMult is the monodromy action M x = dz(T)/dz0 x, one
 // tangent-linear integration of the orbit per product (PeriodicFlow::
 // IntegrateWithTangent); the 2N x 2N monodromy is never formed. Options:

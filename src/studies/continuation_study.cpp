@@ -202,7 +202,8 @@ PetscErrorCode ReadStudyChoices(MPI_Comm comm, StudyChoices *c)
   PetscCall(PetscOptionsBool("-floquet", "Add Floquet multipliers, Krein signatures and stability to every orbit (-floquet_* options)", NULL, c->floquet,
                              &c->floquet, NULL));
   PetscCall(PetscOptionsBool("-floquet_mf",
-                             "With -floquet: only the -floquet_mf_nev leading multipliers, matrix-free (long lattices; no Krein signatures)", NULL,
+                             "With -floquet: only the -floquet_mf_nev leading multiplier pairs (long lattices): from the dense monodromy up to 2N = "
+                             "-floquet_mf_dense_max, matrix-free beyond (no stable verdict there)", NULL,
                              c->floquet_mf, &c->floquet_mf, NULL));
   PetscOptionsEnd();
   PetscOptionsBegin(comm, "cont_", "NNM branches", NULL);
@@ -292,6 +293,14 @@ protected:
     PetscFunctionBeginUser;
     PetscCall(PetscPrintf(comm_, "nltopo continuation: N = %" PetscInt_FMT ", %" PetscInt_FMT " branch(es), E %g .. %g, Jacobian %s\n", nnm_.lat.N(), ch_.nb,
                           (double)nnm_.co.energy_min, (double)nnm_.co.energy_max, nnm_.so.jacobian == ShootingJacobian::Dense ? "dense" : "mf"));
+    if (fk_ == FloquetKind::MatrixFree) {
+      if (mf_hook_->Dense())
+        PetscCall(PetscPrintf(comm_, "  Floquet: the dense monodromy (2N = %" PetscInt_FMT " <= -floquet_mf_dense_max %" PetscInt_FMT "): every multiplier, a stability verdict per orbit, cost ~(2N)^3\n",
+                              n2_, fmo_.dense_max));
+      else
+        PetscCall(PetscPrintf(comm_, "  Floquet: matrix-free (2N = %" PetscInt_FMT " > -floquet_mf_dense_max %" PetscInt_FMT "): an orbit is unstable or not decided, never stable\n", n2_,
+                              fmo_.dense_max));
+    }
     // -cont_resume: every branch read before the first checkpoint may replace the file
     resumes_.resize(ch_.nb);
     for (PetscInt k = 0; k < ch_.nb && ch_.resume; k++) {

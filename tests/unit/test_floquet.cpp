@@ -334,3 +334,83 @@ TEST_CASE("deflating the trivial pair, the critical route returns the leading no
   }
   REQUIRE(dl.instability == 0);
 }
+
+// A constructed symplectic operator with known spectrum for the dense leading
+// pairs' kernel: two oscillators of opposite energy, H = (p1^2 + w1^2 q1^2)/2
+// - (p2^2 + w2^2 q2^2)/2 + eps q1 q2, and a free particle q3 (the trivial pair
+// mu = 1, a Jordan block as on every NNM); M = exp(A T) by scaling and squaring.
+// Apart (eps = 0, w1 != w2): exp(+-i w T) on the circle, the exp(+i w1 T) member
+// of signature +1 and the exp(+i w2 T) member -1 (negative energy). Colliding
+// (w1 = w2 = w, eps > 0): with z = q1 + i q2, z'' = (-w^2 + i eps) z, a Krein
+// quadruplet with |mu| = exp(a T), a = Re sqrt(-w^2 + i eps).
+namespace {
+std::vector<PetscReal> KreinOperator(PetscReal w1, PetscReal w2, PetscReal eps, PetscReal T)
+{
+  const int n = 6; // (q1, q2, q3, p1, p2, p3), column-major
+  std::vector<PetscReal> A(n * n, 0.0);
+  auto at = [&](std::vector<PetscReal> &m, int i, int j) -> PetscReal & { return m[j * n + i]; };
+  at(A, 0, 3) = 1, at(A, 3, 0) = -w1 * w1, at(A, 3, 1) = -eps; // q1' = p1, p1' = -w1^2 q1 - eps q2
+  at(A, 1, 4) = -1, at(A, 4, 1) = w2 * w2, at(A, 4, 0) = -eps; // q2' = -p2, p2' = w2^2 q2 - eps q1
+  at(A, 2, 5) = 1;                                              // q3' = p3
+  int squarings = 10;
+  const PetscReal h = T / std::pow(2.0, squarings);
+  std::vector<PetscReal> M(n * n, 0.0), term(n * n, 0.0), next(n * n);
+  for (int i = 0; i < n; i++) at(M, i, i) = at(term, i, i) = 1;
+  for (int k = 1; k <= 20; k++) { // Taylor series of exp(A h)
+    for (int i = 0; i < n; i++)
+      for (int j = 0; j < n; j++) {
+        PetscReal s = 0;
+        for (int l = 0; l < n; l++) s += at(A, i, l) * at(term, l, j);
+        at(next, i, j) = s * h / k;
+      }
+    term = next;
+    for (int i = 0; i < n * n; i++) M[i] += term[i];
+  }
+  while (squarings--) {
+    for (int i = 0; i < n; i++)
+      for (int j = 0; j < n; j++) {
+        PetscReal s = 0;
+        for (int l = 0; l < n; l++) s += at(M, i, l) * at(M, l, j);
+        at(next, i, j) = s;
+      }
+    M = next;
+  }
+  return M;
+}
+} // namespace
+
+TEST_CASE("dense leading pairs of a constructed symplectic operator: Krein signatures apart, a quadruplet in collision", "[floquet][mf]")
+{
+  const std::vector<PetscInt> u = {0, 1, 2}, v = {3, 4, 5};
+  const PetscReal T = 2;
+  FloquetOptions o;
+  SECTION("apart: on the circle, signatures +1 and -1, ordered nearest +-1")
+  {
+    std::vector<PetscReal> M = KreinOperator(1.0, 1.3, 0.0, T);
+    LeadingPairs lead;
+    PCHK(DenseLeadingPairs(6, M.data(), 2, o, u, v, -1, &lead));
+    REQUIRE(lead.mu.size() == 2);
+    // |cos 2.6| = 0.857 > |cos 2| = 0.416: the negative-energy oscillator's pair first
+    INFO("leading " << lead.mu[0] << " (" << lead.krein[0] << "), " << lead.mu[1] << " (" << lead.krein[1] << ")");
+    REQUIRE(std::abs(lead.mu[0] - std::polar(1.0, 1.3 * T)) < 1e-12);
+    REQUIRE(lead.krein[0] == -1);
+    REQUIRE(std::abs(lead.mu[1] - std::polar(1.0, 1.0 * T)) < 1e-12);
+    REQUIRE(lead.krein[1] == 1);
+    REQUIRE(std::abs(lead.max_modulus - 1) < 1e-12);
+    REQUIRE(lead.instability == 0);
+  }
+  SECTION("colliding: the quadruplet's |mu| = exp(a T), complex, Krein form 0")
+  {
+    const PetscReal eps = 0.01, a = std::sqrt((std::hypot(1.0, eps) - 1.0) / 2);
+    std::vector<PetscReal> M = KreinOperator(1.0, 1.0, eps, T);
+    LeadingPairs lead;
+    PCHK(DenseLeadingPairs(6, M.data(), 2, o, u, v, -1, &lead));
+    REQUIRE(lead.mu.size() == 1); // one member of the quadruplet has |mu| > 1 and Im mu > 0; nothing else is nontrivial
+    INFO("leading " << lead.mu[0] << ", expected modulus " << std::exp(a * T));
+    REQUIRE(std::abs(std::abs(lead.mu[0]) - std::exp(a * T)) < 1e-12);
+    REQUIRE(lead.mu[0].imag() > 0.5); // complex, near exp(i w T)
+    REQUIRE(std::abs(lead.max_modulus - std::exp(a * T)) < 1e-12);
+    REQUIRE(lead.krein[0] == 0);
+    REQUIRE(lead.instability == 1); // no edge region given: bulk
+  }
+}
