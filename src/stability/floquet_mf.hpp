@@ -93,7 +93,8 @@ enum FloquetVerdict : PetscInt { kUndecided = -1, kUnstable = 0, kStable = 1 };
 struct LeadingMultipliers {
   std::vector<PetscReal> re, im; // the multipliers (|mu| >= 1 member of each pair)
   PetscReal max_modulus = 0; // NaN unless all nev converged
-  PetscInt converged = 0;    // < nev: the rest are NaN (-floquet_mf_eps_max_it reached)
+  PetscInt converged = 0;    // < nev: the rest are NaN (-floquet_mf_eps_max_it reached, or rejected)
+  PetscInt spurious = 0;     // Ritz values Krylov-Schur called converged whose true residual rejected them
   PetscInt products = 0;     // monodromy actions used (two per product of B)
   PetscInt verdict = kUndecided;
   std::vector<PetscInt> krein; // per multiplier: sign(-i v^H J v) as in FloquetResult; 0 when not computed (matrix-free)
