@@ -67,10 +67,17 @@ bool HasDataset(const std::string &file, const char *dataset)
 
 namespace {
 // Opens the root attribute `name` of file (errors silenced); f, a < 0 on failure.
+// name: an attribute of the root, or "<object path>/<attribute>" of a group or dataset.
 void OpenRootAttribute(const std::string &file, const char *name, hid_t *f, hid_t *a)
 {
   *f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  *a = *f >= 0 && H5Aexists(*f, name) > 0 ? H5Aopen(*f, name, H5P_DEFAULT) : -1;
+  const std::string path(name);
+  const size_t slash = path.rfind('/');
+  const std::string obj = slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash)), attr = slash == std::string::npos ? path : path.substr(slash + 1);
+  *a = -1;
+  if (*f < 0) return;
+  if (obj != "." && obj != "/" && H5Lexists(*f, obj.c_str(), H5P_DEFAULT) <= 0) return;
+  if (H5Aexists_by_name(*f, obj.c_str(), attr.c_str(), H5P_DEFAULT) > 0) *a = H5Aopen_by_name(*f, obj.c_str(), attr.c_str(), H5P_DEFAULT, H5P_DEFAULT);
 }
 } // namespace
 

@@ -12,8 +12,10 @@ PetscErrorCode ReadDoubles(const std::string &file, const char *dataset, std::ve
 PetscErrorCode ReadInts(const std::string &file, const char *dataset, std::vector<PetscInt> *out);
 // Whether the file opens and holds the dataset (absolute path, e.g. "/continuation/insulated/energy").
 bool HasDataset(const std::string &file, const char *dataset);
-// A root attribute of the file (string, or integer): false when the file does
-// not open as HDF5 or has no such attribute.
+// A root attribute of the file (string, or integer), or with name
+// "<path>/<attribute>" one of a group or dataset (e.g.
+// "/continuation/insulated/floquet_route"): false when the file does not open
+// as HDF5 or has no such attribute.
 bool ReadRootAttribute(const std::string &file, const char *name, std::string *value);
 bool ReadRootAttribute(const std::string &file, const char *name, long *value);
 

@@ -8,9 +8,11 @@ insulated branch by default), from -study continuation -floquet:
 (c) max |mu| - 1 along the branch (log), coloured by class;
 (d) the branch's FEP coloured by class, with the orbits of a -study stability
     file (the 30,000-period runs, Fig. 4c) marked when one is given.
-A -floquet_mf branch (no Krein signatures or classes) is drawn with (b) and
-(c) only, every orbit by its verdict: stable (dense route only), unstable, or
-not decided (the matrix-free route cannot exclude a Krein quadruplet).
+A -floquet_mf branch holds the leading pairs only: with its dense route
+(floquet_route "dense") they are drawn like the full analysis; matrix-free
+(no Krein signatures or classes) with (b) and (c) only, every orbit by its
+verdict: unstable, or not decided (the matrix-free route cannot exclude a
+Krein quadruplet).
 usage: plot_floquet.py fep.h5 [stability.h5] [branch] [out.png]"""
 import sys
 import h5py
@@ -34,14 +36,20 @@ if "multipliers_re" not in g:
 E, w = g["energy"][:], g["omega"][:]
 mu = g["multipliers_re"][:] + 1j * g["multipliers_im"][:]
 mm = g["max_modulus"][:]
-if "instability" in g:
+route = g.attrs.get("floquet_route", b"")
+route = route.decode() if isinstance(route, bytes) else str(route)
+# -floquet_mf written matrix-free (or before its verdicts, without a route): no classes or
+# signatures; stable 0 unstable, -1 not decided (a Krein quadruplet is not excluded)
+mf = "floquet_products" in g.attrs and route != "dense"
+if mf:
+    cls = np.select([g["stable"][:] == 0], [-1], -2)
+else:
     cls = g["instability"][:].astype(int)
-else:  # -floquet_mf: stable 1 (dense route only), 0 unstable, -1 not decided (matrix-free)
-    cls = np.select([g["stable"][:] == 1, g["stable"][:] == 0], [0, -1], -2)
+    cls[cls < 0] = -1   # the dense leading pairs: a class without an eigenvector
 classes = dict(nltopo_plot.INSTABILITY)
 classes[-1] = ("unstable (kind not computed)", "tab:red")
 classes[-2] = ("not decided (matrix-free: a Krein quadruplet is not excluded)", "0.55")
-has_krein = "krein" in g
+has_krein = "krein" in g and not mf
 npan = 4 if has_krein else 2
 fig, ax = plt.subplots(1, npan, figsize=(5.2 * npan, 4.8))
 ax = list(ax)
@@ -98,3 +106,4 @@ if has_krein:  # (d) the FEP by class, with the long runs
 fig.tight_layout()
 fig.savefig(out, dpi=120)
 print("wrote", out)
+print("orbits by class:", ", ".join(f"{classes[c][0]} {(cls == c).sum()}" for c in sorted(set(cls.tolist()))))

@@ -1,5 +1,7 @@
 #include "stability/floquet_mf.hpp"
+#include "core/errors.hpp"
 #include "core/gather.hpp"
+#include "core/memory_guard.hpp"
 #include "core/log.hpp"
 #include <algorithm>
 #include <cmath>
@@ -49,8 +51,10 @@ PetscErrorCode FloquetMfOptionsFromOptions(MPI_Comm comm, FloquetMfOptions *o)
 
 PetscInt MatrixFreeVerdict(const LeadingMultipliers &r, PetscReal tol)
 {
-  for (size_t k = 0; k < r.re.size(); k++)
-    if (std::hypot(r.re[k], r.im[k]) > 1 + tol) return kUnstable; // NaN compares false
+  for (size_t k = 0; k < r.re.size(); k++) {
+    const PetscReal res = k < r.resolution.size() && std::isfinite(r.resolution[k]) ? r.resolution[k] : 0;
+    if (std::hypot(r.re[k], r.im[k]) > 1 + std::max(tol, res)) return kUnstable; // NaN compares false
+  }
   return kUndecided;
 }
 
@@ -99,21 +103,37 @@ PetscErrorCode DenseLeadingPairs(PetscInt n_, PetscReal *a, PetscInt nev, const 
   idx.erase(idx.begin(), idx.begin() + std::min(2, n));
   out->max_modulus = 0;
   for (int i : idx) out->max_modulus = std::max(out->max_modulus, std::abs(mu[i]));
-  // one member of each pair: |mu| > 1 off the circle, the upper half plane (or real) on it
+  // One member of each pair: the upper half plane (or real) member with
+  // |mu| >= 1. Off the circle (beyond tol) that is the outer member; within
+  // tol of it, a pair that is off the circle by more than rounding (1e-9) has
+  // both mu and 1/conj(mu) in the upper half plane: the inner one is left out
+  // when its partner is there (found within a tenth of its distance from the
+  // circle). Distinct pairs with equal multipliers (a degenerate or colliding
+  // pair) are both kept.
   std::vector<int> cand;
   for (int i : idx) {
-    const bool off = std::abs(std::abs(mu[i]) - 1) > o.tol;
-    if (off ? std::abs(mu[i]) > 1 && mu[i].imag() >= 0 : mu[i].imag() >= 0) cand.push_back(i);
+    const PetscReal m = std::abs(mu[i]);
+    if (mu[i].imag() < 0 || m < 1 - o.tol) continue;
+    if (m < 1 - 1e-9) {
+      const std::complex<PetscReal> partner = 1.0 / std::conj(mu[i]);
+      bool outer = false;
+      for (int j : idx) outer = outer || (j != i && mu[j].imag() >= 0 && std::abs(mu[j]) > 1 + 1e-9 && std::abs(mu[j] - partner) <= std::max(1e-7, 0.1 * (1 - m)));
+      if (outer) continue;
+    }
+    cand.push_back(i);
   }
   std::stable_sort(cand.begin(), cand.end(), [&](int x, int y) {
     const bool ox = std::abs(mu[x]) > 1 + o.tol, oy = std::abs(mu[y]) > 1 + o.tol;
     if (ox != oy) return ox;
     return ox ? std::abs(mu[x]) > std::abs(mu[y]) : std::abs(mu[x].real()) > std::abs(mu[y].real());
   });
-  std::vector<int> pick; // a real pair on the circle at +-1 is a double root: keep one
+  // A real pair on the circle at +-1 is a double root (a Jordan block that
+  // rounding may leave as two reals within 1e-6): keep one.
+  std::vector<int> pick;
   for (int i : cand) {
     if ((PetscInt)pick.size() >= nev) break;
-    if (!pick.empty() && std::abs(mu[i] - mu[pick.back()]) <= 1e-6) continue;
+    const int p = pick.empty() ? -1 : pick.back();
+    if (p >= 0 && std::abs(mu[i].imag()) <= 1e-7 && std::abs(mu[p].imag()) <= 1e-7 && std::abs(mu[i] - mu[p]) <= 1e-6) continue;
     pick.push_back(i);
   }
   // their eigenvectors: inverse iteration on H, then Q applied
@@ -127,7 +147,7 @@ PetscErrorCode DenseLeadingPairs(PetscInt n_, PetscReal *a, PetscInt nev, const 
     std::vector<PetscReal> wr2 = wr;
     dhsein_("R", "Q", "N", select.data(), &n, h.data(), &n, wr2.data(), wi.data(), NULL, &one, vr.data(), &n, &cols, &got, hw.data(), ifl.data(), ifr.data(), &info, 1,
             1, 1);
-    PetscCheck(info >= 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet (dense): LAPACK dhsein failed, info %d (2N = %d)", info, n);
+    PetscCheck(info >= 0 && got == cols, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet (dense): LAPACK dhsein failed, info %d, %d of %d columns (2N = %d)", info, got, cols, n);
     lwork = -1;
     dormhr_("L", "N", &n, &cols, &one, &n, a, &n, tau.data(), vr.data(), &n, &wq, &lwork, &info, 1, 1);
     work.resize(std::max<size_t>(work.size(), (size_t)wq + 1));
@@ -142,6 +162,11 @@ PetscErrorCode DenseLeadingPairs(PetscInt n_, PetscReal *a, PetscInt nev, const 
   const PetscInt N = (PetscInt)uidx.size();
   out->mu.clear(), out->krein.clear(), out->edge.clear();
   for (int i : pick) {
+    if (ifr[first[i]] != 0) { // inverse iteration did not converge (dhsein info > 0): no signature, no class
+      PetscCall(PetscInfo(NULL, "Floquet (dense): no eigenvector for the multiplier %g%+gi (dhsein)\n", (double)mu[i].real(), (double)mu[i].imag()));
+      out->mu.push_back(mu[i]), out->krein.push_back(0), out->edge.push_back(NAN);
+      continue;
+    }
     const PetscReal *xr = &vr[(size_t)first[i] * n], *xi = mu[i].imag() > 0 ? xr + n : nullptr;
     std::vector<PetscScalar> re(2 * N), im(2 * N, 0.0);
     PetscReal disp = 0, near = 0;
@@ -162,7 +187,7 @@ PetscErrorCode DenseLeadingPairs(PetscInt n_, PetscReal *a, PetscInt nev, const 
   out->instability = 0;
   if (out->max_modulus > 1 + o.tol && !out->edge.empty()) { // the leading multiplier is then the most unstable
     const PetscReal w = out->edge[0];
-    out->instability = w > o.edge_weight ? 3 : (w < 1 - o.edge_weight ? 1 : 2);
+    out->instability = !std::isfinite(w) ? -1 : w > o.edge_weight ? 3 : (w < 1 - o.edge_weight ? 1 : 2);
   }
   PetscFunctionReturn(0);
 }
@@ -176,6 +201,8 @@ PetscErrorCode FloquetLeadingDense(const Lattice &lat, Mat S, PetscInt nev, cons
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(Log().floquet, 0, 0, 0, 0));
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  // rank 0 holds M, its Hessenberg form and a copy for the QR
+  PetscCall(CheckMemory(comm, rank == 0 ? 3.0 * 8.0 * (double)n * (double)n : 0.0, "the dense monodromy's eigenvalues (2N <= -floquet_mf_dense_max)"));
   if (rank == 0) a.resize((size_t)n * n);
   for (PetscInt c = 0; c < n; c++) { // column c of M, in PETSc's order on rows and columns alike (a similarity)
     Vec col;
@@ -185,16 +212,21 @@ PetscErrorCode FloquetLeadingDense(const Lattice &lat, Mat S, PetscInt nev, cons
     PetscCall(MatDenseRestoreColumnVecRead(S, c, &col));
     if (rank == 0) std::copy(x.begin(), x.begin() + n, a.begin() + (size_t)c * n);
   }
-  // rank 0's answer, broadcast: per pair re, im, krein; then max |mu|, instability
+  // rank 0's answer, broadcast: per pair re, im, krein; then max |mu|, instability.
+  // Its LAPACK work fails on rank 0 alone: the error is made collective.
   std::vector<PetscReal> out(3 * nev + 2, NAN);
+  PetscErrorCode code = 0;
+  char msg[256] = "";
   if (rank == 0) {
     std::vector<PetscInt> u(N), v(N); // natural site -> PETSc state index
     for (PetscInt s = 0; s < N; s++) u[s] = lat.StateIndexU(s), v[s] = lat.StateIndexV(s);
     LeadingPairs lead;
-    PetscCall(DenseLeadingPairs(n, a.data(), nev, o, u, v, lat.Params().layout == Layout::Interface ? lat.Params().InterfaceSite() : -1, &lead));
+    const PetscInt iface = lat.Params().layout == Layout::Interface ? lat.Params().InterfaceSite() : -1;
+    PetscCall(CaptureError([&]() { return DenseLeadingPairs(n, a.data(), nev, o, u, v, iface, &lead); }, &code, msg, sizeof msg));
     for (PetscInt k = 0; k < (PetscInt)lead.mu.size(); k++) out[3 * k] = lead.mu[k].real(), out[3 * k + 1] = lead.mu[k].imag(), out[3 * k + 2] = lead.krein[k];
     out[3 * nev] = lead.max_modulus, out[3 * nev + 1] = lead.instability;
   }
+  PetscCall(FailTogether(comm, code, msg));
   PetscCallMPI(MPI_Bcast(out.data(), (PetscMPIInt)out.size(), MPIU_REAL, 0, comm));
   r->re.assign(nev, NAN), r->im.assign(nev, NAN), r->krein.assign(nev, 0);
   r->converged = 0;
@@ -204,7 +236,7 @@ PetscErrorCode FloquetLeadingDense(const Lattice &lat, Mat S, PetscInt nev, cons
   }
   r->max_modulus = out[3 * nev];
   r->instability = (PetscInt)out[3 * nev + 1];
-  r->products = 0;
+  r->products = n; // the 2N tangent columns of the monodromy
   r->verdict = r->max_modulus <= 1 + o.tol ? kStable : kUnstable;
   PetscCall(PetscLogEventEnd(Log().floquet, 0, 0, 0, 0));
   PetscFunctionReturn(0);
@@ -395,8 +427,9 @@ PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal
   // Accepted: |Op x - lambda x| <= 100 tol max(1, |lambda|) |x|, tol the
   // eigensolver's. A rejected one is NaN, like an unconverged one.
   r->converged = 0;
-  r->re.assign(nev, NAN), r->im.assign(nev, NAN);
+  r->re.assign(nev, NAN), r->im.assign(nev, NAN), r->resolution.assign(nev, NAN);
   r->max_modulus = 0;
+  std::vector<PetscInt> kept; // eigenpairs that passed: the next orbit's start
   for (PetscInt k = 0; k < (PetscInt)seen.size(); k++) {
     PetscReal res;
     PetscCall(TrueResidual(shell, eps, first[k], z0, &res));
@@ -405,6 +438,8 @@ PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal
       PetscCall(PetscInfo(NULL, "matrix-free Floquet: Ritz value %g%+gi rejected, true residual %g\n", (double)seen[k].real(), (double)seen[k].imag(), (double)res));
       continue;
     }
+    kept.push_back(first[k]);
+    const PetscInt slot = r->converged; // verified ones first, NaN after them
     const PetscReal br = seen[k].real(), bi = seen[k].imag();
     std::complex<PetscReal> mu(br, bi);
     if (critical) {
@@ -416,7 +451,10 @@ PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal
         mu = std::abs(b + s) >= std::abs(b - s) ? b + s : b - s;
       }
     }
-    r->re[k] = mu.real(), r->im[k] = mu.imag();
+    r->re[slot] = mu.real(), r->im[slot] = mu.imag();
+    // How far |mu| - 1 is resolved: an eigenvalue error ~ res; through
+    // mu = b + sqrt(b^2 - 1) near b = +-1 it becomes sqrt(2 res).
+    r->resolution[slot] = critical ? std::sqrt(2 * std::max(o.circle_tol, res)) : res;
     r->max_modulus = std::max(r->max_modulus, std::abs(mu));
     r->converged++;
   }
@@ -425,7 +463,7 @@ PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal
   r->products = shell.Products();
   if (warm) { // this orbit's eigenvectors (real and imaginary parts, one copy per pair) start the next solve
     warm->clear();
-    for (PetscInt i : first) {
+    for (PetscInt i : kept) {
       OwnedVec xr, xi;
       PetscCall(VecDuplicate(z0, xr.out()));
       PetscCall(VecDuplicate(z0, xi.out()));

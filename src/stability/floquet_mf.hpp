@@ -95,6 +95,7 @@ struct LeadingMultipliers {
   PetscReal max_modulus = 0; // NaN unless all nev converged
   PetscInt converged = 0;    // < nev: the rest are NaN (-floquet_mf_eps_max_it reached, or rejected)
   PetscInt spurious = 0;     // Ritz values Krylov-Schur called converged whose true residual rejected them
+  std::vector<PetscReal> resolution; // matrix-free: how far |mu| - 1 of each is resolved (from its true residual)
   PetscInt products = 0;     // monodromy actions used (two per product of B)
   PetscInt verdict = kUndecided;
   std::vector<PetscInt> krein; // per multiplier: sign(-i v^H J v) as in FloquetResult; 0 when not computed (matrix-free)
@@ -109,7 +110,8 @@ PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal
                               std::vector<OwnedVec> *warm = nullptr, Vec dz0 = nullptr);
 
 // The verdict of a matrix-free result at -floquet_tol tol: unstable when a
-// converged multiplier lies beyond 1 + tol, otherwise undecided.
+// converged multiplier lies beyond 1 + max(tol, its resolution), otherwise
+// undecided.
 PetscInt MatrixFreeVerdict(const LeadingMultipliers &r, PetscReal tol);
 
 // The dense route's answer in the same form: all 2N multipliers of the

@@ -223,7 +223,7 @@ PetscErrorCode WriteRecord(PetscViewer v, const BranchRecord &r, FloquetKind fk,
 }
 
 PetscErrorCode ReadResume(MPI_Comm comm, const std::string &file, const std::string &label, FloquetKind fk, PetscInt n2, PetscInt nev, Branch *b,
-                          FloquetColumns *f, bool *found)
+                          FloquetColumns *f, bool *found, const std::string &mf_route)
 {
   PetscMPIInt rank;
   const std::string g = "/continuation/" + label + "/";
@@ -245,6 +245,7 @@ PetscErrorCode ReadResume(MPI_Comm comm, const std::string &file, const std::str
   *found = status[1];
   if (!*found) PetscFunctionReturn(0);
   PetscInt rowlen = 0; // values per stored orbit
+  int route_change = 0; // -floquet_mf: 1 the file's route was matrix-free and this run's is dense, 2 the reverse
   Branch &rb = rec.b;
   FloquetColumns &rf = rec.f;
   if (rank == 0) {
@@ -273,20 +274,39 @@ PetscErrorCode ReadResume(MPI_Comm comm, const std::string &file, const std::str
     const size_t np = rb.energy.size();
     rowlen = rb.z0.size() == np * (size_t)n2 ? n2 : np == 0 ? -1 : (PetscInt)(rb.z0.size() / np);
     // Floquet columns of another -floquet_mf_nev or route (or none) are not comparable: NaN / 0 for every stored orbit.
-    const bool comparable = rf.re.size() == np * (size_t)(fk == FloquetKind::Dense ? n2 : nev);
+    const bool comparable = np > 0 && rf.re.size() == np * (size_t)(fk == FloquetKind::Dense ? n2 : nev);
+    // -floquet_mf: the verdicts of one route only. A file written before the
+    // verdicts (no floquet_route) is matrix-free, and its stable = 1 meant only
+    // "max |mu| <= 1 + tol": not decided.
+    std::string route;
+    const bool routed = fk == FloquetKind::MatrixFree && ReadRootAttribute(file, (g + "floquet_route").c_str(), &route);
+    if (fk == FloquetKind::MatrixFree && comparable) {
+      if (!routed) {
+        for (PetscInt &x : rf.stable) x = x == 1 ? -1 : x;
+        rf.instability.assign(np, -1);
+      }
+      route_change = (routed ? route : std::string("matrix-free")) != mf_route ? (mf_route == "dense" ? 1 : 2) : 0;
+    }
     for (const auto &[fd, c, floquet] : fields) { // padded: files written before krein or det_error were stored
       if (!floquet || fd->kind != FieldKind::Dataset) continue;
       const Cells d = c->data(rec);
       const size_t n = np * (size_t)std::max<PetscInt>(1, RowLength(fd->shape, n2, nev));
+      // a missing -floquet_mf verdict or class is "not decided" / "not computed", never 0 (unstable / stable)
+      const PetscInt unknown = fk == FloquetKind::MatrixFree && (!std::strcmp(fd->name, "stable") || !std::strcmp(fd->name, "instability")) ? -1 : 0;
       if (d.reals) {
         if (!comparable) d.reals->clear();
         d.reals->resize(n, NAN);
       } else {
         if (!comparable) d.ints->clear();
-        d.ints->resize(n, 0);
+        d.ints->resize(n, unknown);
       }
     }
   }
+  PetscCallMPI(MPI_Bcast(&route_change, 1, MPI_INT, 0, comm));
+  PetscCheck(route_change == 0, comm, PETSC_ERR_USER,
+             "-cont_resume %s: branch %s's Floquet multipliers were computed by the %s route, this run would take the %s one (-floquet_mf_dense_max): "
+             "its verdicts would mix",
+             file.c_str(), label.c_str(), route_change == 1 ? "matrix-free" : "dense", route_change == 1 ? "dense" : "matrix-free");
   PetscCallMPI(MPI_Bcast(&rowlen, 1, MPIU_INT, 0, comm));
   PetscCheck(rowlen == n2, comm, PETSC_ERR_USER, "-cont_resume %s: branch %s has orbits of %" PetscInt_FMT " values, this lattice has 2N = %" PetscInt_FMT " (same -lattice_cells?)",
              file.c_str(), label.c_str(), rowlen, n2);

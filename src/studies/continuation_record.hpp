@@ -50,8 +50,11 @@ PetscErrorCode WriteRecord(PetscViewer v, const BranchRecord &r, FloquetKind fk,
 // -cont_resume: /continuation/<label> of an earlier output (complete or a
 // checkpoint) as a Branch (z0 rows on rank 0, the rest on every rank) and its
 // Floquet columns; found is false when the file has no such branch. Floquet
-// data the file lacks (it was written without -floquet) become NaN / 0.
+// data the file lacks (it was written without -floquet) become NaN / 0 (-1 for
+// -floquet_mf's stable and instability: not decided, not computed). mf_route:
+// the route this run's -floquet_mf takes ("dense" or "matrix-free"); a file
+// whose multipliers another route computed is refused.
 PetscErrorCode ReadResume(MPI_Comm comm, const std::string &file, const std::string &label, FloquetKind fk, PetscInt n2, PetscInt nev, Branch *b,
-                          FloquetColumns *f, bool *found);
+                          FloquetColumns *f, bool *found, const std::string &mf_route = "");
 
 } // namespace nltopo

@@ -307,7 +307,7 @@ protected:
       PetscReal omega;
       std::string label;
       PetscCall(BranchStart(nnm_.lat, nnm_.modes, ch_.names[k], u_, &omega, &label));
-      PetscCall(ReadResume(comm_, ch_.resume_file, label, fk_, n2_, fmo_.nev, &resumes_[k].b, &resumes_[k].f, &resumes_[k].found));
+      PetscCall(ReadResume(comm_, ch_.resume_file, label, fk_, n2_, fmo_.nev, &resumes_[k].b, &resumes_[k].f, &resumes_[k].found, mf_hook_->Route()));
     }
     for (PetscInt k = 0; k < ch_.nb; k++) PetscCall(ContinueOne(k));
     for (const Switch &sw : switches_) {
@@ -607,7 +607,7 @@ private:
         // run), continued from its last one as a branch of -cont_branch is
         FloquetColumns rf;
         bool found = false;
-        if (ch_.resume) PetscCall(ReadResume(comm_, ch_.resume_file, cur.label, fk_, n2_, fmo_.nev, &start, &rf, &found));
+        if (ch_.resume) PetscCall(ReadResume(comm_, ch_.resume_file, cur.label, fk_, n2_, fmo_.nev, &start, &rf, &found, mf_hook_->Route()));
         const size_t kept = found && start.energy.size() >= 2 ? start.energy.size() : 0;
         if (kept) {
           followed = true;

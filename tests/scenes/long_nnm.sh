@@ -113,6 +113,38 @@ assert "spurious Ritz values rejected" in open("largest.txt").read()
 print("N = 102 to E = 20: dense leading pairs on 2 ranks = full dense analysis at %d orbits (%d unstable quadruplets); matrix-free: %d not decided"
       % (n, unstable_quads, (M20["stable"][:] == -1).sum()))
 PYEOF
+# -cont_resume of -floquet_mf files written before the verdicts (no floquet_route, krein or instability;
+# stable = 1 meant only max |mu| <= 1 + tol): made from mf20.h5 by removing what the old files lacked
+$PY - <<'PYEOF'
+import h5py, numpy as np, shutil
+for name, strip_option in (("old_mf.h5", False), ("old_mf_noopt.h5", True)):
+    shutil.copy("mf20.h5", name)
+    with h5py.File(name, "r+") as f:
+        g = f["continuation/insulated"]
+        for k in ("krein", "instability"): del g[k]
+        for a in ("floquet_route", "floquet_undecided"): del g.attrs[a]
+        st = np.ones_like(g["stable"][:]); del g["stable"]; g["stable"] = st
+        if strip_option:   # an old file has no -floquet_mf_dense_max: at N = 102 this run's route is dense
+            o = f.attrs["options"]; o = o.decode() if isinstance(o, bytes) else o
+            f.attrs["options"] = np.bytes_(o.replace(" -floquet_mf_dense_max 0", ""))
+PYEOF
+run2 "${long20[@]}" -cont_energy_max 30 -floquet_mf_dense_max 0 -cont_resume old_mf.h5 -output resumed_mf.h5 > resumed_mf.txt
+if run1 "${long20[@]}" -cont_energy_max 30 -cont_resume old_mf_noopt.h5 -output mixed.h5 > mixed.txt 2>&1; then echo "resume across routes not refused"; exit 1; fi
+grep -q "computed by the matrix-free route, this run would take the dense one" mixed.txt && test ! -e mixed.h5
+$PY - <<'PYEOF'
+import h5py, numpy as np
+R = h5py.File("resumed_mf.h5", "r")["continuation/insulated"]
+n0 = len(h5py.File("mf20.h5", "r")["continuation/insulated/energy"])
+assert len(R["energy"]) > n0
+# the old stable = 1 is not a verdict: not decided; no class was computed
+assert np.all(R["stable"][:] == -1) and np.all(R["instability"][:] == -1) and R.attrs["floquet_undecided"] == len(R["energy"]), R["stable"][:]
+print("resumed an old -floquet_mf file: %d orbits, all not decided" % len(R["energy"]))
+PYEOF
 $PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_fep.py" floquet.h5 floquet.png > /dev/null
 $PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_floquet.py" floquet.h5 multipliers.png > /dev/null
+# the figure tells the verdicts apart: matrix-free orbits are "not decided", the dense leading pairs have classes
+$PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_floquet.py" mf20.h5 mf20.png > mf20_plot.txt
+grep -qE "orbits by class: not decided \(matrix-free: a Krein quadruplet is not excluded\) [0-9]+$" mf20_plot.txt
+$PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_floquet.py" lead20.h5 lead20.png > lead20_plot.txt
+grep -qE "orbits by class: stable [0-9]+, B-B 2, B-E 1$" lead20_plot.txt   # the three quadruplets (full analysis: B-E, B-B, B-B)
 test -s floquet.png

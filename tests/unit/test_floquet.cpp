@@ -413,4 +413,24 @@ TEST_CASE("dense leading pairs of a constructed symplectic operator: Krein signa
     REQUIRE(lead.krein[0] == 0);
     REQUIRE(lead.instability == 1); // no edge region given: bulk
   }
+  SECTION("degenerate: two distinct pairs with one multiplier are both kept; more pairs asked than exist")
+  {
+    std::vector<PetscReal> M = KreinOperator(1.0, 1.0, 0.0, T);
+    LeadingPairs lead;
+    PCHK(DenseLeadingPairs(6, M.data(), 4, o, u, v, -1, &lead));
+    REQUIRE(lead.mu.size() == 2); // 3 pairs, the trivial one left out
+    for (const auto &m : lead.mu) REQUIRE(std::abs(m - std::polar(1.0, T)) < 1e-7);
+  }
+  SECTION("a quadruplet within -floquet_tol of the circle: one pair, the outer member, stable")
+  {
+    const PetscReal eps = 1e-7, a = std::sqrt((std::hypot(1.0, eps) - 1.0) / 2); // |mu| - 1 = 1e-7 < tol = 1e-6
+    std::vector<PetscReal> M = KreinOperator(1.0, 1.0, eps, T);
+    LeadingPairs lead;
+    PCHK(DenseLeadingPairs(6, M.data(), 2, o, u, v, -1, &lead));
+    INFO("leading " << (lead.mu.empty() ? cplx(NAN) : lead.mu[0]) << ", " << lead.mu.size() << " pairs");
+    REQUIRE(lead.mu.size() == 1);
+    REQUIRE(std::abs(std::abs(lead.mu[0]) - std::exp(a * T)) < 1e-8); // near a collision the eigenvalues carry ~sqrt(eps)
+    REQUIRE(std::abs(lead.mu[0]) > 1);
+    REQUIRE(lead.max_modulus <= 1 + o.tol);
+  }
 }
