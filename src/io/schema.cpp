@@ -144,13 +144,13 @@ std::vector<Schema> Build()
                 {"probes", A, I, "scalar", "orbits solved to locate the events"},
                 {"seconds", A, R, "scalar", "wall time of the location"}}});
   s.push_back({"/continuation/<branch>", "floquet_mf",
-               {{"multipliers_re", D, R, "npts x nev", "leading multipliers (|mu| >= 1 of each pair), real part; NaN: not converged"},
+               {{"multipliers_re", D, R, "npts x nev", "leading multipliers (|mu| >= 1 of each pair), real part; NaN: not converged, rejected by its true residual, or fewer pairs than nev"},
                 {"multipliers_im", D, R, "npts x nev", "leading multipliers, imaginary part"},
                 {"max_modulus", D, R, "npts", "largest |mu| (NaN: not converged)"},
                 {"krein", D, I, "npts x nev", "Krein signatures of the leading multipliers as in the dense route (dense route only; 0 matrix-free)"},
                 {"instability", D, I, "npts", "the leading instability's class, 0 stable, 1 B-B, 2 B-E, 3 E-E (dense route only); -1 not computed (matrix-free)"},
                 {"stable", D, I, "npts", "1 stable (dense route only), 0 unstable (a multiplier beyond 1 + tol), -1 not decided (matrix-free: a complex quadruplet cannot be excluded)"},
-                {"floquet_products", A, I, "scalar", "monodromy products"},
+                {"floquet_products", A, I, "scalar", "monodromy products (tangent integrations; the dense route: 2N columns per orbit)"},
                 {"floquet_unconverged", A, I, "scalar", "orbits with unconverged multipliers"},
                 {"floquet_undecided", A, I, "scalar", "orbits with stable = -1"},
                 {"floquet_route", A, S, "scalar", "dense (2N <= -floquet_mf_dense_max) or matrix-free"}}});
