@@ -132,7 +132,7 @@ public:
     c.route = Route();
     if (r.converged < mopt_.nev && !Dense()) {
       c.unconverged++;
-      PetscCall(PetscPrintf(comm, "  matrix-free Floquet: %" PetscInt_FMT " of %" PetscInt_FMT " multipliers converged at omega %.6f%s (written as NaN; raise -floquet_mf_eps_max_it)\n",
+      PetscCall(PetscPrintf(comm, "  matrix-free Floquet: %" PetscInt_FMT " of %" PetscInt_FMT " multipliers converged at omega %.6f%s (written as NaN; raise -floquet_mf_eps_max_it or -floquet_mf_eps_ncv)\n",
                             r.converged, mopt_.nev, (double)(2 * PETSC_PI / T), r.spurious ? ", spurious Ritz values rejected by their true residual" : ""));
     }
     PetscFunctionReturn(0);
