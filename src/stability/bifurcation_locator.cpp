@@ -11,8 +11,6 @@ namespace {
 
 PetscInt Sign(PetscReal x) { return x > 0 ? 1 : (x < 0 ? -1 : 0); }
 
-PetscInt Localisation(const FloquetOptions &o, PetscReal w) { return w > o.edge_weight ? 3 : (w < 1 - o.edge_weight ? 1 : 2); }
-
 } // namespace
 
 PetscErrorCode BifurcationLocator::Setup(Shooting &shoot, const FloquetOptions &fo, const BifurcationOptions &bo)

@@ -52,6 +52,23 @@ void KreinSums(const PetscScalar *a, const PetscScalar *b, PetscInt n, PetscReal
   }
 }
 
+PetscErrorCode GatherMonodromy(Mat S, PetscInt n, std::vector<PetscReal> *a)
+{
+  PetscMPIInt rank;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(PetscObjectComm((PetscObject)S), &rank));
+  a->assign(rank == 0 ? (size_t)n * n : 0, 0.0);
+  for (PetscInt c = 0; c < n; c++) {
+    Vec col;
+    std::vector<PetscReal> x;
+    PetscCall(MatDenseGetColumnVecRead(S, c, &col));
+    PetscCall(GatherVec(col, false, &x));
+    PetscCall(MatDenseRestoreColumnVecRead(S, c, &col));
+    if (rank == 0) std::copy(x.begin(), x.begin() + n, a->begin() + (size_t)c * n);
+  }
+  PetscFunctionReturn(0);
+}
+
 namespace {
 
 // Sums over the owned state entries of x (u part first, then v): -i v^H J v / |v|^2 for v = xr + i xi,
@@ -71,7 +88,7 @@ PetscErrorCode KreinAndEdge(const Lattice &lat, Vec xr, Vec xi, PetscInt e, Pets
     const PetscInt i = xs + k;
     const PetscReal d = a[k] * a[k] + b[k] * b[k];
     loc[2] += d;
-    if (iface && i >= m - e && i <= m + 1 + e) loc[3] += d;
+    if (iface && InEdgeRegion(i, m, e)) loc[3] += d;
   }
   PetscCall(VecRestoreArrayRead(xi, &b));
   PetscCall(VecRestoreArrayRead(xr, &a));
@@ -87,17 +104,14 @@ PetscErrorCode DeterminantError(Mat M, PetscInt n, PetscReal *err)
 {
   PetscMPIInt rank;
   std::vector<long double> a;
+  std::vector<PetscReal> cm;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(PetscObjectComm((PetscObject)M), &rank));
-  if (rank == 0) a.resize((size_t)n * n);
-  for (PetscInt c = 0; c < n; c++) {
-    Vec col;
-    std::vector<PetscReal> x;
-    PetscCall(MatDenseGetColumnVecRead(M, c, &col));
-    PetscCall(GatherVec(col, false, &x));
-    PetscCall(MatDenseRestoreColumnVecRead(M, c, &col));
-    if (rank == 0)
-      for (PetscInt r = 0; r < n; r++) a[(size_t)r * n + c] = x[r];
+  PetscCall(GatherMonodromy(M, n, &cm));
+  if (rank == 0) { // row-major in long double
+    a.resize((size_t)n * n);
+    for (PetscInt c = 0; c < n; c++)
+      for (PetscInt r = 0; r < n; r++) a[(size_t)r * n + c] = cm[(size_t)c * n + r];
   }
   long double det = 1;
   if (rank == 0) {
@@ -226,7 +240,7 @@ PetscErrorCode FloquetAnalysis(const Lattice &lat, Mat S, const FloquetOptions &
     const PetscReal mod = std::hypot(re[i], im[i]);
     r->re.push_back(re[i]);
     r->im.push_back(im[i]);
-    r->krein.push_back(std::abs(kap[i]) < o.krein_tol ? 0 : (kap[i] > 0 ? 1 : -1));
+    r->krein.push_back(KreinSign(o, kap[i]));
     r->edge.push_back(edge[i]);
     r->kappa.push_back(kap[i]);
     if (std::hypot(re[i] - 1, im[i]) < 1e-4) r->trivial++;
@@ -238,7 +252,7 @@ PetscErrorCode FloquetAnalysis(const Lattice &lat, Mat S, const FloquetOptions &
   r->stable = r->max_modulus <= 1 + o.tol;
   if (!r->stable) { // the kind, from the localisation of the most unstable eigenvector
     const PetscReal w = edge[worst];
-    r->instability = w > o.edge_weight ? 3 : (w < 1 - o.edge_weight ? 1 : 2);
+    r->instability = Localisation(o, w);
   }
   if (vec) PetscCall(CriticalVector(lat, eps, re, im, target, xr, xi, vec));
   if (circle_vectors >= 0) {

@@ -4,6 +4,7 @@
 // Krein signatures K = sign(-i v^H J v), J = [[0, I], [-I, 0]] (model.md), and
 // the kind of instability (README.md "Floquet").
 #include "lattice/lattice.hpp"
+#include <cmath>
 #include <complex>
 #include <vector>
 
@@ -46,6 +47,20 @@ struct FloquetResult {
 // circle_vectors >= 0: also r->vectors (above), for edge shares >= it.
 PetscErrorCode FloquetAnalysis(const Lattice &lat, Mat S, const FloquetOptions &o, FloquetResult *r, const PetscReal *target = nullptr,
                                std::vector<PetscReal> *vec = nullptr, PetscReal circle_vectors = -1);
+
+// The Krein signature of a Krein value kappa = -i v^H J v / |v|^2: 0 below
+// -floquet_krein_tol (real multipliers, off the circle, or on a collision).
+inline PetscInt KreinSign(const FloquetOptions &o, PetscReal kappa) { return std::abs(kappa) < o.krein_tol ? 0 : (kappa > 0 ? 1 : -1); }
+// The class of an eigenvector with edge share w (of its displacement norm):
+// 3 E-E above -floquet_edge_weight, 1 B-B below 1 minus it, 2 B-E between.
+inline PetscInt Localisation(const FloquetOptions &o, PetscReal w) { return w > o.edge_weight ? 3 : (w < 1 - o.edge_weight ? 1 : 2); }
+// Whether site i lies in the edge region of the interface cell (sites iface, iface + 1) with e sites each side.
+inline bool InEdgeRegion(PetscInt i, PetscInt iface, PetscInt e) { return i >= iface - e && i <= iface + 1 + e; }
+
+// The first n columns of the dense sensitivity matrix S (the monodromy) on
+// rank 0, column-major in PETSc's state order on rows and columns alike (a
+// similarity of M); other ranks get an empty vector. Collective.
+PetscErrorCode GatherMonodromy(Mat S, PetscInt n, std::vector<PetscReal> *a);
 
 // The real vector e^{i phi} v with the largest real part, unit norm, its
 // largest entry positive (an eigenvector's shape, whatever its phase).

@@ -1,6 +1,5 @@
 #include "stability/floquet_mf.hpp"
 #include "core/errors.hpp"
-#include "core/gather.hpp"
 #include "core/memory_guard.hpp"
 #include "core/log.hpp"
 #include <algorithm>
@@ -175,19 +174,19 @@ PetscErrorCode DenseLeadingPairs(PetscInt n_, PetscReal *a, PetscInt nev, const 
       if (xi) im[s] = xi[uidx[s]], im[N + s] = xi[vidx[s]];
       const PetscReal d = re[s] * re[s] + im[s] * im[s];
       disp += d;
-      if (iface >= 0 && s >= iface - o.edge_sites && s <= iface + 1 + o.edge_sites) near += d;
+      if (iface >= 0 && InEdgeRegion(s, iface, o.edge_sites)) near += d;
     }
     PetscReal sums[2];
     KreinSums(re.data(), im.data(), N, sums);
     const PetscReal kappa = sums[1] > 0 ? sums[0] / sums[1] : 0;
     out->mu.push_back(mu[i]);
-    out->krein.push_back(std::abs(kappa) < o.krein_tol ? 0 : (kappa > 0 ? 1 : -1));
+    out->krein.push_back(KreinSign(o, kappa));
     out->edge.push_back(disp > 0 ? near / disp : 0);
   }
   out->instability = 0;
   if (out->max_modulus > 1 + o.tol && !out->edge.empty()) { // the leading multiplier is then the most unstable
     const PetscReal w = out->edge[0];
-    out->instability = !std::isfinite(w) ? -1 : w > o.edge_weight ? 3 : (w < 1 - o.edge_weight ? 1 : 2);
+    out->instability = std::isfinite(w) ? Localisation(o, w) : -1;
   }
   PetscFunctionReturn(0);
 }
@@ -203,15 +202,7 @@ PetscErrorCode FloquetLeadingDense(const Lattice &lat, Mat S, PetscInt nev, cons
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   // rank 0 holds M, its Hessenberg form and a copy for the QR
   PetscCall(CheckMemory(comm, rank == 0 ? 3.0 * 8.0 * (double)n * (double)n : 0.0, "the dense monodromy's eigenvalues (2N <= -floquet_mf_dense_max)"));
-  if (rank == 0) a.resize((size_t)n * n);
-  for (PetscInt c = 0; c < n; c++) { // column c of M, in PETSc's order on rows and columns alike (a similarity)
-    Vec col;
-    std::vector<PetscReal> x;
-    PetscCall(MatDenseGetColumnVecRead(S, c, &col));
-    PetscCall(GatherVec(col, false, &x));
-    PetscCall(MatDenseRestoreColumnVecRead(S, c, &col));
-    if (rank == 0) std::copy(x.begin(), x.begin() + n, a.begin() + (size_t)c * n);
-  }
+  PetscCall(GatherMonodromy(S, n, &a));
   // rank 0's answer, broadcast: per pair re, im, krein; then max |mu|, instability.
   // Its LAPACK work fails on rank 0 alone: the error is made collective.
   std::vector<PetscReal> out(3 * nev + 2, NAN);
@@ -431,7 +422,7 @@ PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal
   r->max_modulus = 0;
   std::vector<PetscInt> kept; // eigenpairs that passed: the next orbit's start
   for (PetscInt k = 0; k < (PetscInt)seen.size(); k++) {
-    PetscReal res;
+    PetscReal res = NAN;
     PetscCall(TrueResidual(shell, eps, first[k], z0, &res));
     if (!(res <= 100 * tol * std::max<PetscReal>(1, std::abs(seen[k])))) {
       r->spurious++;
