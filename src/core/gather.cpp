@@ -1,24 +1,23 @@
 #include "core/gather.hpp"
+#include "core/handle.hpp"
 
 namespace nltopo {
 
 PetscErrorCode GatherVec(Vec v, bool to_all, std::vector<PetscReal> *out)
 {
-  VecScatter sc;
-  Vec s;
+  OwnedVecScatter sc;
+  OwnedVec s;
   const PetscScalar *a;
   PetscInt n;
   PetscFunctionBeginUser;
-  if (to_all) PetscCall(VecScatterCreateToAll(v, &sc, &s));
-  else PetscCall(VecScatterCreateToZero(v, &sc, &s));
+  if (to_all) PetscCall(VecScatterCreateToAll(v, sc.out(), s.out()));
+  else PetscCall(VecScatterCreateToZero(v, sc.out(), s.out()));
   PetscCall(VecScatterBegin(sc, v, s, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecScatterEnd(sc, v, s, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecGetLocalSize(s, &n));
   PetscCall(VecGetArrayRead(s, &a));
   out->assign(a, a + n);
   PetscCall(VecRestoreArrayRead(s, &a));
-  PetscCall(VecScatterDestroy(&sc));
-  PetscCall(VecDestroy(&s));
   PetscFunctionReturn(0);
 }
 

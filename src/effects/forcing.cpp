@@ -142,9 +142,9 @@ PetscErrorCode ToneBurst::Setup(const Lattice &lat, const ToneBurstOptions &o, c
     PetscCheck(modes, comm, PETSC_ERR_USER, "the amplitude rule needs the linear modes; give -force_amplitude for this lattice");
     std::vector<PetscReal> proj2;
     PetscCall(modes->Projections(eta, &proj2));
-    e1_ = BurstUnitEnergy(modes->Omega(), proj2, o.omega, tau_, t0_);
-    PetscCheck(e1_ > 0 && std::isfinite(e1_), comm, PETSC_ERR_USER, "amplitude rule: the profile does not couple to any linear mode; give -force_amplitude");
-    S_ = std::sqrt(o.safety * o.energy / e1_);
+    const PetscReal e1 = BurstUnitEnergy(modes->Omega(), proj2, o.omega, tau_, t0_);
+    PetscCheck(e1 > 0 && std::isfinite(e1), comm, PETSC_ERR_USER, "amplitude rule: the profile does not couple to any linear mode; give -force_amplitude");
+    S_ = std::sqrt(o.safety * o.energy / e1);
   }
   PetscFunctionReturn(0);
 }

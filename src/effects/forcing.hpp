@@ -42,7 +42,6 @@ public:
   PetscReal T0() const { return t0_; }
   bool AmplitudeFromRule() const { return from_rule_; }
   void ScaleAmplitude(PetscReal f) { S_ *= f; }
-  PetscReal RuleUnitEnergy() const { return e1_; }
   const ToneBurstOptions &Options() const { return opt_; }
   // Fit of the exponential profile (0 for the other profiles).
   PetscReal ExponentialA() const { return exp_a_; }
@@ -57,7 +56,7 @@ public:
 
 private:
   ToneBurstOptions opt_;
-  PetscReal S_ = 0, tau_ = 0, t0_ = 0, e1_ = 0, exp_a_ = 0, exp_b_ = 0;
+  PetscReal S_ = 0, tau_ = 0, t0_ = 0, exp_a_ = 0, exp_b_ = 0;
   bool from_rule_ = false;
   std::vector<PetscInt> idx_;     // owned sites with eta != 0 (global index)
   std::vector<PetscScalar> eta_;

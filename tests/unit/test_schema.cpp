@@ -1,5 +1,5 @@
-// The output schemas (io/schema.cpp) against the output contract
-// ../shared/spec/outputs.md: every dataset and attribute named there for a
+// The output schemas (io/schema.cpp) against the outputs reference
+// docs/outputs.md: every dataset and attribute named there for a
 // group the code writes is in the group's schema, of that kind, shape and
 // type; the continuation record and the sweep's fields bind the schema
 // exactly; the writers refuse a name the schema lacks.
