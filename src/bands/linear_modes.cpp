@@ -1,28 +1,31 @@
 #include "bands/linear_modes.hpp"
 #include "core/memory_guard.hpp"
 #include "core/log.hpp"
+#include "core/option_table.hpp"
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 
 namespace nltopo {
 
-PetscErrorCode LinearModesOptionsFromOptions(MPI_Comm comm, LinearModesOptions *o)
+static const OptionTable<LinearModesOptions> &LinearModesTable()
 {
-  PetscFunctionBeginUser;
-  PetscOptionsBegin(comm, "linear_", "Linear modes (SLEPc EPS on K; solver options -linear_eps_*)", NULL);
-  PetscCall(PetscOptionsInt("-dense_max", "Largest N solved for all eigenpairs (at most 10000); above it, shift-invert around the band edges", NULL,
-                            o->dense_max, &o->dense_max, NULL));
-  PetscCall(PetscOptionsInt("-nev", "Shift-invert path: eigenpairs computed per target", NULL, o->nev, &o->nev, NULL));
-  PetscCall(PetscOptionsReal("-target_offset", "Shift-invert path: relative distance of each target outside its band edge (small: fast convergence; not 0: an exact eigenvalue is a zero pivot)",
-                             NULL, o->offset, &o->offset, NULL));
-  PetscOptionsEnd();
-  // the dense path holds N x N: 10^4 sites is 800 MB
-  PetscCheck(o->dense_max >= 0 && o->dense_max <= 10000, comm, PETSC_ERR_USER, "-linear_dense_max must lie in [0, 10000], got %" PetscInt_FMT, o->dense_max);
-  PetscCheck(o->nev >= 1 && o->nev <= 1000, comm, PETSC_ERR_USER, "-linear_nev must lie in [1, 1000], got %" PetscInt_FMT, o->nev);
-  PetscCheck(o->offset > 0 && o->offset < 0.1, comm, PETSC_ERR_USER, "-linear_target_offset must lie in (0, 0.1), got %g", (double)o->offset);
-  PetscFunctionReturn(0);
+  static OptionTable<LinearModesOptions> t("linear_", "Linear modes (SLEPc EPS on K; solver options -linear_eps_*)");
+  static const bool built =
+    (t.Int("dense_max", &LinearModesOptions::dense_max, Closed(0, 10000),
+           "Largest N solved for all eigenpairs; above it, shift-invert around the band edges")
+       .Why("the dense path holds N x N: 10^4 sites is 800 MB")
+       .Int("nev", &LinearModesOptions::nev, Closed(1, 1000), "Shift-invert path: eigenpairs computed per target")
+       .Real("target_offset", &LinearModesOptions::offset, Open(0, 0.1),
+             "Shift-invert path: relative distance of each target outside its band edge (small: fast convergence; not 0: an exact eigenvalue is a zero pivot)")
+       .Register(),
+     true);
+  (void)built;
+  return t;
 }
+static const auto &kLinearModesTable = LinearModesTable(); // registered at start-up
+
+PetscErrorCode LinearModesOptionsFromOptions(MPI_Comm comm, LinearModesOptions *o) { return kLinearModesTable.Read(comm, o); }
 
 // An EPS on K with the -linear_eps_* prefix (Hermitian problem).
 static PetscErrorCode CreateEps(const Lattice &lat, EPSType type, EPS *eps)

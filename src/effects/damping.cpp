@@ -2,6 +2,7 @@
 // not conservative, velocity-dependent, absent when c = 0. Each normal mode
 // of the linear lattice decays as exp(-c t / 2) in amplitude (uniform C = c I
 // keeps the modes uncoupled).
+#include "core/option_table.hpp"
 #include "effects/effect.hpp"
 #include <cmath>
 
@@ -34,15 +35,28 @@ private:
 
 } // namespace
 
+struct DampingOptions {
+  PetscReal c = 0;
+};
+
+static const OptionTable<DampingOptions> &DampingTable()
+{
+  static OptionTable<DampingOptions> t("lattice_", "Lattice damping");
+  static const bool built = (t.Real("damping", &DampingOptions::c, Closed(0, 1e6),
+                                    "Linear viscous damping c on every mass, a += -c v (0: none; refused by the conservative studies)")
+                               .Register(),
+                             true);
+  (void)built;
+  return t;
+}
+static const auto &kDampingTable = DampingTable(); // registered at start-up
+
 PetscErrorCode DampingFromOptions(MPI_Comm comm, const Lattice *lat, std::unique_ptr<Effect> *e)
 {
-  PetscReal c = 0;
+  DampingOptions o;
   PetscFunctionBeginUser;
-  PetscOptionsBegin(comm, "lattice_", "Lattice damping", NULL);
-  PetscCall(PetscOptionsReal("-damping", "Linear viscous damping c on every mass, a += -c v (0: none; refused by the conservative studies)", NULL, c, &c, NULL));
-  PetscOptionsEnd();
-  PetscCheck(std::isfinite(c) && c >= 0 && c <= 1e6, comm, PETSC_ERR_USER, "-lattice_damping must lie in [0, 1e6], got %g", (double)c);
-  if (lat && c > 0) *e = std::make_unique<Damping>(*lat, c);
+  PetscCall(kDampingTable.Read(comm, &o));
+  if (lat && o.c > 0) *e = std::make_unique<Damping>(*lat, o.c);
   PetscFunctionReturn(0);
 }
 

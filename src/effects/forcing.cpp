@@ -1,6 +1,7 @@
 #include "effects/forcing.hpp"
 #include "bands/linear_modes.hpp"
 #include "core/gather.hpp"
+#include "core/option_table.hpp"
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -9,42 +10,47 @@ namespace nltopo {
 
 static const char *const kProfileNames[] = {"site", "mode", "none", "exponential"};
 
+// The -force_* block. -force_site is 1-based as in model.md: the struct holds
+// it 1-based while the table reads it, 0-based after.
+static const OptionTable<ToneBurstOptions> &ForceTable()
+{
+  static OptionTable<ToneBurstOptions> t("force_", "Tone-burst forcing (docs/model.md, Forcing)");
+  static const bool built =
+    (t.Enum("profile", &ToneBurstOptions::profile, kProfileNames, 4,
+            "Force profile eta: site (unit force on one site), mode (a linear eigenvector), none, exponential (the insulated mode's fitted envelope)")
+       .Real("omega", &ToneBurstOptions::omega, Closed(1e-6, 1e3), "Excitation frequency omega_ext (default sqrt(k_hat), the insulated frequency)")
+       .Default("sqrt(k_hat)")
+       .Real("energy", &ToneBurstOptions::energy, Closed(1e-12, 1e12), "Cut-off energy E*: the forcing stops for good the first time E >= E*")
+       .Real("amplitude", &ToneBurstOptions::amplitude, Closed(0, 1e12), "Amplitude S; when not given the amplitude rule (README.md) picks it")
+       .Default("the amplitude rule")
+       .OnlyIfSet()
+       .Real("amplitude_safety", &ToneBurstOptions::safety, LeftOpen(0, 1e6), "Amplitude rule: S makes the linear burst energy this multiple of E*")
+       .Int("amplitude_retries", &ToneBurstOptions::retries, Closed(0, 100),
+            "Amplitude rule: if E* is not reached within the burst, rescale S (README.md) up to this many times")
+       .Real("tau_periods", &ToneBurstOptions::tau_periods, Closed(1e-3, 1e6), "Burst width tau in excitation periods")
+       .Real("t0_taus", &ToneBurstOptions::t0_taus, Closed(0, 1e3), "Burst centre t0 in units of tau")
+       .Int("site", &ToneBurstOptions::site, Bounds{}, "Forced site for profile site, 1-based as in model.md (default m+1, the interface even site)")
+       .Default("m+1")
+       .Int("mode_index", &ToneBurstOptions::mode, Bounds{}, "Linear mode (0-based, ascending frequency) for profile mode")
+       .Register(ToneBurstOptions{ForceProfile::Site, 1.0}), // omega: computed from the lattice at run time
+     true);
+  (void)built;
+  return t;
+}
+static const auto &kForceTable = ForceTable(); // registered at start-up
+
 PetscErrorCode ToneBurstOptionsFromOptions(MPI_Comm comm, const LatticeParams &lp, ToneBurstOptions *o)
 {
-  PetscInt profile = static_cast<PetscInt>(o->profile);
-  PetscBool set_amp = PETSC_FALSE;
+  std::vector<PetscBool> set;
   PetscFunctionBeginUser;
   if (o->omega <= 0) o->omega = std::sqrt(lp.KHat());
   if (o->site < 0 && lp.layout == Layout::Interface) o->site = lp.InterfaceSite() + 1;
   if (o->site < 0) o->site = 0;
-  PetscInt site1 = o->site + 1;
-  PetscOptionsBegin(comm, "force_", "Tone-burst forcing (model.md, Forcing)", NULL);
-  PetscCall(PetscOptionsEList("-profile", "Force profile eta: site (unit force on one site), mode (a linear eigenvector), none, exponential (the insulated mode's fitted envelope)", NULL,
-                              kProfileNames, 4, kProfileNames[profile], &profile, NULL));
-  PetscCall(PetscOptionsReal("-omega", "Excitation frequency omega_ext (default sqrt(k_hat), the insulated frequency)", NULL, o->omega, &o->omega, NULL));
-  PetscCall(PetscOptionsReal("-energy", "Cut-off energy E*: the forcing stops for good the first time E >= E*", NULL, o->energy, &o->energy, NULL));
-  PetscCall(PetscOptionsReal("-amplitude", "Amplitude S; when not given the amplitude rule (README.md) picks it", NULL, o->amplitude, &o->amplitude, &set_amp));
-  PetscCall(PetscOptionsReal("-amplitude_safety", "Amplitude rule: S makes the linear burst energy this multiple of E*", NULL, o->safety, &o->safety, NULL));
-  PetscCall(PetscOptionsInt("-amplitude_retries", "Amplitude rule: if E* is not reached within the burst, rescale S (README.md) up to this many times", NULL,
-                            o->retries, &o->retries, NULL));
-  PetscCall(PetscOptionsReal("-tau_periods", "Burst width tau in excitation periods", NULL, o->tau_periods, &o->tau_periods, NULL));
-  PetscCall(PetscOptionsReal("-t0_taus", "Burst centre t0 in units of tau", NULL, o->t0_taus, &o->t0_taus, NULL));
-  PetscCall(PetscOptionsInt("-site", "Forced site for profile site, 1-based as in model.md (default m+1, the interface even site)", NULL, site1, &site1, NULL));
-  PetscCall(PetscOptionsInt("-mode_index", "Linear mode (0-based, ascending frequency) for profile mode", NULL, o->mode, &o->mode, NULL));
-  PetscOptionsEnd();
-  o->profile = static_cast<ForceProfile>(profile);
-  o->site = site1 - 1; // the option is 1-based (model.md), the code 0-based
-  if (!set_amp) o->amplitude = -1;
+  o->site += 1; // the option is 1-based (model.md), the code 0-based
+  PetscCall(kForceTable.Read(comm, o, &set));
+  o->site -= 1;
+  if (!kForceTable.Given(set, "amplitude")) o->amplitude = -1;
   const PetscInt N = lp.N();
-  PetscCheck(o->omega >= 1e-6 && o->omega <= 1e3, comm, PETSC_ERR_USER, "-force_omega must lie in [1e-6, 1e3], got %g", (double)o->omega);
-  PetscCheck(o->energy >= 1e-12 && o->energy <= 1e12, comm, PETSC_ERR_USER, "-force_energy must lie in [1e-12, 1e12], got %g", (double)o->energy);
-  PetscCheck(!set_amp || (std::isfinite(o->amplitude) && o->amplitude >= 0 && o->amplitude <= 1e12), comm, PETSC_ERR_USER,
-             "-force_amplitude must lie in [0, 1e12], got %g", (double)o->amplitude);
-  PetscCheck(std::isfinite(o->safety) && o->safety > 0 && o->safety <= 1e6, comm, PETSC_ERR_USER, "-force_amplitude_safety must lie in (0, 1e6], got %g",
-             (double)o->safety);
-  PetscCheck(o->retries >= 0 && o->retries <= 100, comm, PETSC_ERR_USER, "-force_amplitude_retries must lie in [0, 100], got %" PetscInt_FMT, o->retries);
-  PetscCheck(o->tau_periods >= 1e-3 && o->tau_periods <= 1e6, comm, PETSC_ERR_USER, "-force_tau_periods must lie in [1e-3, 1e6], got %g", (double)o->tau_periods);
-  PetscCheck(o->t0_taus >= 0 && o->t0_taus <= 1e3, comm, PETSC_ERR_USER, "-force_t0_taus must lie in [0, 1e3], got %g", (double)o->t0_taus);
   PetscCheck(o->profile != ForceProfile::Site || (o->site >= 0 && o->site < N), comm, PETSC_ERR_USER,
              "-force_site must lie in 1..%" PetscInt_FMT ", got %" PetscInt_FMT, N, o->site + 1);
   PetscCheck(o->profile != ForceProfile::Exponential || lp.layout == Layout::Interface, comm, PETSC_ERR_USER,
