@@ -1,5 +1,6 @@
 #include "timeint/ts_rkn.hpp"
 #include "timeint/rkn_schemes.hpp"
+#include "core/ts_traits.hpp"
 #include <petsc/private/tsimpl.h>
 #include <algorithm>
 #include <cstring>
@@ -318,10 +319,18 @@ PetscErrorCode TSSetUp_Rkn(TS ts)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode TSRknGetScheme_Rkn(TS ts, const char **scheme)
+{
+  PetscFunctionBegin;
+  *scheme = Pairs()[static_cast<Rkn *>(ts->data)->pair].name;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode TSDestroy_Rkn(TS ts)
 {
   PetscFunctionBegin;
   PetscCall(TSReset_Rkn(ts));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSRknGetScheme_C", NULL));
   delete static_cast<Rkn *>(ts->data);
   ts->data = NULL;
   PetscFunctionReturn(0);
@@ -383,6 +392,7 @@ PetscErrorCode TSCreate_Rkn(TS ts)
   ts->ops->evaluatewlte = TSEvaluateWLTE_Rkn;
   ts->default_adapt_type = TSADAPTBASIC;
   ts->usessnes = PETSC_FALSE;
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSRknGetScheme_C", TSRknGetScheme_Rkn));
   PetscFunctionReturn(0);
 }
 
@@ -398,11 +408,24 @@ PetscErrorCode TSRknInterpolatePositions(TS ts, PetscReal t, Vec X)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode TSRknGetScheme(TS ts, const char **scheme)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidPointer(scheme, 2);
+  PetscUseMethod(ts, "TSRknGetScheme_C", (TS, const char **), (ts, scheme));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode TSRknRegister()
 {
   static bool done = false;
   PetscFunctionBegin;
-  if (!done) PetscCall(TSRegister(TSRKN, TSCreate_Rkn));
+  if (!done) {
+    PetscCall(TSRegister(TSRKN, TSCreate_Rkn));
+    // family, explicit, rollback, fixed step, position-only, acceleration, split RHS, interpolant order (quintic Hermite), scheme getter
+    TSTraitsRegister({TSRKN, TSRKN, true, true, false, true, true, false, 5, "TSRknGetScheme_C"});
+  }
   done = true;
   PetscFunctionReturn(0);
 }
