@@ -39,7 +39,8 @@ PetscErrorCode TSRknRegister();
 // PETSc's TSRKGetType; an error for a TS of another type.
 PetscErrorCode TSRknGetScheme(TS ts, const char **scheme);
 
-// TSInterpolate for the positions only (X's v part is left as it was): the
+// TSInterpolate for the positions only (X's v part is left as it was) where
+// the type composes "TSInterpolatePositions_C" (rkn), else TSInterpolate: the
 // window quadrature needs u alone at its Gauss nodes.
 PetscErrorCode TSRknInterpolatePositions(TS ts, PetscReal t, Vec X);
 
