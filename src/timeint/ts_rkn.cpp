@@ -403,14 +403,7 @@ PetscErrorCode TSRknInterpolatePositions(TS ts, PetscReal t, Vec X)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode TSRknGetScheme(TS ts, const char **scheme)
-{
-  PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
-  PetscValidPointer(scheme, 2);
-  PetscUseMethod(ts, "TSRknGetScheme_C", (TS, const char **), (ts, scheme));
-  PetscFunctionReturn(0);
-}
+PetscErrorCode TSRknGetScheme(TS ts, const char **scheme) { return TSUseSchemeGetter(ts, "TSRknGetScheme_C", scheme); }
 
 PetscErrorCode TSRknRegister()
 {

@@ -197,14 +197,7 @@ PetscErrorCode TSCreate_SymSplit(TS ts)
 
 } // namespace
 
-PetscErrorCode TSSymSplitGetScheme(TS ts, const char **scheme)
-{
-  PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
-  PetscValidPointer(scheme, 2);
-  PetscUseMethod(ts, "TSSymSplitGetScheme_C", (TS, const char **), (ts, scheme));
-  PetscFunctionReturn(0);
-}
+PetscErrorCode TSSymSplitGetScheme(TS ts, const char **scheme) { return TSUseSchemeGetter(ts, "TSSymSplitGetScheme_C", scheme); }
 
 PetscErrorCode TSSymSplitRegister()
 {
