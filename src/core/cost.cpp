@@ -1,6 +1,6 @@
 #include "core/cost.hpp"
-#include "io/output.hpp"
-#include <cmath>
+#include "core/ts_traits.hpp"
+#include <algorithm>
 #include <cstring>
 #include <limits>
 
@@ -10,28 +10,13 @@ namespace {
 
 const char *const kPrefixes[2] = {"sim_", "nnm_"};
 
-struct Entry {
-  std::string integrator, accuracy; // of the first solve; "(several)" when later solves differ
-  PetscInt solves = 0, steps = 0, rejected = 0, evals = 0;
-  PetscReal dt_min = PETSC_MAX_REAL, dt_max = 0;
-};
-
 struct Ledger {
-  Entry e[2];
+  CostEntry e[2] = {};
   PetscInt pending = 0; // evaluations counted since the last record
   bool reduced = false;
   PetscReal error = std::numeric_limits<PetscReal>::quiet_NaN();
   std::string error_what = "none";
 } g;
-
-std::string OptionOr(const char *prefix, const char *name, const char *def)
-{
-  char v[128];
-  PetscBool set = PETSC_FALSE;
-  const std::string key = std::string("-") + prefix + name;
-  if (PetscOptionsGetString(NULL, NULL, key.c_str(), v, sizeof(v), &set) || !set) return def;
-  return v;
-}
 
 } // namespace
 
@@ -40,7 +25,7 @@ void CostCountEvaluations(PetscInt n) { g.pending += n; }
 PetscErrorCode CostRecordSolve(TS ts, PetscInt evals)
 {
   const char *prefix;
-  TSType type;
+  const TSTraits *tr;
   TSAdapt adapt;
   TSAdaptType atype;
   PetscInt steps, rejected;
@@ -56,21 +41,15 @@ PetscErrorCode CostRecordSolve(TS ts, PetscInt evals)
   for (int i = 0; i < 2; i++)
     if (prefix && !std::strcmp(prefix, kPrefixes[i])) k = i;
   if (k < 0) PetscFunctionReturn(0); // a TS of another prefix (none in nltopo)
-  Entry &e = g.e[k];
-  PetscCall(TSGetType(ts, &type));
+  CostEntry &e = g.e[k];
+  PetscCall(TSGetTraits(ts, &tr));
   PetscCall(TSGetStepNumber(ts, &steps));
   PetscCall(TSGetStepRejections(ts, &rejected));
   PetscCall(TSGetAdapt(ts, &adapt));
   PetscCall(TSAdaptGetType(adapt, &atype));
-  std::string integrator = type, accuracy;
-  if (!std::strcmp(type, "symsplit")) integrator += " " + OptionOr(prefix, "ts_symsplit_scheme", "bm4");
-  else if (!std::strcmp(type, "rkn")) integrator += " " + OptionOr(prefix, "ts_rkn_scheme", "dep86");
-  else if (!std::strcmp(type, TSRK)) {
-    TSRKType rk;
-    PetscCall(TSRKGetType(ts, &rk));
-    integrator += std::string(" ") + rk;
-  }
-  const bool fixed = !std::strcmp(type, "symsplit") || !std::strcmp(type, TSBASICSYMPLECTIC) || !std::strcmp(atype, TSADAPTNONE);
+  std::string integrator, accuracy;
+  PetscCall(TSGetIntegratorName(ts, &integrator));
+  const bool fixed = tr->fixed_step || !std::strcmp(atype, TSADAPTNONE);
   if (fixed) accuracy = "fixed step";
   else {
     char buf[96];
@@ -104,21 +83,21 @@ void CostSetErrorEstimate(PetscReal value, const char *what)
   g.error_what = what;
 }
 
-static PetscErrorCode Reduce(MPI_Comm comm)
+static PetscErrorCode Reduce(MPI_Comm comm, CostEntry *e)
 {
   PetscInt n[8];
   PetscReal lo[2], hi[2];
   PetscFunctionBeginUser;
   for (int k = 0; k < 2; k++) {
-    n[4 * k] = g.e[k].solves, n[4 * k + 1] = g.e[k].steps, n[4 * k + 2] = g.e[k].rejected, n[4 * k + 3] = g.e[k].evals;
-    lo[k] = g.e[k].dt_min, hi[k] = g.e[k].dt_max;
+    n[4 * k] = e[k].solves, n[4 * k + 1] = e[k].steps, n[4 * k + 2] = e[k].rejected, n[4 * k + 3] = e[k].evals;
+    lo[k] = e[k].dt_min, hi[k] = e[k].dt_max;
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, n, 8, MPIU_INT, MPI_SUM, comm));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, lo, 2, MPIU_REAL, MPI_MIN, comm));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, hi, 2, MPIU_REAL, MPI_MAX, comm));
   for (int k = 0; k < 2; k++) {
-    g.e[k].solves = n[4 * k], g.e[k].steps = n[4 * k + 1], g.e[k].rejected = n[4 * k + 2], g.e[k].evals = n[4 * k + 3];
-    g.e[k].dt_min = lo[k], g.e[k].dt_max = hi[k];
+    e[k].solves = n[4 * k], e[k].steps = n[4 * k + 1], e[k].rejected = n[4 * k + 2], e[k].evals = n[4 * k + 3];
+    e[k].dt_min = lo[k], e[k].dt_max = hi[k];
   }
   PetscFunctionReturn(0);
 }
@@ -126,48 +105,35 @@ static PetscErrorCode Reduce(MPI_Comm comm)
 PetscErrorCode CostReduceWorld()
 {
   PetscFunctionBeginUser;
-  PetscCall(Reduce(PETSC_COMM_WORLD));
+  PetscCall(Reduce(PETSC_COMM_WORLD, g.e));
   g.reduced = true;
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode WriteCostCard(PetscViewer v, PetscReal wall_seconds)
+PetscErrorCode CostCardOn(MPI_Comm comm, CostCard *card)
 {
+  CostEntry e[2] = {g.e[0], g.e[1]};
   PetscFunctionBeginUser;
-  Ledger saved = g;
-  MPI_Comm comm = PetscObjectComm((PetscObject)v);
-  if (!g.reduced) PetscCall(Reduce(comm));
+  if (!g.reduced) PetscCall(Reduce(comm, e));
   // rank 0 of a TS's communicator recorded its strings; the attributes are
   // written collectively and must be the same on every rank
   for (int k = 0; k < 2; k++)
-    for (std::string *str : {&g.e[k].integrator, &g.e[k].accuracy}) {
+    for (std::string *str : {&e[k].integrator, &e[k].accuracy}) {
       char buf[256] = "";
       PetscCall(PetscStrncpy(buf, str->c_str(), sizeof(buf)));
       PetscCallMPI(MPI_Bcast(buf, sizeof(buf), MPI_CHAR, 0, comm));
       *str = buf;
     }
-  const char *grp = "/cost";
-  PetscCall(WriteAttr(v, grp, "wall_seconds", wall_seconds));
+  card->entries.clear();
   for (int k = 0; k < 2; k++) {
-    const Entry &e = g.e[k];
-    if (!e.solves) continue;
-    const std::string p = std::string(kPrefixes[k]); // sim_..., nnm_...
-    // the first solve's integrator (rank 0 of the output's communicator)
-    PetscCall(WriteAttr(v, grp, (p + "integrator").c_str(), e.integrator.c_str()));
-    PetscCall(WriteAttr(v, grp, (p + "accuracy").c_str(), e.accuracy.c_str()));
-    PetscCall(WriteAttr(v, grp, (p + "solves").c_str(), e.solves));
-    PetscCall(WriteAttr(v, grp, (p + "steps").c_str(), e.steps));
-    PetscCall(WriteAttr(v, grp, (p + "rejected_steps").c_str(), e.rejected));
-    PetscCall(WriteAttr(v, grp, (p + "force_evaluations").c_str(), e.evals));
-    if (e.dt_max > 0) {
-      PetscCall(WriteAttr(v, grp, (p + "dt_min").c_str(), e.dt_min));
-      PetscCall(WriteAttr(v, grp, (p + "dt_max").c_str(), e.dt_max));
-    }
+    e[k].prefix = kPrefixes[k];
+    card->entries.push_back(e[k]);
   }
-  PetscCall(WriteAttr(v, grp, "error_estimate", g.error));
-  PetscCall(WriteAttr(v, grp, "error_estimate_of", g.error_what.c_str()));
-  g = saved; // a checkpoint's card does not consume the ledger
+  card->error = g.error;
+  card->error_what = g.error_what;
   PetscFunctionReturn(0);
 }
+
+void CostReset() { g = Ledger(); }
 
 } // namespace nltopo

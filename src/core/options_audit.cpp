@@ -1,4 +1,5 @@
 #include "core/options_audit.hpp"
+#include "core/ts_traits.hpp"
 #include <petscts.h>
 #include <slepceps.h>
 #include <algorithm>
@@ -88,29 +89,26 @@ bool OwnComponent(const std::string &n)
 // An option of one TS type's own block (-<prefix>ts_<family>_*) while the
 // prefix runs a TS of another family: unused whatever happens later, so it can
 // be refused before any work (PETSc reads a type's block only for that type).
-// Sets *line when n is such an option. Every nltopo TS defaults to rk.
+// Sets *line when n is such an option. The families and the type each prefix
+// runs by default come from the integrator table (core/ts_traits.hpp).
 void TypeMismatch(const std::string &n, std::string *line)
 {
   static const char *ts_prefixes[] = {"sim_", "nnm_"};
-  static const std::pair<const char *, const char *> families[] = {
-    {"rk", "rk"},           {"rkn", "rkn"},         {"symsplit", "symsplit"}, {"basicsymplectic", "basicsymplectic"}, {"theta", "theta"},
-    {"cn", "theta"},        {"beuler", "theta"},    {"arkimex", "arkimex"},   {"rosw", "rosw"},                       {"bdf", "bdf"},
-    {"alpha", "alpha"},     {"alpha2", "alpha"},    {"glee", "glee"},         {"glle", "glle"},                       {"ssp", "ssp"},
-    {"mprk", "mprk"},       {"eimex", "eimex"},     {"irk", "irk"}};
   for (const char *p : ts_prefixes) {
     const std::string head = std::string(p) + "ts_";
     if (!StartsWith(n, head.c_str())) continue;
-    const char *option_family = nullptr;
-    for (const auto &f : families)
-      if (!std::strcmp(f.first, f.second) && StartsWith(n, (head + f.first + "_").c_str())) option_family = f.first;
-    if (!option_family) return;
-    char type[64] = "rk";
+    std::string option_family; // the longest family whose block n is in
+    for (size_t i = 0; i < TSTraitsCount(); i++) {
+      const char *f = TSTraitsAt(i).family;
+      if (f && std::strlen(f) > option_family.size() && StartsWith(n, (head + f + "_").c_str())) option_family = f;
+    }
+    if (option_family.empty()) return;
+    char type[64];
     PetscBool set = PETSC_FALSE;
+    if (PetscStrncpy(type, TSDefaultType(p), sizeof(type))) return;
     if (PetscOptionsGetString(NULL, NULL, ("-" + head + "type").c_str(), type, sizeof(type), &set)) return;
-    const char *selected = nullptr;
-    for (const auto &f : families)
-      if (!std::strcmp(f.first, type)) selected = f.second;
-    if (!selected || !std::strcmp(selected, option_family)) return; // a type of nltopo's list only
+    const TSTraits *selected = TSTraitsFind(type);
+    if (!selected || (selected->family && option_family == selected->family)) return; // a type of nltopo's table only
     *line = ": not used by this run (-" + head + "type is " + type + (set ? "" : ", the default") + "; the option belongs to -" + head + "type " + option_family + ")";
     return;
   }

@@ -1,5 +1,5 @@
 #include "io/output.hpp"
-#include "core/cost.hpp"
+#include "io/cost_card.hpp"
 #include "core/errors.hpp"
 #include "core/log.hpp"
 #include "io/run_options.hpp"

@@ -1,6 +1,7 @@
 #include "orbits/flow.hpp"
 #include "core/cost.hpp"
 #include "core/log.hpp"
+#include "core/ts_traits.hpp"
 #include "orbits/period_ts.hpp"
 #include "timeint/ts_symsplit.hpp"
 #include <cmath>
@@ -77,11 +78,11 @@ PetscErrorCode PeriodicFlow::Setup(const EffectList &fx, const FlowOptions &o)
   PetscCall(CreateTS(ts_.out(), NULL));
   PetscCall(TSMonitorSet(ts_, FlowAverageMonitor, this, NULL)); // acts only inside IntegrateAveragingStiffness
   {
-    TSType type;
-    PetscBool split;
-    PetscCall(TSGetType(ts_, &type));
-    PetscCall(PetscStrcmp(type, TSSYMSPLIT, &split));
-    symplectic_ = split;
+    // a fixed-step integrator of u'' = a(u) on the acceleration kernel (symsplit):
+    // its tangent map is the same step of the augmented system (orbits/variational_symplectic.hpp)
+    const TSTraits *tr;
+    PetscCall(TSGetTraits(ts_, &tr));
+    symplectic_ = tr->fixed_step && tr->acceleration;
   }
   if (symplectic_) {
     PetscCheck(o.route == MonodromyRoute::Variational, lat.Comm(), PETSC_ERR_USER,
@@ -98,7 +99,7 @@ PetscErrorCode PeriodicFlow::CreateTS(TS *ts, Mat jacp)
   TSAdaptType atype;
   PetscBool none;
   PetscFunctionBeginUser;
-  PetscCall(CreatePeriodTS(lat_->Comm(), TSRK, FlowRhs, this, ts));
+  PetscCall(CreatePeriodTS(lat_->Comm(), TSDefaultType("nnm_"), FlowRhs, this, ts));
   PetscCall(TSSetRHSJacobian(*ts, J_, J_, FlowJacobian, this));
   if (jacp) PetscCall(TSSetRHSJacobianP(*ts, jacp, FlowJacobianP, this));
   PetscCall(TSSetFromOptions(*ts));

@@ -1,7 +1,6 @@
 #include "orbits/period_ts.hpp"
 #include "core/cost.hpp"
 #include "core/signals.hpp"
-#include <cstring>
 
 namespace nltopo {
 
@@ -13,7 +12,7 @@ PetscErrorCode CreatePeriodTS(MPI_Comm comm, TSType type, TSRHSFunction f, void 
   PetscCall(TSSetOptionsPrefix(*ts, "nnm_"));
   PetscCall(TSSetProblemType(*ts, TS_NONLINEAR));
   PetscCall(TSSetType(*ts, type));
-  if (!std::strcmp(type, TSRK)) PetscCall(TSRKSetType(*ts, TSRK5DP));
+  PetscCall(TSRKSetType(*ts, TSRK5DP)); // rk's tableau unless -nnm_ts_rk_type (no-op for other types)
   PetscCall(TSGetAdapt(*ts, &adapt));
   PetscCall(TSAdaptSetType(adapt, TSADAPTNONE));
   PetscCall(TSSetRHSFunction(*ts, NULL, f, ctx));

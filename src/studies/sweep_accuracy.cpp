@@ -1,7 +1,7 @@
 #include "studies/sweep_accuracy.hpp"
+#include "core/ts_traits.hpp"
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 
 namespace nltopo {
 
@@ -24,11 +24,13 @@ PetscErrorCode McrAccuracyOptionsFromOptions(MPI_Comm comm, McrAccuracyOptions *
 
 PetscErrorCode CheckMcrAccuracyIntegrator(MPI_Comm comm, const McrAccuracyOptions &o)
 {
-  char type[64] = "rk";
+  char type[64];
   PetscFunctionBeginUser;
   if (o.tol == 0) PetscFunctionReturn(0);
+  PetscCall(PetscStrncpy(type, TSDefaultType("sim_"), sizeof(type)));
   PetscCall(PetscOptionsGetString(NULL, NULL, "-sim_ts_type", type, sizeof(type), NULL));
-  PetscCheck(!std::strcmp(type, "symsplit") || !std::strcmp(type, "basicsymplectic"), comm, PETSC_ERR_USER,
+  const TSTraits *tr = TSTraitsFind(type);
+  PetscCheck(tr && tr->fixed_step, comm, PETSC_ERR_USER,
              "-sweep_mcr_tol needs a fixed-step integrator (-sim_ts_type symsplit: the ladder halves its step), got -sim_ts_type %s", type);
   PetscFunctionReturn(0);
 }

@@ -2,6 +2,7 @@
 #include "core/cost.hpp"
 #include "core/log.hpp"
 #include "core/signals.hpp"
+#include "core/ts_traits.hpp"
 #include "diagnostics/mcr.hpp"
 #include "diagnostics/rms_window.hpp"
 #include "timeint/ts_rkn.hpp"
@@ -170,23 +171,6 @@ struct Run {
     PetscFunctionReturn(0);
   }
 };
-
-// Types that integrate without the state Jacobian.
-bool TypeIsExplicit(TSType type)
-{
-  for (const char *t : {TSRK, TSEULER, TSSSP, TSSYMSPLIT, TSRKN, TSBASICSYMPLECTIC})
-    if (!std::strcmp(type, t)) return true;
-  return false;
-}
-
-// Types that can roll a step back, so a TS event can locate the cut-off
-// inside it (PETSc 3.18's types with TSRollBack, and nltopo's own).
-bool TypeRollsBack(TSType type)
-{
-  for (const char *t : {TSRK, TSARKIMEX, TSROSW, TSBDF, TSALPHA, TSALPHA2, TSIRK, TSTHETA, TSBEULER, TSCN, TSSYMSPLIT, TSRKN})
-    if (!std::strcmp(type, t)) return true;
-  return false;
-}
 
 PetscErrorCode RhsFunction(TS ts, PetscReal t, Vec z, Vec f, void *ctx)
 {
@@ -379,6 +363,7 @@ PetscErrorCode Simulate(const EffectList &fx, const SimulationOptions &o, Vec z0
   OwnedMat J;
   OwnedVec z;
   TSType type;
+  const TSTraits *traits;
   TSConvergedReason reason;
   PetscFunctionBeginUser;
   *r = SimulationResult();
@@ -414,8 +399,8 @@ PetscErrorCode Simulate(const EffectList &fx, const SimulationOptions &o, Vec z0
   PetscCall(TSSetOptionsPrefix(ts, "sim_"));
   PetscCall(TSSetApplicationContext(ts, &run));
   PetscCall(TSSetProblemType(ts, TS_NONLINEAR));
-  PetscCall(TSSetType(ts, TSRK));
-  PetscCall(TSRKSetType(ts, TSRK5DP));
+  PetscCall(TSSetType(ts, TSDefaultType("sim_")));
+  PetscCall(TSRKSetType(ts, TSRK5DP)); // rk's tableau unless -sim_ts_rk_type (no-op for other types)
   PetscCall(TSSetRHSFunction(ts, NULL, RhsFunction, &run));
   PetscCall(TSSetAcceleration(ts, RunAcceleration, &run)); // symsplit, rkn: raw-array accelerations
   PetscCall(TSSetTolerances(ts, 1e-8, NULL, 1e-8, NULL));
@@ -427,16 +412,18 @@ PetscErrorCode Simulate(const EffectList &fx, const SimulationOptions &o, Vec z0
   PetscCall(TSSetPostStep(ts, PostStep));
   PetscCall(TSSetFromOptions(ts));
   PetscCall(TSGetType(ts, &type));
-  if (!TypeIsExplicit(type)) { // the state Jacobian only for the types that solve with it
+  PetscCall(TSGetTraits(ts, &traits)); // a type the integrator table lacks is refused here
+  if (!traits->explicit_step) { // the state Jacobian only for the types that solve with it
     PetscCall(lat.CreateStateMatrix(J.out()));
     PetscCall(TSSetRHSJacobian(ts, J, J, RhsJacobian, &run));
   }
-  if (!std::strcmp(type, TSSYMSPLIT) || !std::strcmp(type, TSRKN) || !std::strcmp(type, TSBASICSYMPLECTIC)) {
+  if (traits->position_only) {
     const std::string who = std::string("-sim_ts_type ") + type;
     PetscCall(fx.RequirePositionOnly(who.c_str()));
   }
 
-  const bool symplectic = !std::strcmp(type, TSBASICSYMPLECTIC), splitting = !std::strcmp(type, TSSYMSPLIT);
+  // fixed steps on the split right-hand side (basicsymplectic) or on the acceleration (symsplit)
+  const bool symplectic = traits->fixed_step && traits->split_rhs, splitting = traits->fixed_step && !traits->split_rhs;
   if (symplectic || splitting) {
     // The fixed step times dt_scale (the sweep's accuracy ladder) and, above
     // E_q, (E_q / E)^(1/4): in the quartic regime a bond's frequency grows as
@@ -483,8 +470,8 @@ PetscErrorCode Simulate(const EffectList &fx, const SimulationOptions &o, Vec z0
     run.interpolate = false;
   } else if (run.rhs.Forcing() && splitting) {
     run.locate_in_step = true;
-  } else if (run.rhs.Forcing() && TypeRollsBack(type)) {
-    if (!std::strcmp(type, TSRKN)) run.window.SetInterpolant(ts); // long steps: the window integrals on the interpolant
+  } else if (run.rhs.Forcing() && traits->rolls_back) {
+    if (traits->position_only) run.window.SetInterpolant(ts); // long steps (rkn): the window integrals on the interpolant
     // Locate the cut-off E(t) = E* (relative tolerance 1e-10) with a TS event,
     // registered after the step size is final (guide, pitfall a). Types that
     // cannot roll back a step (euler, ssp, ...) check after every step instead.

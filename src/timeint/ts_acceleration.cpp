@@ -1,4 +1,5 @@
 #include "timeint/ts_acceleration.hpp"
+#include <petsc/private/tsimpl.h> // PetscUseMethod
 
 namespace nltopo {
 
@@ -42,6 +43,15 @@ PetscErrorCode TSGetAcceleration(TS ts, AccelerationFn *f, void **ctx)
     *f = static_cast<Acceleration *>(p)->fn;
     if (ctx) *ctx = static_cast<Acceleration *>(p)->ctx;
   }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode TSUseSchemeGetter(TS ts, const char *composed, const char **scheme)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidPointer(scheme, 3);
+  PetscUseMethod(ts, composed, (TS, const char **), (ts, scheme));
   PetscFunctionReturn(0);
 }
 

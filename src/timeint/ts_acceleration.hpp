@@ -18,6 +18,10 @@ PetscErrorCode TSSetAcceleration(TS ts, AccelerationFn f, void *ctx);
 // part of the TS right-hand side).
 PetscErrorCode TSGetAcceleration(TS ts, AccelerationFn *f, void **ctx);
 
+// The scheme ts runs, from the getter its type composes as `composed`
+// ("TSRknGetScheme_C"): PETSc's PetscUseMethod, an error for another type.
+PetscErrorCode TSUseSchemeGetter(TS ts, const char *composed, const char **scheme);
+
 // What both types need of the problem: the owned positions n (half the local
 // state, checked even) and the acceleration, from TSSetAcceleration or else the
 // v part of the TS right-hand side (work vector f).

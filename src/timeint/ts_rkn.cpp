@@ -1,5 +1,6 @@
 #include "timeint/ts_rkn.hpp"
 #include "timeint/rkn_schemes.hpp"
+#include "core/ts_traits.hpp"
 #include <petsc/private/tsimpl.h>
 #include <algorithm>
 #include <cstring>
@@ -254,16 +255,6 @@ PetscErrorCode TSEvaluateWLTE_Rkn(TS ts, NormType wnormtype, PetscInt *order, Pe
 
 // Quintic Hermite interpolation on u from (u, v, a) at both ends of the last
 // step, v its derivative: exact for polynomials of degree 5 (error O(h^6)).
-PetscErrorCode TSInterpolate_Rkn(TS ts, PetscReal t, Vec X)
-{
-  Rkn *d = static_cast<Rkn *>(ts->data);
-  const PetscReal h = ts->ptime - ts->ptime_prev;
-  PetscFunctionBegin;
-  if (h <= 0 || !d->end_ready) PetscCall(VecCopy(ts->vec_sol, X));
-  else PetscCall(HermiteInterpolate(d->z_prev, ts->vec_sol, d->k[0].data(), d->End().data(), d->p.n, h, (t - ts->ptime_prev) / h, X));
-  PetscFunctionReturn(0);
-}
-
 PetscErrorCode RknInterpolate(TS ts, PetscReal t, Vec X, bool positions_only)
 {
   Rkn *d = static_cast<Rkn *>(ts->data);
@@ -273,6 +264,9 @@ PetscErrorCode RknInterpolate(TS ts, PetscReal t, Vec X, bool positions_only)
   else PetscCall(HermiteInterpolate(d->z_prev, ts->vec_sol, d->k[0].data(), d->End().data(), d->p.n, h, (t - ts->ptime_prev) / h, X, positions_only));
   PetscFunctionReturn(0);
 }
+
+PetscErrorCode TSInterpolate_Rkn(TS ts, PetscReal t, Vec X) { return RknInterpolate(ts, t, X, false); }
+PetscErrorCode TSInterpolatePositions_Rkn(TS ts, PetscReal t, Vec X) { return RknInterpolate(ts, t, X, true); }
 
 PetscErrorCode TSReset_Rkn(TS ts)
 {
@@ -318,10 +312,19 @@ PetscErrorCode TSSetUp_Rkn(TS ts)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode TSRknGetScheme_Rkn(TS ts, const char **scheme)
+{
+  PetscFunctionBegin;
+  *scheme = Pairs()[static_cast<Rkn *>(ts->data)->pair].name;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode TSDestroy_Rkn(TS ts)
 {
   PetscFunctionBegin;
   PetscCall(TSReset_Rkn(ts));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSRknGetScheme_C", NULL));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSInterpolatePositions_C", NULL));
   delete static_cast<Rkn *>(ts->data);
   ts->data = NULL;
   PetscFunctionReturn(0);
@@ -383,6 +386,8 @@ PetscErrorCode TSCreate_Rkn(TS ts)
   ts->ops->evaluatewlte = TSEvaluateWLTE_Rkn;
   ts->default_adapt_type = TSADAPTBASIC;
   ts->usessnes = PETSC_FALSE;
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSRknGetScheme_C", TSRknGetScheme_Rkn));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSInterpolatePositions_C", TSInterpolatePositions_Rkn));
   PetscFunctionReturn(0);
 }
 
@@ -390,19 +395,25 @@ PetscErrorCode TSCreate_Rkn(TS ts)
 
 PetscErrorCode TSRknInterpolatePositions(TS ts, PetscReal t, Vec X)
 {
-  PetscBool rkn;
+  PetscErrorCode (*positions)(TS, PetscReal, Vec) = nullptr;
   PetscFunctionBegin;
-  PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSRKN, &rkn));
-  if (rkn) PetscCall(RknInterpolate(ts, t, X, true));
+  PetscCall(PetscObjectQueryFunction((PetscObject)ts, "TSInterpolatePositions_C", &positions));
+  if (positions) PetscCall(positions(ts, t, X));
   else PetscCall(TSInterpolate(ts, t, X));
   PetscFunctionReturn(0);
 }
+
+PetscErrorCode TSRknGetScheme(TS ts, const char **scheme) { return TSUseSchemeGetter(ts, "TSRknGetScheme_C", scheme); }
 
 PetscErrorCode TSRknRegister()
 {
   static bool done = false;
   PetscFunctionBegin;
-  if (!done) PetscCall(TSRegister(TSRKN, TSCreate_Rkn));
+  if (!done) {
+    PetscCall(TSRegister(TSRKN, TSCreate_Rkn));
+    // family, explicit, rollback, fixed step, position-only, acceleration, split RHS, interpolant order (quintic Hermite), scheme getter
+    TSTraitsRegister({TSRKN, TSRKN, true, true, false, true, true, false, 5, "TSRknGetScheme_C"});
+  }
   done = true;
   PetscFunctionReturn(0);
 }

@@ -30,10 +30,17 @@ namespace nltopo {
 
 #define TSRKN "rkn"
 
-// Registers "rkn" once (safe to call repeatedly).
+// Registers "rkn" once (safe to call repeatedly), with its row of the
+// integrator table (core/ts_traits.hpp).
 PetscErrorCode TSRknRegister();
 
-// TSInterpolate for the positions only (X's v part is left as it was): the
+// The pair ts runs ("dep64", ... as -ts_rkn_scheme names it): the default or
+// the one TSSetFromOptions chose. Composed on the TS as "TSRknGetScheme_C", as
+// PETSc's TSRKGetType; an error for a TS of another type.
+PetscErrorCode TSRknGetScheme(TS ts, const char **scheme);
+
+// TSInterpolate for the positions only (X's v part is left as it was) where
+// the type composes "TSInterpolatePositions_C" (rkn), else TSInterpolate: the
 // window quadrature needs u alone at its Gauss nodes.
 PetscErrorCode TSRknInterpolatePositions(TS ts, PetscReal t, Vec X);
 

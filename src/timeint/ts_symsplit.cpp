@@ -1,5 +1,6 @@
 #include "timeint/ts_symsplit.hpp"
 #include "timeint/symsplit_schemes.hpp"
+#include "core/ts_traits.hpp"
 #include <petsc/private/tsimpl.h>
 #include <cmath>
 #include <cstring>
@@ -130,10 +131,18 @@ PetscErrorCode TSReset_SymSplit(TS ts)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode TSSymSplitGetScheme_SymSplit(TS ts, const char **scheme)
+{
+  PetscFunctionBegin;
+  *scheme = Schemes()[static_cast<SymSplit *>(ts->data)->scheme].name;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode TSDestroy_SymSplit(TS ts)
 {
   PetscFunctionBegin;
   PetscCall(TSReset_SymSplit(ts));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSSymSplitGetScheme_C", NULL));
   delete static_cast<SymSplit *>(ts->data);
   ts->data = NULL;
   PetscFunctionReturn(0);
@@ -182,16 +191,23 @@ PetscErrorCode TSCreate_SymSplit(TS ts)
   ts->ops->rollback = TSRollBack_SymSplit;
   ts->default_adapt_type = TSADAPTNONE;
   ts->usessnes = PETSC_FALSE;
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSSymSplitGetScheme_C", TSSymSplitGetScheme_SymSplit));
   PetscFunctionReturn(0);
 }
 
 } // namespace
 
+PetscErrorCode TSSymSplitGetScheme(TS ts, const char **scheme) { return TSUseSchemeGetter(ts, "TSSymSplitGetScheme_C", scheme); }
+
 PetscErrorCode TSSymSplitRegister()
 {
   static bool done = false;
   PetscFunctionBegin;
-  if (!done) PetscCall(TSRegister(TSSYMSPLIT, TSCreate_SymSplit));
+  if (!done) {
+    PetscCall(TSRegister(TSSYMSPLIT, TSCreate_SymSplit));
+    // family, explicit, rollback, fixed step, position-only, acceleration, split RHS, interpolant order (quintic Hermite), scheme getter
+    TSTraitsRegister({TSSYMSPLIT, TSSYMSPLIT, true, true, true, true, true, false, 5, "TSSymSplitGetScheme_C"});
+  }
   done = true;
   PetscFunctionReturn(0);
 }

@@ -20,8 +20,15 @@ namespace nltopo {
 
 #define TSSYMSPLIT "symsplit"
 
-// Registers "symsplit" once (safe to call repeatedly).
+// Registers "symsplit" once (safe to call repeatedly), with its row of the
+// integrator table (core/ts_traits.hpp).
 PetscErrorCode TSSymSplitRegister();
+
+// The scheme ts runs ("bm4", ... as -ts_symsplit_scheme names it): the default
+// or the one TSSetFromOptions chose. Composed on the TS as
+// "TSSymSplitGetScheme_C", as PETSc's TSRKGetType; an error for a TS of
+// another type.
+PetscErrorCode TSSymSplitGetScheme(TS ts, const char **scheme);
 
 // The schemes: name, order, accelerations per step (for tests and benchmarks).
 struct SymSplitSchemeInfo {
