@@ -7,8 +7,9 @@
 // Two ways in. The integrator carries the integrals as quadrature states
 // (Integrals(), whose rate is Integrand()): then they are integrated by the
 // scheme's own weights at its stages, to the accuracy of the run. Otherwise
-// (an integrator that does not carry them) the trapezoid over the step ends
-// passed to Step(). Finish() uses the quadrature states when the integrator
+// (an integrator that does not carry them) over the step ends passed to
+// Step(): u_i^2 by the two-point Hermite rule (fourth order in the step), the
+// energies by the trapezoid. Finish() uses the quadrature states when the integrator
 // evaluated the integrand inside the window, the trapezoid otherwise.
 #include "effects/effect.hpp"
 #include <vector>
@@ -44,7 +45,7 @@ private:
   bool carried_ = false; // the integrator evaluated the integrand inside the window
   bool open_ = false;
   PetscReal t_prev_ = 0, nl_prev_ = 0, lin_prev_ = 0, acc_nl_ = 0, acc_lin_ = 0;
-  std::vector<PetscReal> u2_prev_, acc_u2_;
+  std::vector<PetscReal> u2_prev_, du2_prev_, acc_u2_; // u_i^2 and its derivative at the last state
 };
 
 } // namespace nltopo
