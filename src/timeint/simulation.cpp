@@ -6,7 +6,6 @@
 #include "diagnostics/rms_window.hpp"
 #include "timeint/ts_rkn.hpp"
 #include "timeint/ts_symsplit.hpp"
-#include <petsc/private/tsimpl.h>
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -437,7 +436,7 @@ PetscErrorCode CreateRunTS(const EffectList &fx, const SimulationOptions &o, Run
   TSType type;
   TS quad;
   Vec q;
-  PetscErrorCode (*tableau)(void) = NULL;
+  PetscErrorCode (*tableau)(void) = NULL, (*quadrature)(void) = NULL;
   PetscFunctionBeginUser;
   PetscCall(TSCreate(lat.Comm(), ts));
   PetscCall(TSSetOptionsPrefix(*ts, "sim_"));
@@ -465,11 +464,12 @@ PetscErrorCode CreateRunTS(const EffectList &fx, const SimulationOptions &o, Run
     PetscCall(fx.RequirePositionOnly(who.c_str()));
   }
   // The window integrals: on the stages of an explicit Runge-Kutta tableau,
-  // as a quadrature TS where the type integrates one forward, else (no
-  // stages to read) by the trapezoid over the step ends.
+  // as a quadrature TS where the type integrates one forward and rolls it
+  // back with the step (rkn), else over the step ends.
   PetscCall(PetscObjectQueryFunction((PetscObject)*ts, "TSRKGetTableau_C", &tableau));
+  PetscCall(PetscObjectQueryFunction((PetscObject)*ts, "TSForwardQuadratureRollsBack_C", &quadrature));
   run->rk_stages = tableau != NULL;
-  if (!tableau && (*ts)->ops->forwardintegral) {
+  if (!tableau && quadrature) {
     PetscCall(run->window.Integrals(&q));
     PetscCall(TSCreateQuadratureTS(*ts, PETSC_TRUE, &quad));
     PetscCall(TSSetRHSFunction(quad, NULL, WindowRate, &run->window));

@@ -360,6 +360,7 @@ PetscErrorCode TSDestroy_Rkn(TS ts)
 {
   PetscFunctionBegin;
   PetscCall(TSReset_Rkn(ts));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSForwardQuadratureRollsBack_C", NULL));
   delete static_cast<Rkn *>(ts->data);
   ts->data = NULL;
   PetscFunctionReturn(0);
@@ -420,6 +421,9 @@ PetscErrorCode TSCreate_Rkn(TS ts)
   ts->ops->rollback = TSRollBack_Rkn;
   ts->ops->evaluatewlte = TSEvaluateWLTE_Rkn;
   ts->ops->forwardintegral = TSForwardCostIntegral_Rkn;
+  // the forward quadrature TS is integrated and rolled back with the step (PETSc 3.18's rk and theta
+  // take back an integral on a rejected attempt that they never added): timeint/simulation.cpp asks
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSForwardQuadratureRollsBack_C", TSForwardCostIntegral_Rkn));
   ts->default_adapt_type = TSADAPTBASIC;
   ts->usessnes = PETSC_FALSE;
   PetscFunctionReturn(0);
