@@ -301,16 +301,6 @@ PetscErrorCode TSInterpolate_Rkn(TS ts, PetscReal t, Vec X)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode RknInterpolate(TS ts, PetscReal t, Vec X, bool positions_only)
-{
-  Rkn *d = static_cast<Rkn *>(ts->data);
-  const PetscReal h = ts->ptime - ts->ptime_prev;
-  PetscFunctionBegin;
-  if (h <= 0 || !d->end_ready) PetscCall(VecCopy(ts->vec_sol, X));
-  else PetscCall(HermiteInterpolate(d->z_prev, ts->vec_sol, d->k[0].data(), d->End().data(), d->p.n, h, (t - ts->ptime_prev) / h, X, positions_only));
-  PetscFunctionReturn(0);
-}
-
 PetscErrorCode TSReset_Rkn(TS ts)
 {
   Rkn *d = static_cast<Rkn *>(ts->data);
@@ -430,16 +420,6 @@ PetscErrorCode TSCreate_Rkn(TS ts)
 }
 
 } // namespace
-
-PetscErrorCode TSRknInterpolatePositions(TS ts, PetscReal t, Vec X)
-{
-  PetscBool rkn;
-  PetscFunctionBegin;
-  PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSRKN, &rkn));
-  if (rkn) PetscCall(RknInterpolate(ts, t, X, true));
-  else PetscCall(TSInterpolate(ts, t, X));
-  PetscFunctionReturn(0);
-}
 
 PetscErrorCode TSRknRegister()
 {

@@ -19,7 +19,9 @@
 // dep64 and dep86 are FSAL (their last stage is a(t + h, u1)); for dep1210 the
 // end acceleration is computed once the step is accepted and is the next
 // step's first stage, so every pair hands (u, v, a) at both ends of the step
-// to the quintic Hermite interpolant (TSInterpolate) at no extra cost.
+// to the quintic Hermite interpolant (TSInterpolate) at no extra cost. A
+// forward quadrature TS (TSCreateQuadratureTS) is integrated with the pair's
+// velocity weights at its stages and rolled back with the step.
 //
 // The acceleration comes from TSSetAcceleration (timeint/ts_acceleration.hpp),
 // or, if none was set, from the v part of the TS right-hand side.
@@ -32,10 +34,6 @@ namespace nltopo {
 
 // Registers "rkn" once (safe to call repeatedly).
 PetscErrorCode TSRknRegister();
-
-// TSInterpolate for the positions only (X's v part is left as it was): the
-// window quadrature needs u alone at its Gauss nodes.
-PetscErrorCode TSRknInterpolatePositions(TS ts, PetscReal t, Vec X);
 
 // The pairs: option name, orders, accelerations per accepted step (for tests
 // and benchmarks).
