@@ -1,29 +1,56 @@
 #include "diagnostics/rms_window.hpp"
-#include "timeint/ts_rkn.hpp"
+#include <algorithm>
 #include <cmath>
 
 namespace nltopo {
 
-PetscErrorCode RmsWindow::GaussStep(PetscReal t, bool *done)
+PetscErrorCode RmsWindow::Integrals(Vec *q)
 {
-  PetscReal tp;
   PetscFunctionBeginUser;
-  PetscCall(TSGetPrevTime(interp_, &tp));
-  *done = t_prev_ >= tp - 1e-12 * (1 + std::abs(tp)) && t > t_prev_; // [t_prev, t] inside the last step
-  if (!*done) PetscFunctionReturn(0);
-  if (!zs_) PetscCall(fx_.Lat().CreateStateVector(zs_.out()));
-  const PetscReal h = t - t_prev_, x = std::sqrt(15.0) / 10, node[3] = {0.5 - x, 0.5, 0.5 + x}, w[3] = {5.0 / 18, 8.0 / 18, 5.0 / 18};
-  const PetscInt n = fx_.Lat().OwnedCount();
-  for (int q = 0; q < 3; q++) {
-    const PetscScalar *a;
-    EnergyParts eq;
-    PetscCall(TSRknInterpolatePositions(interp_, std::max(t_prev_, tp) + node[q] * h, zs_)); // the kinetic part of eq is not used
-    PetscCall(fx_.Energy(zs_, &eq));
-    PetscCall(VecGetArrayRead(zs_, &a));
-    for (PetscInt k = 0; k < n; k++) acc_u2_[k] += w[q] * h * a[k] * a[k];
-    PetscCall(VecRestoreArrayRead(zs_, &a));
-    acc_nl_ += w[q] * h * eq.quartic;
-    acc_lin_ += w[q] * h * eq.linear;
+  if (!q_) {
+    PetscCall(VecCreateMPI(fx_.Lat().Comm(), fx_.Lat().OwnedCount() + 2, PETSC_DETERMINE, q_.out()));
+    PetscCall(VecZeroEntries(q_));
+  }
+  *q = q_;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode RmsWindow::Integrand(Vec z, Vec rate)
+{
+  const Lattice &lat = fx_.Lat();
+  const PetscInt n = lat.OwnedCount(), xs = lat.OwnedStart();
+  PetscScalar *r;
+  PetscFunctionBeginUser;
+  if (!open_) {
+    PetscCall(VecZeroEntries(rate));
+    PetscFunctionReturn(0);
+  }
+  carried_ = true;
+  const PetscScalar *u;
+  Vec ul;
+  EnergyParts loc;
+  PetscCall(lat.GetGhostedU(z, &ul, &u)); // indexed by global site
+  PetscCall(VecGetArray(rate, &r));
+  for (PetscInt k = 0; k < n; k++) r[k] = u[xs + k] * u[xs + k];
+  for (size_t i = 0; i < fx_.Size(); i++) fx_.At(i).AddEnergy(u, &loc); // this rank's share
+  r[n] = loc.quartic;
+  r[n + 1] = loc.linear;
+  PetscCall(VecRestoreArray(rate, &r));
+  PetscCall(lat.RestoreGhostedU(z, &ul, &u));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode RmsWindow::AddStages(PetscReal h, PetscInt s, const PetscReal *b, const Vec *y)
+{
+  Vec q;
+  PetscFunctionBeginUser;
+  if (!open_) PetscFunctionReturn(0);
+  PetscCall(Integrals(&q));
+  if (!rate_) PetscCall(VecDuplicate(q, rate_.out()));
+  for (PetscInt i = 0; i < s; i++) {
+    if (b[i] == 0) continue;
+    PetscCall(Integrand(y[i], rate_));
+    PetscCall(VecAXPY(q, h * b[i], rate_));
   }
   PetscFunctionReturn(0);
 }
@@ -34,28 +61,29 @@ PetscErrorCode RmsWindow::Step(PetscReal t, Vec z, const EnergyParts &e, PetscRe
   const PetscInt n = fx_.Lat().OwnedCount();
   PetscFunctionBeginUser;
   if (!open_ && t + 1e-12 < *start) PetscFunctionReturn(0);
+  PetscCall(VecGetArrayRead(z, &a));
   if (!open_) {
-    PetscCall(VecGetArrayRead(z, &a));
     open_ = true;
+    carried_ = false;
     *start = t;
     acc_nl_ = acc_lin_ = 0;
     u2_prev_.assign(n, 0.0);
+    du2_prev_.assign(n, 0.0);
     acc_u2_.assign(n, 0.0);
-    for (PetscInt k = 0; k < n; k++) u2_prev_[k] = a[k] * a[k];
+    for (PetscInt k = 0; k < n; k++) u2_prev_[k] = a[k] * a[k], du2_prev_[k] = 2 * a[k] * a[n + k];
+    if (q_) PetscCall(VecZeroEntries(q_));
   } else {
-    const PetscReal h = 0.5 * (t - t_prev_);
-    bool gauss = false;
-    if (interp_) PetscCall(GaussStep(t, &gauss));
-    PetscCall(VecGetArrayRead(z, &a));
+    // u_i^2 by the two-point Hermite rule (its derivative 2 u_i v_i at both
+    // ends: fourth order), the energies by the trapezoid
+    const PetscReal h = 0.5 * (t - t_prev_), c = (t - t_prev_) * (t - t_prev_) / 12;
     for (PetscInt k = 0; k < n; k++) {
-      const PetscReal u2 = a[k] * a[k];
-      if (!gauss) acc_u2_[k] += h * (u2 + u2_prev_[k]);
+      const PetscReal u2 = a[k] * a[k], du2 = 2 * a[k] * a[n + k];
+      acc_u2_[k] += h * (u2 + u2_prev_[k]) + c * (du2_prev_[k] - du2);
       u2_prev_[k] = u2;
+      du2_prev_[k] = du2;
     }
-    if (!gauss) {
-      acc_nl_ += h * (e.quartic + nl_prev_);
-      acc_lin_ += h * (e.linear + lin_prev_);
-    }
+    acc_nl_ += h * (e.quartic + nl_prev_);
+    acc_lin_ += h * (e.linear + lin_prev_);
   }
   PetscCall(VecRestoreArrayRead(z, &a));
   t_prev_ = t;
@@ -69,15 +97,26 @@ PetscErrorCode RmsWindow::Finish(PetscReal start, Vec rms, PetscReal *nl_ratio) 
   PetscScalar *a;
   const PetscInt n = fx_.Lat().OwnedCount();
   const PetscReal len = t_prev_ - start;
+  PetscReal nl = acc_nl_, lin = acc_lin_;
+  const PetscScalar *q = NULL;
   PetscFunctionBeginUser;
+  if (carried_) { // the integrator's quadrature states
+    PetscCall(VecGetArrayRead(q_, &q));
+    PetscReal loc[2] = {q[n], q[n + 1]}, glob[2];
+    PetscCallMPI(MPIU_Allreduce(loc, glob, 2, MPIU_REAL, MPIU_SUM, fx_.Lat().Comm()));
+    nl = glob[0];
+    lin = glob[1];
+  }
+  const PetscReal *u2 = q ? q : acc_u2_.data();
   PetscCall(VecGetArray(rms, &a));
   if (len > 0) {
-    for (PetscInt k = 0; k < n; k++) a[k] = std::sqrt(acc_u2_[k] / len);
+    for (PetscInt k = 0; k < n; k++) a[k] = std::sqrt(std::max<PetscReal>(u2[k], 0) / len);
   } else { // zero-length window: the final displacement
     for (PetscInt k = 0; k < n; k++) a[k] = std::sqrt(u2_prev_[k]);
   }
   PetscCall(VecRestoreArray(rms, &a));
-  *nl_ratio = acc_lin_ > 0 ? acc_nl_ / acc_lin_ : (lin_prev_ > 0 ? nl_prev_ / lin_prev_ : 0);
+  if (q) PetscCall(VecRestoreArrayRead(q_, &q));
+  *nl_ratio = lin > 0 ? nl / lin : (lin_prev_ > 0 ? nl_prev_ / lin_prev_ : 0);
   PetscFunctionReturn(0);
 }
 

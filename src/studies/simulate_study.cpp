@@ -41,6 +41,12 @@ public:
     }
     PetscFunctionReturn(0);
   }
+  void Reserve(PetscInt samples) override
+  {
+    t_.reserve(samples);
+    energy_.reserve(samples);
+    if (store_u_) u_.reserve(samples * local_.size());
+  }
   void Restart() override
   {
     t_.clear();

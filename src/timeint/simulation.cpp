@@ -7,6 +7,7 @@
 #include "diagnostics/rms_window.hpp"
 #include "timeint/ts_rkn.hpp"
 #include "timeint/ts_symsplit.hpp"
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -38,64 +39,131 @@ PetscErrorCode SimulationOptionsFromOptions(MPI_Comm comm, SimulationOptions *o)
 
 namespace {
 
-struct Run {
-  const Lattice *lat;
-  const EffectList *fx;
-  const ToneBurst *forcing;
-  Rhs rhs;
-  SampleSink *sink;
-  bool event_mode = false, interpolate = true;
-  bool locate_in_step = false; // find the cut-off on the step's interpolant (fixed-step symsplit)
-  PetscReal burst_end = PETSC_MAX_REAL; // abort_if_missed: stop here if E* was missed
-  PetscReal estar = 0, t_final = 0, sample_dt = 0, window_default = 0, progress = 0;
-  PetscLogDouble wall0 = 0, wall_last = 0;
-  PetscInt next_sample = 0;
-  SimulationResult *r;
-  OwnedVec zs;   // interpolated sample state
-  OwnedVec zcut; // the state at a cut-off located inside a step
-  // energy cache (the event indicator and the post-step see the same state)
-  PetscObjectId cache_id = 0;
-  PetscInt cache_step = -1;
-  PetscReal cache_t = -1;
-  EnergyParts cache_e;
-  RmsWindow window; // the RMS / energy-ratio window after the cut-off
-
-  Run(const EffectList &e, SampleSink *s, SimulationResult *res) : lat(&e.Lat()), fx(&e), forcing(e.Burst()), rhs(e), sink(s), r(res), window(e) {}
-
-  // The energy of the TS solution z at (t, step): the event indicator and the
-  // post-step see the same state (the code that changes z in place at the
-  // same t, the cut-off inside a step, sets t anew).
-  PetscErrorCode EnergyAt(TS ts, PetscReal t, Vec z, EnergyParts *e)
+// The energy of the TS solution z at (t, step), computed once: the event
+// indicator and the post-step see the same state (the code that changes z in
+// place at the same t, the cut-off inside a step, sets t anew).
+class EnergyCache {
+public:
+  PetscErrorCode At(const EffectList &fx, TS ts, PetscReal t, Vec z, EnergyParts *e)
   {
     PetscObjectId id;
     PetscInt step;
     PetscFunctionBeginUser;
     PetscCall(PetscObjectGetId((PetscObject)z, &id));
     PetscCall(TSGetStepNumber(ts, &step));
-    if (id != cache_id || step != cache_step || t != cache_t) {
-      PetscCall(fx->Energy(z, &cache_e));
-      cache_id = id;
-      cache_step = step;
-      cache_t = t;
+    if (id != id_ || step != step_ || t != t_) {
+      PetscCall(fx.Energy(z, &e_));
+      id_ = id;
+      step_ = step;
+      t_ = t;
     }
-    *e = cache_e;
+    *e = e_;
     PetscFunctionReturn(0);
   }
 
-  // E crossed E* during the last step [t_prev, t]: the crossing time on the
-  // step's interpolant, by bisection to a relative energy tolerance of 1e-10
-  // (that of the event); zs holds the state there. A fixed-step method cannot
-  // use a TS event here: a shortened step is another discretisation, whose
-  // energy need not cross E* in the same interval (the event then shrinks the
-  // step forever).
-  PetscErrorCode LocateCutOff(TS ts, PetscReal lo, PetscReal hi, PetscReal *t_off, EnergyParts *e_off)
+private:
+  PetscObjectId id_ = 0;
+  PetscInt step_ = -1;
+  PetscReal t_ = -1;
+  EnergyParts e_;
+};
+
+// The sink's samples at t = k sample_dt: at each step end, those the step
+// passed, on the step's interpolant (or the step end itself, for a type
+// without one), with their energy.
+class Sampler {
+public:
+  Sampler(const EffectList &fx, SampleSink *sink, const SimulationOptions &o) : fx_(fx), sink_(sink), dt_(o.sample_dt), t_final_(o.t_final)
+  {
+    // a continued run's samples follow the earlier run's (which took t = t_start)
+    if (o.t_start > 0 && o.sample_dt > 0) next_ = (PetscInt)std::floor(o.t_start / o.sample_dt + 1e-9) + 1;
+    if (sink_ && dt_ > 0) sink_->Reserve((PetscInt)std::floor(t_final_ / dt_ * (1 + 1e-12)) + 1 - next_);
+  }
+  void WithoutInterpolant() { interpolate_ = false; }
+  // The samples up to the state z (energy parts e) at time t; t_off < 0
+  // while the forcing is on.
+  PetscErrorCode Through(TS ts, PetscReal t, Vec z, const EnergyParts &e, PetscReal t_off)
   {
     PetscFunctionBeginUser;
+    if (!sink_ || dt_ <= 0) PetscFunctionReturn(0);
+    for (;; next_++) {
+      const PetscReal tk = next_ * dt_;
+      if (tk > t_final_ * (1 + 1e-12) || tk > t + 1e-9 * dt_) break;
+      if (!sink_->Wants(tk, t_off)) continue;
+      if (interpolate_ && std::abs(tk - t) > 1e-12 * (1 + t)) {
+        EnergyParts es;
+        if (!zs_) PetscCall(VecDuplicate(z, zs_.out()));
+        PetscCall(TSInterpolate(ts, tk, zs_));
+        PetscCall(fx_.Energy(zs_, &es));
+        PetscCall(sink_->Sample(tk, zs_, es));
+      } else {
+        PetscCall(sink_->Sample(interpolate_ ? tk : t, z, e));
+      }
+    }
+    PetscFunctionReturn(0);
+  }
+
+private:
+  const EffectList &fx_;
+  SampleSink *sink_;
+  PetscReal dt_, t_final_;
+  PetscInt next_ = 0;
+  bool interpolate_ = true;
+  OwnedVec zs_; // the interpolated sample state
+};
+
+// A progress line on rank 0 every interval wall seconds (long runs say where they are).
+class ProgressLine {
+public:
+  ProgressLine(MPI_Comm comm, PetscReal interval, PetscReal t_final) : comm_(comm), interval_(interval), t_final_(t_final) {}
+  PetscErrorCode Start()
+  {
+    PetscFunctionBeginUser;
+    PetscCall(PetscTime(&wall0_));
+    wall_last_ = wall0_;
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode Step(TS ts, PetscReal t, const EnergyParts &e, bool forcing)
+  {
+    PetscLogDouble now;
+    PetscInt step;
+    PetscFunctionBeginUser;
+    if (interval_ <= 0) PetscFunctionReturn(0);
+    PetscCall(PetscTime(&now));
+    if (now - wall_last_ < interval_) PetscFunctionReturn(0);
+    PetscCall(TSGetStepNumber(ts, &step));
+    wall_last_ = now;
+    const double frac = t / t_final_, el = now - wall0_;
+    PetscCall(PetscPrintf(comm_, "  [simulate] t = %.6g / %g (%.1f %%), %" PetscInt_FMT " steps, E = %.6g, %s, %.0f s elapsed, ETA %.0f s\n", (double)t,
+                          (double)t_final_, 100 * frac, step, (double)e.Total(), forcing ? "forcing on" : "forcing off", el,
+                          frac > 0 ? el * (1 - frac) / frac : 0.0));
+    PetscFunctionReturn(0);
+  }
+
+private:
+  MPI_Comm comm_;
+  PetscReal interval_, t_final_;
+  PetscLogDouble wall0_ = 0, wall_last_ = 0;
+};
+
+// Finding where E reaches E* inside a step, on the step's interpolant.
+class CrossingFinder {
+public:
+  CrossingFinder(const EffectList &fx, PetscReal estar) : fx_(fx), estar_(estar) {}
+  // E crossed E* during the last step [t_prev, t]: the crossing time on the
+  // step's interpolant, by bisection to a relative energy tolerance of 1e-10
+  // (that of the event). A fixed-step method cannot use a TS event here: a
+  // shortened step is another discretisation, whose energy need not cross E*
+  // in the same interval (the event then shrinks the step forever).
+  PetscErrorCode Locate(TS ts, PetscReal lo, PetscReal hi, PetscReal *t_off, EnergyParts *e_off)
+  {
+    PetscFunctionBeginUser;
+    PetscCall(Scratch(ts));
     for (int it = 0; it < 200 && hi - lo > 1e-14 * (1 + hi); it++) {
       const PetscReal mid = 0.5 * (lo + hi);
-      PetscCall(TSInterpolate(ts, mid, zs));
-      PetscCall(fx->Energy(zs, e_off));
-      const PetscReal g = e_off->Total() / estar - 1;
+      PetscCall(TSInterpolate(ts, mid, zs_));
+      PetscCall(fx_.Energy(zs_, e_off));
+      const PetscReal g = e_off->Total() / estar_ - 1;
       if (std::abs(g) <= 1e-10) {
         lo = hi = mid;
         break;
@@ -103,8 +171,8 @@ struct Run {
       (g < 0 ? lo : hi) = mid;
     }
     *t_off = hi;
-    PetscCall(TSInterpolate(ts, hi, zs));
-    PetscCall(fx->Energy(zs, e_off));
+    PetscCall(TSInterpolate(ts, hi, zs_));
+    PetscCall(fx_.Energy(zs_, e_off));
     PetscFunctionReturn(0);
   }
 
@@ -117,25 +185,64 @@ struct Run {
   // to within 1 - cos(pi / 8) = 8 % of the oscillation's amplitude (steps
   // shorter than that get no inner samples); *found is false when no sample
   // reaches E*.
-  PetscErrorCode ScanStep(TS ts, PetscReal t_prev_step, PetscReal t, bool *found, PetscReal *t_off, EnergyParts *e_off)
+  PetscErrorCode Scan(TS ts, PetscReal t_prev_step, PetscReal t, bool *found, PetscReal *t_off, EnergyParts *e_off)
   {
     PetscFunctionBeginUser;
     *found = false;
-    const PetscReal spacing = PETSC_PI / (8 * forcing->Omega());
+    const PetscReal spacing = PETSC_PI / (8 * fx_.Burst()->Omega());
     const PetscInt k = (PetscInt)std::floor((t - t_prev_step) / spacing);
     PetscReal lo = t_prev_step;
+    if (k > 0) PetscCall(Scratch(ts));
     for (PetscInt i = 1; i <= k; i++) {
       const PetscReal ti = t_prev_step + i * (t - t_prev_step) / (k + 1);
-      PetscCall(TSInterpolate(ts, ti, zs));
-      PetscCall(fx->Energy(zs, e_off));
-      if (e_off->Total() >= estar) {
-        PetscCall(LocateCutOff(ts, lo, ti, t_off, e_off));
+      PetscCall(TSInterpolate(ts, ti, zs_));
+      PetscCall(fx_.Energy(zs_, e_off));
+      if (e_off->Total() >= estar_) {
+        PetscCall(Locate(ts, lo, ti, t_off, e_off));
         *found = true;
         break;
       }
       lo = ti;
     }
     PetscFunctionReturn(0);
+  }
+
+private:
+  PetscErrorCode Scratch(TS ts)
+  {
+    Vec sol;
+    PetscFunctionBeginUser;
+    if (zs_) PetscFunctionReturn(0);
+    PetscCall(TSGetSolution(ts, &sol));
+    PetscCall(VecDuplicate(sol, zs_.out()));
+    PetscFunctionReturn(0);
+  }
+  const EffectList &fx_;
+  PetscReal estar_;
+  OwnedVec zs_; // the interpolated state
+};
+
+struct Run {
+  const Lattice *lat;
+  const EffectList *fx;
+  Rhs rhs;
+  SimulationResult *r;
+  PetscReal estar;
+  bool event_mode = false, interpolate = true;
+  bool locate_in_step = false;          // find the cut-off on the step's interpolant (fixed-step symsplit)
+  bool rk_stages = false;               // the window integrals on each step's stages (explicit Runge-Kutta tableau)
+  PetscReal burst_end = PETSC_MAX_REAL; // abort_if_missed: stop here if E* was missed
+  OwnedVec zcut;                        // the state at a cut-off located inside a step
+  EnergyCache energy;
+  CrossingFinder crossing;
+  RmsWindow window; // the RMS / energy-ratio window after the cut-off
+  Sampler sampler;
+  ProgressLine progress;
+
+  Run(const EffectList &e, const SimulationOptions &o, SampleSink *s, SimulationResult *res)
+    : lat(&e.Lat()), fx(&e), rhs(e), r(res), estar(e.Burst() ? e.Burst()->EnergyStar() : 0), crossing(e, estar), window(e), sampler(e, s, o),
+      progress(e.Lat().Comm(), o.progress, o.t_final)
+  {
   }
 
   void CutOff(PetscReal t)
@@ -146,31 +253,38 @@ struct Run {
     r->window_start = t;
     window.Restart(); // the window starts at t_off
   }
-
-  PetscErrorCode Samples(TS ts, PetscReal t, Vec z, const EnergyParts &e)
-  {
-    PetscFunctionBeginUser;
-    if (!sink || sample_dt <= 0) PetscFunctionReturn(0);
-    for (;;) {
-      const PetscReal ts_k = next_sample * sample_dt;
-      if (ts_k > t_final * (1 + 1e-12) || ts_k > t + 1e-9 * sample_dt) break;
-      if (!sink->Wants(ts_k, r->t_off)) {
-        next_sample++;
-        continue;
-      }
-      if (interpolate && std::abs(ts_k - t) > 1e-12 * (1 + t)) {
-        EnergyParts es;
-        PetscCall(TSInterpolate(ts, ts_k, zs));
-        PetscCall(fx->Energy(zs, &es));
-        PetscCall(sink->Sample(ts_k, zs, es));
-      } else {
-        PetscCall(sink->Sample(interpolate ? ts_k : t, z, e));
-      }
-      next_sample++;
-    }
-    PetscFunctionReturn(0);
-  }
 };
+
+// The cut-off at the end of a step with the forcing on (when no TS event
+// locates it): E reached E* inside the step or at its end. A crossing inside
+// the step moves the run back to it (*t, z, *e): the samples before it come
+// from this step, forcing on; the run goes on from the crossing, free.
+PetscErrorCode CutOffAtStepEnd(TS ts, Run *run, PetscReal *t, Vec z, EnergyParts *e)
+{
+  bool inside = false; // E reached E* inside the step, below it at the step's end
+  PetscReal t_off = 0;
+  EnergyParts e_off;
+  PetscFunctionBeginUser;
+  if (run->interpolate) {
+    PetscReal tp;
+    PetscCall(TSGetPrevTime(ts, &tp));
+    PetscCall(run->crossing.Scan(ts, tp, *t, &inside, &t_off, &e_off));
+    if (!inside && !run->event_mode && e->Total() >= run->estar && run->locate_in_step) PetscCall(run->crossing.Locate(ts, tp, *t, &t_off, &e_off));
+  }
+  if (!inside && (run->event_mode || e->Total() < run->estar)) PetscFunctionReturn(0);
+  if (run->locate_in_step || inside) {
+    if (!run->zcut) PetscCall(VecDuplicate(z, run->zcut.out()));
+    PetscCall(TSInterpolate(ts, t_off, run->zcut));
+    PetscCall(run->sampler.Through(ts, t_off, run->zcut, e_off, run->r->t_off));
+    PetscCall(VecCopy(run->zcut, z));
+    PetscCall(TSSetTime(ts, t_off));
+    PetscCall(TSRestartStep(ts));
+    *t = t_off;
+    *e = e_off;
+  }
+  run->CutOff(*t);
+  PetscFunctionReturn(0);
+}
 
 PetscErrorCode RhsFunction(TS ts, PetscReal t, Vec z, Vec f, void *ctx)
 {
@@ -211,13 +325,21 @@ PetscErrorCode RunAcceleration(TS ts, PetscReal t, Vec z, PetscScalar *a, void *
   PetscFunctionReturn(0);
 }
 
+// The rate of the window's quadrature states (the TS's quadrature TS).
+PetscErrorCode WindowRate(TS quad, PetscReal t, Vec z, Vec rate, void *ctx)
+{
+  PetscFunctionBeginUser;
+  PetscCall(static_cast<RmsWindow *>(ctx)->Integrand(z, rate));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode CutOffIndicator(TS ts, PetscReal t, Vec z, PetscScalar *fv, void *ctx)
 {
   Run *run = static_cast<Run *>(ctx);
   PetscFunctionBeginUser;
   if (run->rhs.Forcing()) {
     EnergyParts e;
-    PetscCall(run->EnergyAt(ts, t, z, &e));
+    PetscCall(run->energy.At(*run->fx, ts, t, z, &e));
     fv[0] = e.Total() / run->estar - 1; // relative, so the event tolerance means the same at any E*
   } else {
     fv[0] = -1.0; // after the cut-off the event can never fire again (it fires on upward crossings only, and a cut-off found inside a step leaves a negative value behind)
@@ -236,68 +358,253 @@ PetscErrorCode CutOffEvent(TS ts, PetscInt nev, PetscInt list[], PetscReal t, Ve
   PetscFunctionReturn(0);
 }
 
+// An explicit Runge-Kutta step inside the window: the window integrals on its
+// stages with the tableau's weights b, to the order of the method. (PETSc's
+// own quadrature TS for rk also subtracts the rejected attempts, which it
+// never added.)
+PetscErrorCode WindowOnStages(TS ts, Run *run, PetscReal t)
+{
+  PetscInt s, ns;
+  const PetscReal *b;
+  Vec *Y;
+  PetscReal tp;
+  PetscFunctionBeginUser;
+  if (!run->rk_stages) PetscFunctionReturn(0);
+  PetscCall(TSRKGetTableau(ts, &s, NULL, &b, NULL, NULL, NULL, NULL, NULL));
+  PetscCall(TSGetStages(ts, &ns, &Y));
+  PetscCall(TSGetPrevTime(ts, &tp));
+  PetscCall(run->window.AddStages(t - tp, std::min(s, ns), b, Y));
+  PetscFunctionReturn(0);
+}
+
+// Every step end: the stop signal, the divergence check, the cut-off, then
+// the step-end sinks (window, samples, progress line).
 PetscErrorCode PostStep(TS ts)
 {
   Run *run;
   PetscReal t;
+  PetscInt step;
   Vec z;
   EnergyParts e;
   PetscFunctionBeginUser;
   PetscCall(TSGetApplicationContext(ts, &run));
-  {
-    PetscInt step;
-    PetscCall(TSGetStepNumber(ts, &step));
-    PetscCall(CheckInterruptAtStep(run->lat->Comm(), step)); // a stop signal ends the run here
-  }
+  PetscCall(TSGetStepNumber(ts, &step));
+  PetscCall(CheckInterruptAtStep(run->lat->Comm(), step)); // a stop signal ends the run here
   PetscCall(TSGetTime(ts, &t));
   PetscCall(TSGetSolution(ts, &z));
-  PetscCall(run->EnergyAt(ts, t, z, &e));
+  PetscCall(run->energy.At(*run->fx, ts, t, z, &e));
   PetscCheck(std::isfinite(e.Total()), run->lat->Comm(), PETSC_ERR_FP,
              "non-finite state at t = %g: the integration diverged (reduce -sim_ts_dt or tighten -sim_ts_rtol)", (double)t);
-  if (run->rhs.Forcing()) run->r->energy_peak = std::max(run->r->energy_peak, e.Total());
-  bool inside = false; // E reached E* inside the step, below it at the step's end
-  PetscReal t_off = 0;
-  EnergyParts e_off;
-  if (run->rhs.Forcing() && run->interpolate) {
-    PetscReal tp;
-    PetscCall(TSGetPrevTime(ts, &tp));
-    PetscCall(run->ScanStep(ts, tp, t, &inside, &t_off, &e_off));
-    if (!inside && !run->event_mode && e.Total() >= run->estar && run->locate_in_step) PetscCall(run->LocateCutOff(ts, tp, t, &t_off, &e_off));
-  }
-  if (run->rhs.Forcing() && (inside || (!run->event_mode && e.Total() >= run->estar))) {
-    if (run->locate_in_step || inside) {
-      // Samples before the crossing come from this step (forcing on); the run
-      // then goes on from the crossing state, free.
-      // (zs is the samples' scratch vector: the crossing state goes through zcut)
-      PetscCall(TSInterpolate(ts, t_off, run->zcut));
-      PetscCall(run->Samples(ts, t_off, run->zcut, e_off));
-      PetscCall(VecCopy(run->zcut, z));
-      PetscCall(TSSetTime(ts, t_off));
-      PetscCall(TSRestartStep(ts));
-      t = t_off;
-      e = e_off;
-    }
-    run->CutOff(t);
+  PetscCall(WindowOnStages(ts, run, t));
+  if (run->rhs.Forcing()) {
+    run->r->energy_peak = std::max(run->r->energy_peak, e.Total());
+    PetscCall(CutOffAtStepEnd(ts, run, &t, z, &e));
   }
   if (run->rhs.Forcing() && t >= run->burst_end) { // E* missed: the caller retries with a larger S
     run->r->aborted = true;
     PetscCall(TSSetConvergedReason(ts, TS_CONVERGED_USER));
   }
   PetscCall(run->window.Step(t, z, e, &run->r->window_start));
-  PetscCall(run->Samples(ts, t, z, e));
-  if (run->progress > 0) { // long runs say where they are (rank 0, one line per interval)
-    PetscLogDouble now;
-    PetscCall(PetscTime(&now));
-    if (now - run->wall_last >= run->progress) {
-      PetscInt step;
-      PetscCall(TSGetStepNumber(ts, &step));
-      run->wall_last = now;
-      const double frac = t / run->t_final, el = now - run->wall0;
-      PetscCall(PetscPrintf(run->lat->Comm(), "  [simulate] t = %.6g / %g (%.1f %%), %" PetscInt_FMT " steps, E = %.6g, %s, %.0f s elapsed, ETA %.0f s\n",
-                            (double)t, (double)run->t_final, 100 * frac, step, (double)e.Total(), run->rhs.Forcing() ? "forcing on" : "forcing off",
-                            el, frac > 0 ? el * (1 - frac) / frac : 0.0));
+  PetscCall(run->sampler.Through(ts, t, z, e, run->r->t_off));
+  PetscCall(run->progress.Step(ts, t, e, run->rhs.Forcing()));
+  PetscFunctionReturn(0);
+}
+
+// The TS of the run: -sim_ts_* over rk 5dp at rtol = atol = 1e-8, the
+// right-hand side, the state Jacobian for the types that solve with it, and
+// the window integrals as quadrature states (carried by the types that
+// integrate a quadrature TS: PETSc's rk, nltopo's rkn).
+PetscErrorCode CreateRunTS(const EffectList &fx, const SimulationOptions &o, Run *run, TS *ts, OwnedMat &J)
+{
+  const Lattice &lat = fx.Lat();
+  TSType type;
+  const TSTraits *traits;
+  TS quad;
+  Vec q;
+  PetscErrorCode (*tableau)(void) = NULL, (*quadrature)(void) = NULL;
+  PetscFunctionBeginUser;
+  PetscCall(TSCreate(lat.Comm(), ts));
+  PetscCall(TSSetOptionsPrefix(*ts, "sim_"));
+  PetscCall(TSSetApplicationContext(*ts, run));
+  PetscCall(TSSetProblemType(*ts, TS_NONLINEAR));
+  PetscCall(TSSetType(*ts, TSDefaultType("sim_")));
+  PetscCall(TSRKSetType(*ts, TSRK5DP)); // rk's tableau unless -sim_ts_rk_type (no-op for other types)
+  PetscCall(TSSetRHSFunction(*ts, NULL, RhsFunction, run));
+  PetscCall(TSSetAcceleration(*ts, RunAcceleration, run)); // symsplit, rkn: raw-array accelerations
+  PetscCall(TSSetTolerances(*ts, 1e-8, NULL, 1e-8, NULL));
+  PetscCall(TSSetExactFinalTime(*ts, TS_EXACTFINALTIME_MATCHSTEP));
+  PetscCall(TSSetMaxTime(*ts, o.t_final));
+  PetscCall(TSSetMaxSteps(*ts, PETSC_MAX_INT));
+  PetscCall(TSSetTimeStep(*ts, 0.01)); // initial step; -sim_ts_dt overrides (the fixed step of basicsymplectic)
+  PetscCall(TSSetErrorIfStepFails(*ts, PETSC_FALSE));
+  PetscCall(TSSetPostStep(*ts, PostStep));
+  PetscCall(TSSetFromOptions(*ts));
+  PetscCall(TSGetType(*ts, &type));
+  PetscCall(TSGetTraits(*ts, &traits)); // a type the integrator table lacks is refused here
+  if (!traits->explicit_step) { // the state Jacobian only for the types that solve with it
+    PetscCall(lat.CreateStateMatrix(J.out()));
+    PetscCall(TSSetRHSJacobian(*ts, J, J, RhsJacobian, run));
+  }
+  if (traits->position_only) {
+    const std::string who = std::string("-sim_ts_type ") + type;
+    PetscCall(fx.RequirePositionOnly(who.c_str()));
+  }
+  // The window integrals: on the stages of an explicit Runge-Kutta tableau,
+  // as a quadrature TS where the type integrates one forward and rolls it
+  // back with the step (rkn), else over the step ends.
+  PetscCall(PetscObjectQueryFunction((PetscObject)*ts, "TSRKGetTableau_C", &tableau));
+  PetscCall(PetscObjectQueryFunction((PetscObject)*ts, "TSForwardQuadratureRollsBack_C", &quadrature));
+  run->rk_stages = tableau != NULL;
+  if (!tableau && quadrature) {
+    PetscCall(run->window.Integrals(&q));
+    PetscCall(TSCreateQuadratureTS(*ts, PETSC_TRUE, &quad));
+    PetscCall(TSSetRHSFunction(quad, NULL, WindowRate, &run->window));
+    PetscCall(TSSetSolution(quad, q));
+  }
+  PetscFunctionReturn(0);
+}
+
+// The fixed step of basicsymplectic and symsplit (times dt_scale and the
+// quartic-energy factor), shortened to divide the run into equal steps.
+PetscErrorCode SetFixedStep(const EffectList &fx, const SimulationOptions &o, Run *run, TS ts, Vec z, bool symplectic, bool splitting)
+{
+  const Lattice &lat = fx.Lat();
+  const ToneBurst *forcing = fx.Burst();
+  MPI_Comm comm = lat.Comm();
+  PetscFunctionBeginUser;
+  if (symplectic || splitting) {
+    // The fixed step times dt_scale (the sweep's accuracy ladder) and, above
+    // E_q, (E_q / E)^(1/4): in the quartic regime a bond's frequency grows as
+    // E^(1/4) (V ~ Gamma d^4 / 4 at amplitude d ~ E^(1/4)), so this keeps
+    // h omega, and a fixed-step scheme's error per period, at its E_q level.
+    PetscReal scale = o.dt_scale, dt;
+    if (o.dt_quartic_energy > 0) {
+      PetscReal E;
+      if (forcing && forcing->Present()) E = forcing->EnergyStar();
+      else {
+        EnergyParts e;
+        PetscCall(fx.Energy(z, &e));
+        E = e.Total();
+      }
+      if (E > o.dt_quartic_energy) scale *= std::pow(o.dt_quartic_energy / E, 0.25);
+    }
+    if (scale != 1) {
+      PetscCall(TSGetTimeStep(ts, &dt));
+      PetscCall(TSSetTimeStep(ts, dt * scale));
     }
   }
+  if (splitting) {
+    // Fixed step, shortened to divide the run into equal steps; the cut-off is
+    // located by the event below (symsplit rolls back) and samples interpolated.
+    PetscReal dt;
+    PetscCall(TSGetTimeStep(ts, &dt));
+    const PetscReal span = o.t_final - o.t_start;
+    PetscCheck(dt > 0 && dt <= span, comm, PETSC_ERR_USER, "-sim_ts_dt must lie in (0, -sim_t_final], got %g", (double)dt);
+    PetscCall(TSSetTimeStep(ts, span / std::ceil(span / dt - 1e-9)));
+  }
+  if (symplectic) {
+    // Fixed step dividing t_final (the type ignores MATCHSTEP), split RHS.
+    PetscReal dt;
+    PetscCall(TSGetTimeStep(ts, &dt));
+    const PetscReal span = o.t_final - o.t_start;
+    PetscCheck(dt > 0 && dt <= span, comm, PETSC_ERR_USER, "-sim_ts_dt must lie in (0, -sim_t_final], got %g", (double)dt);
+    const PetscInt n = (PetscInt)std::ceil(span / dt - 1e-9);
+    PetscCall(TSSetTimeStep(ts, span / n));
+    PetscCall(TSSetMaxSteps(ts, n));
+    PetscCall(TSRHSSplitSetIS(ts, "position", lat.PositionIS()));
+    PetscCall(TSRHSSplitSetIS(ts, "momentum", lat.MomentumIS()));
+    PetscCall(TSRHSSplitSetRHSFunction(ts, "position", NULL, PositionRate, run));
+    PetscCall(TSRHSSplitSetRHSFunction(ts, "momentum", NULL, MomentumRate, run));
+  }
+  PetscFunctionReturn(0);
+}
+
+// Configure: the TS, its step, and how the cut-off is found (a TS event where
+// the type rolls back a step, on the interpolant for symsplit, after each step
+// otherwise).
+PetscErrorCode Configure(const EffectList &fx, const SimulationOptions &o, Run *run, TS *ts, OwnedMat &J, Vec z)
+{
+  const TSTraits *traits;
+  PetscFunctionBeginUser;
+  PetscCall(CreateRunTS(fx, o, run, ts, J));
+  PetscCall(TSGetTraits(*ts, &traits));
+  // fixed steps on the split right-hand side (basicsymplectic) or on the acceleration (symsplit)
+  const bool symplectic = traits->fixed_step && traits->split_rhs, splitting = traits->fixed_step && !traits->split_rhs;
+  PetscCall(SetFixedStep(fx, o, run, *ts, z, symplectic, splitting));
+  if (symplectic) {
+    run->interpolate = false;
+    run->sampler.WithoutInterpolant();
+  } else if (run->rhs.Forcing() && splitting) {
+    run->locate_in_step = true;
+  } else if (run->rhs.Forcing() && traits->rolls_back) {
+    // Locate the cut-off E(t) = E* (relative tolerance 1e-10) with a TS event,
+    // registered after the step size is final (guide, pitfall a). Types that
+    // cannot roll back a step (euler, ssp, ...) check after every step instead.
+    PetscInt dir = 1;
+    PetscBool term = PETSC_FALSE;
+    PetscReal vtol = 1e-10;
+    PetscCall(TSSetEventHandler(*ts, 1, &dir, &term, CutOffIndicator, CutOffEvent, run));
+    PetscCall(TSSetEventTolerances(*ts, PETSC_DECIDE, &vtol));
+    run->event_mode = true;
+  }
+  PetscFunctionReturn(0);
+}
+
+// Integrate: the first sample and window state at t_start, then the solve;
+// any failure inside it (a NaN caught by TSAdapt, a diverged implicit step,
+// the post-step's check) is reported once, with the time.
+PetscErrorCode Integrate(const SimulationOptions &o, Run *run, TS ts, Vec z)
+{
+  MPI_Comm comm = run->lat->Comm();
+  TSConvergedReason reason;
+  PetscReal t;
+  PetscFunctionBeginUser;
+  {
+    EnergyParts e0;
+    PetscCall(run->fx->Energy(z, &e0));
+    PetscCall(run->window.Step(o.t_start, z, e0, &run->r->window_start));
+    PetscCall(run->sampler.Through(ts, o.t_start, z, e0, run->r->t_off));
+  }
+  PetscCall(TSSetTime(ts, o.t_start));
+  PetscCall(TSSetStepNumber(ts, 0));
+  PetscCall(run->progress.Start());
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  const PetscErrorCode ierr = TSSolve(ts, z);
+  PetscCall(PetscPopErrorHandler());
+  PetscCall(CostRecordSolve(ts, run->rhs.Counters().rhs)); // the work, also of a failed solve
+  PetscCheck(!IsInterrupt(ierr), comm, PETSC_ERR_SIG, "%s", ""); // stopped by a signal: passed on, silent
+  PetscCall(TSGetTime(ts, &t));
+  if (ierr) {
+    const char *text = NULL;
+    char *specific = NULL;
+    PetscCall(PetscErrorMessage(ierr, &text, &specific));
+    SETERRQ(comm, PETSC_ERR_NOT_CONVERGED, "time integration failed at t = %g: %s", (double)t, specific && specific[0] ? specific : (text ? text : "error"));
+  }
+  PetscCall(TSGetConvergedReason(ts, &reason));
+  PetscCheck(reason >= 0, comm, PETSC_ERR_NOT_CONVERGED, "time integration failed at t = %g: %s (see -sim_ts_* options)", (double)t, TSConvergedReasons[reason]);
+  PetscCheck(t >= o.t_final * (1 - 1e-10) || run->r->aborted, comm, PETSC_ERR_NOT_CONVERGED, "time integration stopped at t = %g before -sim_t_final %g", (double)t,
+             (double)o.t_final);
+  PetscFunctionReturn(0);
+}
+
+// Collect: steps, the window's RMS, MCR and ratio, the final energy and state.
+PetscErrorCode Collect(Run *run, TS ts, OwnedVec &z)
+{
+  SimulationResult *r = run->r;
+  EnergyParts e;
+  PetscFunctionBeginUser;
+  PetscCall(TSGetStepNumber(ts, &r->steps));
+  PetscCall(TSGetStepRejections(ts, &r->rejected));
+  PetscCall(PetscLogEventBegin(Log().diagnostics, 0, 0, 0, 0));
+  PetscCall(DMCreateGlobalVector(run->lat->SiteDM(), r->rms.out()));
+  PetscCall(PetscObjectSetName((PetscObject)r->rms.get(), "rms"));
+  PetscCall(run->window.Finish(r->window_start, r->rms, &r->nl_ratio));
+  PetscCall(Mcr(r->rms, &r->mcr));
+  PetscCall(PetscLogEventEnd(Log().diagnostics, 0, 0, 0, 0));
+  PetscCall(run->fx->Energy(z, &e));
+  r->energy_final = e.Total();
+  r->counters = run->rhs.Counters();
+  r->z_final = std::move(z);
   PetscFunctionReturn(0);
 }
 
@@ -356,22 +663,13 @@ PetscErrorCode SimulateForced(const EffectList &fx, const SimulationOptions &o, 
 
 PetscErrorCode Simulate(const EffectList &fx, const SimulationOptions &o, Vec z0, SampleSink *sink, SimulationResult *r)
 {
-  const Lattice &lat = fx.Lat();
   const ToneBurst *forcing = fx.Burst();
-  MPI_Comm comm = lat.Comm();
   OwnedTS ts;
   OwnedMat J;
   OwnedVec z;
-  TSType type;
-  const TSTraits *traits;
-  TSConvergedReason reason;
   PetscFunctionBeginUser;
   *r = SimulationResult();
-  Run run(fx, sink, r);
-  run.estar = forcing ? forcing->EnergyStar() : 0;
-  run.t_final = o.t_final;
-  run.sample_dt = o.sample_dt;
-  run.progress = o.progress;
+  Run run(fx, o, sink, r);
   // E* missed by the end of the burst (t0 + 3 tau), or by t_final when the
   // burst outlasts the run but its peak t0 lies inside it (low omega_ext); a
   // run that ends before the peak is too short to judge S and is not repeated.
@@ -380,163 +678,18 @@ PetscErrorCode Simulate(const EffectList &fx, const SimulationOptions &o, Vec z0
     if (tb <= o.t_final) run.burst_end = tb;
     else if (forcing->T0() <= o.t_final) run.burst_end = o.t_final * (1 - 1e-12);
   }
-  PetscCall(PetscTime(&run.wall0));
-  run.wall_last = run.wall0;
   // RMS window when E* is never reached: after the burst (t0 + 3 tau), or the
   // whole run if the burst does not end before t_final (README.md).
   if (run.rhs.Forcing()) {
     const PetscReal tb = forcing->T0() + 3 * forcing->Tau();
     r->window_start = tb < o.t_final ? tb : 0;
   }
-
-  PetscCall(lat.CreateStateVector(z.out()));
+  PetscCall(fx.Lat().CreateStateVector(z.out()));
   if (z0) PetscCall(VecCopy(z0, z));
   else PetscCall(VecZeroEntries(z));
-  PetscCall(VecDuplicate(z, run.zs.out()));
-  PetscCall(VecDuplicate(z, run.zcut.out()));
-
-  PetscCall(TSCreate(comm, ts.out()));
-  PetscCall(TSSetOptionsPrefix(ts, "sim_"));
-  PetscCall(TSSetApplicationContext(ts, &run));
-  PetscCall(TSSetProblemType(ts, TS_NONLINEAR));
-  PetscCall(TSSetType(ts, TSDefaultType("sim_")));
-  PetscCall(TSRKSetType(ts, TSRK5DP)); // rk's tableau unless -sim_ts_rk_type (no-op for other types)
-  PetscCall(TSSetRHSFunction(ts, NULL, RhsFunction, &run));
-  PetscCall(TSSetAcceleration(ts, RunAcceleration, &run)); // symsplit, rkn: raw-array accelerations
-  PetscCall(TSSetTolerances(ts, 1e-8, NULL, 1e-8, NULL));
-  PetscCall(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP));
-  PetscCall(TSSetMaxTime(ts, o.t_final));
-  PetscCall(TSSetMaxSteps(ts, PETSC_MAX_INT));
-  PetscCall(TSSetTimeStep(ts, 0.01)); // initial step; -sim_ts_dt overrides (the fixed step of basicsymplectic)
-  PetscCall(TSSetErrorIfStepFails(ts, PETSC_FALSE));
-  PetscCall(TSSetPostStep(ts, PostStep));
-  PetscCall(TSSetFromOptions(ts));
-  PetscCall(TSGetType(ts, &type));
-  PetscCall(TSGetTraits(ts, &traits)); // a type the integrator table lacks is refused here
-  if (!traits->explicit_step) { // the state Jacobian only for the types that solve with it
-    PetscCall(lat.CreateStateMatrix(J.out()));
-    PetscCall(TSSetRHSJacobian(ts, J, J, RhsJacobian, &run));
-  }
-  if (traits->position_only) {
-    const std::string who = std::string("-sim_ts_type ") + type;
-    PetscCall(fx.RequirePositionOnly(who.c_str()));
-  }
-
-  // fixed steps on the split right-hand side (basicsymplectic) or on the acceleration (symsplit)
-  const bool symplectic = traits->fixed_step && traits->split_rhs, splitting = traits->fixed_step && !traits->split_rhs;
-  if (symplectic || splitting) {
-    // The fixed step times dt_scale (the sweep's accuracy ladder) and, above
-    // E_q, (E_q / E)^(1/4): in the quartic regime a bond's frequency grows as
-    // E^(1/4) (V ~ Gamma d^4 / 4 at amplitude d ~ E^(1/4)), so this keeps
-    // h omega, and a fixed-step scheme's error per period, at its E_q level.
-    PetscReal scale = o.dt_scale, dt;
-    if (o.dt_quartic_energy > 0) {
-      PetscReal E;
-      if (forcing && forcing->Present()) E = forcing->EnergyStar();
-      else {
-        EnergyParts e;
-        PetscCall(fx.Energy(z, &e));
-        E = e.Total();
-      }
-      if (E > o.dt_quartic_energy) scale *= std::pow(o.dt_quartic_energy / E, 0.25);
-    }
-    if (scale != 1) {
-      PetscCall(TSGetTimeStep(ts, &dt));
-      PetscCall(TSSetTimeStep(ts, dt * scale));
-    }
-  }
-  if (splitting) {
-    // Fixed step, shortened to divide the run into equal steps; the cut-off is
-    // located by the event below (symsplit rolls back) and samples interpolated.
-    PetscReal dt;
-    PetscCall(TSGetTimeStep(ts, &dt));
-    const PetscReal span = o.t_final - o.t_start;
-    PetscCheck(dt > 0 && dt <= span, comm, PETSC_ERR_USER, "-sim_ts_dt must lie in (0, -sim_t_final], got %g", (double)dt);
-    PetscCall(TSSetTimeStep(ts, span / std::ceil(span / dt - 1e-9)));
-  }
-  if (symplectic) {
-    // Fixed step dividing t_final (the type ignores MATCHSTEP), split RHS.
-    PetscReal dt;
-    PetscCall(TSGetTimeStep(ts, &dt));
-    const PetscReal span = o.t_final - o.t_start;
-    PetscCheck(dt > 0 && dt <= span, comm, PETSC_ERR_USER, "-sim_ts_dt must lie in (0, -sim_t_final], got %g", (double)dt);
-    const PetscInt n = (PetscInt)std::ceil(span / dt - 1e-9);
-    PetscCall(TSSetTimeStep(ts, span / n));
-    PetscCall(TSSetMaxSteps(ts, n));
-    PetscCall(TSRHSSplitSetIS(ts, "position", lat.PositionIS()));
-    PetscCall(TSRHSSplitSetIS(ts, "momentum", lat.MomentumIS()));
-    PetscCall(TSRHSSplitSetRHSFunction(ts, "position", NULL, PositionRate, &run));
-    PetscCall(TSRHSSplitSetRHSFunction(ts, "momentum", NULL, MomentumRate, &run));
-    run.interpolate = false;
-  } else if (run.rhs.Forcing() && splitting) {
-    run.locate_in_step = true;
-  } else if (run.rhs.Forcing() && traits->rolls_back) {
-    if (traits->position_only) run.window.SetInterpolant(ts); // long steps (rkn): the window integrals on the interpolant
-    // Locate the cut-off E(t) = E* (relative tolerance 1e-10) with a TS event,
-    // registered after the step size is final (guide, pitfall a). Types that
-    // cannot roll back a step (euler, ssp, ...) check after every step instead.
-    PetscInt dir = 1;
-    PetscBool term = PETSC_FALSE;
-    PetscReal vtol = 1e-10;
-    PetscCall(TSSetEventHandler(ts, 1, &dir, &term, CutOffIndicator, CutOffEvent, &run));
-    PetscCall(TSSetEventTolerances(ts, PETSC_DECIDE, &vtol));
-    run.event_mode = true;
-  }
-
-  // Initial sample and window start.
-  {
-    EnergyParts e0;
-    PetscCall(fx.Energy(z, &e0));
-    // A continued run's samples follow the earlier run's (which took t = t_start).
-    if (o.t_start > 0 && o.sample_dt > 0) run.next_sample = (PetscInt)std::floor(o.t_start / o.sample_dt + 1e-9) + 1;
-    PetscCall(run.window.Step(o.t_start, z, e0, &r->window_start));
-    PetscCall(run.Samples(ts, o.t_start, z, e0));
-  }
-  PetscCall(TSSetTime(ts, o.t_start));
-  PetscCall(TSSetStepNumber(ts, 0));
-  {
-    // Any failure inside the solve (a NaN caught by TSAdapt, a diverged
-    // implicit step, our own post-step check) is reported once, with the time.
-    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
-    const PetscErrorCode ierr = TSSolve(ts, z);
-    PetscCall(PetscPopErrorHandler());
-    PetscCall(CostRecordSolve(ts, run.rhs.Counters().rhs)); // the work, also of a failed solve
-    PetscCheck(!IsInterrupt(ierr), comm, PETSC_ERR_SIG, "%s", ""); // stopped by a signal: passed on, silent
-    if (ierr) {
-      const char *text = NULL;
-      char *specific = NULL;
-      PetscReal t;
-      PetscCall(TSGetTime(ts, &t));
-      PetscCall(PetscErrorMessage(ierr, &text, &specific));
-      SETERRQ(comm, PETSC_ERR_NOT_CONVERGED, "time integration failed at t = %g: %s", (double)t, specific && specific[0] ? specific : (text ? text : "error"));
-    }
-  }
-  PetscCall(TSGetConvergedReason(ts, &reason));
-  {
-    PetscReal t;
-    PetscCall(TSGetTime(ts, &t));
-    PetscCheck(reason >= 0, comm, PETSC_ERR_NOT_CONVERGED, "time integration failed at t = %g: %s (see -sim_ts_* options)", (double)t,
-               TSConvergedReasons[reason]);
-    PetscCheck(t >= o.t_final * (1 - 1e-10) || r->aborted, comm, PETSC_ERR_NOT_CONVERGED, "time integration stopped at t = %g before -sim_t_final %g", (double)t,
-               (double)o.t_final);
-  }
-  PetscCall(TSGetStepNumber(ts, &r->steps));
-  PetscCall(TSGetStepRejections(ts, &r->rejected));
-
-  // Window results.
-  PetscCall(PetscLogEventBegin(Log().diagnostics, 0, 0, 0, 0));
-  PetscCall(DMCreateGlobalVector(lat.SiteDM(), r->rms.out()));
-  PetscCall(PetscObjectSetName((PetscObject)r->rms.get(), "rms"));
-  PetscCall(run.window.Finish(r->window_start, r->rms, &r->nl_ratio));
-  PetscCall(Mcr(r->rms, &r->mcr));
-  PetscCall(PetscLogEventEnd(Log().diagnostics, 0, 0, 0, 0));
-  {
-    EnergyParts e;
-    PetscCall(fx.Energy(z, &e));
-    r->energy_final = e.Total();
-  }
-  r->counters = run.rhs.Counters();
-  r->z_final = std::move(z);
+  PetscCall(Configure(fx, o, &run, ts.out(), J, z));
+  PetscCall(Integrate(o, &run, ts, z));
+  PetscCall(Collect(&run, ts, z));
   PetscFunctionReturn(0);
 }
 

@@ -31,6 +31,9 @@ public:
   virtual bool Wants(PetscReal t, PetscReal t_off) const { return true; }
   // A new attempt of the same run starts (amplitude rule): forget what was sampled.
   virtual void Restart() {}
+  // Before the run: at most this many samples will be offered (a sink that
+  // keeps them all reserves its storage once, instead of growing per sample).
+  virtual void Reserve(PetscInt samples) {}
 };
 
 // Displacements of every site (owned block, serial runs: all of them) at the

@@ -33,6 +33,10 @@ struct Rkn {
   // pass when the tolerances are scalars (else TSErrorWeightedNorm).
   bool fused_norm = false;
   PetscReal wlte2 = -1;
+  // A quadrature TS integrated forward (TSCreateQuadratureTS): this step's
+  // sum of b_i r(U_i), and the step it was added with (for a rollback).
+  Vec qstep = NULL;
+  PetscReal qh = 0;
 
   std::vector<PetscScalar> &End() { return Pairs()[pair].fsal ? k.back() : a_end; }
 };
@@ -40,6 +44,36 @@ struct Rkn {
 const char *Prefix(TS ts) { return ((PetscObject)ts)->prefix ? ((PetscObject)ts)->prefix : ""; }
 
 PetscErrorCode Accelerate(TS ts, Rkn *d, PetscReal t, Vec z, PetscScalar *a) { return d->p.Evaluate(ts, t, z, a); }
+
+// The quadrature TS's rate r at stage i (state y, positions read), weighted by
+// the stage's velocity weight b_i into qstep: as the velocity of P'' = r(u),
+// its integral is of the pair's order.
+PetscErrorCode QuadratureStage(TS ts, Rkn *d, PetscInt i, PetscReal ti, Vec y)
+{
+  TS quad = ts->quadraturets;
+  const PetscReal b = Pairs()[d->pair].b[i];
+  PetscFunctionBegin;
+  if (!quad || !ts->costintegralfwd) PetscFunctionReturn(0);
+  if (!d->qstep) PetscCall(VecDuplicate(quad->vec_sol, &d->qstep));
+  if (i == 0) PetscCall(VecZeroEntries(d->qstep));
+  if (b == 0) PetscFunctionReturn(0);
+  PetscCall(TSComputeRHSFunction(quad, ti, y, ts->vec_costintegrand));
+  PetscCall(VecAXPY(d->qstep, b, ts->vec_costintegrand));
+  PetscFunctionReturn(0);
+}
+
+// The accepted step's quadrature (TSSolve calls it after each step); a
+// rollback takes it back (h = 0).
+PetscErrorCode QuadratureAdd(TS ts, Rkn *d, PetscReal h)
+{
+  PetscFunctionBegin;
+  if (!d->qstep || !ts->quadraturets || !ts->costintegralfwd) PetscFunctionReturn(0);
+  PetscCall(VecAXPY(ts->quadraturets->vec_sol, h != 0 ? h : -d->qh, d->qstep));
+  d->qh = h;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode TSForwardCostIntegral_Rkn(TS ts) { return QuadratureAdd(ts, static_cast<Rkn *>(ts->data), ts->ptime - ts->ptime_prev); }
 
 // The stages 1..s-1 from the step-start state ts->vec_sol and k[0]; false in
 // *ok if TSAdaptCheckStage refuses a stage state.
@@ -52,6 +86,7 @@ PetscErrorCode Stages(TS ts, Rkn *d, PetscReal t0, PetscReal h, PetscBool *ok)
   PetscFunctionBegin;
   *ok = PETSC_TRUE;
   PetscCall(TSGetAdapt(ts, &adapt));
+  PetscCall(QuadratureStage(ts, d, 0, t0, ts->vec_sol));
   for (PetscInt i = 1; i < s; i++) {
     const PetscReal ch = P.c[i] * h, ti = t0 + P.c[i] * h;
     const PetscInt m = (PetscInt)d->rows[i].size();
@@ -95,6 +130,7 @@ PetscErrorCode Stages(TS ts, Rkn *d, PetscReal t0, PetscReal h, PetscBool *ok)
     PetscCall(TSAdaptCheckStage(adapt, ts, ti, d->stage, ok));
     if (!*ok) PetscFunctionReturn(0);
     PetscCall(Accelerate(ts, d, ti, d->stage, d->k[i].data()));
+    PetscCall(QuadratureStage(ts, d, i, ti, d->stage));
   }
   PetscFunctionReturn(0);
 }
@@ -183,6 +219,7 @@ PetscErrorCode TSRollBack_Rkn(TS ts)
   Rkn *d = static_cast<Rkn *>(ts->data);
   PetscFunctionBegin;
   PetscCall(VecCopy(d->z_prev, ts->vec_sol));
+  PetscCall(QuadratureAdd(ts, d, 0));
   d->end_ready = false;
   PetscFunctionReturn(0);
 }
@@ -255,18 +292,15 @@ PetscErrorCode TSEvaluateWLTE_Rkn(TS ts, NormType wnormtype, PetscInt *order, Pe
 
 // Quintic Hermite interpolation on u from (u, v, a) at both ends of the last
 // step, v its derivative: exact for polynomials of degree 5 (error O(h^6)).
-PetscErrorCode RknInterpolate(TS ts, PetscReal t, Vec X, bool positions_only)
+PetscErrorCode TSInterpolate_Rkn(TS ts, PetscReal t, Vec X)
 {
   Rkn *d = static_cast<Rkn *>(ts->data);
   const PetscReal h = ts->ptime - ts->ptime_prev;
   PetscFunctionBegin;
   if (h <= 0 || !d->end_ready) PetscCall(VecCopy(ts->vec_sol, X));
-  else PetscCall(HermiteInterpolate(d->z_prev, ts->vec_sol, d->k[0].data(), d->End().data(), d->p.n, h, (t - ts->ptime_prev) / h, X, positions_only));
+  else PetscCall(HermiteInterpolate(d->z_prev, ts->vec_sol, d->k[0].data(), d->End().data(), d->p.n, h, (t - ts->ptime_prev) / h, X));
   PetscFunctionReturn(0);
 }
-
-PetscErrorCode TSInterpolate_Rkn(TS ts, PetscReal t, Vec X) { return RknInterpolate(ts, t, X, false); }
-PetscErrorCode TSInterpolatePositions_Rkn(TS ts, PetscReal t, Vec X) { return RknInterpolate(ts, t, X, true); }
 
 PetscErrorCode TSReset_Rkn(TS ts)
 {
@@ -275,6 +309,7 @@ PetscErrorCode TSReset_Rkn(TS ts)
   PetscCall(VecDestroy(&d->z_prev));
   PetscCall(VecDestroy(&d->stage));
   PetscCall(VecDestroy(&d->emb));
+  PetscCall(VecDestroy(&d->qstep));
   PetscCall(d->p.Reset());
   d->k.clear();
   d->a_end.clear();
@@ -324,7 +359,7 @@ PetscErrorCode TSDestroy_Rkn(TS ts)
   PetscFunctionBegin;
   PetscCall(TSReset_Rkn(ts));
   PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSRknGetScheme_C", NULL));
-  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSInterpolatePositions_C", NULL));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSForwardQuadratureRollsBack_C", NULL));
   delete static_cast<Rkn *>(ts->data);
   ts->data = NULL;
   PetscFunctionReturn(0);
@@ -384,24 +419,17 @@ PetscErrorCode TSCreate_Rkn(TS ts)
   ts->ops->interpolate = TSInterpolate_Rkn;
   ts->ops->rollback = TSRollBack_Rkn;
   ts->ops->evaluatewlte = TSEvaluateWLTE_Rkn;
+  ts->ops->forwardintegral = TSForwardCostIntegral_Rkn;
+  // the forward quadrature TS is integrated and rolled back with the step (PETSc 3.18's rk and theta
+  // take back an integral on a rejected attempt that they never added): timeint/simulation.cpp asks
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSForwardQuadratureRollsBack_C", TSForwardCostIntegral_Rkn));
   ts->default_adapt_type = TSADAPTBASIC;
   ts->usessnes = PETSC_FALSE;
   PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSRknGetScheme_C", TSRknGetScheme_Rkn));
-  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSInterpolatePositions_C", TSInterpolatePositions_Rkn));
   PetscFunctionReturn(0);
 }
 
 } // namespace
-
-PetscErrorCode TSRknInterpolatePositions(TS ts, PetscReal t, Vec X)
-{
-  PetscErrorCode (*positions)(TS, PetscReal, Vec) = nullptr;
-  PetscFunctionBegin;
-  PetscCall(PetscObjectQueryFunction((PetscObject)ts, "TSInterpolatePositions_C", &positions));
-  if (positions) PetscCall(positions(ts, t, X));
-  else PetscCall(TSInterpolate(ts, t, X));
-  PetscFunctionReturn(0);
-}
 
 PetscErrorCode TSRknGetScheme(TS ts, const char **scheme) { return TSUseSchemeGetter(ts, "TSRknGetScheme_C", scheme); }
 

@@ -19,7 +19,9 @@
 // dep64 and dep86 are FSAL (their last stage is a(t + h, u1)); for dep1210 the
 // end acceleration is computed once the step is accepted and is the next
 // step's first stage, so every pair hands (u, v, a) at both ends of the step
-// to the quintic Hermite interpolant (TSInterpolate) at no extra cost.
+// to the quintic Hermite interpolant (TSInterpolate) at no extra cost. A
+// forward quadrature TS (TSCreateQuadratureTS) is integrated with the pair's
+// velocity weights at its stages and rolled back with the step.
 //
 // The acceleration comes from TSSetAcceleration (timeint/ts_acceleration.hpp),
 // or, if none was set, from the v part of the TS right-hand side.
@@ -38,11 +40,6 @@ PetscErrorCode TSRknRegister();
 // the one TSSetFromOptions chose. Composed on the TS as "TSRknGetScheme_C", as
 // PETSc's TSRKGetType; an error for a TS of another type.
 PetscErrorCode TSRknGetScheme(TS ts, const char **scheme);
-
-// TSInterpolate for the positions only (X's v part is left as it was) where
-// the type composes "TSInterpolatePositions_C" (rkn), else TSInterpolate: the
-// window quadrature needs u alone at its Gauss nodes.
-PetscErrorCode TSRknInterpolatePositions(TS ts, PetscReal t, Vec X);
 
 // The pairs: option name, orders, accelerations per accepted step (for tests
 // and benchmarks).

@@ -236,3 +236,50 @@ TEST_CASE("-sim_dt_quartic_energy: the fixed step shrinks as E^(-1/4) and keeps 
   REQUIRE(e100_fixed > 100 * e100); // without the rule: (omega h)^4 is ~100x larger, and more as the step nears stability
   REQUIRE(e100 < 3 * e1);           // with it: the E_q level (the linear part makes E = 1 not purely quartic)
 }
+
+// The RMS window against known truth: a single linear mode u = phi cos(omega
+// t) of the linear lattice (Gamma = 0), released from rest, has the window
+// average of u_i^2 over [0, T] equal to phi_i^2 (1/2 + sin(2 omega T) / (4
+// omega T)). The adaptive types integrate the window on their own stages, so
+// the RMS follows the tolerance, on steps far too long for the trapezoid.
+TEST_CASE("the RMS window of a single linear mode is exact to the run's accuracy (rk 8vr, rk 5dp, rkn dep1210)", "[simulation]")
+{
+  Lattice lat;
+  LinearModes modes;
+  LatticeParams p;
+  p.Gamma = 0;
+  PCHK(lat.Setup(PETSC_COMM_WORLD, p));
+  PCHK(modes.Compute(lat, LinearModesOptions()));
+  REQUIRE(modes.Named().interface >= 0);
+  const PetscInt j = modes.Named().interface; // the interface mode (an eigenvector, largest entry 1 in 2-norm units)
+  const auto phi = Gather(modes.Mode(j));
+  const PetscReal omega = modes.Omega()[j], T = 50.3, avg = 0.5 + std::sin(2 * omega * T) / (4 * omega * T);
+  OwnedVec z0;
+  PCHK(lat.CreateStateVector(z0.out()));
+  SetState(lat, phi, std::vector<PetscReal>(lat.N(), 0.0), z0);
+  struct Case {
+    const char *type, *key, *scheme, *tol;
+    PetscReal bound, mean_step; // the RMS error bound; the mean step is at least this
+  };
+  const Case cases[] = {{"rk", "-sim_ts_rk_type", "8vr", "1e-12", 1e-9, 0.05},
+                        {"rk", "-sim_ts_rk_type", "5dp", "1e-11", 1e-8, 0.01},
+                        {"rkn", "-sim_ts_rkn_scheme", "dep1210", "1e-12", 1e-9, 0.3}};
+  PetscReal phimax = 0;
+  for (PetscReal x : phi) phimax = std::max(phimax, std::abs(x));
+  for (const Case &c : cases) {
+    ScopedOptions o({{"-sim_ts_type", c.type}, {c.key, c.scheme}, {"-sim_ts_rtol", c.tol}, {"-sim_ts_atol", c.tol}});
+    SimulationOptions so;
+    so.t_final = T;
+    so.sample_dt = 0;
+    SimulationResult r;
+    PCHK(Simulate(*Effects(lat), so, z0, NULL, &r));
+    REQUIRE(r.window_start == 0);
+    const auto rms = Gather(r.rms);
+    PetscReal err = 0;
+    for (PetscInt i = 0; i < lat.N(); i++) err = std::max(err, std::abs(rms[i] - std::abs(phi[i]) * std::sqrt(avg)) / (phimax * std::sqrt(avg)));
+    INFO(c.scheme << ": " << r.steps << " steps (mean " << T / r.steps << "), max RMS error relative to the largest " << err);
+    CHECK(T / r.steps > c.mean_step); // long steps: the trapezoid over them would be far off
+    CHECK(err < c.bound);
+    CHECK(r.nl_ratio == 0);
+  }
+}
