@@ -145,6 +145,43 @@ PetscErrorCode CheckSwitchParents(MPI_Comm comm, const std::vector<SwitchSpec> &
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SwitchOptionsFromOptions(MPI_Comm comm, bool check, const std::function<bool(const std::string &)> &among, std::vector<SwitchSpec> *specs,
+                                        PetscReal *step)
+{
+  char *list[16] = {};
+  PetscInt n = 16;
+  PetscBool set;
+  std::vector<std::string> items;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, "cont_", "Branch switching", NULL);
+  PetscCall(PetscOptionsStringArray("-switch",
+                                    "Follow the families born at these located branch points (on both sides of the critical eigenvector) or period "
+                                    "doublings (the doubled-period family): <branch>:<event index> (the event list of -cont_bifurcations) or "
+                                    "<branch>:<kind>@<omega>, the event of that kind nearest omega (kind bp or branch_point, pd or period_doubling)",
+                                    NULL, list, &n, &set));
+  PetscCall(PetscOptionsReal("-switch_step", "The first orbit of a switched family: this times |z*| along the critical eigenvector from the branch point", NULL, *step,
+                             step, NULL));
+  PetscOptionsEnd();
+  PetscCheck(*step > 0 && *step < 1, comm, PETSC_ERR_USER, "-cont_switch_step must lie in (0, 1), got %g", (double)*step);
+  for (PetscInt i = 0; set && i < n; i++) {
+    items.push_back(list[i]);
+    PetscCall(PetscFree(list[i]));
+  }
+  PetscCall(ParseSwitchSpecs(comm, items, specs));
+  if (check) PetscCall(CheckSwitchParents(comm, *specs, among));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode WarnUnusedSwitches(MPI_Comm comm, const std::vector<SwitchSpec> &specs)
+{
+  PetscFunctionBeginUser;
+  for (const SwitchSpec &sw : specs)
+    if (!sw.used) // a family of another switch that was not followed (a numerical failure, warned about) or has another name
+      PetscCall(PetscPrintf(comm, "  warning: -cont_switch %s: no branch %s was followed (its switch failed, or its event started a family of another name, e.g. _pd<k> at a period doubling); not switched\n",
+                            sw.text.c_str(), sw.branch.c_str()));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SelectSwitchEvent(MPI_Comm comm, const SwitchSpec &s, const std::vector<BifurcationEvent> &ev, const std::string &label, PetscInt *index)
 {
   PetscFunctionBeginUser;

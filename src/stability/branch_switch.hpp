@@ -55,6 +55,16 @@ PetscErrorCode CheckSwitchParents(MPI_Comm comm, const std::vector<SwitchSpec> &
 // naming -cont_switch and the item.
 PetscErrorCode SelectSwitchEvent(MPI_Comm comm, const SwitchSpec &s, const std::vector<BifurcationEvent> &ev, const std::string &label, PetscInt *index);
 
+// -cont_switch (ParseSwitchSpecs) and -cont_switch_step; check: each item on
+// a branch that will be continued (CheckSwitchParents; among: whether a branch
+// is one of -cont_branch).
+PetscErrorCode SwitchOptionsFromOptions(MPI_Comm comm, bool check, const std::function<bool(const std::string &)> &among, std::vector<SwitchSpec> *specs,
+                                        PetscReal *step);
+
+// After the run: a warning for each spec whose branch was not followed (its
+// switch failed, or the event its parent's selected had another kind or index).
+PetscErrorCode WarnUnusedSwitches(MPI_Comm comm, const std::vector<SwitchSpec> &specs);
+
 // One family to follow, typed: the parent branch, its event, the event's kind
 // and the period multiple the kind gives. The output names are generated
 // from it, never parsed back.

@@ -60,6 +60,20 @@ PetscErrorCode FloquetMfHook::Point(Vec z0, PetscReal T, PetscReal beta, Vec dz0
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode FloquetMfHook::Announce() const
+{
+  const MPI_Comm comm = flow_.Lat().Comm();
+  const PetscInt n2 = 2 * flow_.Lat().N();
+  PetscFunctionBeginUser;
+  if (Dense())
+    PetscCall(PetscPrintf(comm, "  Floquet: the dense monodromy (2N = %" PetscInt_FMT " <= -floquet_mf_dense_max %" PetscInt_FMT "): every multiplier, a stability verdict per orbit, cost ~(2N)^3\n",
+                          n2, mopt_.dense_max));
+  else
+    PetscCall(PetscPrintf(comm, "  Floquet: matrix-free (2N = %" PetscInt_FMT " > -floquet_mf_dense_max %" PetscInt_FMT "): an orbit is unstable or not decided, never stable\n", n2,
+                          mopt_.dense_max));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode PrintFloquetSummary(MPI_Comm comm, const std::string &label, const FloquetColumns &f, PetscReal tol, const char *mf_route)
 {
   const bool mf = mf_route != nullptr, dense = !mf || !std::strcmp(mf_route, "dense");

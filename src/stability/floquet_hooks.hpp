@@ -49,6 +49,8 @@ public:
   FloquetMfHook(PeriodicFlow &flow, const FloquetOptions &o, const FloquetMfOptions &mo) : flow_(flow), opt_(o), mopt_(mo) {}
   bool Dense() const { return 2 * flow_.Lat().N() <= mopt_.dense_max; }
   const char *Route() const { return Dense() ? "dense" : "matrix-free"; }
+  // The route's line at the start of a run: what it computes and can say.
+  PetscErrorCode Announce() const;
   PetscErrorCode Point(Vec z0, PetscReal T, PetscReal beta, Vec dz0) override;
   void Clear() { c = FloquetColumns(), c.route = Route(), warm_.clear(); }
   FloquetColumns c;

@@ -14,98 +14,16 @@
 #include "stability/branch_switch.hpp"
 #include "stability/floquet_hooks.hpp"
 #include "studies/checkpoint_hook.hpp"
+#include "studies/continuation_choices.hpp"
 #include "studies/continuation_record.hpp"
 #include "studies/registry.hpp"
 #include "studies/study.hpp"
 #include <cmath>
-#include <cstdlib>
-#include <cstring>
 #include <memory>
 
 namespace nltopo {
 
 namespace {
-
-// Starting shape and linear frequency of a branch given by name or mode index.
-PetscErrorCode BranchStart(const Lattice &lat, const LinearModes &modes, const char *name, Vec u, PetscReal *omega, std::string *label)
-{
-  const NamedModes &nm = modes.Named();
-  MPI_Comm comm = lat.Comm();
-  PetscInt j = -1;
-  PetscFunctionBeginUser;
-  *label = name;
-  if (!std::strcmp(name, "insulated")) {
-    PetscCheck(modes.Insulated(), comm, PETSC_ERR_USER, "-cont_branch insulated: this layout has no insulated mode");
-    PetscCall(VecCopy(modes.Insulated(), u));
-    *omega = nm.insulated_omega;
-    PetscFunctionReturn(0);
-  }
-  if (!std::strcmp(name, "interface")) j = nm.interface;
-  else if (!std::strcmp(name, "acoustic_top")) j = nm.acoustic_top;
-  else if (!std::strcmp(name, "optical_bottom")) j = nm.optical_bottom;
-  else if (!std::strcmp(name, "optical_top")) j = nm.optical_top;
-  else {
-    const char *s = !std::strncmp(name, "mode", 4) ? name + 4 : name;
-    char *end;
-    const long k = std::strtol(s, &end, 10);
-    PetscCheck(*s && !*end, comm, PETSC_ERR_USER,
-               "-cont_branch %s: not one of insulated, interface, acoustic_top, optical_bottom, optical_top, mode<k> or an index", name);
-    j = (PetscInt)k;
-    *label = "mode" + std::to_string(k);
-  }
-  PetscCheck(j >= 0 && j < (PetscInt)modes.Omega().size(), comm, PETSC_ERR_USER, "-cont_branch %s: no such linear mode in this lattice", name);
-  PetscCall(modes.CopyMode(j, u));
-  *omega = modes.Omega()[j];
-  PetscFunctionReturn(0);
-}
-
-// The study's own choices: Floquet on/off, the branches, checkpoints, resume.
-struct StudyChoices {
-  PetscBool floquet = PETSC_FALSE, floquet_mf = PETSC_FALSE;
-  char *names[16] = {};
-  PetscInt nb = 16;
-  PetscReal checkpoint_seconds = 0;
-  char resume_file[PETSC_MAX_PATH_LEN] = "";
-  PetscBool resume = PETSC_FALSE;
-  ~StudyChoices()
-  {
-    for (char *n : names) PetscFree(n);
-  }
-};
-
-PetscErrorCode ReadStudyChoices(MPI_Comm comm, StudyChoices *c)
-{
-  PetscBool set;
-  PetscFunctionBeginUser;
-  PetscOptionsBegin(comm, NULL, "Floquet stability along the branches", NULL);
-  PetscCall(PetscOptionsBool("-floquet", "Add Floquet multipliers, Krein signatures and stability to every orbit (-floquet_* options)", NULL, c->floquet,
-                             &c->floquet, NULL));
-  PetscCall(PetscOptionsBool("-floquet_mf",
-                             "With -floquet: only the -floquet_mf_nev leading multiplier pairs (long lattices): from the dense monodromy up to 2N = "
-                             "-floquet_mf_dense_max, matrix-free beyond (no stable verdict there)", NULL,
-                             c->floquet_mf, &c->floquet_mf, NULL));
-  PetscOptionsEnd();
-  PetscOptionsBegin(comm, "cont_", "NNM branches", NULL);
-  PetscCall(PetscOptionsStringArray("-branch", "Comma-separated branches: insulated, interface, acoustic_top, optical_bottom, optical_top, mode<k> or k",
-                                    NULL, c->names, &c->nb, &set));
-  PetscCall(PetscOptionsReal("-checkpoint_seconds",
-                             "Write -output with the points so far (root attribute complete = 0) at most this often, so that a killed run keeps them "
-                             "(0: only at the end)",
-                             NULL, c->checkpoint_seconds, &c->checkpoint_seconds, NULL));
-  PetscCall(PetscOptionsString("-resume",
-                               "Continue the branches of this earlier -output (complete or a checkpoint) from their last points, keeping their "
-                               "points; branches it lacks start afresh",
-                               NULL, c->resume_file, c->resume_file, sizeof(c->resume_file), &c->resume));
-  PetscOptionsEnd();
-  PetscCheck(c->checkpoint_seconds >= 0 && c->checkpoint_seconds <= 1e7, comm, PETSC_ERR_USER, "-cont_checkpoint_seconds must lie in [0, 1e7], got %g",
-             (double)c->checkpoint_seconds);
-  if (!set) {
-    PetscCall(PetscStrallocpy("insulated", &c->names[0]));
-    c->nb = 1;
-  }
-  PetscCheck(c->nb >= 1, comm, PETSC_ERR_USER, "-cont_branch needs at least one branch name");
-  PetscFunctionReturn(0);
-}
 
 // The branch being continued, live: what a checkpoint or an interrupt writes
 // of it, and the counters its cost is measured from.
@@ -137,7 +55,9 @@ protected:
     if (declaring_ || (ch_.floquet && ch_.floquet_mf)) PetscCall(FloquetMfOptionsFromOptions(comm_, &fmo_));
     fk_ = !ch_.floquet ? FloquetKind::None : ch_.floquet_mf ? FloquetKind::MatrixFree : FloquetKind::Dense;
     PetscCall(BifurcationOptionsFromOptions(comm_, (PetscBool)(fk_ == FloquetKind::Dense), &bo_));
-    PetscCall(SwitchOptions());
+    PetscCall(SwitchOptionsFromOptions(comm_, !declaring_, [&](const std::string &b) { return AmongBranches(b); }, &switches_, &switch_step_));
+    PetscCheck(switches_.empty() || declaring_ || bo_.enabled, comm_, PETSC_ERR_USER,
+               "-cont_switch needs -cont_bifurcations (on with -floquet): the branch points and period doublings are its events");
     if (!declaring_ && ch_.resume) PetscCall(CheckResumeOptions(comm_, ch_.resume_file, name_, "-cont_resume")); // the same physics and numerics, or one line naming the first difference
     PetscFunctionReturn(0);
   }
@@ -172,14 +92,7 @@ protected:
     PetscFunctionBeginUser;
     PetscCall(PetscPrintf(comm_, "nltopo continuation: N = %" PetscInt_FMT ", %" PetscInt_FMT " branch(es), E %g .. %g, Jacobian %s\n", nnm_.lat.N(), ch_.nb,
                           (double)nnm_.co.energy_min, (double)nnm_.co.energy_max, nnm_.so.jacobian == ShootingJacobian::Dense ? "dense" : "mf"));
-    if (fk_ == FloquetKind::MatrixFree) {
-      if (mf_hook_->Dense())
-        PetscCall(PetscPrintf(comm_, "  Floquet: the dense monodromy (2N = %" PetscInt_FMT " <= -floquet_mf_dense_max %" PetscInt_FMT "): every multiplier, a stability verdict per orbit, cost ~(2N)^3\n",
-                              n2_, fmo_.dense_max));
-      else
-        PetscCall(PetscPrintf(comm_, "  Floquet: matrix-free (2N = %" PetscInt_FMT " > -floquet_mf_dense_max %" PetscInt_FMT "): an orbit is unstable or not decided, never stable\n", n2_,
-                              fmo_.dense_max));
-    }
+    if (fk_ == FloquetKind::MatrixFree) PetscCall(mf_hook_->Announce());
     // -cont_resume: every branch read before the first checkpoint may replace the file
     resumes_.resize(ch_.nb);
     for (PetscInt k = 0; k < ch_.nb && ch_.resume; k++) {
@@ -189,13 +102,7 @@ protected:
       PetscCall(ReadResume(comm_, ch_.resume_file, label, fk_, n2_, fmo_.nev, &resumes_[k].b, &resumes_[k].f, &resumes_[k].found, mf_hook_->Route()));
     }
     for (PetscInt k = 0; k < ch_.nb; k++) PetscCall(ContinueOne(k));
-    for (const SwitchSpec &sw : switches_) {
-      if (sw.used) continue;
-      PetscCheck(!AmongBranches(sw.branch), comm_, PETSC_ERR_USER, "-cont_switch %s: no branch %s among -cont_branch", sw.text.c_str(), sw.branch.c_str());
-      // a family of another switch that was not followed (a numerical failure, warned about) or has another name
-      PetscCall(PetscPrintf(comm_, "  warning: -cont_switch %s: no branch %s was followed (its switch failed, or its event started a family of another name, e.g. _pd<k> at a period doubling); not switched\n",
-                            sw.text.c_str(), sw.branch.c_str()));
-    }
+    PetscCall(WarnUnusedSwitches(comm_, switches_));
     PetscFunctionReturn(0);
   }
   PetscErrorCode Write(PetscViewer v) override
@@ -213,33 +120,6 @@ private:
     for (PetscInt k = 0; k < ch_.nb; k++)
       if (SwitchNames(branch, ch_.names[k])) return true;
     return false;
-  }
-  PetscErrorCode SwitchOptions()
-  {
-    char *list[16] = {};
-    PetscInt n = 16;
-    PetscBool set;
-    PetscFunctionBeginUser;
-    PetscOptionsBegin(comm_, "cont_", "Branch switching", NULL);
-    PetscCall(PetscOptionsStringArray("-switch",
-                                      "Follow the families born at these located branch points (on both sides of the critical eigenvector) or period "
-                                      "doublings (the doubled-period family): <branch>:<event index> (the event list of -cont_bifurcations) or "
-                                      "<branch>:<kind>@<omega>, the event of that kind nearest omega (kind bp or branch_point, pd or period_doubling)",
-                                      NULL, list, &n, &set));
-    PetscCall(PetscOptionsReal("-switch_step", "The first orbit of a switched family: this times |z*| along the critical eigenvector from the branch point", NULL,
-                               switch_step_, &switch_step_, NULL));
-    PetscOptionsEnd();
-    PetscCheck(switch_step_ > 0 && switch_step_ < 1, comm_, PETSC_ERR_USER, "-cont_switch_step must lie in (0, 1), got %g", (double)switch_step_);
-    std::vector<std::string> items;
-    for (PetscInt i = 0; set && i < n; i++) {
-      items.push_back(list[i]);
-      PetscCall(PetscFree(list[i]));
-    }
-    PetscCall(ParseSwitchSpecs(comm_, items, &switches_));
-    if (!declaring_) PetscCall(CheckSwitchParents(comm_, switches_, [&](const std::string &b) { return AmongBranches(b); }));
-    PetscCheck(switches_.empty() || declaring_ || bo_.enabled, comm_, PETSC_ERR_USER,
-               "-cont_switch needs -cont_bifurcations (on with -floquet): the branch points and period doublings are its events");
-    PetscFunctionReturn(0);
   }
   PointHook *FloquetPointHook() { return fk_ == FloquetKind::None ? nullptr : fk_ == FloquetKind::MatrixFree ? static_cast<PointHook *>(mf_hook_.get()) : hook_.get(); }
   // The record of a branch from its live data (also mid-branch, for a checkpoint).
