@@ -69,39 +69,49 @@ void dormhr_(const char *side, const char *trans, const int *m, const int *n, co
              double *c, const int *ldc, double *work, const int *lwork, int *info, size_t, size_t);
 }
 
-PetscErrorCode DenseLeadingPairs(PetscInt n_, PetscReal *a, PetscInt nev, const FloquetOptions &o, const std::vector<PetscInt> &uidx,
-                                 const std::vector<PetscInt> &vidx, PetscInt iface, LeadingPairs *out)
+namespace {
+
+// H = Q^T M Q of a (n x n, column-major; a keeps the reflectors below the
+// subdiagonal, tau their factors), H into h and its eigenvalues wr + i wi
+// (QR on a copy). work: LAPACK's workspace, kept for the later calls.
+PetscErrorCode HessenbergEigenvalues(int n, PetscReal *a, std::vector<PetscReal> &tau, std::vector<PetscReal> &h, std::vector<PetscReal> &wr,
+                                     std::vector<PetscReal> &wi, std::vector<PetscReal> &work)
 {
-  const int n = (int)n_, one = 1;
+  const int one = 1;
   int info = 0, lwork = -1;
   PetscReal wq;
   PetscFunctionBeginUser;
-  // H = Q^T M Q (upper Hessenberg; a keeps the reflectors below the subdiagonal)
-  std::vector<PetscReal> tau(std::max(1, n - 1)), wr(n), wi(n);
+  tau.assign(std::max(1, n - 1), 0.0), wr.assign(n, 0.0), wi.assign(n, 0.0);
   dgehrd_(&n, &one, &n, a, &n, tau.data(), &wq, &lwork, &info);
-  std::vector<PetscReal> work((size_t)wq + 1);
+  work.assign((size_t)wq + 1, 0.0);
   lwork = (int)work.size();
   dgehrd_(&n, &one, &n, a, &n, tau.data(), work.data(), &lwork, &info);
   PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet (dense): LAPACK dgehrd failed, info %d (2N = %d)", info, n);
-  std::vector<PetscReal> h((size_t)n * n, 0.0), hq;
+  h.assign((size_t)n * n, 0.0);
   for (int c = 0; c < n; c++)
     for (int i = 0; i <= std::min(c + 1, n - 1); i++) h[(size_t)c * n + i] = a[(size_t)c * n + i];
-  hq = h; // eigenvalues only (QR overwrites its copy)
+  std::vector<PetscReal> hq = h; // eigenvalues only (QR overwrites its copy)
   lwork = -1;
   dhseqr_("E", "N", &n, &one, &n, hq.data(), &n, wr.data(), wi.data(), NULL, &one, &wq, &lwork, &info, 1, 1);
   work.resize(std::max<size_t>(work.size(), (size_t)wq + 1));
   lwork = (int)work.size();
   dhseqr_("E", "N", &n, &one, &n, hq.data(), &n, wr.data(), wi.data(), NULL, &one, work.data(), &lwork, &info, 1, 1);
   PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet (dense): LAPACK dhseqr failed, info %d (2N = %d)", info, n);
-  std::vector<std::complex<PetscReal>> mu(n);
-  for (int i = 0; i < n; i++) mu[i] = {wr[i], wi[i]};
+  PetscFunctionReturn(0);
+}
+
+// The nev leading pairs of the multipliers mu (indices, as DenseLeadingPairs
+// orders them) and the largest nontrivial |mu|.
+std::vector<int> PickLeadingPairs(const std::vector<std::complex<PetscReal>> &mu, PetscInt nev, PetscReal tol, PetscReal *max_modulus)
+{
+  const int n = (int)mu.size();
   std::vector<int> idx(n);
   std::iota(idx.begin(), idx.end(), 0);
   // the trivial pair: the two multipliers nearest 1
   std::sort(idx.begin(), idx.end(), [&](int x, int y) { return std::abs(mu[x] - 1.0) < std::abs(mu[y] - 1.0); });
   idx.erase(idx.begin(), idx.begin() + std::min(2, n));
-  out->max_modulus = 0;
-  for (int i : idx) out->max_modulus = std::max(out->max_modulus, std::abs(mu[i]));
+  *max_modulus = 0;
+  for (int i : idx) *max_modulus = std::max(*max_modulus, std::abs(mu[i]));
   // One member of each pair: the upper half plane (or real) member with
   // |mu| >= 1. Off the circle (beyond tol) that is the outer member; within
   // tol of it, a pair that is off the circle by more than rounding (1e-9) has
@@ -112,7 +122,7 @@ PetscErrorCode DenseLeadingPairs(PetscInt n_, PetscReal *a, PetscInt nev, const 
   std::vector<int> cand;
   for (int i : idx) {
     const PetscReal m = std::abs(mu[i]);
-    if (mu[i].imag() < 0 || m < 1 - o.tol) continue;
+    if (mu[i].imag() < 0 || m < 1 - tol) continue;
     if (m < 1 - 1e-9) {
       const std::complex<PetscReal> partner = 1.0 / std::conj(mu[i]);
       bool outer = false;
@@ -122,7 +132,7 @@ PetscErrorCode DenseLeadingPairs(PetscInt n_, PetscReal *a, PetscInt nev, const 
     cand.push_back(i);
   }
   std::stable_sort(cand.begin(), cand.end(), [&](int x, int y) {
-    const bool ox = std::abs(mu[x]) > 1 + o.tol, oy = std::abs(mu[y]) > 1 + o.tol;
+    const bool ox = std::abs(mu[x]) > 1 + tol, oy = std::abs(mu[y]) > 1 + tol;
     if (ox != oy) return ox;
     return ox ? std::abs(mu[x]) > std::abs(mu[y]) : std::abs(mu[x].real()) > std::abs(mu[y].real());
   });
@@ -135,53 +145,94 @@ PetscErrorCode DenseLeadingPairs(PetscInt n_, PetscReal *a, PetscInt nev, const 
     if (p >= 0 && std::abs(mu[i].imag()) <= 1e-7 && std::abs(mu[p].imag()) <= 1e-7 && std::abs(mu[i] - mu[p]) <= 1e-6) continue;
     pick.push_back(i);
   }
-  // their eigenvectors: inverse iteration on H, then Q applied
+  return pick;
+}
+
+// The eigenvectors of the picked eigenvalues of H (h; a and tau: its
+// reflectors): inverse iteration on H, then Q applied. vr: their columns in
+// the order of the eigenvalues (a complex one: real and imaginary parts),
+// first[i]: eigenvalue i's first column, ifr: each column's dhsein failure flag.
+PetscErrorCode PairVectors(int n, const PetscReal *a, const std::vector<PetscReal> &tau, const std::vector<PetscReal> &h, const std::vector<PetscReal> &wr,
+                           const std::vector<PetscReal> &wi, const std::vector<int> &pick, std::vector<PetscReal> &work, std::vector<PetscReal> *vr,
+                           std::vector<int> *first, std::vector<int> *ifr)
+{
+  const int one = 1;
+  int info = 0, lwork = -1;
+  PetscReal wq;
+  PetscFunctionBeginUser;
   std::vector<int> select(n, 0);
   int cols = 0;
-  for (int i : pick) select[i] = 1, cols += mu[i].imag() > 0 ? 2 : 1;
-  std::vector<PetscReal> vr((size_t)n * std::max(cols, 1)), hw((size_t)(n + 2) * n);
-  std::vector<int> ifl(std::max(cols, 1)), ifr(std::max(cols, 1));
+  for (int i : pick) select[i] = 1, cols += wi[i] > 0 ? 2 : 1;
+  vr->assign((size_t)n * std::max(cols, 1), 0.0);
+  std::vector<PetscReal> hw((size_t)(n + 2) * n);
+  std::vector<int> ifl(std::max(cols, 1));
+  ifr->assign(std::max(cols, 1), 0);
   int got = 0;
   if (cols) {
     std::vector<PetscReal> wr2 = wr;
-    dhsein_("R", "Q", "N", select.data(), &n, h.data(), &n, wr2.data(), wi.data(), NULL, &one, vr.data(), &n, &cols, &got, hw.data(), ifl.data(), ifr.data(), &info, 1,
-            1, 1);
+    dhsein_("R", "Q", "N", select.data(), &n, h.data(), &n, wr2.data(), wi.data(), NULL, &one, vr->data(), &n, &cols, &got, hw.data(), ifl.data(), ifr->data(), &info,
+            1, 1, 1);
     PetscCheck(info >= 0 && got == cols, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet (dense): LAPACK dhsein failed, info %d, %d of %d columns (2N = %d)", info, got, cols, n);
     lwork = -1;
-    dormhr_("L", "N", &n, &cols, &one, &n, a, &n, tau.data(), vr.data(), &n, &wq, &lwork, &info, 1, 1);
+    dormhr_("L", "N", &n, &cols, &one, &n, a, &n, tau.data(), vr->data(), &n, &wq, &lwork, &info, 1, 1);
     work.resize(std::max<size_t>(work.size(), (size_t)wq + 1));
     lwork = (int)work.size();
-    dormhr_("L", "N", &n, &cols, &one, &n, a, &n, tau.data(), vr.data(), &n, work.data(), &lwork, &info, 1, 1);
+    dormhr_("L", "N", &n, &cols, &one, &n, a, &n, tau.data(), vr->data(), &n, work.data(), &lwork, &info, 1, 1);
     PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet (dense): LAPACK dormhr failed, info %d (2N = %d)", info, n);
   }
-  // columns come in the order of the eigenvalues (a complex one: real and imaginary parts)
-  std::vector<int> first(n, -1);
+  first->assign(n, -1);
   for (int i = 0, c = 0; i < n; i++)
-    if (select[i]) first[i] = c, c += mu[i].imag() > 0 ? 2 : 1;
+    if (select[i]) (*first)[i] = c, c += wi[i] > 0 ? 2 : 1;
+  PetscFunctionReturn(0);
+}
+
+// The Krein signature and edge share of the eigenvector xr + i xi (xi null:
+// real), in PETSc state order (uidx, vidx: the rows of u_s, v_s).
+void PairSignature(const PetscReal *xr, const PetscReal *xi, const FloquetOptions &o, const std::vector<PetscInt> &uidx, const std::vector<PetscInt> &vidx,
+                   PetscInt iface, PetscInt *krein, PetscReal *edge)
+{
   const PetscInt N = (PetscInt)uidx.size();
+  std::vector<PetscScalar> re(2 * N), im(2 * N, 0.0);
+  PetscReal disp = 0, near = 0;
+  for (PetscInt s = 0; s < N; s++) {
+    re[s] = xr[uidx[s]], re[N + s] = xr[vidx[s]];
+    if (xi) im[s] = xi[uidx[s]], im[N + s] = xi[vidx[s]];
+    const PetscReal d = re[s] * re[s] + im[s] * im[s];
+    disp += d;
+    if (iface >= 0 && InEdgeRegion(s, iface, o.edge_sites)) near += d;
+  }
+  PetscReal sums[2];
+  KreinSums(re.data(), im.data(), N, sums);
+  const PetscReal kappa = sums[1] > 0 ? sums[0] / sums[1] : 0;
+  *krein = KreinSign(o, kappa);
+  *edge = disp > 0 ? near / disp : 0;
+}
+
+} // namespace
+
+PetscErrorCode DenseLeadingPairs(PetscInt n_, PetscReal *a, PetscInt nev, const FloquetOptions &o, const std::vector<PetscInt> &uidx,
+                                 const std::vector<PetscInt> &vidx, PetscInt iface, LeadingPairs *out)
+{
+  const int n = (int)n_;
+  std::vector<PetscReal> tau, h, wr, wi, work, vr;
+  std::vector<int> first, ifr;
+  PetscFunctionBeginUser;
+  PetscCall(HessenbergEigenvalues(n, a, tau, h, wr, wi, work));
+  std::vector<std::complex<PetscReal>> mu(n);
+  for (int i = 0; i < n; i++) mu[i] = {wr[i], wi[i]};
+  const std::vector<int> pick = PickLeadingPairs(mu, nev, o.tol, &out->max_modulus);
+  PetscCall(PairVectors(n, a, tau, h, wr, wi, pick, work, &vr, &first, &ifr));
   out->mu.clear(), out->krein.clear(), out->edge.clear();
   for (int i : pick) {
-    if (ifr[first[i]] != 0) { // inverse iteration did not converge (dhsein info > 0): no signature, no class
+    PetscInt krein = 0;
+    PetscReal edge = NAN;
+    if (ifr[first[i]] != 0) // inverse iteration did not converge (dhsein info > 0): no signature, no class
       PetscCall(PetscInfo(NULL, "Floquet (dense): no eigenvector for the multiplier %g%+gi (dhsein)\n", (double)mu[i].real(), (double)mu[i].imag()));
-      out->mu.push_back(mu[i]), out->krein.push_back(0), out->edge.push_back(NAN);
-      continue;
+    else {
+      const PetscReal *xr = &vr[(size_t)first[i] * n];
+      PairSignature(xr, mu[i].imag() > 0 ? xr + n : nullptr, o, uidx, vidx, iface, &krein, &edge);
     }
-    const PetscReal *xr = &vr[(size_t)first[i] * n], *xi = mu[i].imag() > 0 ? xr + n : nullptr;
-    std::vector<PetscScalar> re(2 * N), im(2 * N, 0.0);
-    PetscReal disp = 0, near = 0;
-    for (PetscInt s = 0; s < N; s++) {
-      re[s] = xr[uidx[s]], re[N + s] = xr[vidx[s]];
-      if (xi) im[s] = xi[uidx[s]], im[N + s] = xi[vidx[s]];
-      const PetscReal d = re[s] * re[s] + im[s] * im[s];
-      disp += d;
-      if (iface >= 0 && InEdgeRegion(s, iface, o.edge_sites)) near += d;
-    }
-    PetscReal sums[2];
-    KreinSums(re.data(), im.data(), N, sums);
-    const PetscReal kappa = sums[1] > 0 ? sums[0] / sums[1] : 0;
-    out->mu.push_back(mu[i]);
-    out->krein.push_back(KreinSign(o, kappa));
-    out->edge.push_back(disp > 0 ? near / disp : 0);
+    out->mu.push_back(mu[i]), out->krein.push_back(krein), out->edge.push_back(edge);
   }
   out->instability = 0;
   if (out->max_modulus > 1 + o.tol && !out->edge.empty()) { // the leading multiplier is then the most unstable
@@ -333,94 +384,96 @@ static PetscErrorCode TrueResidual(MonodromyShell &shell, EPS eps, PetscInt i, V
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, const FloquetMfOptions &o, LeadingMultipliers *r,
-                              std::vector<OwnedVec> *warm, Vec dz0)
+// The initial Krylov space of an orbit from the previous orbit's
+// eigenvectors warm (none: SLEPc's own start) into start. Krylov-Schur grows
+// its space from the first initial vector only. The previous orbit's
+// eigenvectors alone make it converge the same pair first and stop even when
+// another pair has become the leading one (N = 10^4, E = 1.86: the edge pair
+// 0.98746 was returned, not the interface pair near -0.9906), so they are
+// mixed with an equal share of a random vector.
+static PetscErrorCode WarmStart(Vec z0, const std::vector<OwnedVec> *warm, OwnedVec *start, std::vector<Vec> *init)
 {
-  MonodromyShell shell;
-  OwnedEPS eps;
-  PetscInt nconv;
-  const PetscInt nev = o.nev;
-  const bool critical = o.which == FloquetMfWhich::Critical;
-  const MPI_Comm comm = PetscObjectComm((PetscObject)z0);
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(Log().floquet, 0, 0, 0, 0));
-  PetscCall(shell.Create(flow, z0, T, beta, critical));
-  OwnedVec fz0;
-  std::vector<Vec> defl, init;
-  if (o.deflate && dz0) { // the trivial pair's invariant subspace span{f(z0), dz0} (header)
-    PetscCall(VecDuplicate(z0, fz0.out()));
-    PetscCall(flow.Field(z0, fz0));
-    defl = {fz0.get(), dz0};
+  if (!warm || warm->empty()) PetscFunctionReturn(0);
+  PetscRandom rnd;
+  PetscReal nrm;
+  PetscCall(VecDuplicate(z0, start->out()));
+  PetscCall(PetscRandomCreate(PetscObjectComm((PetscObject)z0), &rnd));
+  PetscCall(PetscRandomSetSeed(rnd, 20261122));
+  PetscCall(PetscRandomSeed(rnd));
+  PetscCall(VecSetRandom(*start, rnd));
+  PetscCall(PetscRandomDestroy(&rnd));
+  PetscCall(VecShift(*start, -0.5));
+  PetscCall(VecNormalize(*start, NULL));
+  for (auto &w : *warm) {
+    PetscCall(VecNorm(w, NORM_2, &nrm));
+    if (nrm > 0) PetscCall(VecAXPY(*start, 1.0 / nrm, w));
   }
-  // Krylov-Schur grows its space from the first initial vector only. The
-  // previous orbit's eigenvectors alone make it converge the same pair first
-  // and stop even when another pair has become the leading one (N = 10^4,
-  // E = 1.86: the edge pair 0.98746 was returned, not the interface pair near
-  // -0.9906), so they are mixed with an equal share of a random vector.
-  OwnedVec start;
-  if (warm && !warm->empty()) {
-    PetscRandom rnd;
-    PetscReal nrm;
-    PetscCall(VecDuplicate(z0, start.out()));
-    PetscCall(PetscRandomCreate(comm, &rnd));
-    PetscCall(PetscRandomSetSeed(rnd, 20261122));
-    PetscCall(PetscRandomSeed(rnd));
-    PetscCall(VecSetRandom(start, rnd));
-    PetscCall(PetscRandomDestroy(&rnd));
-    PetscCall(VecShift(start, -0.5));
-    PetscCall(VecNormalize(start, NULL));
-    for (auto &w : *warm) {
-      PetscCall(VecNorm(w, NORM_2, &nrm));
-      if (nrm > 0) PetscCall(VecAXPY(start, 1.0 / nrm, w));
-    }
-    init.push_back(start.get());
-  }
-  // Critical route: every eigenvalue b of B is double (mu and 1/mu, which is
-  // conj(mu) on the circle, give the same b), and a converged set may hold both
-  // copies of a pair. The multipliers are the first nev DISTINCT values, one
-  // per pair; when copies leave fewer than nev, a new solve asks for as many
-  // more eigenvalues, from the converged eigenvectors (at most twice).
-  PetscReal tol;
-  std::vector<std::complex<PetscReal>> seen; // distinct values, largest |b| first
-  std::vector<PetscInt> first;                // the index of each one's first copy
-  std::vector<OwnedVec> previous;             // the previous round's eigenvectors: the next one's start
+  init->push_back(start->get());
+  PetscFunctionReturn(0);
+}
+
+// The eigensolve of an orbit: the first nev distinct eigenvalues of the
+// shell's operator (seen, largest |b| first; first: the index of each one's
+// first copy in eps; tol: the eigensolver's). Critical route: every
+// eigenvalue b of B is double (mu and 1/mu, which is conj(mu) on the circle,
+// give the same b), and a converged set may hold both copies of a pair. The
+// multipliers are the first nev DISTINCT values, one per pair; when copies
+// leave fewer than nev, a new solve asks for as many more eigenvalues, from
+// the converged eigenvectors (at most twice).
+static PetscErrorCode DistinctEigenvalues(MonodromyShell &shell, Vec z0, PetscInt nev, bool critical, const std::vector<Vec> &defl, std::vector<Vec> init,
+                                          OwnedEPS *eps, std::vector<std::complex<PetscReal>> *seen, std::vector<PetscInt> *first, PetscReal *tol)
+{
+  const MPI_Comm comm = PetscObjectComm((PetscObject)z0);
+  PetscInt nconv;
+  std::vector<OwnedVec> previous; // the previous round's eigenvectors: the next one's start
+  PetscFunctionBeginUser;
   for (PetscInt round = 0, nev_eps = nev;; round++) {
-    PetscCall(SolveOnce(shell, comm, nev_eps, defl, init, &eps));
-    PetscCall(EPSGetConverged(eps, &nconv));
-    PetscCall(EPSGetTolerances(eps, &tol, NULL));
-    seen.clear(), first.clear();
-    for (PetscInt i = 0; i < nconv && (PetscInt)seen.size() < nev; i++) {
+    PetscCall(SolveOnce(shell, comm, nev_eps, defl, init, eps));
+    PetscCall(EPSGetConverged(*eps, &nconv));
+    PetscCall(EPSGetTolerances(*eps, tol, NULL));
+    seen->clear(), first->clear();
+    for (PetscInt i = 0; i < nconv && (PetscInt)seen->size() < nev; i++) {
       PetscReal br, bi;
-      PetscCall(EPSGetEigenvalue(eps, i, &br, &bi));
+      PetscCall(EPSGetEigenvalue(*eps, i, &br, &bi));
       const std::complex<PetscReal> b(br, bi);
       bool copy = false;
-      for (const auto &c : seen) copy = copy || (critical && std::abs(b - c) <= 10 * tol * std::max<PetscReal>(1, std::abs(c)));
-      if (!copy) seen.push_back(b), first.push_back(i);
+      for (const auto &c : *seen) copy = copy || (critical && std::abs(b - c) <= 10 * *tol * std::max<PetscReal>(1, std::abs(c)));
+      if (!copy) seen->push_back(b), first->push_back(i);
     }
-    if ((PetscInt)seen.size() >= nev || nconv < nev_eps || round == 2) break;
+    if ((PetscInt)seen->size() >= nev || nconv < nev_eps || round == 2) break;
     std::vector<OwnedVec> x(nconv);
     init.clear();
     for (PetscInt i = 0; i < nconv; i++) {
       PetscCall(VecDuplicate(z0, x[i].out()));
-      PetscCall(EPSGetEigenvector(eps, i, x[i], NULL));
+      PetscCall(EPSGetEigenvector(*eps, i, x[i], NULL));
       init.push_back(x[i]);
     }
     previous = std::move(x);
-    nev_eps += nev - (PetscInt)seen.size();
+    nev_eps += nev - (PetscInt)seen->size();
   }
-  // Not converged within -floquet_mf_eps_max_it: NaN for the missing ones (a
-  // continuation goes on; the caller reports it), never a silent number.
-  // A converged Ritz pair is kept only if its true residual, computed afresh
-  // with one more product, confirms it: Krylov-Schur on the non-normal M
-  // (largest) declared values converged whose residual was 3e-4..2.5e-3 on
-  // the circle and 308 for a spurious |mu| = 306.9 (N = 102, E = 1.86, ncv 60,
-  // 30 restarts); on the critical route the residuals were 2e-11..3e-10.
-  // Accepted: |Op x - lambda x| <= 100 tol max(1, |lambda|) |x|, tol the
-  // eigensolver's. A rejected one is NaN, like an unconverged one.
+  PetscFunctionReturn(0);
+}
+
+// The multipliers of the eigenvalues seen (eigenpairs first of eps) into r,
+// verified ones first: a converged Ritz pair is kept only if its true
+// residual, computed afresh with one more product, confirms it: Krylov-Schur
+// on the non-normal M (largest) declared values converged whose residual was
+// 3e-4..2.5e-3 on the circle and 308 for a spurious |mu| = 306.9 (N = 102,
+// E = 1.86, ncv 60, 30 restarts); on the critical route the residuals were
+// 2e-11..3e-10. Accepted: |Op x - lambda x| <= 100 tol max(1, |lambda|) |x|,
+// tol the eigensolver's. A rejected one is NaN, like an unconverged one
+// (not converged within -floquet_mf_eps_max_it: a continuation goes on, the
+// caller reports it; never a silent number). kept: the eigenpairs that passed.
+static PetscErrorCode AcceptMultipliers(MonodromyShell &shell, EPS eps, Vec z0, const std::vector<std::complex<PetscReal>> &seen, const std::vector<PetscInt> &first,
+                                        PetscReal tol, const FloquetMfOptions &o, LeadingMultipliers *r, std::vector<PetscInt> *kept)
+{
+  const PetscInt nev = o.nev;
+  const bool critical = o.which == FloquetMfWhich::Critical;
+  PetscFunctionBeginUser;
   r->converged = 0;
   r->re.assign(nev, NAN), r->im.assign(nev, NAN), r->resolution.assign(nev, NAN);
   r->max_modulus = 0;
-  std::vector<PetscInt> kept; // eigenpairs that passed: the next orbit's start
   for (PetscInt k = 0; k < (PetscInt)seen.size(); k++) {
     PetscReal res = NAN;
     PetscCall(TrueResidual(shell, eps, first[k], z0, &res));
@@ -429,7 +482,7 @@ PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal
       PetscCall(PetscInfo(NULL, "matrix-free Floquet: Ritz value %g%+gi rejected, true residual %g\n", (double)seen[k].real(), (double)seen[k].imag(), (double)res));
       continue;
     }
-    kept.push_back(first[k]);
+    kept->push_back(first[k]);
     const PetscInt slot = r->converged; // verified ones first, NaN after them
     const PetscReal br = seen[k].real(), bi = seen[k].imag();
     std::complex<PetscReal> mu(br, bi);
@@ -451,6 +504,31 @@ PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal
   }
   // A partial answer bounds nothing: the missing multiplier may be the largest.
   if (r->converged < nev) r->max_modulus = NAN;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, const FloquetMfOptions &o, LeadingMultipliers *r,
+                              std::vector<OwnedVec> *warm, Vec dz0)
+{
+  MonodromyShell shell;
+  OwnedEPS eps;
+  const bool critical = o.which == FloquetMfWhich::Critical;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(Log().floquet, 0, 0, 0, 0));
+  PetscCall(shell.Create(flow, z0, T, beta, critical));
+  OwnedVec fz0, start;
+  std::vector<Vec> defl, init;
+  if (o.deflate && dz0) { // the trivial pair's invariant subspace span{f(z0), dz0} (header)
+    PetscCall(VecDuplicate(z0, fz0.out()));
+    PetscCall(flow.Field(z0, fz0));
+    defl = {fz0.get(), dz0};
+  }
+  PetscCall(WarmStart(z0, warm, &start, &init));
+  PetscReal tol;
+  std::vector<std::complex<PetscReal>> seen;
+  std::vector<PetscInt> first, kept; // kept: the eigenpairs that passed, the next orbit's start
+  PetscCall(DistinctEigenvalues(shell, z0, o.nev, critical, defl, init, &eps, &seen, &first, &tol));
+  PetscCall(AcceptMultipliers(shell, eps, z0, seen, first, tol, o, r, &kept));
   r->products = shell.Products();
   if (warm) { // this orbit's eigenvectors (real and imaginary parts, one copy per pair) start the next solve
     warm->clear();

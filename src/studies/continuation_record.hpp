@@ -4,21 +4,11 @@
 // to the fields of the group's schema (io/schema.cpp).
 #include "orbits/continuation.hpp"
 #include "stability/bifurcations.hpp"
+#include "stability/floquet_hooks.hpp" // FloquetColumns
 #include <string>
 #include <vector>
 
 namespace nltopo {
-
-// The Floquet columns of a branch, one entry (or row) per orbit (dense route:
-// all 2N multipliers, krein and instability; matrix-free: the -floquet_mf_nev
-// leading ones, products and unconverged).
-struct FloquetColumns {
-  std::vector<PetscReal> re, im, max_modulus, det_error;
-  std::vector<PetscInt> krein, stable, instability;
-  std::vector<PetscReal> edge; // dense route: each eigenvector's edge share (kept in memory for -cont_bifurcations, not written)
-  PetscInt products = 0, unconverged = 0;
-  std::string route; // matrix-free hook: "dense" (2N <= -floquet_mf_dense_max) or "matrix-free"
-};
 
 // Everything /continuation/<label> holds: the branch, its Floquet data (dense
 // or matrix-free hook) and its cost.

@@ -137,7 +137,11 @@ assert k, "no period doubling on the switched family"
 print(k[0])
 PYEOF
 )
-run1 -options_file "$SRC/options/fep.opts" $small -cont_switch insulated:$bp,insulated_bp${bp}_plus:$pd -output pd.h5 > pd.txt
+# (named by kind and omega here: the checks below and the resume's bit-for-bit comparison with the
+# run named by index show that both select the same events and give the same families)
+wbp=$($PY -c "import h5py; print('%.9g' % h5py.File('sw.h5', 'r')['continuation/insulated/bifurcations/omega'][$bp])")
+wpd=$($PY -c "import h5py; print('%.9g' % h5py.File('sw.h5', 'r')['continuation/insulated_bp${bp}_plus/bifurcations/omega'][$pd])")
+run1 -options_file "$SRC/options/fep.opts" $small -cont_switch insulated:bp@$wbp,insulated_bp${bp}_plus:pd@$wpd -output pd.h5 > pd.txt
 $PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_fep.py" pd.h5 pd.png
 $PY - "$bp" "$pd" <<'PYEOF'
 import h5py, sys, numpy as np

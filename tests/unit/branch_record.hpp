@@ -5,33 +5,13 @@
 #include "helpers.hpp"
 #include "orbits/continuation.hpp"
 #include "stability/bifurcation_locator.hpp"
-#include "stability/floquet.hpp"
+#include "stability/floquet_hooks.hpp"
 
 namespace nltopo::test {
 
-struct Record : public PointHook {
-  PeriodicFlow &flow;
-  OwnedMat S;
-  OwnedVec zT;
-  std::vector<PetscReal> re, im, edge;
-  std::vector<PetscInt> krein;
-  explicit Record(PeriodicFlow &f) : flow(f) {}
-  PetscErrorCode Point(Vec z0, PetscReal T, PetscReal beta, Vec) override
-  {
-    FloquetResult r;
-    PetscFunctionBeginUser;
-    if (!S) {
-      PetscCall(flow.CreateSensitivityMatrix(S.out()));
-      PetscCall(VecDuplicate(z0, zT.out()));
-    }
-    PetscCall(flow.IntegrateWithMonodromy(z0, T, flow.FloquetBeta(beta), zT, S));
-    PetscCall(FloquetAnalysis(flow.Lat(), S, FloquetOptions(), &r));
-    re.insert(re.end(), r.re.begin(), r.re.end());
-    im.insert(im.end(), r.im.begin(), r.im.end());
-    edge.insert(edge.end(), r.edge.begin(), r.edge.end());
-    krein.insert(krein.end(), r.krein.begin(), r.krein.end());
-    PetscFunctionReturn(0);
-  }
+// The -floquet hook of the continuation study at the default options.
+struct Record : public FloquetHook {
+  explicit Record(PeriodicFlow &f) : FloquetHook(f, FloquetOptions()) {}
 };
 
 // Rank 0's z0 rows of a branch, on every rank.
@@ -51,7 +31,7 @@ inline PetscErrorCode LocateRecorded(BifurcationLocator &loc, Shooting &shoot, c
   PetscFunctionBeginUser;
   bo.tol = 1e-9;
   PetscCall(loc.Setup(shoot, FloquetOptions(), bo));
-  PetscCall(loc.Locate(b, rec.re, rec.im, rec.edge, name, ev));
+  PetscCall(loc.Locate(b, rec.c.re, rec.c.im, rec.c.edge, name, ev));
   PetscFunctionReturn(0);
 }
 

@@ -2,6 +2,7 @@
 // constructed symplectic matrices (a Hamiltonian-Hopf collision where linear
 // algebra puts it), the pitchfork of two coupled dimers where averaging puts
 // it, and the energy folds of a folded branch (extrema of E).
+#include "core/errors.hpp"
 #include "core/gather.hpp"
 #include "dimers.hpp"
 #include "branch_record.hpp"
@@ -134,7 +135,7 @@ struct DimerEvents {
     Record rec(d.flow);
     PetscFunctionBeginUser;
     PetscCall(d.Continue(j, std::sqrt(lam_hi + 3 * kappa), &rec, b));
-    PetscCall(loc.Locate(*b, rec.re, rec.im, rec.edge, "dimers", ev));
+    PetscCall(loc.Locate(*b, rec.c.re, rec.c.im, rec.c.edge, "dimers", ev));
     PetscFunctionReturn(0);
   }
 };
@@ -512,4 +513,104 @@ TEST_CASE("branch switching at the dimer pitchfork: the new family breaks the mi
     INFO("worst closure " << worst);
     REQUIRE(worst < 1e-9);
   }
+}
+
+namespace {
+
+// The message of fn's error ("" when it succeeds).
+template <typename Fn>
+std::string ErrorOf(Fn &&fn)
+{
+  PetscErrorCode code;
+  char msg[512];
+  PCHK(CaptureError(fn, &code, msg, sizeof msg));
+  return code ? msg : "";
+}
+
+} // namespace
+
+TEST_CASE("-cont_switch items: parsed by index or by kind and omega, an event selected by kind and nearest omega, refused with one line when none or two fit", "[bifurcations][switch][switch_spec]")
+{
+  const MPI_Comm self = PETSC_COMM_SELF;
+  std::vector<SwitchSpec> sp;
+  PCHK(ParseSwitchSpecs(self, {"insulated:12", "insulated:bp@2.418", "mode3_bp4_plus:period_doubling@1.5e0", "3:pd@2"}, &sp));
+  REQUIRE(sp.size() == 4);
+  REQUIRE((sp[0].branch == "insulated" && sp[0].ByIndex() && sp[0].index == 12));
+  REQUIRE((sp[1].branch == "insulated" && !sp[1].ByIndex() && sp[1].kind == EventKind::BranchPoint && sp[1].omega == 2.418));
+  REQUIRE((sp[2].branch == "mode3_bp4_plus" && sp[2].kind == EventKind::PeriodDoubling && sp[2].omega == 1.5));
+  REQUIRE(sp[3].text == "3:pd@2");
+  for (const char *bad : {"insulated", "insulated:x", "insulated:-1", ":3", "insulated:bp", "insulated:bp@", "insulated:fold@2", "insulated:bp@-1", "insulated:bp@2x",
+                          "insulated:pd@nan"})
+    REQUIRE(ErrorOf([&]() { return ParseSwitchSpecs(self, {bad}, &sp); }).rfind(std::string("-cont_switch ") + bad + ": expected <branch>:<event index> or", 0) == 0);
+  REQUIRE(ErrorOf([&]() { return ParseSwitchSpecs(self, {"insulated:bp@2.4", "insulated:branch_point@2.4"}, &sp); }) ==
+          "-cont_switch insulated:branch_point@2.4: given twice");
+  REQUIRE(ErrorOf([&]() { return ParseSwitchSpecs(self, {"3:5", "mode3:5"}, &sp); }) == "-cont_switch mode3:5: given twice");
+  PCHK(ParseSwitchSpecs(self, {"insulated:bp@2.4", "insulated:bp@2.5", "insulated:5"}, &sp)); // different omegas: two items
+
+  // the families' names come from the typed plan
+  SwitchPlan plan{"insulated", 21, EventKind::BranchPoint, 1};
+  REQUIRE((plan.Label(1) == "insulated_bp21_plus" && plan.Label(-1) == "insulated_bp21_minus" && plan.ParentAttribute() == "insulated:21" && !plan.OneFamily()));
+  plan = {"insulated_bp21_minus", 15, EventKind::PeriodDoubling, 2};
+  REQUIRE((plan.Label(1) == "insulated_bp21_minus_pd15" && plan.Label(-1) == plan.Label(1) && plan.OneFamily()));
+
+  // an event table: kind, omega
+  std::vector<BifurcationEvent> ev(7);
+  const std::pair<EventKind, PetscReal> table[] = {{EventKind::HamiltonianHopf, 1.80}, {EventKind::BranchPoint, 2.418248}, {EventKind::Resonance, 2.0275},
+                                                   {EventKind::PeriodDoubling, 2.704867}, {EventKind::PeriodDoubling, 2.705080}, {EventKind::BranchPoint, 3.1},
+                                                   {EventKind::Fold, 2.418}};
+  for (size_t i = 0; i < ev.size(); i++) ev[i].kind = table[i].first, ev[i].omega = table[i].second;
+  const auto select = [&](const std::string &item, PetscInt *k) {
+    return ErrorOf([&]() -> PetscErrorCode {
+      PetscFunctionBeginUser;
+      PetscCall(ParseSwitchSpecs(self, {item}, &sp));
+      PetscCall(SelectSwitchEvent(self, sp[0], ev, "insulated", k));
+      PetscFunctionReturn(0);
+    });
+  };
+  PetscInt k = -1;
+  REQUIRE(select("insulated:bp@2.418", &k) == ""); // the fold nearer 2.418 is another kind
+  REQUIRE(k == 1);
+  REQUIRE(select("insulated:branch_point@3", &k) == "");
+  REQUIRE(k == 5);
+  REQUIRE(select("insulated:bp@3.5", &k) == "");
+  REQUIRE(k == 5);
+  REQUIRE(select("insulated:bp@9", &k).find("ambiguous: the branch points of branch insulated at omega 3.1 (event 5) and 2.418248 (event 1)") != std::string::npos);
+  REQUIRE(select("insulated:pd@2.70487", &k) == "");
+  REQUIRE(k == 3);
+  REQUIRE(select("insulated:pd@2.70508", &k) == "");
+  REQUIRE(k == 4);
+  REQUIRE(select("insulated:4", &k) == "");
+  REQUIRE(k == 4);
+  REQUIRE(select("insulated:pd@2.705", &k) ==
+          "-cont_switch insulated:pd@2.705: ambiguous: the period doublings of branch insulated at omega 2.70508 (event 4) and 2.704867 (event 3) are about as near "
+          "(the nearest must be less than half as far as the next); give omega nearer one of them, or the index");
+  REQUIRE(select("insulated:7", &k) == "-cont_switch insulated:7: branch insulated has 7 located events (0 .. 6)");
+  ev.erase(ev.begin() + 3, ev.begin() + 5);
+  REQUIRE(select("insulated:pd@2.7", &k) == "-cont_switch insulated:pd@2.7: branch insulated has no period doublings among its 5 located events");
+  ev.clear();
+  REQUIRE(select("insulated:0", &k) == "-cont_switch insulated:0: branch insulated has 0 located events");
+}
+
+TEST_CASE("-cont_switch items on switched families: each on a branch of -cont_branch or on a family another item starts", "[bifurcations][switch][switch_spec]")
+{
+  const MPI_Comm self = PETSC_COMM_SELF;
+  const auto among = [](const std::string &b) { return SwitchNames(b, "insulated") || SwitchNames(b, "3"); }; // -cont_branch insulated,3
+  const auto check = [&](std::vector<std::string> items) {
+    return ErrorOf([&]() -> PetscErrorCode {
+      std::vector<SwitchSpec> sp;
+      PetscFunctionBeginUser;
+      PetscCall(ParseSwitchSpecs(self, items, &sp));
+      PetscCall(CheckSwitchParents(self, sp, among));
+      PetscFunctionReturn(0);
+    });
+  };
+  REQUIRE(check({"insulated:34", "insulated_bp34_plus:7", "insulated_bp34_plus_pd7:2", "insulated_pd34:1"}) == "");
+  REQUIRE(check({"mode3:bp@2", "mode3_bp5_minus:pd@2.5", "3:4", "mode3_pd4:0"}) == ""); // by kind: any index of that kind
+  REQUIRE(check({"insulated:bp@2.4", "insulated_pd3:0"}) ==
+          "-cont_switch insulated_pd3:0: no branch insulated_pd3 among -cont_branch or the families of the other -cont_switch events");
+  REQUIRE(check({"insulated:3", "insulated_pd3_minus:1"}) ==
+          "-cont_switch insulated_pd3_minus:1: no branch insulated_pd3_minus among -cont_branch or the families of the other -cont_switch events");
+  REQUIRE(check({"insulated:3", "insulated_bp4_plus:1"}) != "");
+  REQUIRE(check({"insulated:bp@2", "insulated_bpx_plus:1"}) != "");
+  REQUIRE(check({"optical_top:0"}) == "-cont_switch optical_top:0: no branch optical_top among -cont_branch or the families of the other -cont_switch events");
 }

@@ -1,0 +1,73 @@
+#pragma once
+// The Floquet data of every orbit of a continued branch, as a PointHook of
+// ContinueBranch (orbits/continuation.hpp) collecting the columns that
+// /continuation/<branch> stores: every multiplier from the dense monodromy
+// (-floquet), or the -floquet_mf_nev leading pairs (-floquet_mf).
+#include "orbits/continuation.hpp"
+#include "stability/floquet.hpp"
+#include "stability/floquet_mf.hpp"
+#include <string>
+#include <vector>
+
+namespace nltopo {
+
+// The Floquet columns of a branch, one entry (or row) per orbit (dense route:
+// all 2N multipliers, krein and instability; matrix-free: the -floquet_mf_nev
+// leading ones, products and unconverged).
+struct FloquetColumns {
+  std::vector<PetscReal> re, im, max_modulus, det_error;
+  std::vector<PetscInt> krein, stable, instability;
+  std::vector<PetscReal> edge; // dense route: each eigenvector's edge share (kept in memory for -cont_bifurcations, not written)
+  PetscInt products = 0, unconverged = 0;
+  std::string route; // matrix-free hook: "dense" (2N <= -floquet_mf_dense_max) or "matrix-free"
+};
+
+// -floquet: the multipliers, Krein signatures and stability of every orbit
+// (FloquetAnalysis of the monodromy integrated at the converged orbit).
+class FloquetHook : public PointHook {
+public:
+  FloquetHook(PeriodicFlow &flow, const FloquetOptions &o) : flow_(flow), opt_(o) {}
+  PetscErrorCode Point(Vec z0, PetscReal T, PetscReal beta, Vec dz0) override;
+  void Clear() { c = FloquetColumns(); }
+  FloquetColumns c;
+
+private:
+  PeriodicFlow &flow_;
+  FloquetOptions opt_;
+  OwnedMat S_;
+  OwnedVec zT_;
+};
+
+// -floquet_mf (long lattices): the -floquet_mf_nev leading multipliers of
+// every orbit, matrix-free (stability/floquet_mf.hpp), or from the dense
+// monodromy where 2N <= -floquet_mf_dense_max (then with their Krein
+// signatures and the leading instability's class; -1 and 0 matrix-free). The
+// `stable` column holds the route's verdict: only the dense route can say
+// "stable" (1); the matrix-free one says "unstable" (0) or "not decided" (-1).
+class FloquetMfHook : public PointHook {
+public:
+  FloquetMfHook(PeriodicFlow &flow, const FloquetOptions &o, const FloquetMfOptions &mo) : flow_(flow), opt_(o), mopt_(mo) {}
+  bool Dense() const { return 2 * flow_.Lat().N() <= mopt_.dense_max; }
+  const char *Route() const { return Dense() ? "dense" : "matrix-free"; }
+  // The route's line at the start of a run: what it computes and can say.
+  PetscErrorCode Announce() const;
+  PetscErrorCode Point(Vec z0, PetscReal T, PetscReal beta, Vec dz0) override;
+  void Clear() { c = FloquetColumns(), c.route = Route(), warm_.clear(); }
+  FloquetColumns c;
+
+private:
+  PeriodicFlow &flow_;
+  FloquetOptions opt_;
+  FloquetMfOptions mopt_;
+  std::vector<OwnedVec> warm_; // the previous orbit's eigenvectors: the next solve's initial space
+  OwnedMat S_;                 // the dense route's sensitivity matrix
+  OwnedVec zT_;
+};
+
+// A branch's one-line Floquet summary: how many of its orbits are stable at
+// -floquet_tol tol, and the dense route's largest |det M - 1| or the
+// matrix-free route's undecided orbits and monodromy products. mf_route:
+// nullptr for -floquet, else the -floquet_mf hook's Route().
+PetscErrorCode PrintFloquetSummary(MPI_Comm comm, const std::string &label, const FloquetColumns &f, PetscReal tol, const char *mf_route);
+
+} // namespace nltopo
