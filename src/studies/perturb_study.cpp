@@ -13,6 +13,7 @@
 #include "core/work_queue.hpp"
 #include "io/input.hpp"
 #include "io/output.hpp"
+#include "studies/forced_scene.hpp"
 #include "studies/grid_axis.hpp"
 #include "studies/nnm_setup.hpp"
 #include "studies/registry.hpp"
@@ -181,12 +182,9 @@ PetscErrorCode Realisation(const PerturbOptions &po, const LatticeParams &base, 
     pf.omega = wext[e];
     pf.energy = po.energy[e];
     ToneBurst burst;
-    PetscCall(burst.Setup(lat, pf, &modes));
     SimulationResult sr;
     PetscInt resc;
-    EffectList fx(lat);
-    PetscCall(BuildEffects(lat, &burst, &fx));
-    PetscCall(SimulateForced(fx, sim, NULL, &sr, &resc));
+    PetscCall(RunForced(lat, &modes, pf, sim, NULL, &burst, &sr, &resc));
     row[1 + e] = sr.reached ? sr.mcr : NAN; // a run that never reached E* is not scored
   }
   PetscFunctionReturn(0);
@@ -243,17 +241,17 @@ protected:
     PetscCall(nnm_.ReadOptions(comm_));
     PetscCheck(declaring_ || nnm_.lp.layout == Layout::Interface, comm_, PETSC_ERR_USER, "-study perturb follows the insulated mode: -lattice_layout must be interface");
     PetscCall(PerturbOptionsFromOptions(comm_, &po_));
-    PetscCall(ToneBurstOptionsFromOptions(comm_, nnm_.lp, &fo_));
-    PetscCall(SimulationOptionsFromOptions(comm_, &sim_));
-    sim_.progress = 0;
-    sim_.sample_dt = 0;
+    sc_.lp = nnm_.lp; // the scene's lattice is the NNM's, perturbed per realisation
+    PetscCall(sc_.ReadOptions(comm_, declaring_, false, ForcedScene::Modes::Always, NULL));
+    sc_.sim.progress = 0;
+    sc_.sim.sample_dt = 0;
     PetscFunctionReturn(0);
   }
   PetscErrorCode DeclareSolvers(MPI_Comm comm) override
   {
     PetscFunctionBeginUser;
     PetscCall(nnm_.DeclareSolvers(comm));
-    PetscCall(DeclareTS(comm, "sim_"));
+    PetscCall(DeclareTS(comm, "sim_")); // -linear_eps_*: NnmSetup's
     PetscFunctionReturn(0);
   }
   // omega(E) of the unperturbed insulated NNM (from -perturb_fep, or continued here), omega_ext at every E*.
@@ -277,21 +275,20 @@ protected:
     const PetscInt ne = Energies(), items = Items();
     std::vector<PetscReal> res;
     PetscFunctionBeginUser;
-    auto item = [&](PetscInt it, PetscReal *row) { return Realisation(po_, nnm_.lp, nnm_.mo, fo_, sim_, wext_, it, row); };
+    auto item = [&](PetscInt it, PetscReal *row) { return Realisation(po_, nnm_.lp, nnm_.mo, sc_.fo, sc_.sim, wext_, it, row); };
     const PetscErrorCode irun = RunDistributed(comm_, items, 1 + ne, item, &res, &ran_);
-    if (!IsInterrupt(irun)) PetscCall(irun);
-    const bool interrupted = IsInterrupt(irun); // a stop signal: the realisations done are written, complete = 0
-    const PetscInt nran = (PetscInt)std::count(ran_.begin(), ran_.end(), 1);
-    PetscCheck(!interrupted || nran > 0, comm_, PETSC_ERR_SIG, "interrupted by %s before the first realisation ended; no output written",
-               SignalName(StopSignalSeen()));
+    if (!IsInterrupt(irun)) PetscCall(irun); // a stop signal: the realisations done are written, complete = 0
     for (PetscInt it = 0; it < items; it++)
       if (!ran_[it]) std::fill(res.begin() + it * (1 + ne), res.begin() + (it + 1) * (1 + ne), NAN); // not run
     mcr_.resize(Kinds()), win_.resize(Kinds());
     for (PetscInt k = 0; k < Kinds(); k++) PetscCall(Tabulate(comm_, po_, nnm_.lp.KHat(), res, k, &mcr_[k], &win_[k]));
-    if (interrupted) PetscCall(CommitPartial());
-    PetscCheck(!interrupted, comm_, PETSC_ERR_SIG, "interrupted by %s between realisations (%" PetscInt_FMT " of %" PetscInt_FMT " done); partial output %s (complete = 0)",
-               SignalName(StopSignalSeen()), nran, items, path_.c_str());
-    PetscFunctionReturn(0);
+    PetscFunctionReturn(irun);
+  }
+  Interruption Interrupted() const override
+  {
+    const PetscInt nran = (PetscInt)std::count(ran_.begin(), ran_.end(), 1);
+    if (!nran) return {false, "before the first realisation ended", ""};
+    return {true, "between realisations (" + std::to_string(nran) + " of " + std::to_string(Items()) + " done)", ""};
   }
   PetscErrorCode Write(PetscViewer v) override
   {
@@ -318,8 +315,7 @@ private:
   PetscInt Items() const { return Kinds() * Levels() * po_.ensemble; } // (kind, level, realisation)
 
   PerturbOptions po_;
-  ToneBurstOptions fo_;
-  SimulationOptions sim_;
+  ForcedScene sc_; // its forcing and integrator options (its lattice: nnm_'s)
   NnmSetup nnm_;
   std::vector<PetscReal> wext_;   // omega_ext at every E*
   std::vector<PetscInt> ran_;     // per item; 0: not run (stop signal)
@@ -327,6 +323,21 @@ private:
 };
 
 } // namespace
+
+StudyContract PerturbStudyContract()
+{
+  using namespace schema_names;
+  return {WithPrefixes({ForcedScene::OptionPrefixes(), NnmSetup::OptionPrefixes(), {"-perturb_"}}), {
+    {"/perturb/<kind>", "",
+     {{"delta", D, R, "nd", "perturbation levels"},
+      {"energy", D, R, "ne", "target energies E*"},
+      {"omega_ext", D, R, "ne", "forcing frequencies"},
+      {"mcr", D, R, "nd x ne x nens", "MCR per level, energy, realisation (NaN: missed or not run)"},
+      {"insulated_omega", D, R, "nd x nens", "linear insulated frequency per realisation"},
+      {"done", D, I, "nd x nens", "0: not run (stop signal)"},
+      {"seed_first", A, I, "scalar", "seed of realisation 0"},
+      {"rule", A, S, "scalar", "the perturbation rule"}}}}};
+}
 
 std::unique_ptr<Study> CreatePerturbStudy() { return std::make_unique<PerturbStudy>(); }
 
