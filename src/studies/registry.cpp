@@ -60,7 +60,7 @@ PetscErrorCode WriteBandEdges(PetscViewer v, const char *group, const BandEdges 
   PetscFunctionReturn(0);
 }
 
-static std::map<std::string, OptionsFn> StudyOptionFunctions()
+std::map<std::string, OptionsFn> StudyOptionFunctions()
 {
   std::map<std::string, OptionsFn> m;
   for (const auto &s : kStudies)

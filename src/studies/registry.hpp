@@ -7,6 +7,7 @@
 // option block of its components, then its solver prefixes, core/options_audit.hpp):
 // -help runs only that and exits, and options it does not read are refused.
 #include "bands/bloch.hpp"
+#include "core/options_audit.hpp"
 #include "io/schema.hpp"
 #include "studies/study.hpp"
 #include <initializer_list>
@@ -59,6 +60,9 @@ void RegisterStudyContracts();
 // figure scripts draw), appended to a group's fields, and their writer.
 std::vector<Field> WithBandEdges(std::vector<Field> fields);
 PetscErrorCode WriteBandEdges(PetscViewer v, const char *group, const BandEdges &be);
+
+// Each study's options function (its DeclareOptions), by -study name.
+std::map<std::string, OptionsFn> StudyOptionFunctions();
 
 // Reads -study (default linear), checks the options (finite values, no option
 // the study does not read), and runs it; with -help it lists the study's
