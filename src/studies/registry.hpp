@@ -3,8 +3,9 @@
 // A study is a class (studies/study.hpp): a new one is one file plus one line
 // in NLTOPO_STUDIES. The file defines Create<Class>Study and
 // <Class>StudyContract: the option prefixes two of its runs are compared by
-// (io/run_options.hpp) and the schemas of the groups it writes (io/schema.hpp). Its DeclareOptions (Study's: its ReadOptions reading every
-// option block of its components, then its solver prefixes, core/options_audit.hpp):
+// (io/run_options.hpp) and the schemas of the groups it writes (io/schema.hpp).
+// Its DeclareOptions (Study's: its ReadOptions reading every option block of
+// its components, then its solver prefixes, core/options_audit.hpp):
 // -help runs only that and exits, and options it does not read are refused.
 #include "bands/bloch.hpp"
 #include "core/options_audit.hpp"
@@ -17,7 +18,7 @@
 namespace nltopo {
 
 // The studies, one line each: -study name, class (its file defines
-// Create<Class>Study), and the help line -help shows.
+// Create<Class>Study and <Class>StudyContract), and the help line -help shows.
 #define NLTOPO_STUDIES(X) \
   X("linear", Linear, "linear modes of K, named modes, Bloch bands and Zak phases") \
   X("simulate", Simulate, "one forced tone-burst run with energy cut-off") \
