@@ -284,11 +284,12 @@ protected:
     for (PetscInt k = 0; k < Kinds(); k++) PetscCall(Tabulate(comm_, po_, nnm_.lp.KHat(), res, k, &mcr_[k], &win_[k]));
     PetscFunctionReturn(irun);
   }
-  Interruption Interrupted() const override
+  bool Interrupted(Interruption *it) const override
   {
     const PetscInt nran = (PetscInt)std::count(ran_.begin(), ran_.end(), 1);
-    if (!nran) return {false, "before the first realisation ended", ""};
-    return {true, "between realisations (" + std::to_string(nran) + " of " + std::to_string(Items()) + " done)", ""};
+    if (!nran) *it = {false, "before the first realisation ended", ""};
+    else *it = {true, "between realisations (" + std::to_string(nran) + " of " + std::to_string(Items()) + " done)", ""};
+    return true;
   }
   PetscErrorCode Write(PetscViewer v) override
   {

@@ -123,7 +123,11 @@ protected:
     PetscFunctionReturn(0);
   }
   // One run has nothing partial worth keeping: a stop signal ends it without output.
-  Interruption Interrupted() const override { return {false, "during the forced run", " (one run has no partial result)"}; }
+  bool Interrupted(Interruption *it) const override
+  {
+    *it = {false, "during the forced run", " (one run has no partial result)"};
+    return true;
+  }
   PetscErrorCode Write(PetscViewer v) override
   {
     const SimulationResult &r = r_;

@@ -15,7 +15,6 @@
 #include "studies/study.hpp"
 #include "timeint/simulation.hpp"
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 #include <algorithm>
 #include <random>
@@ -201,13 +200,14 @@ protected:
     if (!IsInterrupt(irun)) PetscCall(irun);
     PetscFunctionReturn(irun);
   }
-  Interruption Interrupted() const override
+  bool Interrupted(Interruption *it) const override
   {
     const size_t done = cases_.size();
-    if (!done) return {false, "before the first stability case ended", ""};
     char where[128];
-    std::snprintf(where, sizeof(where), "during stability case %zu (omega %g)", done, (double)st_.omegas[done]);
-    return {true, where, " with the " + std::to_string(done) + " case(s) before it"};
+    (void)PetscSNPrintf(where, sizeof(where), "during stability case %" PetscInt_FMT " (omega %g)", (PetscInt)done, done < (size_t)st_.nw ? (double)st_.omegas[done] : 0.0);
+    if (!done) *it = {false, "before the first stability case ended", ""};
+    else *it = {true, where, " with the " + std::to_string(done) + " case(s) before it"};
+    return true;
   }
   PetscErrorCode Write(PetscViewer v) override
   {

@@ -42,9 +42,8 @@ PetscErrorCode Study::CommitPartial()
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Study::EndInterrupted()
+PetscErrorCode Study::EndInterrupted(const Interruption &it)
 {
-  const Interruption it = Interrupted();
   const char *sig = SignalName(StopSignalSeen());
   PetscFunctionBeginUser;
   PetscCheck(it.partial, comm_, PETSC_ERR_SIG, "interrupted by %s %s; no output written%s", sig, it.where.c_str(), it.tail.c_str());
@@ -70,7 +69,8 @@ PetscErrorCode Study::Run(MPI_Comm comm, const char *name)
   PetscCall(PetscLogStagePush(Log().solve));
   {
     const PetscErrorCode isolve = Solve();
-    if (IsInterrupt(isolve)) PetscCall(EndInterrupted());
+    Interruption it;
+    if (IsInterrupt(isolve) && Interrupted(&it)) PetscCall(EndInterrupted(it));
     PetscCall(isolve);
   }
   PetscCall(PetscLogStagePop());

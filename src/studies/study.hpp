@@ -39,15 +39,16 @@ protected:
   // The computation (Solve stage). A stop signal: it keeps what is done (for
   // Write) and returns the interrupt (IsInterrupt).
   virtual PetscErrorCode Solve() = 0;
-  // What an interrupted Solve leaves: whether Write has a partial output to
-  // commit (complete = 0), and where the run stopped, for the one line
-  // "interrupted by SIGTERM <where>; partial output x.h5 (complete = 0)<tail>"
-  // (or "...; no output written<tail>").
+  // What an interrupted Solve leaves, for a study that leaves its end to Run
+  // (true; false: Solve reports its interruption itself, as continuation's
+  // does): whether Write has a partial output to commit (complete = 0), and
+  // where the run stopped, for the one line "interrupted by SIGTERM <where>;
+  // partial output x.h5 (complete = 0)<tail>" (or "...; no output written<tail>").
   struct Interruption {
     bool partial = false;
-    std::string where = "during the run", tail;
+    std::string where, tail;
   };
-  virtual Interruption Interrupted() const { return Interruption(); }
+  virtual bool Interrupted(Interruption *it) const { return false; }
   // The datasets (Write stage) into the output's viewer (v NULL when the study writes its own file).
   virtual PetscErrorCode Write(PetscViewer v) = 0;
   // A study whose ranks write and commit the file themselves (the sweep: rank
@@ -59,7 +60,7 @@ protected:
   // stopped by a signal keeps its finished part; Run commits complete outputs only).
   PetscErrorCode CommitPartial();
   // After an interrupted Solve: the partial output if any, then the one line (always an error).
-  PetscErrorCode EndInterrupted();
+  PetscErrorCode EndInterrupted(const Interruption &it);
   bool declaring_ = false; // ReadOptions runs for DeclareOptions
   MPI_Comm comm_ = MPI_COMM_NULL;
   const char *name_ = "";

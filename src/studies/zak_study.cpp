@@ -210,11 +210,12 @@ protected:
     PetscCall(Tabulate(comm_, zo_, res, &t_));
     PetscFunctionReturn(irun);
   }
-  Interruption Interrupted() const override
+  bool Interrupted(Interruption *it) const override
   {
     const PetscInt nran = (PetscInt)std::count(ran_.begin(), ran_.end(), 1);
-    if (!nran) return {false, "before the first zak run ended", ""};
-    return {true, "between zak runs (" + std::to_string(nran) + " of " + std::to_string(ran_.size()) + " done)", ""};
+    if (!nran) *it = {false, "before the first zak run ended", ""};
+    else *it = {true, "between zak runs (" + std::to_string(nran) + " of " + std::to_string(ran_.size()) + " done)", ""};
+    return true;
   }
   PetscErrorCode Write(PetscViewer v) override
   {
