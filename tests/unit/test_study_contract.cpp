@@ -1,10 +1,13 @@
 // The study contract (studies/registry.hpp): every option a study reads is
 // under a prefix its contract registers, so a resume or an overwrite compares
 // it (io/run_options.hpp); an overwrite that differs only in a study's own
-// option is refused with one line naming it; the forced scene's
+// option is refused with one line naming it; Study::Run ends an interrupted
+// Solve with its partial output and one line; the forced scene's
 // needs-linear-modes rule is what the tone burst needs.
 #include "helpers.hpp"
 #include "core/errors.hpp"
+#include "core/signals.hpp"
+#include "io/input.hpp"
 #include "io/output.hpp"
 #include "io/run_options.hpp"
 #include "studies/forced_scene.hpp"
@@ -30,7 +33,62 @@ PetscErrorCode OverwriteVerdict(const std::string &path, PetscBool overwrite, st
   PetscFunctionReturn(ierr);
 }
 
+// A study whose Solve is interrupted after one of its two runs (partial) or before any.
+class StoppedStudy : public Study {
+public:
+  explicit StoppedStudy(bool partial) : partial_(partial) {}
+
+protected:
+  PetscErrorCode ReadOptions() override { return 0; }
+  PetscErrorCode Build() override { return 0; }
+  PetscErrorCode Solve() override { return PETSC_ERR_SIG; } // the silent interrupt (core/signals.hpp)
+  bool Interrupted(Interruption *it) const override
+  {
+    *it = {partial_, partial_ ? "between test runs (1 of 2 done)" : "before the first test run ended", " [tail]"};
+    return true;
+  }
+  PetscErrorCode Write(PetscViewer v) override { return WriteAttr(v, "/zak", "energy_threshold", (PetscReal)2); }
+
+private:
+  bool partial_;
+};
+
 } // namespace
+
+TEST_CASE("Study::Run ends an interrupted Solve: the partial output, then one line", "[contract]")
+{
+  const std::string path = "contract_int.h5";
+  int rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  if (!rank) std::remove(path.c_str());
+  MPI_Barrier(PETSC_COMM_WORLD);
+  REQUIRE(PetscOptionsSetValue(NULL, "-output", path.c_str()) == 0);
+  for (bool partial : {false, true}) {
+    INFO("partial " << partial);
+    PetscErrorCode ierr;
+    char msg[2048];
+    REQUIRE(CaptureError([&]() { return StoppedStudy(partial).Run(PETSC_COMM_WORLD, "zak"); }, &ierr, msg, sizeof(msg)) == 0);
+    PetscLogStagePop(); // Run's Solve stage, left pushed by the error
+    CHECK(ierr == PETSC_ERR_SIG);
+    const std::string m = msg, head = "interrupted by " + std::string(SignalName(StopSignalSeen())) + " ";
+    MPI_Barrier(PETSC_COMM_WORLD);
+    std::string study;
+    long complete = -1;
+    if (!partial) {
+      CHECK(m == head + "before the first test run ended; no output written [tail]");
+      CHECK_FALSE(ReadRootAttribute(path, "study", &study));
+      continue;
+    }
+    CHECK(m == head + "between test runs (1 of 2 done); partial output " + path + " (complete = 0) [tail]");
+    CHECK(ReadRootAttribute(path, "study", &study));
+    CHECK(study == "zak");
+    CHECK(ReadRootAttribute(path, "complete", &complete));
+    CHECK(complete == 0);
+  }
+  REQUIRE(PetscOptionsClearValue(NULL, "-output") == 0);
+  MPI_Barrier(PETSC_COMM_WORLD);
+  if (!rank) std::remove(path.c_str());
+}
 
 TEST_CASE("two workprecision runs that differ only in a -wp_ option do not replace each other", "[contract]")
 {
