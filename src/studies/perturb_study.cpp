@@ -278,6 +278,7 @@ protected:
     auto item = [&](PetscInt it, PetscReal *row) { return Realisation(po_, nnm_.lp, nnm_.mo, sc_.fo, sc_.sim, wext_, it, row); };
     const PetscErrorCode irun = RunDistributed(comm_, items, 1 + ne, item, &res, &ran_);
     if (!IsInterrupt(irun)) PetscCall(irun); // a stop signal: the realisations done are written, complete = 0
+    if (!std::count(ran_.begin(), ran_.end(), 1)) PetscFunctionReturn(irun); // interrupted before any: nothing to tabulate
     for (PetscInt it = 0; it < items; it++)
       if (!ran_[it]) std::fill(res.begin() + it * (1 + ne), res.begin() + (it + 1) * (1 + ne), NAN); // not run
     mcr_.resize(Kinds()), win_.resize(Kinds());

@@ -202,6 +202,7 @@ protected:
       comm_, 2 * ne, width, [&](PetscInt r, PetscReal *row) { return PhaseRun(sc_.lat, sc_.modes, sc_.fo, sc_.sim, zo_, edge_mode_[r % 2], zo_.energy[r / 2], row); },
       &res, &ran_);
     if (!IsInterrupt(irun)) PetscCall(irun); // a stop signal: the runs done are written, complete = 0
+    if (!std::count(ran_.begin(), ran_.end(), 1)) PetscFunctionReturn(irun); // interrupted before any: nothing to tabulate
     for (PetscInt r = 0; r < 2 * ne; r++)
       if (!ran_[r]) { // not run: reached 0, NaN phases
         res[r * width] = 0;
