@@ -118,16 +118,17 @@ PetscErrorCode ReadInsulatedBranch(MPI_Comm comm, const char *fep, std::vector<P
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   if (!rank) {
-    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
-    PetscErrorCode ierr = ReadDoubles(fep, "/continuation/insulated/energy", bE);
-    if (!ierr) ierr = ReadDoubles(fep, "/continuation/insulated/omega", bw);
-    PetscCall(PetscPopErrorHandler());
-    if (ierr) {
-      const char *text;
-      char *specific = NULL;
-      PetscCall(PetscErrorMessage(ierr, &text, &specific));
-      PetscCall(PetscSNPrintf(msg, sizeof(msg), "-perturb_fep %s: %s", fep, specific ? specific : text));
-    }
+    PetscErrorCode ierr = 0;
+    char why[480];
+    PetscCall(CaptureError(
+      [&]() -> PetscErrorCode {
+        PetscFunctionBeginUser;
+        PetscCall(ReadDoubles(fep, "/continuation/insulated/energy", bE));
+        PetscCall(ReadDoubles(fep, "/continuation/insulated/omega", bw));
+        PetscFunctionReturn(0);
+      },
+      &ierr, why, sizeof(why)));
+    if (ierr) PetscCall(PetscSNPrintf(msg, sizeof(msg), "-perturb_fep %s: %s", fep, why));
     n = ierr ? -1 : (PetscInt)bE->size();
     if (!ierr && bE->size() != bw->size()) {
       PetscCall(PetscSNPrintf(msg, sizeof(msg), "-perturb_fep %s: /continuation/insulated energy and omega differ in length", fep));

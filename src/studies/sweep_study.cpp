@@ -413,24 +413,22 @@ private:
     PetscFunctionBeginUser;
     grid_.Reset(so_.omega, so_.energy);
     if (!rank_) {
-      PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
       PetscErrorCode ierr = 0;
       PetscInt merged = 0;
-      if (so_.resume) {
-        if (access(path_.c_str(), F_OK)) ierr = PetscError(PETSC_COMM_SELF, __LINE__, PETSC_FUNCTION_NAME, __FILE__, PETSC_ERR_FILE_OPEN, PETSC_ERROR_INITIAL,
-                                                           "-sweep_resume: no sweep file %s to resume", path_.c_str());
-        if (!ierr) ierr = grid_.Load(path_);
-        if (!ierr) ierr = grid_.MergeJournals(path_, &merged);
-      }
-      if (!ierr) ierr = WriteSweep(path_, grid_, so_, 0, 0, false); // the file exists (and is valid) from the start
-      PetscCall(PetscPopErrorHandler());
-      if (ierr) {
-        const char *text;
-        char *specific = NULL;
-        PetscCall(PetscErrorMessage(ierr, &text, &specific));
-        err = 1;
-        PetscCall(PetscStrncpy(msg, specific ? specific : text, sizeof(msg)));
-      } else {
+      PetscCall(CaptureError(
+        [&]() -> PetscErrorCode {
+          PetscFunctionBeginUser;
+          if (so_.resume) {
+            PetscCheck(!access(path_.c_str(), F_OK), PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "-sweep_resume: no sweep file %s to resume", path_.c_str());
+            PetscCall(grid_.Load(path_));
+            PetscCall(grid_.MergeJournals(path_, &merged));
+          }
+          PetscCall(WriteSweep(path_, grid_, so_, 0, 0, false)); // the file exists (and is valid) from the start
+          PetscFunctionReturn(0);
+        },
+        &ierr, msg, sizeof(msg)));
+      if (ierr) err = 1;
+      else {
         for (const std::string &f : JournalFiles(path_)) std::remove(f.c_str()); // merged (resume) or stale (fresh start)
         if (so_.resume)
           PetscCall(PetscPrintf(PETSC_COMM_SELF, "nltopo sweep: resuming %s: %" PetscInt_FMT " of %zu points done (%" PetscInt_FMT " from journals)\n", path_.c_str(),
