@@ -5,8 +5,9 @@
 // and resume rules").
 //
 // The rule: only options with a prefix that sets the physics or the numerics
-// are compared (-lattice_, -force_, -sim_, -nnm_, -cont_, -floquet, -linear_,
-// -sweep_, -kcorr_, -stability_, -zak_, -perturb_); within those,
+// are compared: the prefixes every study registers with its contract
+// (studies/registry.hpp: its own, e.g. -wp_, and its components', e.g.
+// -lattice_, -force_, -sim_, -nnm_, -cont_, -floquet, -linear_); within those,
 //  - bookkeeping is never compared: -cont_resume, -sweep_resume,
 //    -cont_checkpoint_seconds, -sweep_checkpoint, -sweep_progress,
 //    -sim_progress, -cont_verbose, and every option whose name contains
@@ -25,8 +26,14 @@
 #include <petscsys.h>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace nltopo {
+
+// Adds option prefixes ("-wp_") to those compared (studies/registry.cpp, from
+// each study's contract); a prefix already there is not added twice.
+void RegisterComparedPrefixes(const std::vector<std::string> &prefixes);
+const std::vector<std::string> &ComparedPrefixes();
 
 enum class OptionRule { Resume, Overwrite };
 

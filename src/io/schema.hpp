@@ -1,13 +1,14 @@
 #pragma once
-// One declarative schema per output group (../shared/spec/outputs.md plus our
-// additions): every dataset and attribute a study writes, with its type, shape
-// and meaning. It drives the continuation record (studies/continuation_record)
+// One declarative schema per output group (outputs.md of the output contract
+// plus our additions): every dataset and attribute a study writes, with its
+// type, shape and meaning. io holds the groups every output has (/ and /cost);
+// each study registers its own groups' schemas in its own file (its contract,
+// studies/registry.hpp). It drives the continuation record (studies/continuation_record)
 // and the sweep's fields (studies/sweep_store); tests/unit/test_schema.cpp
 // checks outputs.md against it, and the writers of io/output refuse a name the
 // schema lacks when the check is on (NLTOPO_SCHEMA_CHECK=1, as ctest sets it,
 // or a debug build).
-#include "bands/bloch.hpp"
-#include <petscviewer.h>
+#include <petscsys.h>
 #include <string>
 #include <vector>
 
@@ -30,8 +31,17 @@ struct Schema {
   std::vector<Field> fields;
 };
 
-// Every schema, in the order of outputs.md.
+// Short names for schema tables: `using namespace nltopo::schema_names;`.
+namespace schema_names {
+constexpr FieldKind D = FieldKind::Dataset, A = FieldKind::Attribute;
+constexpr FieldType R = FieldType::Real, I = FieldType::Int, S = FieldType::String;
+} // namespace schema_names
+
+// Every schema: / and /cost, then those registered, in registration order.
 const std::vector<Schema> &Schemas();
+// Adds schemas (studies/registry.cpp, each study's own); a group and variant
+// already registered is kept as it is.
+void RegisterSchemas(const std::vector<Schema> &schemas);
 // The schema of a group pattern and variant, exactly as written in Schemas(); nullptr if none.
 const Schema *FindSchema(const char *group, const char *variant = "");
 // The field of a written group path (e.g. "/continuation/insulated") by its
@@ -47,9 +57,5 @@ const char *TypeName(FieldType t);
 // such a field of that kind and type (no-op unless the check is on).
 PetscErrorCode SchemaCheckWrite(MPI_Comm comm, const char *group, const char *name, FieldKind kind, FieldType type);
 void SetSchemaCheck(bool on); // overrides NLTOPO_SCHEMA_CHECK (tests)
-
-// The infinite lattice's band edges as the four *_inf attributes of a group
-// (/linear/bloch, /continuation, /sweep): what the figure scripts draw.
-PetscErrorCode WriteBandEdges(PetscViewer v, const char *group, const BandEdges &be);
 
 } // namespace nltopo

@@ -6,6 +6,8 @@
 #include "bands/linear_modes.hpp"
 #include "core/options_audit.hpp"
 #include "orbits/continuation.hpp"
+#include <string>
+#include <vector>
 
 namespace nltopo {
 
@@ -20,6 +22,9 @@ struct NnmSetup {
   LinearModes modes;
   PeriodicFlow flow;
   Shooting shoot;
+
+  // The prefixes of the options it reads (studies/registry.hpp StudyContract).
+  static std::vector<std::string> OptionPrefixes() { return {"-lattice_", "-linear_", "-nnm_", "-cont_"}; }
 
   PetscErrorCode ReadOptions(MPI_Comm comm)
   {

@@ -13,6 +13,7 @@
 #include "core/work_queue.hpp"
 #include "io/input.hpp"
 #include "io/output.hpp"
+#include "studies/forced_scene.hpp"
 #include "studies/grid_axis.hpp"
 #include "studies/nnm_setup.hpp"
 #include "studies/registry.hpp"
@@ -117,16 +118,17 @@ PetscErrorCode ReadInsulatedBranch(MPI_Comm comm, const char *fep, std::vector<P
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   if (!rank) {
-    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
-    PetscErrorCode ierr = ReadDoubles(fep, "/continuation/insulated/energy", bE);
-    if (!ierr) ierr = ReadDoubles(fep, "/continuation/insulated/omega", bw);
-    PetscCall(PetscPopErrorHandler());
-    if (ierr) {
-      const char *text;
-      char *specific = NULL;
-      PetscCall(PetscErrorMessage(ierr, &text, &specific));
-      PetscCall(PetscSNPrintf(msg, sizeof(msg), "-perturb_fep %s: %s", fep, specific ? specific : text));
-    }
+    PetscErrorCode ierr = 0;
+    char why[480];
+    PetscCall(CaptureError(
+      [&]() -> PetscErrorCode {
+        PetscFunctionBeginUser;
+        PetscCall(ReadDoubles(fep, "/continuation/insulated/energy", bE));
+        PetscCall(ReadDoubles(fep, "/continuation/insulated/omega", bw));
+        PetscFunctionReturn(0);
+      },
+      &ierr, why, sizeof(why)));
+    if (ierr) PetscCall(PetscSNPrintf(msg, sizeof(msg), "-perturb_fep %s: %s", fep, why));
     n = ierr ? -1 : (PetscInt)bE->size();
     if (!ierr && bE->size() != bw->size()) {
       PetscCall(PetscSNPrintf(msg, sizeof(msg), "-perturb_fep %s: /continuation/insulated energy and omega differ in length", fep));
@@ -181,12 +183,9 @@ PetscErrorCode Realisation(const PerturbOptions &po, const LatticeParams &base, 
     pf.omega = wext[e];
     pf.energy = po.energy[e];
     ToneBurst burst;
-    PetscCall(burst.Setup(lat, pf, &modes));
     SimulationResult sr;
     PetscInt resc;
-    EffectList fx(lat);
-    PetscCall(BuildEffects(lat, &burst, &fx));
-    PetscCall(SimulateForced(fx, sim, NULL, &sr, &resc));
+    PetscCall(RunForced(lat, &modes, pf, sim, NULL, &burst, &sr, &resc));
     row[1 + e] = sr.reached ? sr.mcr : NAN; // a run that never reached E* is not scored
   }
   PetscFunctionReturn(0);
@@ -243,17 +242,17 @@ protected:
     PetscCall(nnm_.ReadOptions(comm_));
     PetscCheck(declaring_ || nnm_.lp.layout == Layout::Interface, comm_, PETSC_ERR_USER, "-study perturb follows the insulated mode: -lattice_layout must be interface");
     PetscCall(PerturbOptionsFromOptions(comm_, &po_));
-    PetscCall(ToneBurstOptionsFromOptions(comm_, nnm_.lp, &fo_));
-    PetscCall(SimulationOptionsFromOptions(comm_, &sim_));
-    sim_.progress = 0;
-    sim_.sample_dt = 0;
+    sc_.lp = nnm_.lp; // the scene's lattice is the NNM's, perturbed per realisation
+    PetscCall(sc_.ReadOptions(comm_, declaring_, false, ForcedScene::Modes::Always, NULL));
+    sc_.sim.progress = 0;
+    sc_.sim.sample_dt = 0;
     PetscFunctionReturn(0);
   }
   PetscErrorCode DeclareSolvers(MPI_Comm comm) override
   {
     PetscFunctionBeginUser;
     PetscCall(nnm_.DeclareSolvers(comm));
-    PetscCall(DeclareTS(comm, "sim_"));
+    PetscCall(DeclareTS(comm, "sim_")); // -linear_eps_*: NnmSetup's
     PetscFunctionReturn(0);
   }
   // omega(E) of the unperturbed insulated NNM (from -perturb_fep, or continued here), omega_ext at every E*.
@@ -277,21 +276,22 @@ protected:
     const PetscInt ne = Energies(), items = Items();
     std::vector<PetscReal> res;
     PetscFunctionBeginUser;
-    auto item = [&](PetscInt it, PetscReal *row) { return Realisation(po_, nnm_.lp, nnm_.mo, fo_, sim_, wext_, it, row); };
+    auto item = [&](PetscInt it, PetscReal *row) { return Realisation(po_, nnm_.lp, nnm_.mo, sc_.fo, sc_.sim, wext_, it, row); };
     const PetscErrorCode irun = RunDistributed(comm_, items, 1 + ne, item, &res, &ran_);
-    if (!IsInterrupt(irun)) PetscCall(irun);
-    const bool interrupted = IsInterrupt(irun); // a stop signal: the realisations done are written, complete = 0
-    const PetscInt nran = (PetscInt)std::count(ran_.begin(), ran_.end(), 1);
-    PetscCheck(!interrupted || nran > 0, comm_, PETSC_ERR_SIG, "interrupted by %s before the first realisation ended; no output written",
-               SignalName(StopSignalSeen()));
+    if (!IsInterrupt(irun)) PetscCall(irun); // a stop signal: the realisations done are written, complete = 0
+    if (!std::count(ran_.begin(), ran_.end(), 1)) PetscFunctionReturn(irun); // interrupted before any: nothing to tabulate
     for (PetscInt it = 0; it < items; it++)
       if (!ran_[it]) std::fill(res.begin() + it * (1 + ne), res.begin() + (it + 1) * (1 + ne), NAN); // not run
     mcr_.resize(Kinds()), win_.resize(Kinds());
     for (PetscInt k = 0; k < Kinds(); k++) PetscCall(Tabulate(comm_, po_, nnm_.lp.KHat(), res, k, &mcr_[k], &win_[k]));
-    if (interrupted) PetscCall(CommitPartial());
-    PetscCheck(!interrupted, comm_, PETSC_ERR_SIG, "interrupted by %s between realisations (%" PetscInt_FMT " of %" PetscInt_FMT " done); partial output %s (complete = 0)",
-               SignalName(StopSignalSeen()), nran, items, path_.c_str());
-    PetscFunctionReturn(0);
+    PetscFunctionReturn(irun);
+  }
+  bool Interrupted(Interruption *it) const override
+  {
+    const PetscInt nran = (PetscInt)std::count(ran_.begin(), ran_.end(), 1);
+    if (!nran) *it = {false, "before the first realisation ended", ""};
+    else *it = {true, "between realisations (" + std::to_string(nran) + " of " + std::to_string(Items()) + " done)", ""};
+    return true;
   }
   PetscErrorCode Write(PetscViewer v) override
   {
@@ -318,8 +318,7 @@ private:
   PetscInt Items() const { return Kinds() * Levels() * po_.ensemble; } // (kind, level, realisation)
 
   PerturbOptions po_;
-  ToneBurstOptions fo_;
-  SimulationOptions sim_;
+  ForcedScene sc_; // its forcing and integrator options (its lattice: nnm_'s)
   NnmSetup nnm_;
   std::vector<PetscReal> wext_;   // omega_ext at every E*
   std::vector<PetscInt> ran_;     // per item; 0: not run (stop signal)
@@ -327,6 +326,21 @@ private:
 };
 
 } // namespace
+
+StudyContract PerturbStudyContract()
+{
+  using namespace schema_names;
+  return {WithPrefixes({ForcedScene::OptionPrefixes(), NnmSetup::OptionPrefixes(), {"-perturb_"}}), {
+    {"/perturb/<kind>", "",
+     {{"delta", D, R, "nd", "perturbation levels"},
+      {"energy", D, R, "ne", "target energies E*"},
+      {"omega_ext", D, R, "ne", "forcing frequencies"},
+      {"mcr", D, R, "nd x ne x nens", "MCR per level, energy, realisation (NaN: missed or not run)"},
+      {"insulated_omega", D, R, "nd x nens", "linear insulated frequency per realisation"},
+      {"done", D, I, "nd x nens", "0: not run (stop signal)"},
+      {"seed_first", A, I, "scalar", "seed of realisation 0"},
+      {"rule", A, S, "scalar", "the perturbation rule"}}}}};
+}
 
 std::unique_ptr<Study> CreatePerturbStudy() { return std::make_unique<PerturbStudy>(); }
 

@@ -3,6 +3,8 @@
 #include "timeint/ts_symsplit.hpp"
 #include "core/options_audit.hpp"
 #include "io/output.hpp"
+#include "io/run_options.hpp"
+#include <algorithm>
 #include <string>
 
 namespace nltopo {
@@ -11,7 +13,54 @@ namespace nltopo {
 static const StudyEntry kStudies[] = {NLTOPO_STUDIES(NLTOPO_STUDY_ENTRY)};
 #undef NLTOPO_STUDY_ENTRY
 
-static std::map<std::string, OptionsFn> StudyOptionFunctions()
+#define NLTOPO_STUDY_CONTRACT(name, Class, help) Class##StudyContract,
+static StudyContract (*const kContracts[])() = {NLTOPO_STUDIES(NLTOPO_STUDY_CONTRACT)};
+#undef NLTOPO_STUDY_CONTRACT
+
+void RegisterStudyContracts()
+{
+  static bool done = false;
+  if (done) return;
+  for (auto contract : kContracts) {
+    const StudyContract c = contract();
+    RegisterComparedPrefixes(c.option_prefixes);
+    RegisterSchemas(c.schemas);
+  }
+  done = true;
+}
+
+namespace {
+using namespace schema_names;
+const Field kBandEdges[4] = {{"acoustic_bottom_inf", A, R, "scalar", "infinite lattice: acoustic band bottom (rad/s)"},
+                             {"acoustic_top_inf", A, R, "scalar", "infinite lattice: acoustic band top"},
+                             {"optical_bottom_inf", A, R, "scalar", "infinite lattice: optical band bottom"},
+                             {"optical_top_inf", A, R, "scalar", "infinite lattice: optical band top"}};
+} // namespace
+
+std::vector<std::string> WithPrefixes(std::initializer_list<std::vector<std::string>> parts)
+{
+  std::vector<std::string> all;
+  for (const auto &part : parts)
+    for (const std::string &p : part)
+      if (std::find(all.begin(), all.end(), p) == all.end()) all.push_back(p);
+  return all;
+}
+
+std::vector<Field> WithBandEdges(std::vector<Field> f)
+{
+  f.insert(f.end(), std::begin(kBandEdges), std::end(kBandEdges));
+  return f;
+}
+
+PetscErrorCode WriteBandEdges(PetscViewer v, const char *group, const BandEdges &be)
+{
+  const PetscReal values[4] = {be.acoustic_bottom, be.acoustic_top, be.optical_bottom, be.optical_top};
+  PetscFunctionBeginUser;
+  for (int k = 0; k < 4; k++) PetscCall(WriteAttr(v, group, kBandEdges[k].name, values[k]));
+  PetscFunctionReturn(0);
+}
+
+std::map<std::string, OptionsFn> StudyOptionFunctions()
 {
   std::map<std::string, OptionsFn> m;
   for (const auto &s : kStudies)
@@ -37,6 +86,7 @@ PetscErrorCode RunStudyFromOptions(MPI_Comm comm)
   std::string known, help = "Study to run:";
   PetscBool list_help;
   PetscFunctionBeginUser;
+  RegisterStudyContracts(); // its schemas and compared option prefixes
   PetscCall(TSSymSplitRegister()); // nltopo's TS types, before any -*ts_type is read
   PetscCall(TSRknRegister());
   for (const auto &s : kStudies) {

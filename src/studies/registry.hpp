@@ -1,15 +1,24 @@
 #pragma once
 // Studies registered by name (-study); main.cpp looks the name up and runs it.
 // A study is a class (studies/study.hpp): a new one is one file plus one line
-// in NLTOPO_STUDIES. Its DeclareOptions (Study's: its ReadOptions reading every
-// option block of its components, then its solver prefixes, core/options_audit.hpp):
+// in NLTOPO_STUDIES. The file defines Create<Class>Study and
+// <Class>StudyContract: the option prefixes two of its runs are compared by
+// (io/run_options.hpp) and the schemas of the groups it writes (io/schema.hpp).
+// Its DeclareOptions (Study's: its ReadOptions reading every option block of
+// its components, then its solver prefixes, core/options_audit.hpp):
 // -help runs only that and exits, and options it does not read are refused.
+#include "bands/bloch.hpp"
+#include "core/options_audit.hpp"
+#include "io/schema.hpp"
 #include "studies/study.hpp"
+#include <initializer_list>
+#include <string>
+#include <vector>
 
 namespace nltopo {
 
 // The studies, one line each: -study name, class (its file defines
-// Create<Class>Study), and the help line -help shows.
+// Create<Class>Study and <Class>StudyContract), and the help line -help shows.
 #define NLTOPO_STUDIES(X) \
   X("linear", Linear, "linear modes of K, named modes, Bloch bands and Zak phases") \
   X("simulate", Simulate, "one forced tone-burst run with energy cut-off") \
@@ -20,7 +29,21 @@ namespace nltopo {
   X("workprecision", Workprecision, "what accuracy costs for one forced run: integrator configurations timed and scored against a converged reference, and the predictability floor") \
   X("stability", Stability, "perturbed insulated-branch NNMs integrated for many periods: does the standing wave persist")
 
-#define NLTOPO_DECLARE_STUDY(name, Class, help) std::unique_ptr<Study> Create##Class##Study();
+// What a study adds to the output contract, stated in its own file.
+struct StudyContract {
+  // Every option prefix of what it reads, its own ("-wp_") and its components'
+  // ("-lattice_", ...; ForcedScene::OptionPrefixes, NnmSetup::OptionPrefixes):
+  // a resume or an overwrite compares the options under them.
+  std::vector<std::string> option_prefixes;
+  std::vector<Schema> schemas; // the groups it writes
+};
+
+// The prefixes of several parts, each once, in order.
+std::vector<std::string> WithPrefixes(std::initializer_list<std::vector<std::string>> parts);
+
+#define NLTOPO_DECLARE_STUDY(name, Class, help) \
+  std::unique_ptr<Study> Create##Class##Study(); \
+  StudyContract Class##StudyContract();
 NLTOPO_STUDIES(NLTOPO_DECLARE_STUDY)
 #undef NLTOPO_DECLARE_STUDY
 
@@ -28,6 +51,19 @@ struct StudyEntry {
   const char *name, *help;
   StudyFactory create;
 };
+
+// Registers every study's option prefixes and schemas (io/run_options.hpp,
+// io/schema.hpp); once, however often it is called. RunStudyFromOptions calls
+// it first; so must any program that writes or compares outputs without it.
+void RegisterStudyContracts();
+
+// The four *_inf attributes of the infinite lattice's band edges (what the
+// figure scripts draw), appended to a group's fields, and their writer.
+std::vector<Field> WithBandEdges(std::vector<Field> fields);
+PetscErrorCode WriteBandEdges(PetscViewer v, const char *group, const BandEdges &be);
+
+// Each study's options function (its DeclareOptions), by -study name.
+std::map<std::string, OptionsFn> StudyOptionFunctions();
 
 // Reads -study (default linear), checks the options (finite values, no option
 // the study does not read), and runs it; with -help it lists the study's

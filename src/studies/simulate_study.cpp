@@ -5,6 +5,7 @@
 #include "core/options_audit.hpp"
 #include "core/signals.hpp"
 #include "io/output.hpp"
+#include "studies/forced_scene.hpp"
 #include "studies/registry.hpp"
 #include "studies/study.hpp"
 #include "timeint/simulation.hpp"
@@ -81,32 +82,26 @@ protected:
   PetscErrorCode ReadOptions() override
   {
     PetscFunctionBeginUser;
-    PetscCall(LatticeParamsFromOptions(comm_, &lp_));
-    PetscCall(ToneBurstOptionsFromOptions(comm_, lp_, &fo_));
-    PetscCall(SimulationOptionsFromOptions(comm_, &so_));
-    PetscCall(StoreOptionsFromOptions(comm_, lp_, so_, &store_u_, &stride_));
-    need_modes_ = fo_.profile == ForceProfile::Mode || fo_.profile == ForceProfile::Exponential || (fo_.profile != ForceProfile::None && fo_.amplitude < 0);
-    if (declaring_ || need_modes_) PetscCall(LinearModesOptionsFromOptions(comm_, &mo_)); // the mode profiles and the amplitude rule
+    PetscCall(sc_.ReadOptions(comm_, declaring_, true, ForcedScene::Modes::Needed, NULL)); // -force_profile none: a free run
+    PetscCall(StoreOptionsFromOptions(comm_, sc_.lp, sc_.sim, &store_u_, &stride_));
+    PetscCall(sc_.ReadModeOptions(comm_, declaring_));
     if (declaring_) PetscFunctionReturn(0);
-    if (store_u_ && so_.sample_dt > 0) {
+    if (store_u_ && sc_.sim.sample_dt > 0) {
       PetscMPIInt nranks;
       PetscCallMPI(MPI_Comm_size(comm_, &nranks));
-      const double samples = (so_.t_final - so_.t_start) / so_.sample_dt + 2, sites = std::ceil((double)lp_.N() / stride_) / nranks;
+      const double samples = (sc_.sim.t_final - sc_.sim.t_start) / sc_.sim.sample_dt + 2, sites = std::ceil((double)sc_.lp.N() / stride_) / nranks;
       PetscCall(CheckMemory(comm_, 8.0 * samples * sites, "/simulate/u (-lattice_cells x -sim_t_final / -sim_sample_dt; -sim_store_u_stride or -sim_store_u 0 shrink it)"));
       u_bytes_ = 8.0 * samples * sites * nranks;
     }
     PetscFunctionReturn(0);
   }
-  PetscErrorCode DeclareSolvers(MPI_Comm comm) override { return DeclareForcedRunSolvers(comm); }
-  double OutputBytes() const override { return u_bytes_ + 16.0 * lp_.N(); }
+  PetscErrorCode DeclareSolvers(MPI_Comm comm) override { return ForcedScene::DeclareSolvers(comm); }
+  double OutputBytes() const override { return u_bytes_ + 16.0 * sc_.lp.N(); }
   PetscErrorCode Build() override
   {
     PetscFunctionBeginUser;
-    PetscCall(lat_.Setup(comm_, lp_));
-    if (need_modes_) PetscCall(modes_.Compute(lat_, mo_));
-    PetscCall(burst_.Setup(lat_, fo_, need_modes_ ? &modes_ : NULL));
-    PetscCall(BuildEffects(lat_, &burst_, &fx_));
-    sink_ = std::make_unique<Samples>(lat_, store_u_, stride_);
+    PetscCall(sc_.Build(comm_, ForcedScene::Upto::Effects));
+    sink_ = std::make_unique<Samples>(sc_.lat, store_u_, stride_);
     PetscFunctionReturn(0);
   }
   PetscErrorCode Solve() override
@@ -115,25 +110,29 @@ protected:
     PetscFunctionBeginUser;
     PetscCall(PetscTime(&t0));
     {
-      const PetscErrorCode ierr = SimulateForced(fx_, so_, sink_.get(), &r_, &rescalings_);
-      // One run has nothing partial worth keeping: a stop signal ends it without output.
-      PetscCheck(!IsInterrupt(ierr), comm_, PETSC_ERR_SIG, "interrupted by %s during the forced run; no output written (one run has no partial result)",
-                 SignalName(StopSignalSeen()));
+      const PetscErrorCode ierr = SimulateForced(sc_.fx, sc_.sim, sink_.get(), &r_, &rescalings_);
+      if (IsInterrupt(ierr)) PetscFunctionReturn(ierr); // Interrupted: no output
       PetscCall(ierr);
     }
     PetscCall(PetscTime(&t1));
     solve_seconds_ = t1 - t0;
     PetscCall(PetscPrintf(comm_, "nltopo simulate: N = %" PetscInt_FMT ", omega_ext = %.6f, E* = %g, S = %.6g (%s, %" PetscInt_FMT " rescalings), t_final = %g\n",
-                          lat_.N(), (double)burst_.Omega(), (double)burst_.EnergyStar(), (double)burst_.Amplitude(),
-                          burst_.AmplitudeFromRule() ? "amplitude rule" : "-force_amplitude", rescalings_, (double)so_.t_final));
+                          sc_.lat.N(), (double)sc_.burst.Omega(), (double)sc_.burst.EnergyStar(), (double)sc_.burst.Amplitude(),
+                          sc_.burst.AmplitudeFromRule() ? "amplitude rule" : "-force_amplitude", rescalings_, (double)sc_.sim.t_final));
     if (r_.reached) PetscCall(PetscPrintf(comm_, "  cut-off at t_off = %.6f, E_final = %.10g\n", (double)r_.t_off, (double)r_.energy_final));
-    else if (burst_.Present())
-      PetscCall(PetscPrintf(comm_, "  WARNING: E* = %g was NOT reached (E_final = %.6g); RMS window from t = %g\n", (double)burst_.EnergyStar(),
+    else if (sc_.burst.Present())
+      PetscCall(PetscPrintf(comm_, "  WARNING: E* = %g was NOT reached (E_final = %.6g); RMS window from t = %g\n", (double)sc_.burst.EnergyStar(),
                             (double)r_.energy_final, (double)r_.window_start));
     PetscCall(PetscPrintf(comm_, "  MCR = %.10f, nl_ratio = %.6g, steps = %" PetscInt_FMT " (%" PetscInt_FMT " rejected), RHS evaluations = %" PetscInt_FMT
                                  ", solve %.3f s\n",
                           (double)r_.mcr, (double)r_.nl_ratio, r_.steps, r_.rejected, r_.counters.rhs, solve_seconds_));
     PetscFunctionReturn(0);
+  }
+  // One run has nothing partial worth keeping: a stop signal ends it without output.
+  bool Interrupted(Interruption *it) const override
+  {
+    *it = {false, "during the forced run", " (one run has no partial result)"};
+    return true;
   }
   PetscErrorCode Write(PetscViewer v) override
   {
@@ -158,40 +157,63 @@ protected:
     PetscCall(WriteAttr(v, g, "rejected_steps", r.rejected));
     PetscCall(WriteAttr(v, g, "energy_reached", (PetscInt)r.reached));
     PetscCall(WriteAttr(v, g, "window_start", r.window_start));
-    PetscCall(WriteAttr(v, g, "omega_ext", burst_.Omega()));
-    PetscCall(WriteAttr(v, g, "energy_star", burst_.EnergyStar()));
-    PetscCall(WriteAttr(v, g, "amplitude", burst_.Amplitude()));
+    PetscCall(WriteAttr(v, g, "omega_ext", sc_.burst.Omega()));
+    PetscCall(WriteAttr(v, g, "energy_star", sc_.burst.EnergyStar()));
+    PetscCall(WriteAttr(v, g, "amplitude", sc_.burst.Amplitude()));
     PetscCall(WriteAttr(v, g, "amplitude_rule",
-                        !burst_.Present() ? "none (no forcing)"
-                        : burst_.AmplitudeFromRule() ? "linear Gaussian-burst energy = amplitude_safety * E*; a run whose burst ends before E* is repeated with a larger S (x (1.2 E*/E_peak)^(1/p), p the log-log slope of the misses) (README.md, Amplitude rule)"
+                        !sc_.burst.Present() ? "none (no forcing)"
+                        : sc_.burst.AmplitudeFromRule() ? "linear Gaussian-burst energy = amplitude_safety * E*; a run whose burst ends before E* is repeated with a larger S (x (1.2 E*/E_peak)^(1/p), p the log-log slope of the misses) (README.md, Amplitude rule)"
                                                      : "user (-force_amplitude)"));
-    PetscCall(WriteAttr(v, g, "amplitude_safety", fo_.safety));
+    PetscCall(WriteAttr(v, g, "amplitude_safety", sc_.fo.safety));
     PetscCall(WriteAttr(v, g, "amplitude_rescalings", rescalings_)); // -1: E* missed after -force_amplitude_retries
-    PetscCall(WriteAttr(v, g, "tau", burst_.Tau()));
-    PetscCall(WriteAttr(v, g, "t0", burst_.T0()));
+    PetscCall(WriteAttr(v, g, "tau", sc_.burst.Tau()));
+    PetscCall(WriteAttr(v, g, "t0", sc_.burst.T0()));
     PetscCall(WriteAttr(v, g, "solve_seconds", solve_seconds_));
     PetscFunctionReturn(0);
   }
 
 private:
-  LatticeParams lp_;
-  ToneBurstOptions fo_;
-  SimulationOptions so_;
-  LinearModesOptions mo_;
+  ForcedScene sc_;
   PetscBool store_u_ = PETSC_TRUE;
   PetscInt stride_ = 1, rescalings_ = 0;
-  bool need_modes_ = false;
   double u_bytes_ = 0;
   PetscReal solve_seconds_ = 0;
-  Lattice lat_;
-  EffectList fx_{lat_};
-  LinearModes modes_;
-  ToneBurst burst_;
   std::unique_ptr<Samples> sink_;
   SimulationResult r_;
 };
 
 } // namespace
+
+StudyContract SimulateStudyContract()
+{
+  using namespace schema_names;
+  return {ForcedScene::OptionPrefixes(), {
+    {"/simulate", "",
+     {{"t", D, R, "nt", "sample times"},
+      {"energy", D, R, "nt", "total energy"},
+      {"u", D, R, "nt x N", "displacements, sub-sampled (with u_stride)"},
+      {"rms", D, R, "N", "RMS per site after the cut-off"},
+      {"u_stride", A, I, "scalar", "-sim_store_u_stride"},
+      {"mcr", A, R, "scalar", "mode confinement ratio"},
+      {"t_off", A, R, "scalar", "cut-off time (-1: never)"},
+      {"energy_final", A, R, "scalar", "energy at the end"},
+      {"nl_ratio", A, R, "scalar", "nonlinear / linear energy"},
+      {"rhs_evals", A, I, "scalar", "RHS evaluations of the run"},
+      {"rhs_evals_all_attempts", A, I, "scalar", "RHS evaluations of every amplitude attempt"},
+      {"steps", A, I, "scalar", "accepted steps"},
+      {"rejected_steps", A, I, "scalar", "rejected steps"},
+      {"energy_reached", A, I, "scalar", "1 if E* was reached"},
+      {"window_start", A, R, "scalar", "start of the RMS window"},
+      {"omega_ext", A, R, "scalar", "forcing frequency"},
+      {"energy_star", A, R, "scalar", "target energy E*"},
+      {"amplitude", A, R, "scalar", "forcing amplitude S"},
+      {"amplitude_rule", A, S, "scalar", "how S was chosen"},
+      {"amplitude_safety", A, R, "scalar", "-force_amplitude_safety"},
+      {"amplitude_rescalings", A, I, "scalar", "repeats with a larger S (-1: E* missed)"},
+      {"tau", A, R, "scalar", "burst width"},
+      {"t0", A, R, "scalar", "burst centre"},
+      {"solve_seconds", A, R, "scalar", "wall time of the solve"}}}}};
+}
 
 std::unique_ptr<Study> CreateSimulateStudy() { return std::make_unique<SimulateStudy>(); }
 

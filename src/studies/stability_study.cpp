@@ -198,14 +198,16 @@ protected:
     PetscFunctionBeginUser;
     const PetscErrorCode irun = RunCases();
     if (!IsInterrupt(irun)) PetscCall(irun);
-    const bool interrupted = IsInterrupt(irun);
-    const PetscInt cases_done = (PetscInt)cases_.size();
-    PetscCheck(!interrupted || cases_done > 0, comm_, PETSC_ERR_SIG, "interrupted by %s before the first stability case ended; no output written",
-               SignalName(StopSignalSeen()));
-    if (interrupted) PetscCall(CommitPartial());
-    PetscCheck(!interrupted, comm_, PETSC_ERR_SIG, "interrupted by %s during stability case %" PetscInt_FMT " (omega %g); partial output %s (complete = 0) with the %" PetscInt_FMT " case(s) before it",
-               SignalName(StopSignalSeen()), cases_done, (double)st_.omegas[cases_done], path_.c_str(), cases_done);
-    PetscFunctionReturn(0);
+    PetscFunctionReturn(irun);
+  }
+  bool Interrupted(Interruption *it) const override
+  {
+    const size_t done = cases_.size();
+    char where[128];
+    (void)PetscSNPrintf(where, sizeof(where), "during stability case %" PetscInt_FMT " (omega %g)", (PetscInt)done, done < (size_t)st_.nw ? (double)st_.omegas[done] : 0.0);
+    if (!done) *it = {false, "before the first stability case ended", ""};
+    else *it = {true, where, " with the " + std::to_string(done) + " case(s) before it"};
+    return true;
   }
   PetscErrorCode Write(PetscViewer v) override
   {
@@ -311,6 +313,30 @@ private:
 };
 
 } // namespace
+
+StudyContract StabilityStudyContract()
+{
+  using namespace schema_names;
+  return {WithPrefixes({NnmSetup::OptionPrefixes(), {"-floquet", "-sim_", "-stability_"}}), {
+    {"/stability", "", {{"cases_done", A, I, "scalar", "cases written"}}},
+    {"/stability/case<k>", "",
+     {{"t", D, R, "nt", "sample times"},
+      {"corr", D, R, "nt", "shape correlation with the NNM"},
+      {"mcr", D, R, "nt", "MCR"},
+      {"energy", D, R, "nt", "energy"},
+      {"multipliers_re", D, R, "2N", "Floquet multipliers, real part"},
+      {"multipliers_im", D, R, "2N", "Floquet multipliers, imaginary part"},
+      {"omega_target", A, R, "scalar", "-stability_omega"},
+      {"omega", A, R, "scalar", "orbit frequency"},
+      {"energy", A, R, "scalar", "orbit energy"},
+      {"period", A, R, "scalar", "orbit period"},
+      {"max_modulus", A, R, "scalar", "largest |mu|"},
+      {"floquet_stable", A, I, "scalar", "1 if Floquet-stable"},
+      {"instability", A, I, "scalar", "0 none, 1 B-B, 2 B-E, 3 E-E"},
+      {"persisted", A, I, "scalar", "1 if the shape persisted"},
+      {"corr_tail_min", A, R, "scalar", "min shape correlation over the last 10 %"},
+      {"energy_drift", A, R, "scalar", "relative energy drift"}}}}};
+}
 
 std::unique_ptr<Study> CreateStabilityStudy() { return std::make_unique<StabilityStudy>(); }
 

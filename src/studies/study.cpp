@@ -1,6 +1,7 @@
 #include "studies/study.hpp"
 #include "core/log.hpp"
 #include "core/options_audit.hpp"
+#include "core/signals.hpp"
 
 namespace nltopo {
 
@@ -24,14 +25,6 @@ PetscErrorCode Study::DeclareOptions(MPI_Comm comm, const char *name)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Study::DeclareForcedRunSolvers(MPI_Comm comm)
-{
-  PetscFunctionBeginUser;
-  PetscCall(DeclareEPS(comm, "linear_"));
-  PetscCall(DeclareTS(comm, "sim_"));
-  PetscFunctionReturn(0);
-}
-
 PetscReal Study::Elapsed() const
 {
   PetscLogDouble now;
@@ -47,6 +40,15 @@ PetscErrorCode Study::CommitPartial()
   PetscCall(Write(partial.Viewer()));
   PetscCall(partial.Commit(name_, Elapsed(), false));
   PetscFunctionReturn(0);
+}
+
+PetscErrorCode Study::EndInterrupted(const Interruption &it)
+{
+  const char *sig = SignalName(StopSignalSeen());
+  PetscFunctionBeginUser;
+  PetscCheck(it.partial, comm_, PETSC_ERR_SIG, "interrupted by %s %s; no output written%s", sig, it.where.c_str(), it.tail.c_str());
+  PetscCall(CommitPartial());
+  SETERRQ(comm_, PETSC_ERR_SIG, "interrupted by %s %s; partial output %s (complete = 0)%s", sig, it.where.c_str(), path_.c_str(), it.tail.c_str());
 }
 
 PetscErrorCode Study::Run(MPI_Comm comm, const char *name)
@@ -65,7 +67,12 @@ PetscErrorCode Study::Run(MPI_Comm comm, const char *name)
   PetscCall(PetscLogStagePop());
 
   PetscCall(PetscLogStagePush(Log().solve));
-  PetscCall(Solve());
+  {
+    const PetscErrorCode isolve = Solve();
+    Interruption it;
+    if (IsInterrupt(isolve) && Interrupted(&it)) PetscCall(EndInterrupted(it));
+    PetscCall(isolve);
+  }
   PetscCall(PetscLogStagePop());
 
   PetscCall(PetscLogStagePush(Log().write));

@@ -3,8 +3,11 @@
 // the lifecycle every study shares: the timer, the log stages (Setup, Solve,
 // Write: -log_view shows where the time goes), the output file (a temporary
 // renamed at commit, io/output.hpp), its provenance and cost card (written by
-// OutputFile::Commit), and the "wrote" line. A study supplies only what is
-// its own: the options it reads, Build, Solve and Write.
+// OutputFile::Commit), the "wrote" line, and a stop signal's end (Solve
+// returns the silent interrupt, core/signals.hpp: Run commits what Write gives
+// as partial output when Interrupted says there is some, and fails with one
+// line). A study supplies only what is its own: the options it reads, Build,
+// Solve, Write and what an interruption leaves.
 #include "io/output.hpp"
 #include <memory>
 #include <string>
@@ -27,17 +30,25 @@ protected:
   virtual PetscErrorCode ReadOptions() = 0;
   // The solver prefixes (DeclareTS, DeclareSNES, DeclareEPS), after ReadOptions under DeclareOptions.
   virtual PetscErrorCode DeclareSolvers(MPI_Comm comm) { return 0; }
-  // The solvers of a forced run (timeint/simulation.hpp): -linear_eps_* (the
-  // mode profiles and the amplitude rule) and -sim_ts_*.
-  static PetscErrorCode DeclareForcedRunSolvers(MPI_Comm comm);
   // The -output path; a study that resumes its own file says so here.
   virtual PetscErrorCode OutputPath(std::string *path);
   // The bytes the output will take (the free-space check at open).
   virtual double OutputBytes() const { return 0; }
   // The objects of the computation (Setup stage).
   virtual PetscErrorCode Build() = 0;
-  // The computation (Solve stage).
+  // The computation (Solve stage). A stop signal: it keeps what is done (for
+  // Write) and returns the interrupt (IsInterrupt).
   virtual PetscErrorCode Solve() = 0;
+  // What an interrupted Solve leaves, for a study that leaves its end to Run
+  // (true; false: Solve reports its interruption itself, as continuation's
+  // does): whether Write has a partial output to commit (complete = 0), and
+  // where the run stopped, for the one line "interrupted by SIGTERM <where>;
+  // partial output x.h5 (complete = 0)<tail>" (or "...; no output written<tail>").
+  struct Interruption {
+    bool partial = false;
+    std::string where, tail;
+  };
+  virtual bool Interrupted(Interruption *it) const { return false; }
   // The datasets (Write stage) into the output's viewer (v NULL when the study writes its own file).
   virtual PetscErrorCode Write(PetscViewer v) = 0;
   // A study whose ranks write and commit the file themselves (the sweep: rank
@@ -48,6 +59,8 @@ protected:
   // What Write gives so far, committed at -output as complete = 0 (a study
   // stopped by a signal keeps its finished part; Run commits complete outputs only).
   PetscErrorCode CommitPartial();
+  // After an interrupted Solve: the partial output if any, then the one line (always an error).
+  PetscErrorCode EndInterrupted(const Interruption &it);
   bool declaring_ = false; // ReadOptions runs for DeclareOptions
   MPI_Comm comm_ = MPI_COMM_NULL;
   const char *name_ = "";

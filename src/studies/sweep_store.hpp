@@ -27,7 +27,7 @@ struct SweepPoint {
   PetscInt predictable = -1, runs = 1;
 };
 
-// The per-point (ne x no) datasets of the /sweep schema (io/schema.cpp) but
+// The per-point (ne x no) datasets of the /sweep schema (sweep_study.cpp) but
 // done, in its order, and the SweepPoint fields behind them: what the sweep
 // study writes, SweepGrid::Load reads back and a journal line holds.
 struct SweepRealField { const char *name; PetscReal SweepPoint::*field; };

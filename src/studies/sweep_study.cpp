@@ -16,6 +16,7 @@
 #include "io/output.hpp"
 #include "io/run_options.hpp"
 #include "io/schema.hpp"
+#include "studies/forced_scene.hpp"
 #include "studies/grid_axis.hpp"
 #include "studies/registry.hpp"
 #include "studies/study.hpp"
@@ -162,7 +163,6 @@ PetscErrorCode ComputePoint(const Lattice &lat, const LinearModes &modes, const 
   pf.omega = omega;
   pf.energy = energy;
   ToneBurst burst;
-  PetscCall(burst.Setup(lat, pf, &modes));
   SimulationOptions ps = sim;
   AfterCutoffSamples sink(lat.N());
   if (so.kcorr) ps.sample_dt = so.kcorr_sample_dt;
@@ -170,9 +170,7 @@ PetscErrorCode ComputePoint(const Lattice &lat, const LinearModes &modes, const 
   PetscInt rescalings;
   PetscLogDouble p0, p1;
   PetscCall(PetscTime(&p0));
-  EffectList fx(lat), free_fx(lat); // the scene, and its free motion after the cut-off
-  PetscCall(BuildEffects(lat, &burst, &fx));
-  PetscCall(SimulateForced(fx, ps, so.kcorr ? &sink : NULL, &r, &rescalings));
+  PetscCall(RunForced(lat, &modes, pf, ps, so.kcorr ? &sink : NULL, &burst, &r, &rescalings));
   pt->rhs = r.rhs_all_attempts;
   if (so.kcorr && r.reached && r.t_off + so.kcorr_record > ps.t_final) {
     // The test needs a longer free record than the run has after t_off: the
@@ -183,6 +181,7 @@ PetscErrorCode ComputePoint(const Lattice &lat, const LinearModes &modes, const 
     cont.t_start = ps.t_final;
     cont.t_final = r.t_off + so.kcorr_record;
     sink.Continue(r.t_off);
+    EffectList free_fx(lat); // the free motion after the cut-off
     PetscCall(BuildEffects(lat, NULL, &free_fx));
     PetscCall(Simulate(free_fx, cont, r.z_final, &sink, &rc));
     pt->rhs += rc.counters.rhs;
@@ -225,17 +224,14 @@ protected:
     PetscCallMPI(MPI_Comm_rank(comm_, &rank_));
     PetscCallMPI(MPI_Comm_size(comm_, &size_));
     PetscCall(RejectGivenOptions(comm_, {"-sim_progress", "-sim_sample_dt"}, "-study sweep (progress: -sweep_progress; no samples are stored)"));
-    PetscCall(LatticeParamsFromOptions(comm_, &lp_));
+    PetscCall(LatticeParamsFromOptions(comm_, &sc_.lp));
     PetscCall(SweepOptionsFromOptions(comm_, &so_));
-    PetscCall(ToneBurstOptionsFromOptions(comm_, lp_, &fo_));
-    // what the options must not combine to is the run's check: declaring_ reads every block
-    PetscCheck(declaring_ || fo_.profile != ForceProfile::None, comm_, PETSC_ERR_USER, "-force_profile none: a sweep needs a forcing");
-    PetscCall(SimulationOptionsFromOptions(comm_, &sim_));
+    PetscCall(sc_.ReadOptions(comm_, declaring_, false, ForcedScene::Modes::Always, "a sweep needs a forcing"));
     if (!declaring_) PetscCall(CheckMcrAccuracyIntegrator(comm_, so_.mcr));
-    PetscCall(LinearModesOptionsFromOptions(comm_, &mo_));
+    PetscCall(sc_.ReadModeOptions(comm_, declaring_));
     PetscFunctionReturn(0);
   }
-  PetscErrorCode DeclareSolvers(MPI_Comm comm) override { return DeclareForcedRunSolvers(comm); }
+  PetscErrorCode DeclareSolvers(MPI_Comm comm) override { return ForcedScene::DeclareSolvers(comm); }
   // -sweep_resume continues -output itself (no -output_overwrite needed).
   PetscErrorCode OutputPath(std::string *path) override
   {
@@ -249,20 +245,16 @@ protected:
   {
     PetscFunctionBeginUser;
     // Every rank integrates whole runs on its own copy of the lattice.
-    PetscCall(lat_.Setup(PETSC_COMM_SELF, lp_));
-    PetscCall(modes_.Compute(lat_, mo_));
+    // The forcing at the default omega and E*: its profile does not depend on them.
+    PetscCall(sc_.Build(PETSC_COMM_SELF, ForcedScene::Upto::Burst));
     // The lattice's frequencies (linear 1.0..2.24 at the defaults, higher when
     // hardened) then map to c = omega dt inside the test's range (pi/5, 4 pi/5).
-    if (so_.kcorr_sample_dt == 0) so_.kcorr_sample_dt = PETSC_PI / (2 * std::sqrt(lp_.KHat()));
-    so_.bands = InfiniteBandEdges(lp_);
-    {
-      ToneBurst burst; // at the default omega and E*: the profile does not depend on them
-      PetscCall(burst.Setup(lat_, fo_, &modes_));
-      PetscCall(burst.Profile(lat_, &so_.eta));
-      so_.exponential = fo_.profile == ForceProfile::Exponential;
-      so_.exp_a = burst.ExponentialA(), so_.exp_b = burst.ExponentialB();
-      if (modes_.Insulated()) PetscCall(GatherVec(modes_.Insulated(), true, &so_.insulated));
-    }
+    if (so_.kcorr_sample_dt == 0) so_.kcorr_sample_dt = PETSC_PI / (2 * std::sqrt(sc_.lp.KHat()));
+    so_.bands = InfiniteBandEdges(sc_.lp);
+    PetscCall(sc_.burst.Profile(sc_.lat, &so_.eta));
+    so_.exponential = sc_.fo.profile == ForceProfile::Exponential;
+    so_.exp_a = sc_.burst.ExponentialA(), so_.exp_b = sc_.burst.ExponentialB();
+    if (sc_.modes.Insulated()) PetscCall(GatherVec(sc_.modes.Insulated(), true, &so_.insulated));
     zero_one_ = std::make_unique<const ZeroOneTest>(so_.kcorr_nc, (unsigned long)so_.kcorr_seed, so_.kcorr_lags);
     PetscCall(StartGrid());
 
@@ -272,7 +264,7 @@ protected:
       if (!grid_.done[i]) todo_.push_back(i);
     std::stable_sort(todo_.begin(), todo_.end(), [&](size_t a, size_t b) { return a / no != b / no ? a / no > b / no : a % no > b % no; });
     PetscCall(PetscPrintf(comm_, "nltopo sweep: %zu omega x %zu E* = %zu points, %zu to compute on %d rank(s)%s, N = %" PetscInt_FMT ", t_final = %g\n", no, ne,
-                          grid_.Size(), todo_.size(), size_, so_.kcorr ? ", with the 0-1 test" : "", lat_.N(), (double)sim_.t_final));
+                          grid_.Size(), todo_.size(), size_, so_.kcorr ? ", with the 0-1 test" : "", sc_.lat.N(), (double)sc_.sim.t_final));
     {
       PetscErrorCode jerr = 0;
       char jmsg[1024];
@@ -286,8 +278,8 @@ protected:
   {
     PetscLogDouble t_last_ck, t_last_pr, now;
     PetscFunctionBeginUser;
-    sim_.progress = 0;
-    sim_.sample_dt = 0;
+    sc_.sim.progress = 0;
+    sc_.sim.sample_dt = 0;
     // One updating line on a terminal; periodic lines otherwise. Under mpiexec
     // (OpenMPI gives ranks a pty even when the output goes to a file) lines.
     tty_ = !rank_ && isatty(fileno(stdout)) && !getenv("OMPI_COMM_WORLD_SIZE") && !getenv("PMI_RANK");
@@ -312,7 +304,7 @@ protected:
       SweepPoint pt;
       PetscErrorCode ierr = 0;
       char msg[1024];
-      PetscCall(CaptureError([&]() { return ComputePoint(lat_, modes_, fo_, sim_, so_, *zero_one_, so_.omega[idx % no], so_.energy[idx / no], &pt); }, &ierr, msg,
+      PetscCall(CaptureError([&]() { return ComputePoint(sc_.lat, sc_.modes, sc_.fo, sc_.sim, so_, *zero_one_, so_.omega[idx % no], so_.energy[idx / no], &pt); }, &ierr, msg,
                              sizeof(msg)));
       if (IsInterrupt(ierr)) {
         PetscCall(queue_.Stop());
@@ -421,24 +413,22 @@ private:
     PetscFunctionBeginUser;
     grid_.Reset(so_.omega, so_.energy);
     if (!rank_) {
-      PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
       PetscErrorCode ierr = 0;
       PetscInt merged = 0;
-      if (so_.resume) {
-        if (access(path_.c_str(), F_OK)) ierr = PetscError(PETSC_COMM_SELF, __LINE__, PETSC_FUNCTION_NAME, __FILE__, PETSC_ERR_FILE_OPEN, PETSC_ERROR_INITIAL,
-                                                           "-sweep_resume: no sweep file %s to resume", path_.c_str());
-        if (!ierr) ierr = grid_.Load(path_);
-        if (!ierr) ierr = grid_.MergeJournals(path_, &merged);
-      }
-      if (!ierr) ierr = WriteSweep(path_, grid_, so_, 0, 0, false); // the file exists (and is valid) from the start
-      PetscCall(PetscPopErrorHandler());
-      if (ierr) {
-        const char *text;
-        char *specific = NULL;
-        PetscCall(PetscErrorMessage(ierr, &text, &specific));
-        err = 1;
-        PetscCall(PetscStrncpy(msg, specific ? specific : text, sizeof(msg)));
-      } else {
+      PetscCall(CaptureError(
+        [&]() -> PetscErrorCode {
+          PetscFunctionBeginUser;
+          if (so_.resume) {
+            PetscCheck(!access(path_.c_str(), F_OK), PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "-sweep_resume: no sweep file %s to resume", path_.c_str());
+            PetscCall(grid_.Load(path_));
+            PetscCall(grid_.MergeJournals(path_, &merged));
+          }
+          PetscCall(WriteSweep(path_, grid_, so_, 0, 0, false)); // the file exists (and is valid) from the start
+          PetscFunctionReturn(0);
+        },
+        &ierr, msg, sizeof(msg)));
+      if (ierr) err = 1;
+      else {
         for (const std::string &f : JournalFiles(path_)) std::remove(f.c_str()); // merged (resume) or stale (fresh start)
         if (so_.resume)
           PetscCall(PetscPrintf(PETSC_COMM_SELF, "nltopo sweep: resuming %s: %" PetscInt_FMT " of %zu points done (%" PetscInt_FMT " from journals)\n", path_.c_str(),
@@ -493,14 +483,9 @@ private:
     PetscFunctionReturn(0);
   }
 
-  LatticeParams lp_;
-  ToneBurstOptions fo_;
-  SimulationOptions sim_;
-  LinearModesOptions mo_;
+  ForcedScene sc_; // its lattice on PETSC_COMM_SELF, the forcing at the default omega and E*
   SweepOptions so_;
   PetscMPIInt rank_ = 0, size_ = 1;
-  Lattice lat_;
-  LinearModes modes_;
   std::unique_ptr<const ZeroOneTest> zero_one_;
   SweepGrid grid_;
   std::vector<size_t> todo_; // grid indices to compute, in the order they are handed out
@@ -512,6 +497,47 @@ private:
 };
 
 } // namespace
+
+StudyContract SweepStudyContract()
+{
+  using namespace schema_names;
+  return {WithPrefixes({ForcedScene::OptionPrefixes(), {"-sweep_", "-kcorr_"}}), {
+    {"/sweep", "",
+     WithBandEdges({{"omega", D, R, "no", "forcing frequencies"},
+                    {"energy", D, R, "ne", "target energies E*"},
+                    // per point, in the order of the journal (studies/sweep_store.cpp): reals, then ints
+                    {"mcr", D, R, "ne x no", "MCR"},
+                    {"t_off", D, R, "ne x no", "cut-off time (-1: never)"},
+                    {"kcorr", D, R, "ne x no", "0-1 test K (NaN without -sweep_kcorr)"},
+                    {"nl_ratio", D, R, "ne x no", "nonlinear / linear energy"},
+                    {"amplitude", D, R, "ne x no", "forcing amplitude S"},
+                    {"energy_final", D, R, "ne x no", "energy at the end"},
+                    {"seconds", D, R, "ne x no", "wall time of the point"},
+                    {"mcr_error", D, R, "ne x no", "estimated relative MCR error (-sweep_mcr_tol)"},
+                    {"mcr_spread", D, R, "ne x no", "MCR spread over the twins where unpredictable, else 0"},
+                    {"reached", D, I, "ne x no", "1 if E* was reached"},
+                    {"rescalings", D, I, "ne x no", "amplitude repeats"},
+                    {"rhs_evals", D, I, "ne x no", "RHS evaluations of every attempt"},
+                    {"steps", D, I, "ne x no", "accepted steps"},
+                    {"failed", D, I, "ne x no", "1 if the run stopped with an error"},
+                    {"predictable", D, I, "ne x no", "1, 0, or -1 without -sweep_mcr_tol"},
+                    {"mcr_runs", D, I, "ne x no", "integrations spent on the point"},
+                    {"done", D, I, "ne x no", "1 if the point is computed"},
+                    {"points_done", A, I, "scalar", "points computed so far"},
+                    {"points_computed", A, I, "scalar", "points computed by this invocation"},
+                    {"kcorr_computed", A, I, "scalar", "1 with -sweep_kcorr"},
+                    {"mcr_tol", A, R, "scalar", "-sweep_mcr_tol (0: off)"},
+                    {"kcorr_nc", A, I, "scalar", "-kcorr_nc"},
+                    {"kcorr_sample_dt", A, R, "scalar", "-kcorr_sample_dt"},
+                    {"kcorr_rms_fraction", A, R, "scalar", "-kcorr_rms_fraction"},
+                    {"kcorr_record", A, R, "scalar", "-kcorr_record"},
+                    {"kcorr_lags", A, I, "scalar", "-kcorr_lags"},
+                    {"amplitude_rule", A, S, "scalar", "how S was chosen"},
+                    {"force_eta", D, R, "N", "forcing profile eta per site, the same at every point (S scales it)"},
+                    {"insulated_mode", D, R, "N", "linear insulated mode, the exponential profile's fit target (absent without one)"},
+                    {"force_exp_a", A, R, "scalar", "-force_profile exponential: fitted a of eta_n = a e^{b |n - m|} (-1)^{n/2}"},
+                    {"force_exp_b", A, R, "scalar", "-force_profile exponential: fitted b (per site)"}})}}};
+}
 
 std::unique_ptr<Study> CreateSweepStudy() { return std::make_unique<SweepStudy>(); }
 

@@ -6,6 +6,7 @@
 #include "core/options_audit.hpp"
 #include "io/output.hpp"
 #include "stability/floquet.hpp"
+#include "studies/forced_scene.hpp"
 #include "studies/nnm_setup.hpp"
 #include "studies/registry.hpp"
 #include "studies/study.hpp"
@@ -32,12 +33,7 @@ protected:
       }
       PetscFunctionReturn(0);
     }
-    PetscCall(LatticeParamsFromOptions(comm_, &lp_));
-    PetscCall(ToneBurstOptionsFromOptions(comm_, lp_, &fo_));
-    // what the options must not combine to is the run's check: declaring_ reads every block
-    PetscCheck(declaring_ || fo_.profile != ForceProfile::None, comm_, PETSC_ERR_USER,
-               "-force_profile none: -study workprecision scores a forced run (MCR after the cut-off)");
-    PetscCall(SimulationOptionsFromOptions(comm_, &so_));
+    PetscCall(sc_.ReadOptions(comm_, declaring_, true, ForcedScene::Modes::Needed, "-study workprecision scores a forced run (MCR after the cut-off)"));
     if (declaring_) {
       // A simulate scene's output options are accepted and ignored (nothing is sampled):
       // any simulate options file can be the base scene.
@@ -48,24 +44,21 @@ protected:
       PetscCall(PetscOptionsInt("-store_u_stride", "Ignored here (a simulate scene's option)", NULL, stride, &stride, NULL));
       PetscOptionsEnd();
     }
-    PetscCall(LinearModesOptionsFromOptions(comm_, &mo_));
+    PetscCall(sc_.ReadModeOptions(comm_, true)); // accepted whether or not the forcing needs the modes
     PetscFunctionReturn(0);
   }
   PetscErrorCode DeclareSolvers(MPI_Comm comm) override
   {
     PetscFunctionBeginUser;
     if (wo_.shooting) PetscCall(nnm_.DeclareSolvers(comm));
-    else PetscCall(DeclareForcedRunSolvers(comm));
+    else PetscCall(ForcedScene::DeclareSolvers(comm));
     PetscFunctionReturn(0);
   }
   PetscErrorCode Build() override
   {
     PetscFunctionBeginUser;
     if (wo_.shooting) PetscFunctionReturn(0); // RunWorkPrecisionShooting builds the NNM's objects
-    PetscCall(lat_.Setup(comm_, lp_));
-    const bool need_modes = fo_.profile == ForceProfile::Mode || fo_.profile == ForceProfile::Exponential || fo_.amplitude < 0;
-    if (need_modes) PetscCall(modes_.Compute(lat_, mo_));
-    PetscCall(burst_.Setup(lat_, fo_, need_modes ? &modes_ : NULL));
+    PetscCall(sc_.Build(comm_, ForcedScene::Upto::Burst)); // RunWorkPrecision builds the effects of each run
     PetscFunctionReturn(0);
   }
   PetscErrorCode Solve() override
@@ -83,9 +76,9 @@ protected:
     }
     PetscCall(PetscPrintf(comm_, "nltopo workprecision: N = %" PetscInt_FMT ", omega_ext = %.6f, E* = %g, t_final = %g; %zu configurations x %" PetscInt_FMT
                                  " repeats, reference %s from rtol = atol = %g, %" PetscInt_FMT " twins at S x (1 +- %g)\n",
-                          lat_.N(), (double)burst_.Omega(), (double)burst_.EnergyStar(), (double)so_.t_final, wo_.configs.size(), wo_.repeats,
+                          sc_.lat.N(), (double)sc_.burst.Omega(), (double)sc_.burst.EnergyStar(), (double)sc_.sim.t_final, wo_.configs.size(), wo_.repeats,
                           wo_.reference.c_str(), (double)wo_.reference_tol, wo_.twins, (double)wo_.twin_eps));
-    PetscCall(RunWorkPrecision(lat_, &burst_, wo_, &res_));
+    PetscCall(RunWorkPrecision(sc_.lat, &sc_.burst, wo_, &res_));
     PetscCall(PetscPrintf(comm_, "  reference: %s (%s; last change: MCR %.1e, state %.1e), MCR = %.10f, t_off = %.6f\n", res_.reference.c_str(),
                           res_.reference_converged ? "converged" : "NOT converged", (double)res_.reference_change[0],
                           (double)res_.reference_change[kWpNumObservables - 1], (double)res_.reference_value[0], (double)res_.reference_value[1]));
@@ -133,8 +126,8 @@ protected:
     if (wo_.shooting) PetscCall(WriteAttr(v, g, "nnm_energy", wo_.nnm_energy));
     else {
       PetscCall(WriteAttr(v, g, "amplitude", res.amplitude));
-      PetscCall(WriteAttr(v, g, "omega_ext", burst_.Omega()));
-      PetscCall(WriteAttr(v, g, "energy_star", burst_.EnergyStar()));
+      PetscCall(WriteAttr(v, g, "omega_ext", sc_.burst.Omega()));
+      PetscCall(WriteAttr(v, g, "energy_star", sc_.burst.EnergyStar()));
     }
     PetscFunctionReturn(0);
   }
@@ -142,17 +135,41 @@ protected:
 private:
   WorkPrecisionOptions wo_;
   NnmSetup nnm_; // shooting: its options only (the header's N)
-  LatticeParams lp_;
-  ToneBurstOptions fo_;
-  SimulationOptions so_;
-  LinearModesOptions mo_;
-  Lattice lat_;
-  LinearModes modes_;
-  ToneBurst burst_;
+  ForcedScene sc_; // simulate: the scene
   WorkPrecisionResult res_;
 };
 
 } // namespace
+
+StudyContract WorkprecisionStudyContract()
+{
+  using namespace schema_names;
+  return {WithPrefixes({ForcedScene::OptionPrefixes(), NnmSetup::OptionPrefixes(), {"-floquet", "-wp_"}}), {
+    {"/workprecision", "",
+     {{"config", D, S, "nc", "the solver configuration as options"},
+      {"method", D, S, "nc", "method name"},
+      {"accuracy", D, S, "nc", "accuracy setting"},
+      {"wall_seconds", D, R, "nc", "median wall time"},
+      {"rhs_evals", D, I, "nc", "RHS evaluations"},
+      {"steps", D, I, "nc", "accepted steps"},
+      {"rejected_steps", D, I, "nc", "rejected steps"},
+      {"error_<observable>", D, R, "nc", "relative error against the reference"},
+      {"spread_<observable>", A, R, "scalar", "predictability floor"},
+      {"reference_change_<observable>", A, R, "scalar", "change between the last two references"},
+      {"reference_<observable>", A, R, "scalar", "the reference's value"},
+      {"scene", A, S, "scalar", "simulate or shooting"},
+      {"reference", A, S, "scalar", "the reference configuration"},
+      {"reference_converged", A, I, "scalar", "1 if the reference converged"},
+      {"reference_wall_seconds", A, R, "scalar", "wall time of the reference"},
+      {"lyapunov", A, R, "scalar", "finite-time Lyapunov estimate (1/s)"},
+      {"twins", A, I, "scalar", "-wp_twins"},
+      {"twin_eps", A, R, "scalar", "-wp_twin_eps"},
+      {"repeats", A, I, "scalar", "-wp_repeats"},
+      {"nnm_energy", A, R, "scalar", "shooting scene: orbit energy"},
+      {"amplitude", A, R, "scalar", "simulate scene: forcing amplitude"},
+      {"omega_ext", A, R, "scalar", "simulate scene: forcing frequency"},
+      {"energy_star", A, R, "scalar", "simulate scene: E*"}}}}};
+}
 
 std::unique_ptr<Study> CreateWorkprecisionStudy() { return std::make_unique<WorkprecisionStudy>(); }
 

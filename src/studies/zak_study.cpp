@@ -18,6 +18,7 @@
 #include "core/work_queue.hpp"
 #include "diagnostics/phase.hpp"
 #include "io/output.hpp"
+#include "studies/forced_scene.hpp"
 #include "studies/grid_axis.hpp"
 #include "studies/registry.hpp"
 #include "studies/study.hpp"
@@ -66,8 +67,6 @@ PetscErrorCode PhaseRun(const Lattice &lat, const LinearModes &modes, const Tone
   pf.mode = mode;
   pf.omega = modes.Omega()[mode];
   pf.energy = energy;
-  ToneBurst burst;
-  PetscCall(burst.Setup(lat, pf, &modes));
   const PetscReal w = pf.omega, T = 2 * PETSC_PI / w;
   SimulationOptions ps = sim;
   ps.sample_dt = T / zo.samples_per_period;
@@ -75,9 +74,8 @@ PetscErrorCode PhaseRun(const Lattice &lat, const LinearModes &modes, const Tone
   AfterCutoffSamples sink(N);
   SimulationResult r;
   PetscInt rescalings;
-  EffectList fx(lat);
-  PetscCall(BuildEffects(lat, &burst, &fx));
-  PetscCall(SimulateForced(fx, ps, &sink, &r, &rescalings));
+  ToneBurst burst;
+  PetscCall(RunForced(lat, &modes, pf, ps, &sink, &burst, &r, &rescalings));
   for (PetscInt k = 0; k < RowWidth(zo); k++) row[k] = nan;
   row[0] = r.reached;
   row[1] = r.t_off;
@@ -174,26 +172,24 @@ protected:
   PetscErrorCode ReadOptions() override
   {
     PetscFunctionBeginUser;
-    PetscCall(ZakOptionsFromOptions(comm_, &lp_, &zo_));
-    PetscCall(ToneBurstOptionsFromOptions(comm_, lp_, &fo_));
-    PetscCall(SimulationOptionsFromOptions(comm_, &sim_));
-    sim_.progress = 0;
-    PetscCall(LinearModesOptionsFromOptions(comm_, &mo_));
+    PetscCall(ZakOptionsFromOptions(comm_, &sc_.lp, &zo_));
+    PetscCall(sc_.ReadOptions(comm_, declaring_, false, ForcedScene::Modes::Always, NULL));
+    sc_.sim.progress = 0;
+    PetscCall(sc_.ReadModeOptions(comm_, declaring_));
     PetscFunctionReturn(0);
   }
-  PetscErrorCode DeclareSolvers(MPI_Comm comm) override { return DeclareForcedRunSolvers(comm); }
+  PetscErrorCode DeclareSolvers(MPI_Comm comm) override { return ForcedScene::DeclareSolvers(comm); }
   PetscErrorCode Build() override
   {
     PetscFunctionBeginUser;
-    PetscCall(lat_.Setup(PETSC_COMM_SELF, lp_)); // every rank integrates whole runs
-    PetscCall(modes_.Compute(lat_, mo_));
-    const NamedModes &nm = modes_.Named();
+    PetscCall(sc_.Build(PETSC_COMM_SELF, ForcedScene::Upto::Lattice)); // every rank integrates whole runs
+    const NamedModes &nm = sc_.modes.Named();
     PetscCheck(nm.optical_bottom >= 0 && nm.optical_top >= 0, comm_, PETSC_ERR_USER, "-study zak: no optical band edges found for this lattice");
     // Paper's labels: mu = 0 is the optical band's lower edge, mu = pi its upper edge.
     edge_mode_[0] = nm.optical_bottom, edge_mode_[1] = nm.optical_top;
     PetscCall(PetscPrintf(comm_, "nltopo zak: left lattice N = %" PetscInt_FMT ", mu = 0 edge omega = %.6f (mode %" PetscInt_FMT "), mu = pi edge omega = %.6f (mode %" PetscInt_FMT
                                  "), %" PetscInt_FMT " energies\n",
-                          lat_.N(), (double)modes_.Omega()[edge_mode_[0]], edge_mode_[0], (double)modes_.Omega()[edge_mode_[1]], edge_mode_[1],
+                          sc_.lat.N(), (double)sc_.modes.Omega()[edge_mode_[0]], edge_mode_[0], (double)sc_.modes.Omega()[edge_mode_[1]], edge_mode_[1],
                           (PetscInt)zo_.energy.size()));
     PetscFunctionReturn(0);
   }
@@ -203,22 +199,24 @@ protected:
     std::vector<PetscReal> res; // run r = 2 e + edge
     PetscFunctionBeginUser;
     const PetscErrorCode irun = RunDistributed(
-      comm_, 2 * ne, width, [&](PetscInt r, PetscReal *row) { return PhaseRun(lat_, modes_, fo_, sim_, zo_, edge_mode_[r % 2], zo_.energy[r / 2], row); }, &res,
-      &ran_);
-    if (!IsInterrupt(irun)) PetscCall(irun);
-    const bool interrupted = IsInterrupt(irun); // a stop signal: the runs done are written, complete = 0
-    const PetscInt nran = (PetscInt)std::count(ran_.begin(), ran_.end(), 1);
-    PetscCheck(!interrupted || nran > 0, comm_, PETSC_ERR_SIG, "interrupted by %s before the first zak run ended; no output written", SignalName(StopSignalSeen()));
+      comm_, 2 * ne, width, [&](PetscInt r, PetscReal *row) { return PhaseRun(sc_.lat, sc_.modes, sc_.fo, sc_.sim, zo_, edge_mode_[r % 2], zo_.energy[r / 2], row); },
+      &res, &ran_);
+    if (!IsInterrupt(irun)) PetscCall(irun); // a stop signal: the runs done are written, complete = 0
+    if (!std::count(ran_.begin(), ran_.end(), 1)) PetscFunctionReturn(irun); // interrupted before any: nothing to tabulate
     for (PetscInt r = 0; r < 2 * ne; r++)
       if (!ran_[r]) { // not run: reached 0, NaN phases
         res[r * width] = 0;
         for (PetscInt k = 1; k < width; k++) res[r * width + k] = std::numeric_limits<PetscReal>::quiet_NaN();
       }
     PetscCall(Tabulate(comm_, zo_, res, &t_));
-    if (interrupted) PetscCall(CommitPartial());
-    PetscCheck(!interrupted, comm_, PETSC_ERR_SIG, "interrupted by %s between zak runs (%" PetscInt_FMT " of %" PetscInt_FMT " done); partial output %s (complete = 0)",
-               SignalName(StopSignalSeen()), nran, 2 * ne, path_.c_str());
-    PetscFunctionReturn(0);
+    PetscFunctionReturn(irun);
+  }
+  bool Interrupted(Interruption *it) const override
+  {
+    const PetscInt nran = (PetscInt)std::count(ran_.begin(), ran_.end(), 1);
+    if (!nran) *it = {false, "before the first zak run ended", ""};
+    else *it = {true, "between zak runs (" + std::to_string(nran) + " of " + std::to_string(ran_.size()) + " done)", ""};
+    return true;
   }
   PetscErrorCode Write(PetscViewer v) override
   {
@@ -239,8 +237,8 @@ protected:
     PetscCall(WriteIntArray(v, g, "done", ran_, 2)); // 0: not run (a stop signal came first)
     PetscCall(WriteAttr(v, g, "energy_threshold", t_.threshold));
     PetscCall(WriteAttr(v, g, "energy_last_distinct", t_.last_distinct));
-    PetscCall(WriteAttr(v, g, "omega0", modes_.Omega()[edge_mode_[0]]));
-    PetscCall(WriteAttr(v, g, "omegapi", modes_.Omega()[edge_mode_[1]]));
+    PetscCall(WriteAttr(v, g, "omega0", sc_.modes.Omega()[edge_mode_[0]]));
+    PetscCall(WriteAttr(v, g, "omegapi", sc_.modes.Omega()[edge_mode_[1]]));
     PetscCall(WriteAttr(v, g, "mode0", edge_mode_[0])); // -force_mode_index of the runs: a -study simulate run repeats one
     PetscCall(WriteAttr(v, g, "modepi", edge_mode_[1]));
     PetscCall(WriteAttr(v, g, "samples_per_period", zo_.samples_per_period)); // with the run's t_off: the windows' samples
@@ -251,19 +249,43 @@ protected:
   }
 
 private:
-  LatticeParams lp_;
-  ToneBurstOptions fo_;
-  SimulationOptions sim_;
-  LinearModesOptions mo_;
+  ForcedScene sc_;
   ZakOptions zo_;
-  Lattice lat_;
-  LinearModes modes_;
   PetscInt edge_mode_[2] = {-1, -1};
   std::vector<PetscInt> ran_;
   ZakTable t_;
 };
 
 } // namespace
+
+StudyContract ZakStudyContract()
+{
+  using namespace schema_names;
+  return {WithPrefixes({ForcedScene::OptionPrefixes(), {"-zak_"}}), {
+    {"/zak", "",
+     {{"energy", D, R, "ne", "target energies E*"},
+      {"phi0_mean", D, R, "ne", "phi_0, mean over cells and windows"},
+      {"phi0_median", D, R, "ne", "phi_0, median"},
+      {"phipi_mean", D, R, "ne", "phi_pi, mean"},
+      {"phipi_median", D, R, "ne", "phi_pi, median"},
+      {"theta_mean", D, R, "ne", "phi_pi - phi_0 of the means"},
+      {"theta_median", D, R, "ne", "phi_pi - phi_0 of the medians"},
+      {"phi0_window_median", D, R, "ne x nwin", "phi_0 median per window"},
+      {"phipi_window_median", D, R, "ne x nwin", "phi_pi median per window"},
+      {"mcr0", D, R, "ne", "MCR of the mu = 0 run"},
+      {"mcrpi", D, R, "ne", "MCR of the mu = pi run"},
+      {"reached", D, I, "ne x 2", "1 if E* was reached (mu = 0, pi)"},
+      {"done", D, I, "ne x 2", "0: not run (stop signal)"},
+      {"energy_threshold", A, R, "scalar", "lowest E where phi_0, phi_pi stop being distinct (-1: never)"},
+      {"energy_last_distinct", A, R, "scalar", "highest E below it still distinct"},
+      {"omega0", A, R, "scalar", "frequency of the mu = 0 edge mode"},
+      {"omegapi", A, R, "scalar", "frequency of the mu = pi edge mode"},
+      {"mode0", A, I, "scalar", "linear mode index (0-based, ascending omega) of the mu = 0 edge: the runs' -force_mode_index"},
+      {"modepi", A, I, "scalar", "linear mode index of the mu = pi edge"},
+      {"samples_per_period", A, I, "scalar", "-zak_samples_per_period"},
+      {"theta_tol", A, R, "scalar", "-zak_theta_tol"},
+      {"threshold_rule", A, S, "scalar", "the threshold's definition"}}}}};
+}
 
 std::unique_ptr<Study> CreateZakStudy() { return std::make_unique<ZakStudy>(); }
 

@@ -3,6 +3,7 @@
 // the same order; only rank 0 reports; the exit code is the max over ranks.
 #define CATCH_CONFIG_RUNNER
 #include "core/log.hpp"
+#include "studies/registry.hpp"
 #include "timeint/ts_rkn.hpp"
 #include "timeint/ts_symsplit.hpp"
 #include <catch2/catch.hpp>
@@ -21,6 +22,7 @@ int main(int argc, char **argv)
   char **pv = split < argc ? argv + split : argv;
   if (SlepcInitialize(&pc, &pv, NULL, NULL)) return 1;
   if (nltopo::LogRegister() || nltopo::TSSymSplitRegister() || nltopo::TSRknRegister()) return 1;
+  nltopo::RegisterStudyContracts(); // the output schemas and compared option prefixes, as nltopo registers them
   PetscMPIInt rank;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   Catch::Session session;
