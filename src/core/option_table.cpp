@@ -1,4 +1,5 @@
 #include "core/option_table.hpp"
+#include <algorithm>
 #include <cstdio>
 
 namespace nltopo {
@@ -75,6 +76,20 @@ const OptionInfo *FindOption(const std::string &name)
       if (r.name == name) return &r;
   return nullptr;
 }
+
+static std::vector<std::string> &Prefixes()
+{
+  static std::vector<std::string> p;
+  return p;
+}
+
+void RegisterComponentPrefixes(const std::vector<std::string> &prefixes)
+{
+  for (const std::string &p : prefixes)
+    if (std::find(Prefixes().begin(), Prefixes().end(), p) == Prefixes().end()) Prefixes().push_back(p);
+}
+
+const std::vector<std::string> &ComponentPrefixes() { return Prefixes(); }
 
 std::string RangeMessage(const OptionInfo &row, double value)
 {

@@ -66,6 +66,14 @@ void RegisterOptionTable(const std::vector<OptionInfo> *rows, std::function<Pets
 // The row of a full option name ("-lattice_k"), NULL if no table declares it.
 const OptionInfo *FindOption(const std::string &name);
 
+// The option prefixes of nltopo's components ("-wp_"), registered by each
+// study's contract (studies/registry.cpp): the options a resume or an
+// overwrite compares (io/run_options.hpp) and nltopo's own option blocks,
+// refused before any work when unused (core/options_audit.hpp). A prefix is
+// registered once.
+void RegisterComponentPrefixes(const std::vector<std::string> &prefixes);
+const std::vector<std::string> &ComponentPrefixes();
+
 // The one-line message of a value outside a row's range:
 // "-lattice_k must lie in [1e-06, 1e+06], got 0".
 std::string RangeMessage(const OptionInfo &row, double value);

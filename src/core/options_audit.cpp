@@ -1,4 +1,5 @@
 #include "core/options_audit.hpp"
+#include "core/option_table.hpp"
 #include "core/ts_traits.hpp"
 #include <petscts.h>
 #include <slepceps.h>
@@ -72,12 +73,10 @@ bool PetscOwn(const std::string &n)
 // to the options of solver objects with these prefixes (-sim_ts_*, -nnm_snes_*, ...).
 bool OwnComponent(const std::string &n)
 {
-  static const char *prefixes[] = {"study", "output", "lattice_", "force_", "sim_", "sweep_", "kcorr_", "zak_", "perturb_", "stability_", "cont_", "nnm_",
-                                   "floquet", "linear_"};
   static const char *solver_prefixes[] = {"sim_", "nnm_start_", "nnm_", "linear_", "floquet_mf_", "floquet_"};
   static const char *classes[] = {"ts_", "snes_", "ksp_", "pc_", "eps_", "st_", "bv_", "ds_", "rg_", "fn_", "mat_", "dm_", "tao_", "sf_"};
-  bool own = false;
-  for (const char *p : prefixes) own = own || StartsWith(n, p);
+  bool own = StartsWith(n, "study") || StartsWith(n, "output");
+  for (const std::string &p : ComponentPrefixes()) own = own || StartsWith(n, p.c_str() + 1); // the registered prefixes carry the dash
   if (!own) return false;
   for (const char *p : solver_prefixes)
     if (StartsWith(n, p))

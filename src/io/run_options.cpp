@@ -1,4 +1,5 @@
 #include "io/run_options.hpp"
+#include "core/option_table.hpp"
 #include "io/input.hpp"
 #include <algorithm>
 #include <cctype>
@@ -17,19 +18,17 @@ enum class Kind { Ignore, Extent, Physics };
 
 bool StartsWith(const std::string &s, const char *p) { return s.compare(0, std::strlen(p), p) == 0; }
 
-std::vector<std::string> &Prefixes()
-{
-  static std::vector<std::string> p;
-  return p;
-}
-
 Kind Classify(const std::string &key)
 {
   static const char *bookkeeping[] = {"-cont_resume",   "-sweep_resume", "-cont_checkpoint_seconds", "-sweep_checkpoint",
                                       "-sweep_progress", "-sim_progress", "-cont_verbose"};
   static const char *extent[] = {"-cont_energy_max", "-cont_max_points", "-cont_omega_max",     "-cont_mcr_min",
                                  "-cont_branch",     "-sim_store_u",     "-sim_store_u_stride", "-sim_sample_dt"};
-  if (std::none_of(Prefixes().begin(), Prefixes().end(), [&](const std::string &p) { return StartsWith(key, p.c_str()); })) return Kind::Ignore;
+  const std::vector<std::string> &prefixes = ComponentPrefixes();
+  if (std::none_of(prefixes.begin(), prefixes.end(), [&](const std::string &p) { return StartsWith(key, p.c_str()); })) return Kind::Ignore;
+  if (const OptionInfo *row = FindOption(key)) // a declared option: its table's class
+    return row->cls == OptionClass::Bookkeeping ? Kind::Ignore : row->cls == OptionClass::Extent ? Kind::Extent : Kind::Physics;
+  // options not yet declared in a table (core/option_table.hpp)
   for (const char *b : bookkeeping)
     if (key == b) return Kind::Ignore;
   for (const char *d : {"monitor", "_view", "converged_reason"})
@@ -149,13 +148,7 @@ std::string RunOptions()
 
 } // namespace
 
-void RegisterComparedPrefixes(const std::vector<std::string> &prefixes)
-{
-  for (const std::string &p : prefixes)
-    if (std::find(Prefixes().begin(), Prefixes().end(), p) == Prefixes().end()) Prefixes().push_back(p);
-}
-
-const std::vector<std::string> &ComparedPrefixes() { return Prefixes(); }
+const std::vector<std::string> &ComparedPrefixes() { return ComponentPrefixes(); }
 
 std::string FirstOptionDifference(const std::string &file_options, const std::string &run_options, OptionRule rule)
 {

@@ -30,9 +30,8 @@
 
 namespace nltopo {
 
-// Adds option prefixes ("-wp_") to those compared (studies/registry.cpp, from
-// each study's contract); a prefix already there is not added twice.
-void RegisterComparedPrefixes(const std::vector<std::string> &prefixes);
+// The option prefixes compared: those each study's contract registers
+// (core/option_table.hpp RegisterComponentPrefixes, from studies/registry.cpp).
 const std::vector<std::string> &ComparedPrefixes();
 
 enum class OptionRule { Resume, Overwrite };

@@ -23,7 +23,7 @@ void RegisterStudyContracts()
   if (done) return;
   for (auto contract : kContracts) {
     const StudyContract c = contract();
-    RegisterComparedPrefixes(c.option_prefixes);
+    RegisterComponentPrefixes(c.option_prefixes);
     RegisterSchemas(c.schemas);
   }
   done = true;
