@@ -77,7 +77,7 @@ public:
   {
     // a continued run's samples follow the earlier run's (which took t = t_start)
     if (o.t_start > 0 && o.sample_dt > 0) next_ = (PetscInt)std::floor(o.t_start / o.sample_dt + 1e-9) + 1;
-    if (sink_ && dt_ > 0) sink_->Reserve((PetscInt)std::floor(t_final_ / dt_ * (1 + 1e-12)) + 1 - next_);
+    if (sink_ && dt_ > 0) sink_->Reserve(std::max<PetscInt>(0, (PetscInt)std::floor(t_final_ / dt_ * (1 + 1e-12)) + 1 - next_));
   }
   void WithoutInterpolant() { interpolate_ = false; }
   // The samples up to the state z (energy parts e) at time t; t_off < 0
