@@ -1,6 +1,7 @@
 #include "studies/registry.hpp"
 #include "timeint/ts_rkn.hpp"
 #include "timeint/ts_symsplit.hpp"
+#include "core/option_table.hpp"
 #include "core/options_audit.hpp"
 #include "io/output.hpp"
 #include "io/run_options.hpp"
