@@ -120,6 +120,10 @@ std::string OptionText(const char *name, PetscReal value);
 PetscErrorCode BuildEffects(const Lattice &lat, ToneBurst *burst, EffectList *fx);
 // The lattice's own effects only (linear coupling, cubic bonds): tests and tools.
 PetscErrorCode BuildLatticeEffects(const Lattice &lat, EffectList *fx);
+// The lattice model a study runs: the -lattice_* geometry and springs
+// (lattice/params.hpp), the cubic bonds' -lattice_cubic and the optional
+// effects' options (-lattice_damping, ...), validated.
+PetscErrorCode LatticeModelFromOptions(MPI_Comm comm, LatticeParams *p);
 // The options of every optional effect (the studies' options functions).
 PetscErrorCode EffectOptionsFromOptions(MPI_Comm comm);
 

@@ -1,4 +1,5 @@
 #include "effects/lattice_effects.hpp"
+#include "core/option_table.hpp"
 #include <algorithm>
 
 namespace nltopo {
@@ -133,6 +134,21 @@ private:
 } // namespace
 
 std::unique_ptr<Effect> CreateLinearCoupling(const Lattice &lat) { return std::make_unique<LinearCoupling>(lat); }
+
+// model.md's cubic coefficient Gamma. Its option is -lattice_cubic, not
+// "-lattice_Gamma": PETSc option names are case-insensitive, so that name IS
+// -lattice_gamma (README.md, "Option names").
+static const OptionTable<LatticeParams> &CubicTable()
+{
+  static OptionTable<LatticeParams> t("lattice_", "Cubic bonds");
+  static const bool built =
+    (t.Real("cubic", &LatticeParams::Gamma, Closed(-1e6, 1e6), "Cubic coefficient Gamma on every stiff bond (0 = linear lattice)").Register(), true);
+  (void)built;
+  return t;
+}
+static const auto &kCubicTable = CubicTable(); // registered at start-up
+
+PetscErrorCode CubicBondsOptionsFromOptions(MPI_Comm comm, LatticeParams *p) { return kCubicTable.Read(comm, p); }
 
 std::unique_ptr<Effect> CreateCubicBonds(const Lattice &lat)
 {

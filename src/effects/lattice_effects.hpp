@@ -6,6 +6,8 @@
 namespace nltopo {
 
 std::unique_ptr<Effect> CreateLinearCoupling(const Lattice &lat);
+// -lattice_cubic into p->Gamma, validated.
+PetscErrorCode CubicBondsOptionsFromOptions(MPI_Comm comm, LatticeParams *p);
 // NULL when the lattice has no cubic coefficient (-lattice_cubic 0).
 std::unique_ptr<Effect> CreateCubicBonds(const Lattice &lat);
 

@@ -28,6 +28,15 @@ PetscErrorCode EffectOptionsFromOptions(MPI_Comm comm)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode LatticeModelFromOptions(MPI_Comm comm, LatticeParams *p)
+{
+  PetscFunctionBeginUser;
+  PetscCall(LatticeParamsFromOptions(comm, p));
+  PetscCall(CubicBondsOptionsFromOptions(comm, p));
+  PetscCall(EffectOptionsFromOptions(comm)); // every study reads them, so a conservative one can refuse them by name
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode BuildLatticeEffects(const Lattice &lat, EffectList *fx)
 {
   PetscFunctionBeginUser;

@@ -1,6 +1,5 @@
 #include "lattice/params.hpp"
 #include "core/option_table.hpp"
-#include "effects/effect.hpp"
 #include <cmath>
 #include <random>
 
@@ -36,9 +35,8 @@ void LatticeSprings(const LatticeParams &p, std::vector<PetscReal> *bonds, std::
   }
 }
 
-// The -lattice_* block (model.md's parameters). Gamma is model.md's cubic
-// coefficient; its option is -lattice_cubic, not "-lattice_Gamma": PETSc option
-// names are case-insensitive, so that name IS -lattice_gamma (README.md, "Option names").
+// The -lattice_* block of the geometry and the springs (model.md's parameters);
+// the cubic bonds read -lattice_cubic themselves (effects/lattice_effects.cpp).
 static const OptionTable<LatticeParams> &LatticeTable()
 {
   static OptionTable<LatticeParams> t("lattice_", "Lattice model (docs/model.md)");
@@ -48,7 +46,6 @@ static const OptionTable<LatticeParams> &LatticeTable()
                                  .Why("so that k1 = k(1+gamma) and k2 = k(1-gamma) are positive stiffnesses")
                                  .Real("gamma0", &LatticeParams::gamma0, Closed(0, 1e6), "Grounding stiffness gamma0")
                                  .Why("a non-negative stiffness")
-                                 .Real("cubic", &LatticeParams::Gamma, Closed(-1e6, 1e6), "Cubic coefficient Gamma on every stiff bond (0 = linear lattice)")
                                  // 2.5e6 cells: N ~ 10^7 sites, a few GB for a forced run (the state, TS stages, K and L); more would exhaust memory
                                  .Int("cells", &LatticeParams::cells, Closed(1, kMaxCells),
                                       "Unit cells per side Nc, at most 2.5e6 (interface: N = 4 Nc + 2; left/right: N = 2 Nc)")
@@ -69,7 +66,6 @@ PetscErrorCode LatticeParamsFromOptions(MPI_Comm comm, LatticeParams *p)
 {
   PetscFunctionBeginUser;
   PetscCall(kLatticeTable.Read(comm, p));
-  PetscCall(EffectOptionsFromOptions(comm)); // the optional effects' options (-lattice_damping, ...): every study reads them, so a conservative one can refuse them by name
   PetscFunctionReturn(0);
 }
 

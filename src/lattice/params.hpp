@@ -57,7 +57,9 @@ const char *PerturbationName(Perturbation p);
 // i = 0..N-1. Deterministic in (params, seed): every rank builds the same.
 void LatticeSprings(const LatticeParams &p, std::vector<PetscReal> *bonds, std::vector<PetscReal> *diag);
 
-// Reads the -lattice_* options block and validates it (errors name the option).
+// Reads the -lattice_* options of the geometry and the springs and validates
+// them (errors name the option); the studies read the whole lattice model,
+// effects included, with LatticeModelFromOptions (effects/effect.hpp).
 PetscErrorCode LatticeParamsFromOptions(MPI_Comm comm, LatticeParams *p);
 
 } // namespace nltopo

@@ -43,7 +43,7 @@ struct ForcedScene {
   {
     PetscFunctionBeginUser;
     modes_ = modes;
-    if (read_lattice) PetscCall(LatticeParamsFromOptions(comm, &lp));
+    if (read_lattice) PetscCall(LatticeModelFromOptions(comm, &lp));
     PetscCall(ToneBurstOptionsFromOptions(comm, lp, &fo));
     PetscCheck(declaring || !why_forcing || fo.profile != ForceProfile::None, comm, PETSC_ERR_USER, "-force_profile none: %s", why_forcing);
     PetscCall(SimulationOptionsFromOptions(comm, &sim));

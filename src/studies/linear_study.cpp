@@ -50,7 +50,7 @@ protected:
   PetscErrorCode ReadOptions() override
   {
     PetscFunctionBeginUser;
-    PetscCall(LatticeParamsFromOptions(comm_, &lp_));
+    PetscCall(LatticeModelFromOptions(comm_, &lp_));
     PetscCall(LinearModesOptionsFromOptions(comm_, &mo_));
     PetscCall(LinearStudyOptionsFromOptions(comm_, &nq_, &gl_));
     // The transition needs all N eigenfrequencies (an O(N^2) tridiagonal solve per gamma): the dense path's N.

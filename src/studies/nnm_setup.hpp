@@ -29,7 +29,7 @@ struct NnmSetup {
   PetscErrorCode ReadOptions(MPI_Comm comm)
   {
     PetscFunctionBeginUser;
-    PetscCall(LatticeParamsFromOptions(comm, &lp));
+    PetscCall(LatticeModelFromOptions(comm, &lp));
     PetscCall(LinearModesOptionsFromOptions(comm, &mo));
     PetscCall(FlowOptionsFromOptions(comm, &fo));
     PetscCall(ShootingOptionsFromOptions(comm, &so));

@@ -224,7 +224,7 @@ protected:
     PetscCallMPI(MPI_Comm_rank(comm_, &rank_));
     PetscCallMPI(MPI_Comm_size(comm_, &size_));
     PetscCall(RejectGivenOptions(comm_, {"-sim_progress", "-sim_sample_dt"}, "-study sweep (progress: -sweep_progress; no samples are stored)"));
-    PetscCall(LatticeParamsFromOptions(comm_, &sc_.lp));
+    PetscCall(LatticeModelFromOptions(comm_, &sc_.lp));
     PetscCall(SweepOptionsFromOptions(comm_, &so_));
     PetscCall(sc_.ReadOptions(comm_, declaring_, false, ForcedScene::Modes::Always, "a sweep needs a forcing"));
     if (!declaring_) PetscCall(CheckMcrAccuracyIntegrator(comm_, so_.mcr));

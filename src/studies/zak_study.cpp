@@ -110,7 +110,7 @@ PetscErrorCode ZakOptionsFromOptions(MPI_Comm comm, LatticeParams *lp, ZakOption
   {
     lp->layout = Layout::Left; // the nontrivial half lattice, 51 cells (N = 102) unless given
     lp->cells = 51;
-    PetscCall(LatticeParamsFromOptions(comm, lp));
+    PetscCall(LatticeModelFromOptions(comm, lp));
     PetscCheck(lp->layout == Layout::Left, comm, PETSC_ERR_USER, "-study zak works on the left (nontrivial) half lattice: -lattice_layout must be left, got %s",
                LayoutName(lp->layout));
     PetscCall(RejectGivenOptions(comm, {"-force_omega", "-force_energy", "-force_profile", "-force_mode_index"},
