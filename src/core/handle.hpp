@@ -46,5 +46,6 @@ using OwnedEPS = Owned<EPS, EPSDestroy>;
 using OwnedIS = Owned<IS, ISDestroy>;
 using OwnedViewer = Owned<PetscViewer, PetscViewerDestroy>;
 using OwnedVecScatter = Owned<VecScatter, VecScatterDestroy>;
+using OwnedRandom = Owned<PetscRandom, PetscRandomDestroy>;
 
 } // namespace nltopo

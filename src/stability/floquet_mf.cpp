@@ -395,14 +395,13 @@ static PetscErrorCode WarmStart(Vec z0, const std::vector<OwnedVec> *warm, Owned
 {
   PetscFunctionBeginUser;
   if (!warm || warm->empty()) PetscFunctionReturn(0);
-  PetscRandom rnd;
+  OwnedRandom rnd;
   PetscReal nrm;
   PetscCall(VecDuplicate(z0, start->out()));
-  PetscCall(PetscRandomCreate(PetscObjectComm((PetscObject)z0), &rnd));
+  PetscCall(PetscRandomCreate(PetscObjectComm((PetscObject)z0), rnd.out()));
   PetscCall(PetscRandomSetSeed(rnd, 20261122));
   PetscCall(PetscRandomSeed(rnd));
   PetscCall(VecSetRandom(*start, rnd));
-  PetscCall(PetscRandomDestroy(&rnd));
   PetscCall(VecShift(*start, -0.5));
   PetscCall(VecNormalize(*start, NULL));
   for (auto &w : *warm) {

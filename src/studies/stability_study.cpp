@@ -80,14 +80,7 @@ PetscErrorCode RowToState(const Lattice &lat, const std::vector<PetscReal> &rows
   PetscCallMPI(MPI_Comm_rank(lat.Comm(), &rank));
   if (!rank) std::copy(rows.begin() + row * 2 * N, rows.begin() + (row + 1) * 2 * N, r.begin());
   PetscCallMPI(MPI_Bcast(r.data(), (int)(2 * N), MPIU_REAL, 0, lat.Comm()));
-  PetscScalar *a;
-  const PetscInt xs = lat.OwnedStart(), xm = lat.OwnedCount();
-  PetscCall(VecGetArray(z, &a));
-  for (PetscInt k = 0; k < xm; k++) {
-    a[k] = r[xs + k];
-    a[xm + k] = r[N + xs + k];
-  }
-  PetscCall(VecRestoreArray(z, &a));
+  PetscCall(StateFromRow(lat, r.data(), z));
   PetscFunctionReturn(0);
 }
 

@@ -1,5 +1,6 @@
 #include "timeint/simulation.hpp"
 #include "core/cost.hpp"
+#include "core/errors.hpp"
 #include "core/log.hpp"
 #include "core/signals.hpp"
 #include "core/ts_traits.hpp"
@@ -568,18 +569,13 @@ PetscErrorCode Integrate(const SimulationOptions &o, Run *run, TS ts, Vec z)
   PetscCall(TSSetTime(ts, o.t_start));
   PetscCall(TSSetStepNumber(ts, 0));
   PetscCall(run->progress.Start());
-  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
-  const PetscErrorCode ierr = TSSolve(ts, z);
-  PetscCall(PetscPopErrorHandler());
+  PetscErrorCode ierr;
+  char msg[512];
+  PetscCall(CaptureError([&]() { return TSSolve(ts, z); }, &ierr, msg, sizeof msg));
   PetscCall(CostRecordSolve(ts, run->rhs.Counters().rhs)); // the work, also of a failed solve
   PetscCheck(!IsInterrupt(ierr), comm, PETSC_ERR_SIG, "%s", ""); // stopped by a signal: passed on, silent
   PetscCall(TSGetTime(ts, &t));
-  if (ierr) {
-    const char *text = NULL;
-    char *specific = NULL;
-    PetscCall(PetscErrorMessage(ierr, &text, &specific));
-    SETERRQ(comm, PETSC_ERR_NOT_CONVERGED, "time integration failed at t = %g: %s", (double)t, specific && specific[0] ? specific : (text ? text : "error"));
-  }
+  PetscCheck(!ierr, comm, PETSC_ERR_NOT_CONVERGED, "time integration failed at t = %g: %s", (double)t, msg);
   PetscCall(TSGetConvergedReason(ts, &reason));
   PetscCheck(reason >= 0, comm, PETSC_ERR_NOT_CONVERGED, "time integration failed at t = %g: %s (see -sim_ts_* options)", (double)t, TSConvergedReasons[reason]);
   PetscCheck(t >= o.t_final * (1 - 1e-10) || run->r->aborted, comm, PETSC_ERR_NOT_CONVERGED, "time integration stopped at t = %g before -sim_t_final %g", (double)t,
