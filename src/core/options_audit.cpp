@@ -88,24 +88,26 @@ bool OwnComponent(const std::string &n)
 // An option of one TS type's own block (-<prefix>ts_<family>_*) while the
 // prefix runs a TS of another family: unused whatever happens later, so it can
 // be refused before any work (PETSc reads a type's block only for that type).
-// Sets *line when n is such an option. Every nltopo TS defaults to rk.
+// Sets *line when n is such an option. The TS types by default: -sim_ts_type
+// rk (timeint/simulation.cpp), -nnm_ts_type symsplit (orbits/flow.cpp).
 void TypeMismatch(const std::string &n, std::string *line)
 {
-  static const char *ts_prefixes[] = {"sim_", "nnm_"};
+  static const std::pair<const char *, const char *> ts_prefixes[] = {{"sim_", "rk"}, {"nnm_", "symsplit"}};
   static const std::pair<const char *, const char *> families[] = {
     {"rk", "rk"},           {"rkn", "rkn"},         {"symsplit", "symsplit"}, {"basicsymplectic", "basicsymplectic"}, {"theta", "theta"},
     {"cn", "theta"},        {"beuler", "theta"},    {"arkimex", "arkimex"},   {"rosw", "rosw"},                       {"bdf", "bdf"},
     {"alpha", "alpha"},     {"alpha2", "alpha"},    {"glee", "glee"},         {"glle", "glle"},                       {"ssp", "ssp"},
     {"mprk", "mprk"},       {"eimex", "eimex"},     {"irk", "irk"}};
-  for (const char *p : ts_prefixes) {
+  for (const auto &[p, default_type] : ts_prefixes) {
     const std::string head = std::string(p) + "ts_";
     if (!StartsWith(n, head.c_str())) continue;
     const char *option_family = nullptr;
     for (const auto &f : families)
       if (!std::strcmp(f.first, f.second) && StartsWith(n, (head + f.first + "_").c_str())) option_family = f.first;
     if (!option_family) return;
-    char type[64] = "rk";
+    char type[64];
     PetscBool set = PETSC_FALSE;
+    std::snprintf(type, sizeof(type), "%s", default_type);
     if (PetscOptionsGetString(NULL, NULL, ("-" + head + "type").c_str(), type, sizeof(type), &set)) return;
     const char *selected = nullptr;
     for (const auto &f : families)
