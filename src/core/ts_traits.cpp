@@ -39,8 +39,11 @@ std::vector<TSTraits> &Rows()
 }
 // clang-format on
 
-// The defaults of -<prefix>ts_type.
-const std::pair<const char *, const char *> kDefaultTypes[] = {{"sim_", TSRK}, {"nnm_", TSRK}};
+// The defaults of -<prefix>ts_type: the forced runs' rk (5dp, rtol = atol =
+// 1e-8, timeint/simulation.cpp); the shooting's symsplit (bm4, 128 steps per
+// period, orbits/flow.cpp: the measured best, benchmarks/README.md). The
+// literal, as core cannot include timeint/ts_symsplit.hpp's TSSYMSPLIT.
+const std::pair<const char *, const char *> kDefaultTypes[] = {{"sim_", TSRK}, {"nnm_", "symsplit"}};
 
 } // namespace
 

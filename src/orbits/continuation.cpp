@@ -184,274 +184,406 @@ PetscErrorCode DisplacementMcr(const Lattice &lat, Vec z, PetscReal *mcr)
   PetscFunctionReturn(0);
 }
 
+void Branch::Append(const BranchPoint &p, const std::vector<PetscReal> &z0_row)
+{
+  for (const PointColumn &c : kPointColumns) {
+    if (c.reals) (this->*c.reals).push_back(p.*c.real);
+    else (this->*c.ints).push_back(p.*c.integer);
+  }
+  z0.insert(z0.end(), z0_row.begin(), z0_row.end());
+}
+
+void Branch::DropLast(PetscInt n2)
+{
+  for (const PointColumn &c : kPointColumns) {
+    if (c.reals) (this->*c.reals).pop_back();
+    else (this->*c.ints).pop_back();
+  }
+  if (z0.size() >= (size_t)n2) z0.resize(z0.size() - n2); // rank 0's rows
+}
+
+PetscErrorCode OrbitPoint(Shooting &shoot, Vec X, Vec z, BranchPoint *p)
+{
+  EnergyParts e;
+  PetscReal T;
+  PetscFunctionBeginUser;
+  *p = BranchPoint();
+  PetscCall(shoot.Unpack(X, z, &T, &p->beta));
+  PetscCall(shoot.Flow().Effects().Energy(z, &e));
+  PetscCall(DisplacementMcr(shoot.Flow().Lat(), z, &p->mcr));
+  p->energy = e.Total();
+  p->period = T;
+  p->omega = 2 * PETSC_PI / T;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AppendPoint(const Lattice &lat, Vec z, const BranchPoint &p, Branch *b)
+{
+  std::vector<PetscReal> row;
+  PetscFunctionBeginUser;
+  PetscCall(AppendStateRow(lat, z, &row));
+  b->Append(p, row);
+  PetscFunctionReturn(0);
+}
+
+namespace {
+
+// Rank 0's last k orbits of b (z0 rows of 2N), on every rank.
+PetscErrorCode LastRows(const Lattice &lat, const Branch &b, PetscInt k, std::vector<PetscReal> *rows)
+{
+  const PetscInt n = k * 2 * lat.N();
+  PetscMPIInt rank;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(lat.Comm(), &rank));
+  rows->assign(n, 0);
+  if (rank == 0) std::copy(b.z0.end() - n, b.z0.end(), rows->begin());
+  PetscCallMPI(MPI_Bcast(rows->data(), (PetscMPIInt)n, MPIU_REAL, 0, lat.Comm()));
+  PetscFunctionReturn(0);
+}
+
+// One continuation of a family: where it stands (the orbit X, the tangent t,
+// the step ds) and its work vectors. Start, then per point: Record, the stop
+// rules, Step (predictor and corrector).
+class BranchWalk {
+public:
+  BranchWalk(Shooting &shoot, const ContinuationOptions &o, const char *name, Branch *b, PointHook *hook)
+    : shoot_(shoot), lat_(shoot.Flow().Lat()), comm_(lat_.Comm()), o_(o), name_(name), b_(b), hook_(hook)
+  {
+  }
+  PetscErrorCode Run(Vec u_guess, PetscReal T_guess, const Branch *resume);
+
+private:
+  PetscErrorCode Start(Vec u_guess, PetscReal T_guess, const Branch *resume, bool *resumed);
+  PetscErrorCode StartFromGuess(Vec u_guess, PetscReal T_guess);
+  PetscErrorCode ResumeExact();
+  PetscErrorCode ResumeResolving();
+  PetscErrorCode Record(bool record, BranchPoint *p);
+  PetscErrorCode Report(const BranchPoint &p);
+  PetscErrorCode StopReason(const BranchPoint &p, const char **why);
+  PetscErrorCode Step(bool *accepted);
+  PetscErrorCode Correct(bool *ok);
+
+  Shooting &shoot_;
+  const Lattice &lat_;
+  MPI_Comm comm_;
+  const ContinuationOptions &o_;
+  const char *name_;
+  Branch *b_;
+  PointHook *hook_;
+  OwnedVec z_, zprev_, tz_, X_, Xprev_, Xpred_, t_, tprev_;
+  OwnedVec X0_, w_, d_; // closed-family detection: the first orbit, work vectors
+  PetscReal ds_ = 0, znorm_ = 0;
+  PetscReal far_ = 0;          // the largest |X - X0| so far
+  bool have_prev_ = false;     // Xprev_ holds the previous point
+  bool closed_before_ = false; // a resumed branch that had stopped there
+  PetscInt its_ = 0, newton_its_ = 0, kry0_ = 0;
+  PetscLogDouble t_begin_ = 0; // the verbose lines print the elapsed time
+};
+
+PetscErrorCode BranchWalk::Run(Vec u_guess, PetscReal T_guess, const Branch *resume)
+{
+  bool resumed;
+  PetscFunctionBeginUser;
+  PetscCall(Start(u_guess, T_guess, resume, &resumed));
+  bool record = !resumed; // a resumed branch's last point is already recorded
+  newton_its_ = its_;
+  for (;;) {
+    BranchPoint p;
+    const char *why = nullptr;
+    PetscCall(Record(record, &p));
+    record = true;
+    PetscCall(StopReason(p, &why));
+    if (!why) {
+      bool accepted;
+      PetscCall(Step(&accepted));
+      if (!accepted) why = "step collapse (Newton failed or the orbit changed too fast at every step size): see the last points";
+    }
+    if (why) {
+      b_->stop_reason = why;
+      break;
+    }
+  }
+  PetscCall(PetscPrintf(comm_, "  [%s] %zu points, E %.4g .. %.4g, omega %.6f .. %.6f: %s\n", name_, b_->energy.size(), (double)b_->energy.front(),
+                        (double)b_->energy.back(), (double)b_->omega.front(), (double)b_->omega.back(), b_->stop_reason.c_str()));
+  PetscFunctionReturn(0);
+}
+
+// The three starts: from the guess, or from a resume branch's last orbit with
+// its stored tangent and step (exact) or re-solved (files without them).
+PetscErrorCode BranchWalk::Start(Vec u_guess, PetscReal T_guess, const Branch *resume, bool *resumed)
+{
+  PetscFunctionBeginUser;
+  *resumed = resume && resume->energy.size() >= 2;
+  *b_ = *resumed ? *resume : Branch();
+  PetscCall(PetscTime(&t_begin_));
+  PetscCall(lat_.CreateStateVector(z_.out()));
+  for (OwnedVec *v : {&zprev_, &tz_}) PetscCall(VecDuplicate(z_, v->out()));
+  PetscCall(shoot_.CreateUnknowns(X_.out()));
+  for (OwnedVec *v : {&Xprev_, &Xpred_, &t_, &tprev_, &X0_, &w_, &d_}) PetscCall(VecDuplicate(X_, v->out()));
+  kry0_ = shoot_.KrylovIterations();
+  if (!*resumed) {
+    PetscCall(StartFromGuess(u_guess, T_guess));
+    PetscFunctionReturn(0);
+  }
+  const PetscInt n2 = 2 * lat_.N(), np = (PetscInt)b_->energy.size();
+  PetscMPIInt rank;
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+  PetscInt state[2] = {rank == 0 ? (PetscInt)b_->z0.size() : 0, rank == 0 && b_->next_tangent.size() == (size_t)(n2 + 2)}; // stored, exact
+  PetscCallMPI(MPI_Bcast(state, 2, MPIU_INT, 0, comm_));
+  PetscCheck(state[0] == np * n2, comm_, PETSC_ERR_USER, "-cont_resume: branch %s has %" PetscInt_FMT " z0 values for %" PetscInt_FMT " points of 2N = %" PetscInt_FMT,
+             name_, state[0], np, n2);
+  if (state[1]) PetscCall(ResumeExact());
+  else PetscCall(ResumeResolving());
+  // A closed family (e.g. one born at a period doubling that returns to it)
+  // stops once it passes its first orbit again (StopReason).
+  PetscCall(FirstOrbit(lat_, shoot_, *b_, X0_, &far_, &closed_before_));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BranchWalk::StartFromGuess(Vec u_guess, PetscReal T_guess)
+{
+  PetscScalar *a;
+  const PetscScalar *u;
+  EnergyParts e;
+  PetscReal T, beta;
+  bool ok;
+  PetscFunctionBeginUser;
+  // Guess (u, v = 0) scaled to the starting energy (linear scaling: E ~ amplitude^2).
+  PetscCheck(u_guess, comm_, PETSC_ERR_USER, "continuation %s: no starting shape (the linear lattice has no such mode)", name_);
+  PetscCall(VecZeroEntries(z_));
+  PetscCall(VecGetArray(z_, &a));
+  PetscCall(VecGetArrayRead(u_guess, &u));
+  PetscCall(PetscArraycpy(a, u, lat_.OwnedCount()));
+  PetscCall(VecRestoreArrayRead(u_guess, &u));
+  PetscCall(VecRestoreArray(z_, &a));
+  PetscCall(shoot_.Flow().Effects().Energy(z_, &e));
+  PetscCheck(e.Total() > 0, comm_, PETSC_ERR_USER, "continuation %s: the starting shape has zero energy", name_);
+  PetscCall(VecScale(z_, std::sqrt(o_.energy_min / e.Total())));
+  // The first Newton starts just off the linear period: exactly on it, M - I
+  // vanishes on every other linear mode of the same frequency (the left-end
+  // edge mode of model.md's "Trap", degenerate with the insulated mode to
+  // rounding on long lattices), and the matrix-free Krylov solve breaks down.
+  // 1e-7 is below the nonlinear shift at -cont_energy_min's usual values.
+  PetscCall(shoot_.Pack(z_, T_guess * (1 - 1e-7), 0.0, X_));
+  PetscCall(shoot_.SetEnergyConstraint(z_, o_.energy_min));
+  PetscCall(shoot_.Solve(X_, &ok, &its_));
+  PetscCheck(ok, comm_, PETSC_ERR_NOT_CONVERGED, "continuation %s: no periodic orbit found at -cont_energy_min %g (Newton failed after %" PetscInt_FMT " iterations)",
+             name_, (double)o_.energy_min, its_);
+  PetscCall(shoot_.Tangent(X_, NULL, t_));
+  PetscCall(shoot_.Unpack(X_, z_, &T, &beta));
+  PetscCall(VecNorm(z_, NORM_2, &znorm_));
+  ds_ = o_.max_change * znorm_;
+  PetscFunctionReturn(0);
+}
+
+// The last orbit as it was recorded (X = its z0, T, beta), the tangent and the
+// step stored with it: the state of the run that wrote the file after that
+// point, so the next steps are the ones it would have taken.
+PetscErrorCode BranchWalk::ResumeExact()
+{
+  const PetscInt n2 = 2 * lat_.N(), np = (PetscInt)b_->energy.size();
+  std::vector<PetscReal> tangent, last;
+  PetscMPIInt rank;
+  PetscReal T, beta;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+  tangent.assign(n2 + 2, 0);
+  if (rank == 0) tangent = b_->next_tangent;
+  PetscCallMPI(MPI_Bcast(tangent.data(), (PetscMPIInt)(n2 + 2), MPIU_REAL, 0, comm_));
+  PetscCall(LastRows(lat_, *b_, 1, &last));
+  PetscCall(StateFromRow(lat_, last.data(), z_));
+  PetscCall(shoot_.Pack(z_, b_->period.back(), b_->beta.back(), X_));
+  PetscCall(StateFromRow(lat_, tangent.data(), tz_));
+  PetscCall(shoot_.Pack(tz_, tangent[n2], tangent[n2 + 1], t_));
+  ds_ = b_->next_ds;
+  PetscCallMPI(MPI_Bcast(&ds_, 1, MPIU_REAL, 0, comm_));
+  its_ = b_->newton_its.back();
+  PetscCall(shoot_.Unpack(X_, z_, &T, &beta));
+  PetscCall(PetscPrintf(comm_, "  [%s] resumed after point %" PetscInt_FMT ": E = %.5g, omega = %.8f (stored tangent and step)\n", name_, np - 1,
+                        (double)b_->energy.back(), (double)(2 * PETSC_PI / T)));
+  PetscFunctionReturn(0);
+}
+
+// A file without the stored step (written before they were): re-solve the
+// last orbit at its energy, take the family tangent there and a first step as
+// long as the last one.
+PetscErrorCode BranchWalk::ResumeResolving()
+{
+  const PetscInt n2 = 2 * lat_.N(), np = (PetscInt)b_->energy.size();
+  std::vector<PetscReal> rows;
+  PetscReal T, beta;
+  bool ok;
+  PetscFunctionBeginUser;
+  PetscCall(LastRows(lat_, *b_, 2, &rows));
+  PetscCall(StateFromRow(lat_, rows.data(), zprev_));
+  PetscCall(StateFromRow(lat_, rows.data() + n2, z_));
+  const PetscReal dT = b_->period[np - 1] - b_->period[np - 2];
+  PetscCall(shoot_.Pack(z_, b_->period.back(), 0.0, X_));
+  PetscCall(shoot_.SetEnergyConstraint(z_, b_->energy.back()));
+  PetscCall(shoot_.Solve(X_, &ok, &its_));
+  PetscCheck(ok, comm_, PETSC_ERR_USER,
+             "-cont_resume: the last orbit of branch %s (E = %g) is not an orbit of this lattice (Newton failed after %" PetscInt_FMT " iterations): same -lattice_* options as the run that wrote it?",
+             name_, (double)b_->energy.back(), its_);
+  PetscCall(shoot_.Tangent(X_, NULL, t_));
+  PetscCall(VecAXPY(zprev_, -1.0, z_));
+  PetscCall(VecNorm(zprev_, NORM_2, &ds_));
+  ds_ = std::sqrt(ds_ * ds_ + dT * dT);
+  PetscCall(shoot_.Unpack(X_, z_, &T, &beta));
+  PetscCall(VecNorm(z_, NORM_2, &znorm_));
+  ds_ = std::min(ds_, o_.max_change * znorm_);
+  kry0_ = shoot_.KrylovIterations();
+  PetscCall(PetscPrintf(comm_, "  [%s] resumed after point %" PetscInt_FMT ": E = %.5g, omega = %.8f\n", name_, np - 1, (double)b_->energy.back(),
+                        (double)(2 * PETSC_PI / T)));
+  PetscFunctionReturn(0);
+}
+
+// The point at X (z <- its state) and the step a resume from it needs; with
+// `record` (not for a resumed branch's last point, recorded already) appended
+// to the branch and passed to the hook.
+PetscErrorCode BranchWalk::Record(bool record, BranchPoint *p)
+{
+  PetscFunctionBeginUser;
+  PetscCall(OrbitPoint(shoot_, X_, z_, p));
+  const std::vector<PetscReal> prev_tangent = b_->next_tangent; // to drop this point again (below)
+  const PetscReal prev_ds = b_->next_ds;
+  PetscCall(StoreNextStep(lat_, shoot_, t_, tz_, ds_, b_)); // what a resume from this point needs (tz_ <- the tangent's state part)
+  if (!record) PetscFunctionReturn(0);
+  if (!b_->energy.empty()) PetscCall(ShapeCorrelation(lat_, zprev_, z_, &p->shape_corr));
+  p->newton_its = newton_its_;
+  p->krylov_its = shoot_.KrylovIterations() - kry0_;
+  kry0_ = shoot_.KrylovIterations();
+  PetscCall(AppendPoint(lat_, z_, *p, b_));
+  if (hook_) {
+    const PetscErrorCode ierr = hook_->Point(z_, p->period, p->beta, tz_);
+    if (IsInterrupt(ierr)) {
+      // A stop signal inside the hook (e.g. the Floquet multipliers of this
+      // orbit): the point is dropped, so that the branch, its hook columns and
+      // the step stored for a resume stay consistent; a resume recomputes it.
+      b_->DropLast(2 * lat_.N());
+      b_->next_tangent = prev_tangent;
+      b_->next_ds = prev_ds;
+    }
+    PetscCall(ierr);
+  }
+  PetscCall(Report(*p));
+  PetscFunctionReturn(0);
+}
+
+// A modal interaction (the shape correlation dropped), and the verbose line.
+PetscErrorCode BranchWalk::Report(const BranchPoint &p)
+{
+  const PetscInt k = (PetscInt)b_->energy.size() - 1;
+  PetscFunctionBeginUser;
+  if (p.shape_corr < o_.interaction_corr) {
+    b_->interactions.push_back(k);
+    PetscCall(PetscPrintf(comm_, "  [%s] modal interaction at point %" PetscInt_FMT ": shape correlation %.3f, MCR %.3f -> %.3f, omega %.6f, E %.4g\n", name_, k,
+                          (double)p.shape_corr, (double)b_->mcr[k - 1], (double)p.mcr, (double)p.omega, (double)p.energy));
+  }
+  if (o_.verbose) {
+    PetscLogDouble now;
+    PetscCall(PetscTime(&now));
+    PetscCall(PetscPrintf(comm_, "  [%s] %4" PetscInt_FMT "  E = %-11.5g omega = %.8f  MCR = %.4f  Newton %" PetscInt_FMT "  Krylov %" PetscInt_FMT "  |beta| = %.1e  %.0f s\n",
+                          name_, k, (double)p.energy, (double)p.omega, (double)p.mcr, p.newton_its, p.krylov_its, (double)std::abs(p.beta), now - t_begin_));
+  }
+  PetscFunctionReturn(0);
+}
+
+// The stop rules after point p, in order (*why: the stop reason, or null to go
+// on); the seventh, the step collapse, is Step's.
+PetscErrorCode BranchWalk::StopReason(const BranchPoint &p, const char **why)
+{
+  PetscFunctionBeginUser;
+  *why = nullptr;
+  if (p.energy >= o_.energy_max) {
+    *why = "reached -cont_energy_max";
+    b_->reached_max = true;
+    PetscFunctionReturn(0);
+  }
+  if (o_.omega_max > 0 && p.omega >= o_.omega_max) *why = "reached -cont_omega_max";
+  else if (p.mcr < o_.mcr_min) *why = "the MCR fell below -cont_mcr_min (the mode has delocalized)";
+  if (*why) PetscFunctionReturn(0);
+  // A closed family would be followed round and round: it stops once a step
+  // passes within a tenth of its length of the first orbit X0, after the
+  // branch has been farther from X0 than 4 such steps.
+  if (b_->energy.size() == 1) PetscCall(VecCopy(X_, X0_));
+  bool closed = closed_before_ && !have_prev_;
+  if (have_prev_) PetscCall(PassesFirst(X0_, Xprev_, X_, w_, d_, &far_, &closed));
+  if (closed) *why = "the family closed: it returned to its first orbit";
+  else if ((PetscInt)b_->energy.size() >= o_.max_points) *why = "reached -cont_max_points";
+  else if (p.energy < 0.1 * o_.energy_min) *why = "the branch returned below -cont_energy_min";
+  PetscFunctionReturn(0);
+}
+
+// The next point: predictor and corrector, halving ds on failure or too large
+// a change until it falls below -cont_ds_min (*accepted false); then the
+// tangent there and the next step length.
+PetscErrorCode BranchWalk::Step(bool *accepted)
+{
+  PetscReal T, beta;
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(X_, Xprev_));
+  have_prev_ = true;
+  PetscCall(VecCopy(t_, tprev_));
+  PetscCall(VecCopy(z_, zprev_));
+  PetscCall(VecNorm(z_, NORM_2, &znorm_));
+  bool rejected = false;
+  *accepted = false;
+  while (!*accepted && !(ds_ < o_.ds_min * znorm_)) {
+    PetscCall(Correct(accepted));
+    if (*accepted) break;
+    ds_ *= 0.5;
+    rejected = true;
+  }
+  if (!*accepted) PetscFunctionReturn(0);
+  newton_its_ = its_;
+  PetscCall(shoot_.Tangent(X_, tprev_, t_));
+  // Step control: Newton effort, then the cap from the largest change of the orbit.
+  // No growth right after a rejection: the larger step has just failed, and
+  // growing again would alternate failing and accepted steps (inside a dense
+  // band the failures are Newton stalling near a resonance, 6-12 wasted
+  // iterations each; README "Long lattices").
+  if (its_ <= o_.newton_target - 1 && !rejected) ds_ *= 1.6;
+  else if (its_ > o_.newton_target + 1) ds_ *= 0.6;
+  PetscCall(shoot_.Unpack(X_, z_, &T, &beta));
+  PetscCall(VecNorm(z_, NORM_2, &znorm_));
+  ds_ = std::min(ds_, o_.max_change * znorm_);
+  PetscFunctionReturn(0);
+}
+
+// One corrector solve from the predictor Xprev + ds tprev with the arclength
+// constraint: *ok when Newton converged and the orbit changed by at most
+// -cont_max_change (with a margin).
+PetscErrorCode BranchWalk::Correct(bool *ok)
+{
+  PetscReal T, beta;
+  PetscFunctionBeginUser;
+  PetscCall(VecWAXPY(Xpred_, ds_, tprev_, Xprev_));
+  PetscCall(VecCopy(Xpred_, X_));
+  PetscCall(shoot_.SetArclengthConstraint(zprev_, tprev_, Xpred_));
+  PetscCall(shoot_.Solve(X_, ok, &its_));
+  const bool converged = *ok;
+  if (converged) {
+    PetscReal dz;
+    PetscCall(shoot_.Unpack(X_, z_, &T, &beta));
+    PetscCall(VecAXPY(z_, -1.0, zprev_));
+    PetscCall(VecNorm(z_, NORM_2, &dz));
+    *ok = dz <= o_.max_change * znorm_ * 1.5;
+  }
+  if (!*ok && o_.verbose)
+    PetscCall(PetscPrintf(comm_, "  [%s]       step rejected (%s%s after %" PetscInt_FMT " Newton iterations): ds %.3g -> %.3g\n", name_,
+                          converged ? "orbit changed by more than -cont_max_change" : "Newton failed: ", converged ? "" : shoot_.LastReason(), its_,
+                          (double)ds_, (double)(0.5 * ds_)));
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
 PetscErrorCode ContinueBranch(Shooting &shoot, Vec u_guess, PetscReal T_guess, const ContinuationOptions &o, const char *name, Branch *b, PointHook *hook,
                               const Branch *resume)
 {
-  PeriodicFlow &flow = shoot.Flow();
-  const Lattice &lat = flow.Lat();
-  MPI_Comm comm = lat.Comm();
-  OwnedVec z, zprev, tz, X, Xprev, Xpred, t, tprev;
-  PetscReal T, beta, ds;
-  PetscInt its;
-  bool ok;
   PetscFunctionBeginUser;
-  const bool resumed = resume && resume->energy.size() >= 2;
-  *b = resumed ? *resume : Branch();
-  PetscLogDouble t_begin;
-  PetscCall(PetscTime(&t_begin)); // the verbose lines print the elapsed time
-  PetscCall(lat.CreateStateVector(z.out()));
-  PetscCall(VecDuplicate(z, zprev.out()));
-  PetscCall(VecDuplicate(z, tz.out()));
-  PetscCall(shoot.CreateUnknowns(X.out()));
-  for (OwnedVec *v : {&Xprev, &Xpred, &t, &tprev}) PetscCall(VecDuplicate(X, v->out()));
-  PetscInt kry0 = shoot.KrylovIterations();
-  PetscReal znorm;
-
-  PetscInt exact = 0; // resume from the stored tangent and step (bit for bit)
-  if (resumed) {
-    const PetscInt N = lat.N(), np = (PetscInt)b->energy.size();
-    std::vector<PetscReal> rows(4 * N);
-    PetscMPIInt rank;
-    PetscCallMPI(MPI_Comm_rank(comm, &rank));
-    PetscInt stored = rank == 0 ? (PetscInt)b->z0.size() : 0;
-    PetscCallMPI(MPI_Bcast(&stored, 1, MPIU_INT, 0, comm));
-    PetscCheck(stored == np * 2 * N, comm, PETSC_ERR_USER, "-cont_resume: branch %s has %" PetscInt_FMT " z0 values for %" PetscInt_FMT " points of 2N = %" PetscInt_FMT, name,
-               stored, np, 2 * N);
-    if (rank == 0) std::copy(b->z0.end() - 4 * N, b->z0.end(), rows.begin());
-    PetscCallMPI(MPI_Bcast(rows.data(), (PetscMPIInt)(4 * N), MPIU_REAL, 0, comm));
-    exact = rank == 0 ? (PetscInt)(b->next_tangent.size() == (size_t)(2 * N + 2)) : 0;
-    PetscCallMPI(MPI_Bcast(&exact, 1, MPIU_INT, 0, comm));
-  }
-  if (exact) {
-    // The last orbit as it was recorded (X = its z0, T, beta), the tangent
-    // and the step stored with it: the state of the run that wrote the file
-    // after that point, so the next steps are the ones it would have taken.
-    const PetscInt N = lat.N(), np = (PetscInt)b->energy.size();
-    std::vector<PetscReal> row(2 * N + 2), last(2 * N);
-    PetscMPIInt rank;
-    PetscCallMPI(MPI_Comm_rank(comm, &rank));
-    if (rank == 0) {
-      std::copy(b->next_tangent.begin(), b->next_tangent.end(), row.begin());
-      std::copy(b->z0.end() - 2 * N, b->z0.end(), last.begin());
-    }
-    PetscCallMPI(MPI_Bcast(row.data(), (PetscMPIInt)(2 * N + 2), MPIU_REAL, 0, comm));
-    PetscCallMPI(MPI_Bcast(last.data(), (PetscMPIInt)(2 * N), MPIU_REAL, 0, comm));
-    PetscCall(StateFromRow(lat, last.data(), z));
-    PetscCall(shoot.Pack(z, b->period.back(), b->beta.back(), X));
-    PetscCall(StateFromRow(lat, row.data(), tz));
-    PetscCall(shoot.Pack(tz, row[2 * N], row[2 * N + 1], t));
-    ds = b->next_ds;
-    PetscCallMPI(MPI_Bcast(&ds, 1, MPIU_REAL, 0, comm));
-    its = b->newton_its.back();
-    PetscCall(shoot.Unpack(X, z, &T, &beta));
-    PetscCall(PetscPrintf(comm, "  [%s] resumed after point %" PetscInt_FMT ": E = %.5g, omega = %.8f (stored tangent and step)\n", name, np - 1,
-                          (double)b->energy.back(), (double)(2 * PETSC_PI / T)));
-  } else if (resumed) {
-    // A file without the stored step (written before they were): re-solve the
-    // last orbit at its energy, take the family tangent there and a first
-    // step as long as the last one.
-    const PetscInt N = lat.N(), np = (PetscInt)b->energy.size();
-    std::vector<PetscReal> rows(4 * N);
-    PetscMPIInt rank;
-    PetscCallMPI(MPI_Comm_rank(comm, &rank));
-    if (rank == 0) std::copy(b->z0.end() - 4 * N, b->z0.end(), rows.begin());
-    PetscCallMPI(MPI_Bcast(rows.data(), (PetscMPIInt)(4 * N), MPIU_REAL, 0, comm));
-    PetscCall(StateFromRow(lat, rows.data(), zprev));
-    PetscCall(StateFromRow(lat, rows.data() + 2 * N, z));
-    const PetscReal dT = b->period[np - 1] - b->period[np - 2];
-    PetscCall(shoot.Pack(z, b->period.back(), 0.0, X));
-    PetscCall(shoot.SetEnergyConstraint(z, b->energy.back()));
-    PetscCall(shoot.Solve(X, &ok, &its));
-    PetscCheck(ok, comm, PETSC_ERR_USER,
-               "-cont_resume: the last orbit of branch %s (E = %g) is not an orbit of this lattice (Newton failed after %" PetscInt_FMT " iterations): same -lattice_* options as the run that wrote it?",
-               name, (double)b->energy.back(), its);
-    PetscCall(shoot.Tangent(X, NULL, t));
-    PetscCall(VecAXPY(zprev, -1.0, z));
-    PetscCall(VecNorm(zprev, NORM_2, &ds));
-    ds = std::sqrt(ds * ds + dT * dT);
-    PetscCall(shoot.Unpack(X, z, &T, &beta));
-    PetscCall(VecNorm(z, NORM_2, &znorm));
-    ds = std::min(ds, o.max_change * znorm);
-    kry0 = shoot.KrylovIterations();
-    PetscCall(PetscPrintf(comm, "  [%s] resumed after point %" PetscInt_FMT ": E = %.5g, omega = %.8f\n", name, np - 1, (double)b->energy.back(),
-                          (double)(2 * PETSC_PI / T)));
-  } else {
-    // Guess (u, v = 0) scaled to the starting energy (linear scaling: E ~ amplitude^2).
-    PetscScalar *a;
-    const PetscScalar *u;
-    EnergyParts e;
-    PetscCheck(u_guess, comm, PETSC_ERR_USER, "continuation %s: no starting shape (the linear lattice has no such mode)", name);
-    PetscCall(VecZeroEntries(z));
-    PetscCall(VecGetArray(z, &a));
-    PetscCall(VecGetArrayRead(u_guess, &u));
-    PetscCall(PetscArraycpy(a, u, lat.OwnedCount()));
-    PetscCall(VecRestoreArrayRead(u_guess, &u));
-    PetscCall(VecRestoreArray(z, &a));
-    PetscCall(flow.Effects().Energy(z, &e));
-    PetscCheck(e.Total() > 0, comm, PETSC_ERR_USER, "continuation %s: the starting shape has zero energy", name);
-    PetscCall(VecScale(z, std::sqrt(o.energy_min / e.Total())));
-    // The first Newton starts just off the linear period: exactly on it, M - I
-    // vanishes on every other linear mode of the same frequency (the left-end
-    // edge mode of model.md's "Trap", degenerate with the insulated mode to
-    // rounding on long lattices), and the matrix-free Krylov solve breaks down.
-    // 1e-7 is below the nonlinear shift at -cont_energy_min's usual values.
-    PetscCall(shoot.Pack(z, T_guess * (1 - 1e-7), 0.0, X));
-    PetscCall(shoot.SetEnergyConstraint(z, o.energy_min));
-    PetscCall(shoot.Solve(X, &ok, &its));
-    PetscCheck(ok, comm, PETSC_ERR_NOT_CONVERGED, "continuation %s: no periodic orbit found at -cont_energy_min %g (Newton failed after %" PetscInt_FMT " iterations)",
-               name, (double)o.energy_min, its);
-    PetscCall(shoot.Tangent(X, NULL, t));
-    PetscCall(shoot.Unpack(X, z, &T, &beta));
-    PetscCall(VecNorm(z, NORM_2, &znorm));
-    ds = o.max_change * znorm;
-  }
-  bool record = !resumed; // a resumed branch's last point is already recorded
-  PetscInt newton_its = its;
-  // A closed family (e.g. one born at a period doubling that returns to it) would be
-  // followed round and round: it stops once it passes its first orbit X0 again, a step
-  // passing within a tenth of its length of X0 after the branch has been farther from
-  // X0 than 4 such steps (far: the largest |X - X0| so far).
-  OwnedVec X0, w, d;
-  for (OwnedVec *v : {&X0, &w, &d}) PetscCall(VecDuplicate(X, v->out()));
-  PetscReal far = 0;
-  bool have_prev = false;     // Xprev holds the previous point
-  bool closed_before = false; // a resumed branch that had stopped there
-  if (resumed) PetscCall(FirstOrbit(lat, shoot, *b, X0, &far, &closed_before));
-  for (;;) {
-    // Record the point.
-    EnergyParts e;
-    PetscReal mcr, corr = 1;
-    PetscCall(shoot.Unpack(X, z, &T, &beta));
-    PetscCall(flow.Effects().Energy(z, &e));
-    PetscCall(DisplacementMcr(lat, z, &mcr));
-    if (!b->energy.empty()) PetscCall(ShapeCorrelation(lat, zprev, z, &corr));
-    std::vector<PetscReal> prev_tangent = b->next_tangent; // to drop this point again (below)
-    const PetscReal prev_ds = b->next_ds;
-    PetscCall(StoreNextStep(lat, shoot, t, tz, ds, b)); // what a resume from this point needs
-    if (record) {
-      b->energy.push_back(e.Total());
-      b->period.push_back(T);
-      b->omega.push_back(2 * PETSC_PI / T);
-      b->mcr.push_back(mcr);
-      b->shape_corr.push_back(corr);
-      b->beta.push_back(beta);
-      b->newton_its.push_back(newton_its);
-      b->krylov_its.push_back(shoot.KrylovIterations() - kry0);
-      kry0 = shoot.KrylovIterations();
-      PetscCall(AppendStateRow(lat, z, &b->z0));
-      if (hook) {
-        PetscReal dT, dbeta;
-        PetscCall(shoot.Unpack(t, tz, &dT, &dbeta));
-        const PetscErrorCode ierr = hook->Point(z, T, beta, tz);
-        if (IsInterrupt(ierr)) {
-          // A stop signal inside the hook (e.g. the Floquet multipliers of
-          // this orbit): the point is dropped, so that the branch, its hook
-          // columns and the step stored for a resume stay consistent; a
-          // resume recomputes it.
-          for (auto *v : {&b->energy, &b->period, &b->omega, &b->mcr, &b->shape_corr, &b->beta}) v->pop_back();
-          b->newton_its.pop_back();
-          b->krylov_its.pop_back();
-          if (b->z0.size() >= (size_t)(2 * lat.N())) b->z0.resize(b->z0.size() - 2 * lat.N()); // rank 0's rows
-          b->next_tangent = std::move(prev_tangent);
-          b->next_ds = prev_ds;
-        }
-        PetscCall(ierr);
-      }
-      const PetscInt k = (PetscInt)b->energy.size() - 1;
-      if (corr < o.interaction_corr) {
-        b->interactions.push_back(k);
-        PetscCall(PetscPrintf(comm, "  [%s] modal interaction at point %" PetscInt_FMT ": shape correlation %.3f, MCR %.3f -> %.3f, omega %.6f, E %.4g\n", name,
-                              k, (double)corr, (double)b->mcr[k - 1], (double)mcr, (double)b->omega[k], (double)e.Total()));
-      }
-      if (o.verbose) {
-        PetscLogDouble now;
-        PetscCall(PetscTime(&now));
-        PetscCall(PetscPrintf(comm, "  [%s] %4" PetscInt_FMT "  E = %-11.5g omega = %.8f  MCR = %.4f  Newton %" PetscInt_FMT "  Krylov %" PetscInt_FMT "  |beta| = %.1e  %.0f s\n",
-                              name, k, (double)e.Total(), (double)(2 * PETSC_PI / T), (double)mcr, newton_its, b->krylov_its.back(), (double)std::abs(beta), now - t_begin));
-      }
-    }
-    record = true;
-    if (e.Total() >= o.energy_max) {
-      b->stop_reason = "reached -cont_energy_max";
-      b->reached_max = true;
-      break;
-    }
-    if (o.omega_max > 0 && 2 * PETSC_PI / T >= o.omega_max) {
-      b->stop_reason = "reached -cont_omega_max";
-      break;
-    }
-    if (mcr < o.mcr_min) {
-      b->stop_reason = "the MCR fell below -cont_mcr_min (the mode has delocalized)";
-      break;
-    }
-    if (b->energy.size() == 1) PetscCall(VecCopy(X, X0));
-    {
-      bool closed = closed_before && !have_prev;
-      if (have_prev) PetscCall(PassesFirst(X0, Xprev, X, w, d, &far, &closed));
-      if (closed) {
-        b->stop_reason = "the family closed: it returned to its first orbit";
-        break;
-      }
-    }
-    if ((PetscInt)b->energy.size() >= o.max_points) {
-      b->stop_reason = "reached -cont_max_points";
-      break;
-    }
-    if (e.Total() < 0.1 * o.energy_min) {
-      b->stop_reason = "the branch returned below -cont_energy_min";
-      break;
-    }
-    // Next point: predictor + corrector, shrinking ds on failure or too large a change.
-    PetscCall(VecCopy(X, Xprev));
-    have_prev = true;
-    PetscCall(VecCopy(t, tprev));
-    PetscCall(VecCopy(z, zprev));
-    PetscCall(VecNorm(z, NORM_2, &znorm));
-    bool accepted = false, rejected = false;
-    while (!accepted) {
-      if (ds < o.ds_min * znorm) break;
-      PetscCall(VecWAXPY(Xpred, ds, tprev, Xprev));
-      PetscCall(VecCopy(Xpred, X));
-      PetscCall(shoot.SetArclengthConstraint(zprev, tprev, Xpred));
-      PetscCall(shoot.Solve(X, &ok, &its));
-      const bool converged = ok;
-      if (ok) {
-        PetscReal dz;
-        PetscCall(shoot.Unpack(X, z, &T, &beta));
-        PetscCall(VecAXPY(z, -1.0, zprev));
-        PetscCall(VecNorm(z, NORM_2, &dz));
-        ok = dz <= o.max_change * znorm * 1.5;
-      }
-      if (!ok) {
-        if (o.verbose)
-          PetscCall(PetscPrintf(comm, "  [%s]       step rejected (%s%s after %" PetscInt_FMT " Newton iterations): ds %.3g -> %.3g\n", name,
-                                converged ? "orbit changed by more than -cont_max_change" : "Newton failed: ", converged ? "" : shoot.LastReason(), its,
-                                (double)ds, (double)(0.5 * ds)));
-        ds *= 0.5;
-        rejected = true;
-        continue;
-      }
-      accepted = true;
-    }
-    if (!accepted) {
-      b->stop_reason = "step collapse (Newton failed or the orbit changed too fast at every step size): see the last points";
-      break;
-    }
-    newton_its = its;
-    PetscCall(shoot.Tangent(X, tprev, t));
-    // Step control: Newton effort, then the cap from the largest change of the orbit.
-    // No growth right after a rejection: the larger step has just failed, and
-    // growing again would alternate failing and accepted steps (inside a dense
-    // band the failures are Newton stalling near a resonance, 6-12 wasted
-    // iterations each; README "Long lattices").
-    if (its <= o.newton_target - 1 && !rejected) ds *= 1.6;
-    else if (its > o.newton_target + 1) ds *= 0.6;
-    PetscCall(shoot.Unpack(X, z, &T, &beta));
-    PetscCall(VecNorm(z, NORM_2, &znorm));
-    ds = std::min(ds, o.max_change * znorm);
-  }
-  PetscCall(PetscPrintf(comm, "  [%s] %zu points, E %.4g .. %.4g, omega %.6f .. %.6f: %s\n", name, b->energy.size(), (double)b->energy.front(),
-                        (double)b->energy.back(), (double)b->omega.front(), (double)b->omega.back(), b->stop_reason.c_str()));
+  BranchWalk walk(shoot, o, name, b, hook);
+  PetscCall(walk.Run(u_guess, T_guess, resume));
   PetscFunctionReturn(0);
 }
 

@@ -25,8 +25,14 @@ struct ContinuationOptions {
 };
 PetscErrorCode ContinuationOptionsFromOptions(MPI_Comm comm, ContinuationOptions *o);
 
+// One orbit of a branch: its value in each per-point column of Branch.
+struct BranchPoint {
+  PetscReal energy = 0, omega = 0, period = 0, mcr = 0, shape_corr = 1, beta = 0;
+  PetscInt newton_its = 0, krylov_its = 0;
+};
+
 struct Branch {
-  std::vector<PetscReal> energy, omega, period, mcr, shape_corr, beta;
+  std::vector<PetscReal> energy, omega, period, mcr, shape_corr, beta; // kPointColumns
   std::vector<PetscInt> newton_its, krylov_its; // per point (krylov: the mf route's GMRES iterations, 0 for dense LU)
   std::vector<PetscReal> z0;  // rank 0: npts x 2N rows [u_1..u_N, v_1..v_N]
   std::vector<PetscInt> interactions; // point indices flagged as modal interactions
@@ -38,7 +44,35 @@ struct Branch {
   // takes, bit for bit (README.md "Signals and resume rules").
   std::vector<PetscReal> next_tangent;
   PetscReal next_ds = 0;
+
+  // p and its z0 row (rank 0: 2N values, other ranks: none) as the last point;
+  // DropLast removes the last point (n2 = 2N).
+  void Append(const BranchPoint &p, const std::vector<PetscReal> &z0_row);
+  void DropLast(PetscInt n2);
 };
+
+// The per-point columns of Branch besides z0, each once: its name (the
+// /continuation/<branch> dataset, studies/continuation_record.cpp) and where a
+// Branch and a BranchPoint keep it (reals or ints).
+struct PointColumn {
+  const char *name;
+  std::vector<PetscReal> Branch::*reals;
+  PetscReal BranchPoint::*real;
+  std::vector<PetscInt> Branch::*ints;
+  PetscInt BranchPoint::*integer;
+};
+// clang-format off
+inline constexpr PointColumn kPointColumns[] = {
+  {"energy", &Branch::energy, &BranchPoint::energy, nullptr, nullptr},
+  {"omega", &Branch::omega, &BranchPoint::omega, nullptr, nullptr},
+  {"period", &Branch::period, &BranchPoint::period, nullptr, nullptr},
+  {"mcr", &Branch::mcr, &BranchPoint::mcr, nullptr, nullptr},
+  {"shape_corr", &Branch::shape_corr, &BranchPoint::shape_corr, nullptr, nullptr},
+  {"beta", &Branch::beta, &BranchPoint::beta, nullptr, nullptr},
+  {"newton_its", nullptr, nullptr, &Branch::newton_its, &BranchPoint::newton_its},
+  {"krylov_its", nullptr, nullptr, &Branch::krylov_its, &BranchPoint::krylov_its},
+};
+// clang-format on
 
 // A state z in natural order [u_1..u_N, v_1..v_N]: appended to rank 0's row
 // store (other ranks: unchanged), or set from a row every rank holds.
@@ -46,6 +80,11 @@ PetscErrorCode AppendStateRow(const Lattice &lat, Vec z, std::vector<PetscReal> 
 PetscErrorCode StateFromRow(const Lattice &lat, const PetscReal *row, Vec z);
 // MCR of the displacement part of z (model.md's MCR on u0, as a branch records it).
 PetscErrorCode DisplacementMcr(const Lattice &lat, Vec z, PetscReal *mcr);
+// The point of orbit X = (z0, T, beta) (z <- z0): energy, period, omega, beta
+// and MCR; shape_corr 1 and the iteration counts 0 (the caller's to set).
+PetscErrorCode OrbitPoint(Shooting &shoot, Vec X, Vec z, BranchPoint *p);
+// b->Append(p, the z0 row of z).
+PetscErrorCode AppendPoint(const Lattice &lat, Vec z, const BranchPoint &p, Branch *b);
 
 // Called at every accepted orbit (z0, T, beta), e.g. for its Floquet
 // multipliers. dz0 is the state part of the family tangent there (the

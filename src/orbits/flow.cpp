@@ -12,11 +12,11 @@ namespace nltopo {
 PetscErrorCode FlowOptionsFromOptions(MPI_Comm comm, FlowOptions *o)
 {
   PetscFunctionBeginUser;
-  PetscOptionsBegin(comm, "nnm_", "Periodic-orbit flow (TS options: -nnm_ts_*)", NULL);
+  PetscOptionsBegin(comm, "nnm_", "Periodic-orbit flow (TS options: -nnm_ts_*; -nnm_ts_type symsplit by default, scheme bm4)", NULL);
   static const char *const routes[] = {"variational", "tsforward"};
   PetscInt r = static_cast<PetscInt>(o->route);
-  PetscCall(PetscOptionsInt("-steps_per_period", "Fixed steps per period of the shooting integration (rk or symsplit)", NULL, o->steps, &o->steps, NULL));
-  PetscCall(PetscOptionsEList("-monodromy", "Monodromy: variational (state and variational equations in one structured TS) or tsforward (TSForwardSetSensitivities)",
+  PetscCall(PetscOptionsInt("-steps_per_period", "Fixed steps per period of the shooting integration (any -nnm_ts_type; default 128)", NULL, o->steps, &o->steps, NULL));
+  PetscCall(PetscOptionsEList("-monodromy", "Monodromy: variational (state and variational equations in one structured TS) or tsforward (TSForwardSetSensitivities, needs -nnm_ts_type rk)",
                               NULL, routes, 2, routes[r], &r, NULL));
   o->route = static_cast<MonodromyRoute>(r);
   PetscOptionsEnd();
@@ -85,8 +85,10 @@ PetscErrorCode PeriodicFlow::Setup(const EffectList &fx, const FlowOptions &o)
     symplectic_ = tr->fixed_step && tr->acceleration;
   }
   if (symplectic_) {
-    PetscCheck(o.route == MonodromyRoute::Variational, lat.Comm(), PETSC_ERR_USER,
-               "-nnm_monodromy tsforward needs -nnm_ts_type rk (forward sensitivities); -nnm_ts_type symsplit has its own tangent map");
+    PetscBool type_set;
+    PetscCall(PetscOptionsHasName(NULL, "nnm_", "-ts_type", &type_set));
+    PetscCheck(o.route == MonodromyRoute::Variational, lat.Comm(), PETSC_ERR_USER, "-nnm_monodromy tsforward needs -nnm_ts_type rk (forward sensitivities); %s",
+               type_set ? "-nnm_ts_type symsplit has its own tangent map" : "the default -nnm_ts_type is symsplit, whose tangent map is its own");
     PetscCall(TSSetAcceleration(ts_, FlowAcceleration, rhs_)); // beta enters after the splitting (Unfold)
   } else PetscCall(CreateTS(ts_tlm_.out(), Jp_tlm_));
   // the dense 2N x (2N + 1) TSForward set-up only when the dense monodromy is asked for (O(N^2) memory)
@@ -98,8 +100,13 @@ PetscErrorCode PeriodicFlow::CreateTS(TS *ts, Mat jacp)
   TSAdapt adapt;
   TSAdaptType atype;
   PetscBool none;
+  char type[64]; // -nnm_ts_type, or its code default (core/ts_traits.cpp)
   PetscFunctionBeginUser;
-  PetscCall(CreatePeriodTS(lat_->Comm(), TSDefaultType("nnm_"), FlowRhs, this, ts));
+  // Created as the type -nnm_ts_type names, so that rk is 5dp (CreatePeriodTS)
+  // unless -nnm_ts_rk_type says otherwise.
+  PetscCall(PetscStrncpy(type, TSDefaultType("nnm_"), sizeof(type)));
+  PetscCall(PetscOptionsGetString(NULL, "nnm_", "-ts_type", type, sizeof(type), NULL));
+  PetscCall(CreatePeriodTS(lat_->Comm(), type, FlowRhs, this, ts));
   PetscCall(TSSetRHSJacobian(*ts, J_, J_, FlowJacobian, this));
   if (jacp) PetscCall(TSSetRHSJacobianP(*ts, jacp, FlowJacobianP, this));
   PetscCall(TSSetFromOptions(*ts));

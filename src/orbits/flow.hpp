@@ -6,12 +6,13 @@
 // exist only at beta = 0; as an unknown it makes the shooting system square and
 // regular along a family of orbits.
 //
-// Integration uses PETSc TS (prefix -nnm_ts_, default rk 5dp) with FIXED steps
-// dt = T / n: PETSc 3.18's forward sensitivities are wrong with adaptive RK
-// (guide section b), and fixed steps make the flow a smooth function of T.
-// With -nnm_ts_type symsplit the flow is a symplectic splitting and beta
-// enters as one map at the end (orbits/variational_symplectic.hpp): the
-// monodromy at beta = 0 is then symplectic to rounding.
+// Integration uses PETSc TS (prefix -nnm_ts_) with FIXED steps dt = T / n:
+// PETSc 3.18's forward sensitivities are wrong with adaptive RK (guide
+// section b), and fixed steps make the flow a smooth function of T. By default
+// (-nnm_ts_type symsplit, scheme bm4) the flow is a symplectic splitting and
+// beta enters as one map at the end (orbits/variational_symplectic.hpp): the
+// monodromy at beta = 0 is then symplectic to rounding. -nnm_ts_type rk (5dp
+// unless -nnm_ts_rk_type) integrates the state and variational equations.
 // The monodromy and the beta column come from TS forward sensitivities with
 // the assembled state Jacobian (the "dense" route), or one tangent direction at
 // a time (the "matrix-free" route).
@@ -36,7 +37,7 @@ struct StiffnessHarmonics {
 };
 
 struct FlowOptions {
-  PetscInt steps = 128; // fixed RK steps per period
+  PetscInt steps = 128; // fixed steps per period
   MonodromyRoute route = MonodromyRoute::Variational;
 };
 PetscErrorCode FlowOptionsFromOptions(MPI_Comm comm, FlowOptions *o);

@@ -1,6 +1,5 @@
 #include "orbits/variational.hpp"
 #include "core/cost.hpp"
-#include "core/ts_traits.hpp"
 #include "orbits/period_ts.hpp"
 #include "core/log.hpp"
 #include <petscdmda.h>
@@ -35,7 +34,7 @@ PetscErrorCode VariationalFlow::Setup(const EffectList &fx, PetscInt ncol, Petsc
   PetscCall(DMDACreate1d(lat.Comm(), DM_BOUNDARY_NONE, lat.N(), dof_, 1, l.data(), da_.out()));
   PetscCall(DMSetUp(da_));
   PetscCall(DMCreateGlobalVector(da_, Y_.out()));
-  PetscCall(CreatePeriodTS(lat.Comm(), TSDefaultType("nnm_"), VarRhs, this, ts_.out()));
+  PetscCall(CreatePeriodTS(lat.Comm(), TSRK, VarRhs, this, ts_.out())); // the rk route's variational flow (-nnm_ts_type rk)
   PetscCall(TSSetFromOptions(ts_));
   u_.assign(lat.N(), 0.0);
   a_.assign(lat.N(), 0.0);

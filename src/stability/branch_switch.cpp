@@ -10,25 +10,13 @@ namespace nltopo {
 namespace {
 
 // One point of the start branch: orbit X's record (z0 row on rank 0).
-PetscErrorCode AppendPoint(Shooting &shoot, Vec X, Vec z, PetscInt its, Branch *b)
+PetscErrorCode AppendStartPoint(Shooting &shoot, Vec X, Vec z, PetscInt its, Branch *b)
 {
-  PeriodicFlow &flow = shoot.Flow();
-  PetscReal T, beta;
-  EnergyParts e;
+  BranchPoint p;
   PetscFunctionBeginUser;
-  PetscCall(shoot.Unpack(X, z, &T, &beta));
-  PetscCall(flow.Effects().Energy(z, &e));
-  b->energy.push_back(e.Total());
-  b->period.push_back(T);
-  b->omega.push_back(2 * PETSC_PI / T);
-  b->beta.push_back(beta);
-  b->newton_its.push_back(its);
-  b->krylov_its.push_back(0);
-  b->shape_corr.push_back(1);
-  PetscReal mcr;
-  PetscCall(DisplacementMcr(flow.Lat(), z, &mcr));
-  b->mcr.push_back(mcr);
-  PetscCall(AppendStateRow(flow.Lat(), z, &b->z0));
+  PetscCall(OrbitPoint(shoot, X, z, &p));
+  p.newton_its = its;
+  PetscCall(AppendPoint(shoot.Flow().Lat(), z, p, b));
   PetscFunctionReturn(0);
 }
 
@@ -325,8 +313,8 @@ PetscErrorCode StartSwitchedBranch(Shooting &shoot, Vec Xs, const BifurcationEve
   PetscCall(VecDot(z1, phi, &along));
   *away = dz > 0 ? std::abs(along) / dz : 0;
   // the two points and the next step (the resume state of orbits/continuation.hpp)
-  PetscCall(AppendPoint(shoot, Xm, zs, 0, start));
-  PetscCall(AppendPoint(shoot, X1, z1, its, start));
+  PetscCall(AppendStartPoint(shoot, Xm, zs, 0, start));
+  PetscCall(AppendStartPoint(shoot, X1, z1, its, start));
   PetscReal ds;
   PetscCall(VecNormalize(d, &ds));
   PetscReal dT, db;

@@ -30,25 +30,19 @@ enum : unsigned {
   kStepState = 2, // written once there are points; resume: read if present (files of older versions lack it)
 };
 
-// One field of the schema and where BranchRecord keeps it: a dataset (data)
-// or an attribute (attr; written only, a resume recounts them).
+// One field of the schema and where BranchRecord keeps it: a dataset (data,
+// or point: a per-point column of the branch, orbits/continuation.hpp) or an
+// attribute (attr; written only, a resume recounts them).
 struct Column {
   const char *name;
   unsigned flags;
   Cells (*data)(BranchRecord &);
   void (*attr)(const BranchRecord &, AttrValue *);
+  const PointColumn *point = nullptr;
 };
 
 // clang-format off
 const Column kColumns[] = {
-  {"energy", 0, [](BranchRecord &r) { return Cells{&r.b.energy}; }, nullptr},
-  {"omega", 0, [](BranchRecord &r) { return Cells{&r.b.omega}; }, nullptr},
-  {"period", 0, [](BranchRecord &r) { return Cells{&r.b.period}; }, nullptr},
-  {"mcr", 0, [](BranchRecord &r) { return Cells{&r.b.mcr}; }, nullptr},
-  {"newton_its", 0, [](BranchRecord &r) { return Cells{nullptr, &r.b.newton_its}; }, nullptr},
-  {"krylov_its", 0, [](BranchRecord &r) { return Cells{nullptr, &r.b.krylov_its}; }, nullptr},
-  {"shape_corr", 0, [](BranchRecord &r) { return Cells{&r.b.shape_corr}; }, nullptr},
-  {"beta", 0, [](BranchRecord &r) { return Cells{&r.b.beta}; }, nullptr},
   {"z0", kRank0, [](BranchRecord &r) { return Cells{&r.b.z0}; }, nullptr},
   {"interactions", 0, [](BranchRecord &r) { return Cells{nullptr, &r.b.interactions}; }, nullptr},
   {"next_tangent", kRank0 | kStepState, [](BranchRecord &r) { return Cells{&r.b.next_tangent}; }, nullptr},
@@ -78,11 +72,31 @@ const Column kColumns[] = {
 };
 // clang-format on
 
+// The branch's per-point columns, then kColumns.
+const std::vector<Column> &AllColumns()
+{
+  static const std::vector<Column> all = [] {
+    std::vector<Column> v;
+    for (const PointColumn &p : kPointColumns) v.push_back({p.name, 0, nullptr, nullptr, &p});
+    v.insert(v.end(), std::begin(kColumns), std::end(kColumns));
+    return v;
+  }();
+  return all;
+}
+
 const Column *FindColumn(const char *name)
 {
-  for (const Column &c : kColumns)
+  for (const Column &c : AllColumns())
     if (!std::strcmp(c.name, name)) return &c;
   return nullptr;
+}
+
+bool HasData(const Column &c) { return c.data || c.point; }
+
+Cells DataOf(const Column &c, BranchRecord &r)
+{
+  if (!c.point) return c.data(r);
+  return c.point->reals ? Cells{&(r.b.*c.point->reals)} : Cells{nullptr, &(r.b.*c.point->ints)};
 }
 
 struct Bound {
@@ -101,7 +115,7 @@ PetscErrorCode Fields(MPI_Comm comm, FloquetKind fk, std::vector<Bound> *out)
     PetscCheck(s, comm, PETSC_ERR_PLIB, "output schema (src/io/schema.cpp) has no %s variant \"%s\"", kGroup, variant);
     for (const Field &fd : s->fields) {
       const Column *c = FindColumn(fd.name);
-      PetscCheck(c && (fd.kind == FieldKind::Dataset ? c->data != nullptr : c->attr != nullptr), comm, PETSC_ERR_PLIB,
+      PetscCheck(c && (fd.kind == FieldKind::Dataset ? HasData(*c) : c->attr != nullptr), comm, PETSC_ERR_PLIB,
                  "%s %s/%s of the output schema has no column in studies/continuation_record.cpp", KindName(fd.kind), kGroup, fd.name);
       out->push_back({&fd, c, *variant != 0});
     }
@@ -185,7 +199,7 @@ std::vector<const char *> ContinuationVariants(FloquetKind fk)
 std::vector<std::string> ContinuationColumnNames()
 {
   std::vector<std::string> n;
-  for (const Column &c : kColumns) n.push_back(c.name);
+  for (const Column &c : AllColumns()) n.push_back(c.name);
   return n;
 }
 
@@ -207,7 +221,7 @@ PetscErrorCode WriteRecord(PetscViewer v, const BranchRecord &r, FloquetKind fk,
       continue;
     }
     if ((c->flags & kStepState) && !np) continue; // where the continuation stands: what -cont_resume needs to go on bit for bit
-    const Cells d = c->data(const_cast<BranchRecord &>(r)); // the accessors only point, the record is not changed
+    const Cells d = DataOf(*c, const_cast<BranchRecord &>(r)); // the accessors only point, the record is not changed
     const PetscInt row = RowLength(fd->shape, n2, nev);
     if (d.scalar) PetscCall(WriteArray(v, gc, fd->name, std::vector<PetscReal>{*d.scalar}));
     else if (d.ints && fd->type == FieldType::Int) PetscCall(WriteIntArray(v, gc, fd->name, *d.ints, row ? row : 1, !std::strcmp(fd->shape, "npts x nev")));
@@ -255,7 +269,7 @@ PetscErrorCode ReadResume(MPI_Comm comm, const std::string &file, const std::str
     for (const auto &[fd, c, floquet] : fields) {
       if (fd->kind != FieldKind::Dataset) continue;
       if ((floquet || (c->flags & kStepState)) && !has(fd->name)) continue;
-      const Cells d = c->data(rec);
+      const Cells d = DataOf(*c, rec);
       const std::string path = g + fd->name;
       if (d.ints && fd->type == FieldType::Int) {
         PetscCall(ReadInts(file, path.c_str(), d.ints));
@@ -289,7 +303,7 @@ PetscErrorCode ReadResume(MPI_Comm comm, const std::string &file, const std::str
     }
     for (const auto &[fd, c, floquet] : fields) { // padded: files written before krein or det_error were stored
       if (!floquet || fd->kind != FieldKind::Dataset) continue;
-      const Cells d = c->data(rec);
+      const Cells d = DataOf(*c, rec);
       const size_t n = np * (size_t)std::max<PetscInt>(1, RowLength(fd->shape, n2, nev));
       // a missing -floquet_mf verdict or class is "not decided" / "not computed", never 0 (unstable / stable)
       const PetscInt unknown = fk == FloquetKind::MatrixFree && (!std::strcmp(fd->name, "stable") || !std::strcmp(fd->name, "instability")) ? -1 : 0;
@@ -312,7 +326,7 @@ PetscErrorCode ReadResume(MPI_Comm comm, const std::string &file, const std::str
              file.c_str(), label.c_str(), rowlen, n2);
   for (const auto &[fd, c, floquet] : fields) {
     if (fd->kind != FieldKind::Dataset || (c->flags & kRank0)) continue;
-    const Cells d = c->data(rec);
+    const Cells d = DataOf(*c, rec);
     if (d.reals) PetscCall(BroadcastFromRoot(comm, MPIU_REAL, d.reals));
     if (d.ints) PetscCall(BroadcastFromRoot(comm, MPIU_INT, d.ints));
   }

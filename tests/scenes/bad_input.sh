@@ -73,7 +73,8 @@ expect_error "-nnm_orbit_rtol 0.1: not an option of -study simulate" o.h5 $S -nn
 expect_error "-sim_ts_rk_type 5dp: not used by this run" o.h5 $S -sim_ts_type euler -sim_ts_dt 0.1 -sim_ts_rk_type 5dp
 # another TS type's own option is refused before any work (the sweep would otherwise fail after its last point)
 expect_error "-sim_ts_rk_type 5dp: not used by this run (-sim_ts_type is symsplit; the option belongs to -sim_ts_type rk)" o.h5 $W -sim_ts_type symsplit -sim_ts_dt 0.1 -sim_ts_rk_type 5dp
-expect_error "-nnm_ts_symsplit_scheme bm4: not used by this run (-nnm_ts_type is rk, the default" o.h5 $C -nnm_ts_symsplit_scheme bm4
+expect_error "-nnm_ts_rk_type 5dp: not used by this run (-nnm_ts_type is symsplit, the default; the option belongs to -nnm_ts_type rk)" o.h5 $C -nnm_ts_rk_type 5dp
+expect_error "-nnm_monodromy tsforward needs -nnm_ts_type rk (forward sensitivities); the default -nnm_ts_type is symsplit, whose tangent map is its own" o.h5 $C -nnm_monodromy tsforward
 expect_error "unknown option -bogus" o.h5 -study linear -lattice_cells 5 -bogus 1
 # options a study sets itself are refused, not read and overwritten
 expect_error "-sim_progress is set by -study sweep" o.h5 $W -sim_progress 1

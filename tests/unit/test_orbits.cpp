@@ -1,6 +1,7 @@
-// Periodic-orbit building blocks: monodromy and beta column from TS forward
-// sensitivities against central finite differences of the flow; the
-// tangent-linear action against the dense monodromy.
+// Periodic-orbit building blocks on the rk route (-nnm_ts_type rk, 5dp):
+// monodromy and beta column from TS forward sensitivities against central
+// finite differences of the flow; the tangent-linear action against the
+// dense monodromy.
 #include "helpers.hpp"
 #include "monodromy_fd.hpp"
 #include "bands/linear_modes.hpp"
@@ -21,6 +22,7 @@ TEST_CASE("monodromy (variational TS and TSForward routes) equals central differ
   Lattice lat;
   PCHK(lat.Setup(PETSC_COMM_WORLD, p));
   const PetscInt N = lat.N(), n = 2 * N;
+  ScopedOptions rk{{"-nnm_ts_type", "rk"}}; // the rk route (the symplectic one: test_orbits_symplectic.cpp)
   PeriodicFlow flow;
   FlowOptions fo;
   fo.steps = 400;
@@ -81,6 +83,7 @@ TEST_CASE("tangent T column is the derivative of the discrete flow", "[orbits][m
   p.Gamma = 0.5;
   Lattice lat;
   PCHK(lat.Setup(PETSC_COMM_WORLD, p));
+  ScopedOptions rk{{"-nnm_ts_type", "rk"}}; // the rk route (the symplectic one: test_orbits_symplectic.cpp)
   PeriodicFlow flow;
   FlowOptions fo;
   fo.steps = 16;
@@ -125,6 +128,7 @@ struct NonlinearChain14 {
 // of the linear lattice lat (Gamma = 0) from its integrated tangent-linear flow.
 static PetscReal PreconditionerError(const Lattice &lat, LinearMonodromyPC &pc, PetscReal T, unsigned seed)
 {
+  ScopedOptions rk{{"-nnm_ts_type", "rk"}}; // the rk route (the symplectic one: test_orbits_symplectic.cpp)
   PeriodicFlow flow;
   FlowOptions fo;
   fo.steps = 2000;
@@ -317,6 +321,7 @@ TEST_CASE_METHOD(NonlinearChain14, "orbit tangent-stiffness harmonics equal thei
   PCHK(lat.CreateStateVector(z0.out()));
   PCHK(VecDuplicate(z0, zT.out()));
   SetState(lat, u0, v0, z0);
+  ScopedOptions rk{{"-nnm_ts_type", "rk"}}; // the rk route (the symplectic one: test_orbits_symplectic.cpp)
   PeriodicFlow flow;
   auto fx_flow = Effects(lat);
   PCHK(flow.Setup(*fx_flow, FlowOptions()));
@@ -356,6 +361,7 @@ TEST_CASE_METHOD(NonlinearChain14, "orbit tangent-stiffness harmonics equal thei
 TEST_CASE_METHOD(NonlinearChain14, "matrix-free shooting Jacobian action equals the dense Jacobian", "[orbits][mf]")
 {
   const PetscInt N = lat.N();
+  ScopedOptions rk{{"-nnm_ts_type", "rk"}}; // the rk route (the symplectic one: test_orbits_symplectic.cpp)
   PeriodicFlow flow;
   auto fx_flow = Effects(lat);
   PCHK(flow.Setup(*fx_flow, FlowOptions()));
@@ -399,6 +405,7 @@ TEST_CASE_METHOD(NonlinearChain14, "matrix-free shooting Jacobian action equals 
 TEST_CASE_METHOD(NonlinearChain14, "matrix-free shooting Jacobian is the derivative of the residual", "[orbits][mf]")
 {
   const PetscInt N = lat.N();
+  ScopedOptions rk{{"-nnm_ts_type", "rk"}}; // the rk route (the symplectic one: test_orbits_symplectic.cpp)
   PeriodicFlow flow;
   FlowOptions fo;
   fo.steps = 24;
@@ -450,6 +457,7 @@ TEST_CASE_METHOD(NonlinearChain14, "-nnm_orbit_rtol stops Newton at |F| <= rtol 
   const PetscInt N = lat.N();
   LinearModes modes;
   PCHK(modes.Compute(lat, LinearModesOptions()));
+  ScopedOptions rk{{"-nnm_ts_type", "rk"}}; // the rk route (the symplectic one: test_orbits_symplectic.cpp)
   PeriodicFlow flow;
   auto fx_flow = Effects(lat);
   PCHK(flow.Setup(*fx_flow, FlowOptions()));
