@@ -59,7 +59,7 @@ PetscErrorCode FlowAverageMonitor(TS ts, PetscInt step, PetscReal t, Vec z, void
 }
 } // namespace
 
-PeriodicFlow::~PeriodicFlow() { delete rhs_; }
+PeriodicFlow::~PeriodicFlow() = default;
 
 PetscErrorCode PeriodicFlow::Setup(const EffectList &fx, const FlowOptions &o)
 {
@@ -70,8 +70,7 @@ PetscErrorCode PeriodicFlow::Setup(const EffectList &fx, const FlowOptions &o)
   fx_ = &fx;
   lat_ = &lat;
   opt_ = o;
-  delete rhs_;
-  rhs_ = new Rhs(fx);
+  rhs_ = std::make_unique<Rhs>(fx);
   PetscCall(lat.CreateStateMatrix(J_.out()));
   PetscCall(MatCreateDense(lat.Comm(), nl, PETSC_DECIDE, n, 2, NULL, Jp_tlm_.out()));
   PetscCall(MatCreateDense(lat.Comm(), nl, PETSC_DECIDE, n, 2, NULL, S_tlm_.out()));
@@ -89,7 +88,7 @@ PetscErrorCode PeriodicFlow::Setup(const EffectList &fx, const FlowOptions &o)
     PetscCall(PetscOptionsHasName(NULL, "nnm_", "-ts_type", &type_set));
     PetscCheck(o.route == MonodromyRoute::Variational, lat.Comm(), PETSC_ERR_USER, "-nnm_monodromy tsforward needs -nnm_ts_type rk (forward sensitivities); %s",
                type_set ? "-nnm_ts_type symsplit has its own tangent map" : "the default -nnm_ts_type is symsplit, whose tangent map is its own");
-    PetscCall(TSSetAcceleration(ts_, FlowAcceleration, rhs_)); // beta enters after the splitting (Unfold)
+    PetscCall(TSSetAcceleration(ts_, FlowAcceleration, rhs_.get())); // beta enters after the splitting (Unfold)
   } else PetscCall(CreateTS(ts_tlm_.out(), Jp_tlm_));
   // the dense 2N x (2N + 1) TSForward set-up only when the dense monodromy is asked for (O(N^2) memory)
   PetscFunctionReturn(0);

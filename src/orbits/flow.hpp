@@ -94,9 +94,9 @@ public:
   PetscErrorCode EvalJacobian(Vec z, Mat A);
   PetscErrorCode EvalJacobianP(Vec z, Mat Jp);
   PetscErrorCode AccumulateStiffness(PetscInt step, Vec z);
-  PetscReal beta_ = 0;
 
 private:
+  PetscReal beta_ = 0; // the unfolding parameter of the integration under way
   PetscErrorCode CreateTS(TS *ts, Mat jacp);
   PetscErrorCode Run(TS ts, Vec z0, PetscReal T, Vec zT);
   PetscErrorCode Unfold(Vec zT, PetscReal T, PetscReal beta); // zT += beta T grad E(zT) (symplectic route)
@@ -104,7 +104,7 @@ private:
   const EffectList *fx_ = nullptr;
   const Lattice *lat_ = nullptr;
   FlowOptions opt_;
-  Rhs *rhs_ = nullptr;
+  std::unique_ptr<Rhs> rhs_;
   OwnedTS ts_, ts_mono_, ts_tlm_;
   OwnedMat J_, Jp_mono_, Jp_tlm_, S_tlm_;
   std::unique_ptr<VariationalFlow> var_dense_, var_tlm_; // created on first use
