@@ -1,5 +1,6 @@
 #pragma once
-// Shared helpers for the unit tests (every test runs on 1 and 2 ranks).
+// Shared helpers for the unit tests (every test runs on 1 and 2 ranks, but
+// those tagged [serial]: tests/CMakeLists.txt).
 #include "effects/effect.hpp"
 #include "lattice/lattice.hpp"
 #include <catch2/catch.hpp>

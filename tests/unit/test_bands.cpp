@@ -123,7 +123,7 @@ TEST_CASE("shift-invert path finds the same named modes as the dense path", "[ba
   REQUIRE(near.Omega()[b.optical_top] == Approx(dense.Omega()[a.optical_top]).epsilon(1e-10));
 }
 
-TEST_CASE("Zak phase: pi for the left cell, 0 for the right, gauge invariant", "[bands]")
+TEST_CASE("Zak phase: pi for the left cell, 0 for the right, gauge invariant", "[bands][serial]")
 {
   LatticeParams p;
   const PetscReal k1 = p.K1(), k2 = p.K2();

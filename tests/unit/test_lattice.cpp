@@ -49,7 +49,7 @@ TEST_CASE("K is the spec's matrix entry by entry", "[lattice]")
     }
 }
 
-TEST_CASE("interface site m has a stiff bond on each side; 51 stiff and 50 soft bonds", "[lattice]")
+TEST_CASE("interface site m has a stiff bond on each side; 51 stiff and 50 soft bonds", "[lattice][serial]")
 {
   LatticeParams p;
   const PetscInt m = p.InterfaceSite(); // 0-based: model.md's site 51

@@ -7,7 +7,7 @@
 
 using namespace nltopo;
 
-TEST_CASE("Fourier phase of two sinusoids recovers their offset; the wrap keeps 0 and pi inside", "[diagnostics]")
+TEST_CASE("Fourier phase of two sinusoids recovers their offset; the wrap keeps 0 and pi inside", "[diagnostics][serial]")
 {
   const PetscReal w = 1.9513, T = 2 * PETSC_PI / w, dt = T / 16, t0 = 437.25;
   const PetscInt n = 16 * 23; // 23 whole periods

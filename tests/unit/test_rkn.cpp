@@ -90,7 +90,7 @@ RunResult Integrate(const RunSpec &s)
 
 } // namespace
 
-TEST_CASE("rkn: every pair has its order with fixed steps on the harmonic and the Duffing oscillator", "[rkn]")
+TEST_CASE("rkn: every pair has its order with fixed steps on the harmonic and the Duffing oscillator", "[rkn][serial]")
 {
   for (PetscInt i = 0; i < RknPairCount(); i++) {
     const RknPairInfo info = RknPair(i);
@@ -123,7 +123,7 @@ TEST_CASE("rkn: every pair has its order with fixed steps on the harmonic and th
   }
 }
 
-TEST_CASE("rkn: the embedded estimate tracks the true local error of the embedded solution", "[rkn]")
+TEST_CASE("rkn: the embedded estimate tracks the true local error of the embedded solution", "[rkn][serial]")
 {
   // One step of size h from the exact Duffing state (A = 1 at t = 0); the
   // estimate through TSEvaluateWLTE (infinity norm, atol = 1, rtol = 0: the
@@ -187,7 +187,7 @@ TEST_CASE("rkn: the embedded estimate tracks the true local error of the embedde
   }
 }
 
-TEST_CASE("rkn: adaptive runs reach their tolerance on Duffing", "[rkn]")
+TEST_CASE("rkn: adaptive runs reach their tolerance on Duffing", "[rkn][serial]")
 {
   for (PetscInt i = 0; i < RknPairCount(); i++) {
     const RknPairInfo info = RknPair(i);
@@ -216,7 +216,7 @@ TEST_CASE("rkn: adaptive runs reach their tolerance on Duffing", "[rkn]")
 // rkn computes the weighted 2-norm of its error estimate in the pass that forms
 // the step (scalar tolerances); with Vec tolerances PETSc's TSErrorWeightedNorm
 // computes it. The two must take the same steps.
-TEST_CASE("rkn: the fused error norm takes the steps of PETSc's TSErrorWeightedNorm", "[rkn]")
+TEST_CASE("rkn: the fused error norm takes the steps of PETSc's TSErrorWeightedNorm", "[rkn][serial]")
 {
   for (PetscInt i = 0; i < RknPairCount(); i++) {
     const RknPairInfo info = RknPair(i);
@@ -234,7 +234,7 @@ TEST_CASE("rkn: the fused error norm takes the steps of PETSc's TSErrorWeightedN
   }
 }
 
-TEST_CASE("rkn: the raw-array path equals the RHS path bit for bit and costs the pair's accelerations per step", "[rkn]")
+TEST_CASE("rkn: the raw-array path equals the RHS path bit for bit and costs the pair's accelerations per step", "[rkn][serial]")
 {
   for (PetscInt i = 0; i < RknPairCount(); i++) {
     const RknPairInfo info = RknPair(i);
@@ -251,7 +251,7 @@ TEST_CASE("rkn: the raw-array path equals the RHS path bit for bit and costs the
   }
 }
 
-TEST_CASE("rkn: rollback restores the step start; the interpolant is accurate to O(h^6)", "[rkn]")
+TEST_CASE("rkn: rollback restores the step start; the interpolant is accurate to O(h^6)", "[rkn][serial]")
 {
   // Rollback: a step, TSRollBack, the same step again gives the same state.
   for (PetscInt i = 0; i < RknPairCount(); i++) {
@@ -314,7 +314,7 @@ TEST_CASE("rkn: rollback restores the step start; the interpolant is accurate to
   CHECK(std::log2(err[0] / err[1]) > 5.0);
 }
 
-TEST_CASE("rkn: an unknown pair is an error naming the option and the value", "[rkn]")
+TEST_CASE("rkn: an unknown pair is an error naming the option and the value", "[rkn][serial]")
 {
   TS ts;
   PCHK(TSCreate(PETSC_COMM_SELF, &ts));

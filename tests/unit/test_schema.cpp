@@ -142,7 +142,7 @@ bool Compatible(const SpecName &n, const Field &f)
 
 } // namespace
 
-TEST_CASE("outputs.md: every name of every written group is in its schema, of that kind, shape and type", "[schema]")
+TEST_CASE("outputs.md: every name of every written group is in its schema, of that kind, shape and type", "[schema][serial]")
 {
   const std::vector<SpecName> spec = ParseSpec(NLTOPO_OUTPUTS_SPEC);
   // The parse itself against what outputs.md says.
@@ -181,7 +181,7 @@ TEST_CASE("outputs.md: every name of every written group is in its schema, of th
   CHECK(unwritten.empty()); // every group of outputs.md has its schema and its writer
 }
 
-TEST_CASE("the output schemas are well formed", "[schema]")
+TEST_CASE("the output schemas are well formed", "[schema][serial]")
 {
   for (const Schema &s : Schemas()) {
     std::set<std::pair<std::string, int>> seen;
@@ -205,7 +205,7 @@ TEST_CASE("the output schemas are well formed", "[schema]")
   CHECK(FindField("/workprecision", "reference_converged", FieldKind::Attribute)->type == FieldType::Int);
 }
 
-TEST_CASE("the continuation record and the sweep's fields bind their schemas exactly", "[schema]")
+TEST_CASE("the continuation record and the sweep's fields bind their schemas exactly", "[schema][serial]")
 {
   std::set<std::string> schema;
   for (const char *variant : {"", "floquet", "floquet_mf"}) {

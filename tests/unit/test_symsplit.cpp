@@ -70,7 +70,7 @@ PetscInt SchemeIndex(const char *name)
 
 } // namespace
 
-TEST_CASE("symsplit: every scheme has its order on the harmonic and the Duffing oscillator", "[symsplit]")
+TEST_CASE("symsplit: every scheme has its order on the harmonic and the Duffing oscillator", "[symsplit][serial]")
 {
   for (PetscInt i = 0; i < SymSplitSchemeCount(); i++) {
     const SymSplitSchemeInfo info = SymSplitScheme(i);
@@ -98,7 +98,7 @@ TEST_CASE("symsplit: every scheme has its order on the harmonic and the Duffing 
   }
 }
 
-TEST_CASE("symsplit: the raw-array path equals the RHS path and costs the scheme's accelerations per step", "[symsplit]")
+TEST_CASE("symsplit: the raw-array path equals the RHS path and costs the scheme's accelerations per step", "[symsplit][serial]")
 {
   for (PetscInt i = 0; i < SymSplitSchemeCount(); i++) {
     const SymSplitSchemeInfo info = SymSplitScheme(i);
@@ -112,7 +112,7 @@ TEST_CASE("symsplit: the raw-array path equals the RHS path and costs the scheme
   }
 }
 
-TEST_CASE("symsplit: the one-step map is symplectic to rounding (J^T Omega J = Omega)", "[symsplit]")
+TEST_CASE("symsplit: the one-step map is symplectic to rounding (J^T Omega J = Omega)", "[symsplit][serial]")
 {
   // A 2-site nonlinear chain u1'' = -(2 u1 - u2) - u1^3, u2'' = -(2 u2 - u1) - u2^3
   // and its tangent flow for the 4 unit vectors: positions (u, du_1..du_4),
@@ -176,7 +176,7 @@ TEST_CASE("symsplit: the one-step map is symplectic to rounding (J^T Omega J = O
   }
 }
 
-TEST_CASE("symsplit: 10^5 periods of Duffing keep the energy error bounded, without drift", "[symsplit]")
+TEST_CASE("symsplit: 10^5 periods of Duffing keep the energy error bounded, without drift", "[symsplit][serial]")
 {
   // Verlet at 20 steps per period: the energy error oscillates at O(h^2) and
   // does not grow; a non-symplectic method of the same order drifts.
@@ -219,7 +219,7 @@ TEST_CASE("symsplit: 10^5 periods of Duffing keep the energy error bounded, with
   CHECK(*std::max_element(worst.begin(), worst.end()) < 1.05 * worst.front());
 }
 
-TEST_CASE("symsplit: the interpolant is accurate to O(h^6) inside a step", "[symsplit]")
+TEST_CASE("symsplit: the interpolant is accurate to O(h^6) inside a step", "[symsplit][serial]")
 {
   // One step of yoshida8 (error O(h^9)) on the harmonic oscillator, then the
   // interpolant at 0.3 of the step against cos(t): halving h divides the

@@ -56,7 +56,7 @@ std::vector<PetscReal> RequireSameAsModes(const LatticeParams &p)
 
 } // namespace
 
-TEST_CASE("transition: the gamma grid holds 0 and every +-gamma pair exactly", "[bands][transition]")
+TEST_CASE("transition: the gamma grid holds 0 and every +-gamma pair exactly", "[bands][transition][serial]")
 {
   const std::vector<PetscReal> g = GammaGrid(-1, 1, 201);
   REQUIRE(g.size() == 201);
@@ -68,7 +68,7 @@ TEST_CASE("transition: the gamma grid holds 0 and every +-gamma pair exactly", "
   REQUIRE(GammaGrid(0, 1, 2) == std::vector<PetscReal>{0, 1});
 }
 
-TEST_CASE("transition: the Zak phase jumps between 0 and pi exactly at gamma = 0, the left and right cells in opposite senses", "[bands][transition]")
+TEST_CASE("transition: the Zak phase jumps between 0 and pi exactly at gamma = 0, the left and right cells in opposite senses", "[bands][transition][serial]")
 {
   LatticeParams p; // k = 1, gamma0 = 1
   p.cells = 5;
@@ -107,7 +107,7 @@ TEST_CASE("transition: the Zak phase jumps between 0 and pi exactly at gamma = 0
   REQUIRE_FALSE(GapClosed(1.0 + 1e-12, 1.0 - 1e-12));
 }
 
-TEST_CASE("transition: finite spectrum at gamma = +-1 (decoupled dimers, trimers, isolated sites) and 0 (uniform chain)", "[bands][transition]")
+TEST_CASE("transition: finite spectrum at gamma = +-1 (decoupled dimers, trimers, isolated sites) and 0 (uniform chain)", "[bands][transition][serial]")
 {
   for (PetscInt Nc : {1, 3, 25}) {
     LatticeParams p;
@@ -150,7 +150,7 @@ TEST_CASE("transition: finite spectrum at gamma = +-1 (decoupled dimers, trimers
   }
 }
 
-TEST_CASE("transition: where K is not positive definite, lambda_min says so and omega is clamped to 0", "[bands][transition]")
+TEST_CASE("transition: where K is not positive definite, lambda_min says so and omega is clamped to 0", "[bands][transition][serial]")
 {
   LatticeParams p;
   p.k = 1.3;

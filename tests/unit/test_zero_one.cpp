@@ -8,7 +8,7 @@
 
 using namespace nltopo;
 
-TEST_CASE("0-1 test: regular series score near 0, chaotic ones near 1", "[diagnostics]")
+TEST_CASE("0-1 test: regular series score near 0, chaotic ones near 1", "[diagnostics][serial]")
 {
   const ZeroOneTest test(100, 7);
   const PetscInt n = 2000;
@@ -39,7 +39,7 @@ TEST_CASE("0-1 test: regular series score near 0, chaotic ones near 1", "[diagno
   for (PetscReal c : test.Frequencies()) REQUIRE((c > PETSC_PI / 5 && c < 4 * PETSC_PI / 5));
 }
 
-TEST_CASE("0-1 test on a sub-grid of lags scores known series like the full test", "[diagnostics]")
+TEST_CASE("0-1 test on a sub-grid of lags scores known series like the full test", "[diagnostics][serial]")
 {
   const ZeroOneTest test(32, 3, 20); // the sweep's defaults: 32 c values, 20 lags
   const PetscReal g = 0.5 * (1 + std::sqrt(5.0));
@@ -91,7 +91,7 @@ PetscReal DirectScore(const std::vector<PetscReal> &x, const std::vector<PetscRe
 }
 } // namespace
 
-TEST_CASE("0-1 test: the lag-correlation sums equal the direct definition", "[diagnostics]")
+TEST_CASE("0-1 test: the lag-correlation sums equal the direct definition", "[diagnostics][serial]")
 {
   // Series of every character the sweep meets: periodic with a mean,
   // quasi-periodic, a resonant tone (c range contains its frequency: P grows
