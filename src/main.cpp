@@ -16,14 +16,16 @@ int main(int argc, char **argv)
   if (SlepcInitialize(&argc, &argv, NULL, help)) return 1;
   PetscPushErrorHandler(nltopo::OneLineErrorHandler, NULL);
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL); // HDF5's stack dumps off: every failure gets nltopo's one line
-  nltopo::InstallStopSignalHandlers(); // SIGINT, SIGTERM: stop at the next safe point
+  nltopo::InstallStopSignalHandlers();   // SIGINT, SIGTERM: stop at the next safe point
   PetscErrorCode ierr = nltopo::RunStudyFromOptions(PETSC_COMM_WORLD);
   int sig = nltopo::StopSignalSeen();
   if (nltopo::IsInterrupt(ierr) && !nltopo::InterruptReported())
     PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "nltopo: interrupted by %s; no output written\n", nltopo::SignalName(sig ? sig : 15));
   if (!ierr) { // a signal after the last safe point: the output is complete, the exit status still says "stopped by a signal"
     if (nltopo::InterruptRequested(PETSC_COMM_WORLD, &sig)) sig = 0;
-    if (sig) PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "nltopo: %s arrived after the last safe point; the run finished and its output is complete\n", nltopo::SignalName(sig));
+    if (sig)
+      PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "nltopo: %s arrived after the last safe point; the run finished and its output is complete\n",
+                   nltopo::SignalName(sig));
   }
   PetscPopErrorHandler();
   PetscErrorCode fin = SlepcFinalize();

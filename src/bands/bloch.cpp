@@ -28,7 +28,6 @@ PetscReal WrapPhase(PetscReal a)
   if (w < 0) w += two_pi;
   w -= PETSC_PI / 2;
   return std::abs(w) < 1e-14 ? 0.0 : w; // no "-0.000000" from round-off of an exact 0
-
 }
 
 PetscReal ZakPhase(PetscReal k_intra, PetscReal k_inter, int band, PetscInt nq, unsigned gauge_seed)

@@ -8,22 +8,14 @@
 
 namespace nltopo {
 
-static const OptionTable<LinearModesOptions> &LinearModesTable()
-{
-  static OptionTable<LinearModesOptions> t("linear_", "Linear modes (SLEPc EPS on K; solver options -linear_eps_*)");
-  static const bool built =
-    (t.Int("dense_max", &LinearModesOptions::dense_max, Closed(0, 10000),
-           "Largest N solved for all eigenpairs; above it, shift-invert around the band edges")
-       .Why("the dense path holds N x N: 10^4 sites is 800 MB")
-       .Int("nev", &LinearModesOptions::nev, Closed(1, 1000), "Shift-invert path: eigenpairs computed per target")
-       .Real("target_offset", &LinearModesOptions::offset, Open(0, 0.1),
-             "Shift-invert path: relative distance of each target outside its band edge (small: fast convergence; not 0: an exact eigenvalue is a zero pivot)")
-       .Register(),
-     true);
-  (void)built;
-  return t;
-}
-static const auto &kLinearModesTable = LinearModesTable(); // registered at start-up
+static const auto &kLinearModesTable = DeclareOptionTable<
+    LinearModesOptions>("linear_", "Linear modes (SLEPc EPS on K; solver options -linear_eps_*)", [](OptionTable<LinearModesOptions> &t) {
+  t.Int("dense_max", &LinearModesOptions::dense_max, Closed(0, 10000), "Largest N solved for all eigenpairs; above it, shift-invert around the band edges")
+      .Why("the dense path holds N x N: 10^4 sites is 800 MB")
+      .Int("nev", &LinearModesOptions::nev, Closed(1, 1000), "Shift-invert path: eigenpairs computed per target")
+      .Real("target_offset", &LinearModesOptions::offset, Open(0, 0.1),
+            "Shift-invert path: relative distance of each target outside its band edge (small: fast convergence; not 0: an exact eigenvalue is a zero pivot)");
+});
 
 PetscErrorCode LinearModesOptionsFromOptions(MPI_Comm comm, LinearModesOptions *o) { return kLinearModesTable.Read(comm, o); }
 
@@ -124,7 +116,7 @@ PetscErrorCode LinearModes::SolveNear(const Lattice &lat, const LinearModesOptio
       PetscCall(PCSetType(ipc, PCLU));
       PetscCall(PCFactorSetMatOrderingType(ipc, MATORDERINGNATURAL));
     } else {
-      PetscCall(PCSetType(pc, PCLU)); // K - sigma I is indefinite: LU
+      PetscCall(PCSetType(pc, PCLU));                                // K - sigma I is indefinite: LU
       PetscCall(PCFactorSetMatOrderingType(pc, MATORDERINGNATURAL)); // tridiagonal: no fill
     }
     PetscCall(EPSSetFromOptions(eps));
@@ -299,8 +291,7 @@ PetscErrorCode LinearModes::Compute(const Lattice &lat, const LinearModesOptions
     // LAPACK on the dense N x N matrix: the matrix, its eigenvectors and workspace on every rank.
     PetscCall(CheckMemory(lat.Comm(), 4.0 * 8.0 * (double)lat.N() * (double)lat.N(), "all linear eigenpairs (N <= -linear_dense_max)"));
     PetscCall(SolveAll(lat));
-  }
-  else PetscCall(SolveNear(lat, o));
+  } else PetscCall(SolveNear(lat, o));
   PetscCall(SortAndNormalise());
   PetscCall(Identify(lat));
   PetscCall(PetscLogEventEnd(Log().eigen, 0, 0, 0, 0));
@@ -310,8 +301,8 @@ PetscErrorCode LinearModes::Compute(const Lattice &lat, const LinearModesOptions
 PetscErrorCode LinearModes::CopyMode(PetscInt j, Vec x) const
 {
   PetscFunctionBeginUser;
-  PetscCheck(j >= 0 && j < (PetscInt)modes_.size(), PetscObjectComm((PetscObject)x), PETSC_ERR_USER,
-             "linear mode index %" PetscInt_FMT " out of range 0..%zu", j, modes_.size() - 1);
+  PetscCheck(j >= 0 && j < (PetscInt)modes_.size(), PetscObjectComm((PetscObject)x), PETSC_ERR_USER, "linear mode index %" PetscInt_FMT " out of range 0..%zu",
+             j, modes_.size() - 1);
   PetscCall(VecCopy(modes_[j], x));
   PetscFunctionReturn(0);
 }

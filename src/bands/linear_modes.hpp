@@ -17,8 +17,8 @@ PetscErrorCode LinearModesOptionsFromOptions(MPI_Comm comm, LinearModesOptions *
 // Indices (into Omega()) of the named modes; -1 when the layout has none.
 struct NamedModes {
   PetscInt interface = -1, acoustic_top = -1, optical_bottom = -1, optical_top = -1;
-  PetscReal insulated_omega = NAN; // sqrt of the Rayleigh quotient of the projected insulated mode
-  PetscInt insulated_cluster = 0;  // eigenpairs in the k_hat cluster it was projected from
+  PetscReal insulated_omega = NAN;    // sqrt of the Rayleigh quotient of the projected insulated mode
+  PetscInt insulated_cluster = 0;     // eigenpairs in the k_hat cluster it was projected from
   PetscReal insulated_residual = NAN; // ||K x - omega^2 x|| of the projected mode
 };
 
@@ -26,9 +26,9 @@ class LinearModes {
 public:
   PetscErrorCode Compute(const Lattice &lat, const LinearModesOptions &o);
 
-  bool Complete() const { return complete_; }           // all N eigenpairs
+  bool Complete() const { return complete_; }                    // all N eigenpairs
   const std::vector<PetscReal> &Omega() const { return omega_; } // ascending
-  Vec Mode(PetscInt j) const { return modes_[j]; }      // unit 2-norm, largest entry positive
+  Vec Mode(PetscInt j) const { return modes_[j]; }               // unit 2-norm, largest entry positive
   PetscErrorCode CopyMode(PetscInt j, Vec x) const;
   // (phi_j . eta)^2 for every stored mode.
   PetscErrorCode Projections(Vec eta, std::vector<PetscReal> *proj2) const;

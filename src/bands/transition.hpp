@@ -37,12 +37,12 @@ bool GapClosed(PetscReal k_intra, PetscReal k_inter);
 PetscReal ZakPhaseOrNaN(PetscReal k_intra, PetscReal k_inter, int band, PetscInt nq);
 
 struct TransitionResult {
-  PetscInt N = 0;                   // sites
-  std::vector<PetscReal> gamma;     // ng
-  std::vector<PetscReal> omega;     // ng x N, row-major, each row ascending
-  std::vector<PetscReal> zak_left;  // ng x 2 (acoustic, optical); left cell: intra k2, inter k1
-  std::vector<PetscReal> zak_right; // ng x 2; right cell: intra k1, inter k2
-  std::vector<PetscReal> bands_inf; // ng x 4: infinite-lattice acoustic bottom, top, optical bottom, top
+  PetscInt N = 0;                    // sites
+  std::vector<PetscReal> gamma;      // ng
+  std::vector<PetscReal> omega;      // ng x N, row-major, each row ascending
+  std::vector<PetscReal> zak_left;   // ng x 2 (acoustic, optical); left cell: intra k2, inter k1
+  std::vector<PetscReal> zak_right;  // ng x 2; right cell: intra k1, inter k2
+  std::vector<PetscReal> bands_inf;  // ng x 4: infinite-lattice acoustic bottom, top, optical bottom, top
   std::vector<PetscReal> lambda_min; // ng: smallest eigenvalue of K (< 0: not positive definite, omega clamped to 0)
 };
 

@@ -31,7 +31,7 @@ PetscErrorCode CostReduceWorld();
 
 // One TS prefix's line of the card.
 struct CostEntry {
-  std::string prefix;                // "sim_", "nnm_"
+  std::string prefix;               // "sim_", "nnm_"
   std::string integrator, accuracy; // of the first solve; "(several)" when later solves differ
   PetscInt solves = 0, steps = 0, rejected = 0, evals = 0;
   PetscReal dt_min = PETSC_MAX_REAL, dt_max = 0; // fixed-step solves' steps (dt_max 0: none)

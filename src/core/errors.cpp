@@ -48,14 +48,13 @@ static bool interrupt_reported = false;
 
 bool InterruptReported() { return interrupt_reported; }
 
-PetscErrorCode OneLineErrorHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p,
-                                   const char *mess, void *ctx)
+PetscErrorCode OneLineErrorHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
 {
   if (p != PETSC_ERROR_INITIAL) return n;
   int rank = 0, size = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
-  if (rank) return n; // collective errors print once
+  if (rank) return n;       // collective errors print once
   if (n == PETSC_ERR_SIG) { // a stop signal (core/signals.hpp): silent on the way out, then the study's one line
     if (mess && mess[0] && mess[0] != ' ') {
       std::fprintf(stderr, "nltopo: %s\n", mess);
@@ -71,7 +70,8 @@ PetscErrorCode OneLineErrorHandler(MPI_Comm comm, int line, const char *fun, con
   }
   const char *text = NULL;
   PetscErrorMessage(n, &text, NULL);
-  const bool user = n == PETSC_ERR_USER || n == PETSC_ERR_FILE_OPEN || n == PETSC_ERR_FILE_READ || n == PETSC_ERR_FILE_WRITE || n == PETSC_ERR_FP || n == PETSC_ERR_NOT_CONVERGED;
+  const bool user = n == PETSC_ERR_USER || n == PETSC_ERR_FILE_OPEN || n == PETSC_ERR_FILE_READ || n == PETSC_ERR_FILE_WRITE || n == PETSC_ERR_FP ||
+                    n == PETSC_ERR_NOT_CONVERGED;
   // A value PETSc cannot parse: name the option that holds it (its messages name only the value).
   static const struct {
     const char *fun, *marker, *what;
@@ -87,7 +87,8 @@ PetscErrorCode OneLineErrorHandler(MPI_Comm comm, int line, const char *fun, con
       return n;
     }
   if (n == PETSC_ERR_LIB && mess && std::strstr(mess, "HDF5") && !g_output_path.empty())
-    std::fprintf(stderr, "nltopo: error: cannot write -output %s: %s (disk full, over quota, or the file or its directory removed?)\n", g_output_path.c_str(), mess);
+    std::fprintf(stderr, "nltopo: error: cannot write -output %s: %s (disk full, over quota, or the file or its directory removed?)\n", g_output_path.c_str(),
+                 mess);
   else if (user) std::fprintf(stderr, "nltopo: error: %s\n", mess && mess[0] ? mess : text);
   else {
     // PETSc's own message, without its source location; when it quotes a
@@ -150,7 +151,9 @@ static bool CaseTrap(const char *token, const char *where)
 {
   // Any spelling of -lattice_gamma with an upper-case letter (-lattice_Gamma, -LATTICE_GAMMA, ...)
   if (strcasecmp(token, "-lattice_gamma") || !std::strcmp(token, "-lattice_gamma")) return false;
-  PREFLIGHT_ERROR("nltopo: error: %s: %s is the same option as -lattice_gamma (PETSc option names are case-insensitive); set the cubic coefficient with -lattice_cubic\n", where, token);
+  PREFLIGHT_ERROR(
+      "nltopo: error: %s: %s is the same option as -lattice_gamma (PETSc option names are case-insensitive); set the cubic coefficient with -lattice_cubic\n",
+      where, token);
   return true;
 }
 

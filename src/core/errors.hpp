@@ -9,8 +9,7 @@
 
 namespace nltopo {
 
-PetscErrorCode OneLineErrorHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p,
-                                   const char *mess, void *ctx);
+PetscErrorCode OneLineErrorHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx);
 
 // Checks the command line before PETSc reads it: every "-options_file F" must
 // be readable (one line naming it otherwise), and neither the command line,
@@ -35,8 +34,7 @@ PetscErrorCode RejectGivenOptions(MPI_Comm comm, std::initializer_list<const cha
 // printed: *code is its error (0: none) and msg its message. For work one rank
 // does alone (its own run, rank 0's file), whose failure FailTogether then
 // makes collective.
-template <typename Fn>
-PetscErrorCode CaptureError(Fn &&fn, PetscErrorCode *code, char *msg, size_t len)
+template <typename Fn> PetscErrorCode CaptureError(Fn &&fn, PetscErrorCode *code, char *msg, size_t len)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));

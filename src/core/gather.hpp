@@ -10,8 +10,7 @@ namespace nltopo {
 PetscErrorCode GatherVec(Vec v, bool to_all, std::vector<PetscReal> *out);
 
 // Rank 0's vector (its size included) to every rank.
-template <typename T>
-PetscErrorCode BroadcastFromRoot(MPI_Comm comm, MPI_Datatype type, std::vector<T> *v)
+template <typename T> PetscErrorCode BroadcastFromRoot(MPI_Comm comm, MPI_Datatype type, std::vector<T> *v)
 {
   PetscFunctionBeginUser;
   PetscInt n = (PetscInt)v->size();

@@ -11,8 +11,7 @@
 
 namespace nltopo {
 
-template <typename T, PetscErrorCode (*Destroy)(T *)>
-class Owned {
+template <typename T, PetscErrorCode (*Destroy)(T *)> class Owned {
 public:
   Owned() = default;
   explicit Owned(T h) : h_(h) {}
@@ -20,15 +19,27 @@ public:
   Owned(const Owned &) = delete;
   Owned &operator=(const Owned &) = delete;
   Owned(Owned &&o) noexcept : h_(std::exchange(o.h_, nullptr)) {}
-  Owned &operator=(Owned &&o) noexcept {
-    if (this != &o) { reset(); h_ = std::exchange(o.h_, nullptr); }
+  Owned &operator=(Owned &&o) noexcept
+  {
+    if (this != &o) {
+      reset();
+      h_ = std::exchange(o.h_, nullptr);
+    }
     return *this;
   }
   operator T() const { return h_; }
   T get() const { return h_; }
   // Address for PETSc "create" calls; releases any handle held before.
-  T *out() { reset(); return &h_; }
-  void reset() { if (h_) (void)Destroy(&h_); h_ = nullptr; }
+  T *out()
+  {
+    reset();
+    return &h_;
+  }
+  void reset()
+  {
+    if (h_) (void)Destroy(&h_);
+    h_ = nullptr;
+  }
   // Gives up ownership (the caller destroys it and checks the error).
   T release() { return std::exchange(h_, nullptr); }
   explicit operator bool() const { return h_ != nullptr; }

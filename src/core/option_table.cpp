@@ -49,8 +49,7 @@ std::string OptionNumberText(double x, bool integer)
 
 std::string Bounds::Text(bool integer) const
 {
-  if (integer && !lo_open && !hi_open && std::isfinite(lo) && std::isfinite(hi))
-    return OptionNumberText(lo, true) + ".." + OptionNumberText(hi, true);
+  if (integer && !lo_open && !hi_open && std::isfinite(lo) && std::isfinite(hi)) return OptionNumberText(lo, true) + ".." + OptionNumberText(hi, true);
   return std::string(lo_open ? "(" : "[") + OptionNumberText(lo, integer) + ", " + OptionNumberText(hi, integer) + (hi_open ? ")" : "]");
 }
 

@@ -28,10 +28,7 @@ const char *OptionClassName(OptionClass c);
 struct Bounds {
   double lo = -INFINITY, hi = INFINITY;
   bool lo_open = false, hi_open = false;
-  bool Contains(double x) const
-  {
-    return std::isfinite(x) && (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi);
-  }
+  bool Contains(double x) const { return std::isfinite(x) && (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi); }
   std::string Text(bool integer) const; // "[0, 1e6]", "(0, 0.1)", "1..100"
 };
 inline Bounds Closed(double lo, double hi) { return {lo, hi, false, false}; }
@@ -79,8 +76,7 @@ const std::vector<std::string> &ComponentPrefixes();
 std::string RangeMessage(const OptionInfo &row, double value);
 
 // A component's table, bound to its options struct S.
-template <class S>
-class OptionTable {
+template <class S> class OptionTable {
 public:
   OptionTable(const char *prefix, const char *title) : prefix_(prefix), title_(title) {}
   ~OptionTable() = default;
@@ -120,8 +116,7 @@ public:
     return *this;
   }
   // An enum-valued member E (an enum class whose values are 0..n-1 in the order of names).
-  template <class E>
-  OptionTable &Enum(const char *name, E S::*m, const char *const *names, int n, const char *help, OptionClass c = OptionClass::Physics)
+  template <class E> OptionTable &Enum(const char *name, E S::*m, const char *const *names, int n, const char *help, OptionClass c = OptionClass::Physics)
   {
     Row r = NewRow(name, OptionType::Enum, Bounds{}, help, c);
     r.info.choices.assign(names, names + n);
@@ -140,8 +135,8 @@ public:
   OptionTable &Default(const char *rule) { return rows_.back().info.default_text = rule, *this; }
   OptionTable &OnlyIfSet() { return rows_.back().info.only_if_set = true, *this; }
 
-  // Registers the table for tools (once). seed: the values its reader starts
-  // from where a default is computed at run time (a row with a Default rule).
+  // Registers the table for tools (once; DeclareOptionTable calls it). seed: the values its
+  // reader starts from where a default is computed at run time (a row with a Default rule).
   const OptionTable &Register(const S &seed = S{})
   {
     infos_.clear();
@@ -168,7 +163,8 @@ public:
     std::vector<PetscBool> given(rows_.size(), PETSC_FALSE);
     PetscFunctionBeginUser;
     PetscOptionsBegin(comm, prefix_, title_, NULL);
-    for (size_t k = 0; k < rows_.size(); k++) PetscCall(rows_[k].read(PetscOptionsObject, rows_[k].short_name.c_str(), rows_[k].info.help.c_str(), s, &given[k]));
+    for (size_t k = 0; k < rows_.size(); k++)
+      PetscCall(rows_[k].read(PetscOptionsObject, rows_[k].short_name.c_str(), rows_[k].info.help.c_str(), s, &given[k]));
     PetscOptionsEnd();
     for (size_t k = 0; k < rows_.size(); k++) {
       const Row &r = rows_[k];
@@ -207,10 +203,18 @@ private:
 };
 
 std::string OptionNumberText(double x, bool integer);
-template <class S>
-std::string OptionTable<S>::Num(double x, bool integer)
+
+// A component's table, built once by rows(t) and registered: call it at
+// namespace scope, `static const auto &kTable = DeclareOptionTable<S>(prefix,
+// title, [](OptionTable<S> &t) { t.Real(...).Int(...); });`, so the table is
+// known at start-up. Each call site (its lambda) owns its table.
+template <class S, class Rows> const OptionTable<S> &DeclareOptionTable(const char *prefix, const char *title, Rows rows, const S &seed = S{})
 {
-  return OptionNumberText(x, integer);
+  static OptionTable<S> t(prefix, title);
+  static const bool built = (rows(t), t.Register(seed), true);
+  (void)built;
+  return t;
 }
+template <class S> std::string OptionTable<S>::Num(double x, bool integer) { return OptionNumberText(x, integer); }
 
 } // namespace nltopo

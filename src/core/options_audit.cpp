@@ -30,8 +30,14 @@ static PetscErrorCode Declare(MPI_Comm comm, const char *prefix)
 }
 
 PetscErrorCode DeclareTS(MPI_Comm comm, const char *prefix) { return Declare<TS, TSCreate, TSSetOptionsPrefix, TSSetFromOptions, TSDestroy>(comm, prefix); }
-PetscErrorCode DeclareSNES(MPI_Comm comm, const char *prefix) { return Declare<SNES, SNESCreate, SNESSetOptionsPrefix, SNESSetFromOptions, SNESDestroy>(comm, prefix); }
-PetscErrorCode DeclareEPS(MPI_Comm comm, const char *prefix) { return Declare<EPS, EPSCreate, EPSSetOptionsPrefix, EPSSetFromOptions, EPSDestroy>(comm, prefix); }
+PetscErrorCode DeclareSNES(MPI_Comm comm, const char *prefix)
+{
+  return Declare<SNES, SNESCreate, SNESSetOptionsPrefix, SNESSetFromOptions, SNESDestroy>(comm, prefix);
+}
+PetscErrorCode DeclareEPS(MPI_Comm comm, const char *prefix)
+{
+  return Declare<EPS, EPSCreate, EPSSetOptionsPrefix, EPSSetFromOptions, EPSDestroy>(comm, prefix);
+}
 
 namespace {
 
@@ -59,10 +65,42 @@ bool StartsWith(const std::string &s, const char *p) { return s.compare(0, std::
 // nltopo does not create; never reported.
 bool PetscOwn(const std::string &n)
 {
-  static const char *own[] = {"log", "options_", "malloc", "memory_view", "objects_dump", "help", "h", "info", "version", "history", "on_error",
-                              "fp_trap", "check_pointer_intensity", "nox", "viewer", "mpi", "display", "debugger", "stop_for_debugger",
-                              "start_in_debugger", "no_signal_handler", "skip_petscrc", "use_gpu_aware_mpi", "petsc", "error_output", "saws",
-                              "python", "x_virtual", "checkstack", "blas", "omp_", "device", "slepc", "citations", "compare", "timeout",
+  static const char *own[] = {"log",
+                              "options_",
+                              "malloc",
+                              "memory_view",
+                              "objects_dump",
+                              "help",
+                              "h",
+                              "info",
+                              "version",
+                              "history",
+                              "on_error",
+                              "fp_trap",
+                              "check_pointer_intensity",
+                              "nox",
+                              "viewer",
+                              "mpi",
+                              "display",
+                              "debugger",
+                              "stop_for_debugger",
+                              "start_in_debugger",
+                              "no_signal_handler",
+                              "skip_petscrc",
+                              "use_gpu_aware_mpi",
+                              "petsc",
+                              "error_output",
+                              "saws",
+                              "python",
+                              "x_virtual",
+                              "checkstack",
+                              "blas",
+                              "omp_",
+                              "device",
+                              "slepc",
+                              "citations",
+                              "compare",
+                              "timeout",
                               "test_"};
   for (const char *p : own)
     if (StartsWith(n, p)) return true;
@@ -108,7 +146,8 @@ void TypeMismatch(const std::string &n, std::string *line)
     if (PetscOptionsGetString(NULL, NULL, ("-" + head + "type").c_str(), type, sizeof(type), &set)) return;
     const TSTraits *selected = TSTraitsFind(type);
     if (!selected || (selected->family && option_family == selected->family)) return; // a type of nltopo's table only
-    *line = ": not used by this run (-" + head + "type is " + type + (set ? "" : ", the default") + "; the option belongs to -" + head + "type " + option_family + ")";
+    *line = ": not used by this run (-" + head + "type is " + type + (set ? "" : ", the default") + "; the option belongs to -" + head + "type " +
+            option_family + ")";
     return;
   }
 }
@@ -248,7 +287,7 @@ PetscErrorCode CheckOptionValueShapes(MPI_Comm comm, const char *study, OptionsF
   for (const auto &o : given) {
     const std::string &n = o.first, &v = o.second;
     const auto k = kinds.find(n);
-    if (k == kinds.end() || PetscOwn(n)) continue; // unknown names are the unused-options audit's
+    if (k == kinds.end() || PetscOwn(n)) continue;        // unknown names are the unused-options audit's
     if (k->second != OptionKind::Flag && OwnComponent(n)) // solver options may take an optional value (-sim_ts_monitor)
       PetscCheck(!v.empty(), comm, PETSC_ERR_USER, "-%s: no value given (-help shows its default and meaning)", n.c_str());
     if (k->second == OptionKind::Integer && !v.empty()) {

@@ -41,7 +41,7 @@ public:
 
 private:
   const EffectList &fx_;
-  OwnedVec q_, rate_;   // the quadrature states; a rate (AddStages)
+  OwnedVec q_, rate_;    // the quadrature states; a rate (AddStages)
   bool carried_ = false; // the integrator evaluated the integrand inside the window
   bool open_ = false;
   PetscReal t_prev_ = 0, nl_prev_ = 0, lin_prev_ = 0, acc_nl_ = 0, acc_lin_ = 0;

@@ -31,7 +31,6 @@ PetscReal Correlation(const std::vector<PetscInt> &lag, const std::vector<PetscR
   return syy > 0 ? sxy / std::sqrt(sxx * syy) : 0;
 }
 
-
 // The mean square displacements S_c(m) = sum_{j<len} |P(j+m) - P(j)|^2, with
 // P(j) = sum_{k<=j} x_k e^{i k c}, for every c at once. The increment is a
 // window sum, P(j+m) - P(j) = sum_{k=j+1}^{j+m} x_k e^{i k c}, so

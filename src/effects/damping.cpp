@@ -39,17 +39,9 @@ struct DampingOptions {
   PetscReal c = 0;
 };
 
-static const OptionTable<DampingOptions> &DampingTable()
-{
-  static OptionTable<DampingOptions> t("lattice_", "Lattice damping");
-  static const bool built = (t.Real("damping", &DampingOptions::c, Closed(0, 1e6),
-                                    "Linear viscous damping c on every mass, a += -c v (0: none; refused by the conservative studies)")
-                               .Register(),
-                             true);
-  (void)built;
-  return t;
-}
-static const auto &kDampingTable = DampingTable(); // registered at start-up
+static const auto &kDampingTable = DeclareOptionTable<DampingOptions>("lattice_", "Lattice damping", [](OptionTable<DampingOptions> &t) {
+  t.Real("damping", &DampingOptions::c, Closed(0, 1e6), "Linear viscous damping c on every mass, a += -c v (0: none; refused by the conservative studies)");
+});
 
 PetscErrorCode DampingFromOptions(MPI_Comm comm, const Lattice *lat, std::unique_ptr<Effect> *e)
 {

@@ -71,8 +71,8 @@ PetscErrorCode EffectList::RequirePositionOnly(const char *who) const
 {
   PetscFunctionBeginUser;
   for (const auto &e : fx_)
-    PetscCheck(!e->VelocityDependent(), lat_->Comm(), PETSC_ERR_USER, "%s integrates u'' = a(t, u); %s makes the force depend on the velocity (use an rk or implicit -sim_ts_type)",
-               who, e->EnabledBy().c_str());
+    PetscCheck(!e->VelocityDependent(), lat_->Comm(), PETSC_ERR_USER,
+               "%s integrates u'' = a(t, u); %s makes the force depend on the velocity (use an rk or implicit -sim_ts_type)", who, e->EnabledBy().c_str());
   PetscFunctionReturn(0);
 }
 

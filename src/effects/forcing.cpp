@@ -12,32 +12,27 @@ static const char *const kProfileNames[] = {"site", "mode", "none", "exponential
 
 // The -force_* block. -force_site is 1-based as in model.md: the struct holds
 // it 1-based while the table reads it, 0-based after.
-static const OptionTable<ToneBurstOptions> &ForceTable()
-{
-  static OptionTable<ToneBurstOptions> t("force_", "Tone-burst forcing (docs/model.md, Forcing)");
-  static const bool built =
-    (t.Enum("profile", &ToneBurstOptions::profile, kProfileNames, 4,
-            "Force profile eta: site (unit force on one site), mode (a linear eigenvector), none, exponential (the insulated mode's fitted envelope)")
-       .Real("omega", &ToneBurstOptions::omega, Closed(1e-6, 1e3), "Excitation frequency omega_ext (default sqrt(k_hat), the insulated frequency)")
-       .Default("sqrt(k_hat)")
-       .Real("energy", &ToneBurstOptions::energy, Closed(1e-12, 1e12), "Cut-off energy E*: the forcing stops for good the first time E >= E*")
-       .Real("amplitude", &ToneBurstOptions::amplitude, Closed(0, 1e12), "Amplitude S; when not given the amplitude rule (README.md) picks it")
-       .Default("the amplitude rule")
-       .OnlyIfSet()
-       .Real("amplitude_safety", &ToneBurstOptions::safety, LeftOpen(0, 1e6), "Amplitude rule: S makes the linear burst energy this multiple of E*")
-       .Int("amplitude_retries", &ToneBurstOptions::retries, Closed(0, 100),
-            "Amplitude rule: if E* is not reached within the burst, rescale S (README.md) up to this many times")
-       .Real("tau_periods", &ToneBurstOptions::tau_periods, Closed(1e-3, 1e6), "Burst width tau in excitation periods")
-       .Real("t0_taus", &ToneBurstOptions::t0_taus, Closed(0, 1e3), "Burst centre t0 in units of tau")
-       .Int("site", &ToneBurstOptions::site, Bounds{}, "Forced site for profile site, 1-based as in model.md (default m+1, the interface even site)")
-       .Default("m+1")
-       .Int("mode_index", &ToneBurstOptions::mode, Bounds{}, "Linear mode (0-based, ascending frequency) for profile mode")
-       .Register(ToneBurstOptions{ForceProfile::Site, 1.0}), // omega: computed from the lattice at run time
-     true);
-  (void)built;
-  return t;
-}
-static const auto &kForceTable = ForceTable(); // registered at start-up
+static const auto &kForceTable = DeclareOptionTable<ToneBurstOptions>(
+    "force_", "Tone-burst forcing",
+    [](OptionTable<ToneBurstOptions> &t) {
+      t.Enum("profile", &ToneBurstOptions::profile, kProfileNames, 4,
+             "Force profile eta: site (unit force on one site), mode (a linear eigenvector), none, exponential (the insulated mode's fitted envelope)")
+          .Real("omega", &ToneBurstOptions::omega, Closed(1e-6, 1e3), "Excitation frequency omega_ext (default sqrt(k_hat), the insulated frequency)")
+          .Default("sqrt(k_hat)")
+          .Real("energy", &ToneBurstOptions::energy, Closed(1e-12, 1e12), "Cut-off energy E*: the forcing stops for good the first time E >= E*")
+          .Real("amplitude", &ToneBurstOptions::amplitude, Closed(0, 1e12), "Amplitude S; when not given the amplitude rule (README.md) picks it")
+          .Default("the amplitude rule")
+          .OnlyIfSet()
+          .Real("amplitude_safety", &ToneBurstOptions::safety, LeftOpen(0, 1e6), "Amplitude rule: S makes the linear burst energy this multiple of E*")
+          .Int("amplitude_retries", &ToneBurstOptions::retries, Closed(0, 100),
+               "Amplitude rule: if E* is not reached within the burst, rescale S (README.md) up to this many times")
+          .Real("tau_periods", &ToneBurstOptions::tau_periods, Closed(1e-3, 1e6), "Burst width tau in excitation periods")
+          .Real("t0_taus", &ToneBurstOptions::t0_taus, Closed(0, 1e3), "Burst centre t0 in units of tau")
+          .Int("site", &ToneBurstOptions::site, Bounds{}, "Forced site for profile site, 1-based as in model.md (default m+1, the interface even site)")
+          .Default("m+1")
+          .Int("mode_index", &ToneBurstOptions::mode, Bounds{}, "Linear mode (0-based, ascending frequency) for profile mode");
+    },
+    ToneBurstOptions{ForceProfile::Site, 1.0});
 
 PetscErrorCode ToneBurstOptionsFromOptions(MPI_Comm comm, const LatticeParams &lp, ToneBurstOptions *o)
 {
@@ -87,7 +82,7 @@ PetscErrorCode FitExponentialProfile(const Lattice &lat, Vec insulated, PetscRea
   PetscReal sx = 0, sy = 0, sxx = 0, sxy = 0;
   PetscInt n = 0;
   for (size_t i = 1; i < phi.size(); i += 2) // 0-based odd = 1-based even sites
-    if (std::abs(phi[i]) > 1e-6 * mx) { // below, the finite lattice and round-off bend the envelope
+    if (std::abs(phi[i]) > 1e-6 * mx) {      // below, the finite lattice and round-off bend the envelope
       const PetscReal x = std::abs((PetscInt)i - m), y = std::log(std::abs(phi[i]));
       sx += x, sy += y, sxx += x * x, sxy += x * y;
       n++;

@@ -16,14 +16,14 @@ enum class ForceProfile { Site = 0, Mode = 1, None = 2, Exponential = 3 };
 
 struct ToneBurstOptions {
   ForceProfile profile = ForceProfile::Site;
-  PetscReal omega = 0;         // omega_ext (default sqrt(k_hat): the insulated frequency)
-  PetscReal energy = 1.0;      // E*
-  PetscReal amplitude = -1;    // S; < 0 means "use the amplitude rule"
-  PetscReal safety = 2.0;      // amplitude rule: linear burst energy = safety * E*
-  PetscInt retries = 8;        // amplitude rule: repeats with a larger S when E* is missed
+  PetscReal omega = 0;      // omega_ext (default sqrt(k_hat): the insulated frequency)
+  PetscReal energy = 1.0;   // E*
+  PetscReal amplitude = -1; // S; < 0 means "use the amplitude rule"
+  PetscReal safety = 2.0;   // amplitude rule: linear burst energy = safety * E*
+  PetscInt retries = 8;     // amplitude rule: repeats with a larger S when E* is missed
   PetscReal tau_periods = 25, t0_taus = 5;
-  PetscInt site = -1;          // 0-based forced site for profile site (default m+1)
-  PetscInt mode = -1;          // linear mode index for profile mode
+  PetscInt site = -1; // 0-based forced site for profile site (default m+1)
+  PetscInt mode = -1; // linear mode index for profile mode
 };
 
 PetscErrorCode ToneBurstOptionsFromOptions(MPI_Comm comm, const LatticeParams &lp, ToneBurstOptions *o);
@@ -58,7 +58,7 @@ private:
   ToneBurstOptions opt_;
   PetscReal S_ = 0, tau_ = 0, t0_ = 0, exp_a_ = 0, exp_b_ = 0;
   bool from_rule_ = false;
-  std::vector<PetscInt> idx_;     // owned sites with eta != 0 (global index)
+  std::vector<PetscInt> idx_; // owned sites with eta != 0 (global index)
   std::vector<PetscScalar> eta_;
 };
 
@@ -86,7 +86,6 @@ private:
 // where the insulated mode phi is not negligible.
 PetscErrorCode FitExponentialProfile(const Lattice &lat, Vec insulated, PetscReal *a, PetscReal *b);
 
-PetscReal BurstUnitEnergy(const std::vector<PetscReal> &omega_j, const std::vector<PetscReal> &proj2, PetscReal omega, PetscReal tau,
-                          PetscReal t0);
+PetscReal BurstUnitEnergy(const std::vector<PetscReal> &omega_j, const std::vector<PetscReal> &proj2, PetscReal omega, PetscReal tau, PetscReal t0);
 
 } // namespace nltopo

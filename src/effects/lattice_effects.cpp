@@ -10,7 +10,7 @@ namespace {
 struct Range {
   PetscInt N, xs, xe, lo, hi;
   explicit Range(const Lattice &lat)
-    : N(lat.N()), xs(lat.OwnedStart()), xe(lat.OwnedStart() + lat.OwnedCount()), lo(std::max<PetscInt>(xs, 1)), hi(std::min(xe, N - 1))
+      : N(lat.N()), xs(lat.OwnedStart()), xe(lat.OwnedStart() + lat.OwnedCount()), lo(std::max<PetscInt>(xs, 1)), hi(std::min(xe, N - 1))
   {
   }
 };
@@ -138,15 +138,9 @@ std::unique_ptr<Effect> CreateLinearCoupling(const Lattice &lat) { return std::m
 // model.md's cubic coefficient Gamma. Its option is -lattice_cubic, not
 // "-lattice_Gamma": PETSc option names are case-insensitive, so that name IS
 // -lattice_gamma (README.md, "Option names").
-static const OptionTable<LatticeParams> &CubicTable()
-{
-  static OptionTable<LatticeParams> t("lattice_", "Cubic bonds");
-  static const bool built =
-    (t.Real("cubic", &LatticeParams::Gamma, Closed(-1e6, 1e6), "Cubic coefficient Gamma on every stiff bond (0 = linear lattice)").Register(), true);
-  (void)built;
-  return t;
-}
-static const auto &kCubicTable = CubicTable(); // registered at start-up
+static const auto &kCubicTable = DeclareOptionTable<LatticeParams>("lattice_", "Cubic bonds", [](OptionTable<LatticeParams> &t) {
+  t.Real("cubic", &LatticeParams::Gamma, Closed(-1e6, 1e6), "Cubic coefficient Gamma on every stiff bond (0 = linear lattice)");
+});
 
 PetscErrorCode CubicBondsOptionsFromOptions(MPI_Comm comm, LatticeParams *p) { return kCubicTable.Read(comm, p); }
 

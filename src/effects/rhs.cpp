@@ -15,7 +15,11 @@ EffectCounters Rhs::Counters() const
   c.rhs = rhs_;
   for (size_t k = 0; k < fx_.Size(); k++) {
     const char *n = fx_.At(k).Name();
-    PetscInt *slot = !std::strcmp(n, "linear") ? &c.linear : !std::strcmp(n, "cubic") ? &c.cubic : !std::strcmp(n, "forcing") ? &c.forcing : !std::strcmp(n, "damping") ? &c.damping : nullptr;
+    PetscInt *slot = !std::strcmp(n, "linear")    ? &c.linear
+                     : !std::strcmp(n, "cubic")   ? &c.cubic
+                     : !std::strcmp(n, "forcing") ? &c.forcing
+                     : !std::strcmp(n, "damping") ? &c.damping
+                                                  : nullptr;
     if (slot) *slot = calls_.count[k];
   }
   return c;

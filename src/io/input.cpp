@@ -4,8 +4,7 @@
 namespace nltopo {
 
 namespace {
-template <typename T>
-PetscErrorCode ReadDataset(const std::string &file, const char *dataset, hid_t type, std::vector<T> *out)
+template <typename T> PetscErrorCode ReadDataset(const std::string &file, const char *dataset, hid_t type, std::vector<T> *out)
 {
   PetscFunctionBeginUser;
   H5E_auto2_t func;
@@ -73,7 +72,8 @@ void OpenRootAttribute(const std::string &file, const char *name, hid_t *f, hid_
   *f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   const std::string path(name);
   const size_t slash = path.rfind('/');
-  const std::string obj = slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash)), attr = slash == std::string::npos ? path : path.substr(slash + 1);
+  const std::string obj = slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash)),
+                    attr = slash == std::string::npos ? path : path.substr(slash + 1);
   *a = -1;
   if (*f < 0) return;
   if (obj != "." && obj != "/" && H5Lexists(*f, obj.c_str(), H5P_DEFAULT) <= 0) return;

@@ -22,9 +22,10 @@ static PetscErrorCode ReadOutputOptions(MPI_Comm comm, const char *study, std::s
   PetscCall(PetscSNPrintf(buf, sizeof(buf), "%s.h5", study));
   PetscOptionsBegin(comm, NULL, "Output (shared/spec/outputs.md)", NULL);
   PetscCall(PetscOptionsString("-output", "HDF5 file to write (default <study>.h5)", NULL, buf, buf, sizeof(buf), NULL));
-  PetscCall(PetscOptionsBool("-output_overwrite",
-                             "Replace -output even if it holds the output of another study or of other physics/numerics options (README.md, Signals and resume rules)",
-                             NULL, *overwrite, overwrite, NULL));
+  PetscCall(PetscOptionsBool(
+      "-output_overwrite",
+      "Replace -output even if it holds the output of another study or of other physics/numerics options (README.md, Signals and resume rules)", NULL,
+      *overwrite, overwrite, NULL));
   PetscOptionsEnd();
   PetscCheck(buf[0], comm, PETSC_ERR_USER, "-output must name a file");
   *path = buf;
@@ -53,14 +54,14 @@ static const double kMinFreeBytes = 1e6; // HDF5 metadata and the root attribute
 // A collective write step fails on every rank if it failed on any: a failure
 // on some ranks only (disk full under MPI-IO) would leave the others waiting
 // in the next collective call.
-#define AGREE(comm, expr, what) \
-  do { \
-    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL)); \
-    const int bad_ = (expr) ? 1 : 0; \
-    PetscCall(PetscPopErrorHandler()); \
-    int any_; \
-    PetscCallMPI(MPI_Allreduce(&bad_, &any_, 1, MPI_INT, MPI_MAX, comm)); \
-    PetscCheck(!any_, comm, PETSC_ERR_LIB, "HDF5 %s failed", what); \
+#define AGREE(comm, expr, what)                                                                                                                                \
+  do {                                                                                                                                                         \
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));                                                                                           \
+    const int bad_ = (expr) ? 1 : 0;                                                                                                                           \
+    PetscCall(PetscPopErrorHandler());                                                                                                                         \
+    int any_;                                                                                                                                                  \
+    PetscCallMPI(MPI_Allreduce(&bad_, &any_, 1, MPI_INT, MPI_MAX, comm));                                                                                      \
+    PetscCheck(!any_, comm, PETSC_ERR_LIB, "HDF5 %s failed", what);                                                                                            \
   } while (0)
 
 PetscErrorCode SetCommitGuard(PetscErrorCode (*guard)(MPI_Comm))
@@ -184,9 +185,11 @@ PetscErrorCode WriteArray(PetscViewer v, const char *group, const char *name, co
 }
 
 // Raw HDF5 calls return a negative value on failure.
-#define H5CHK(call) \
-  do { \
-    if ((call) < 0) SETERRQ(PetscObjectComm((PetscObject)v), PETSC_ERR_LIB, "HDF5 call %.*s failed", (int)std::strcspn(#call, "("), #call); /* collective writes fail on every rank */ \
+#define H5CHK(call)                                                                                                                                            \
+  do {                                                                                                                                                         \
+    if ((call) < 0)                                                                                                                                            \
+      SETERRQ(PetscObjectComm((PetscObject)v), PETSC_ERR_LIB, "HDF5 call %.*s failed", (int)std::strcspn(#call, "("),                                          \
+              #call); /* collective writes fail on every rank */                                                                                               \
   } while (0)
 
 PetscErrorCode WriteColumnBlock(PetscViewer v, const char *group, const char *name, PetscInt rows, PetscInt ncols, PetscInt col0, PetscInt nloc,
@@ -281,7 +284,8 @@ PetscErrorCode WriteIntArray(PetscViewer v, const char *group, const char *name,
   PetscFunctionBeginUser;
   PetscCall(SchemaCheckWrite(comm, group, name, FieldKind::Dataset, FieldType::Int));
   PetscCallMPI(MPI_Bcast(&n, 1, MPIU_INT, 0, comm));
-  PetscCheck(n >= 0 && bs > 0 && n % bs == 0, comm, PETSC_ERR_ARG_SIZ, "integer dataset %s/%s: %" PetscInt_FMT " values, block %" PetscInt_FMT, group, name, n, bs);
+  PetscCheck(n >= 0 && bs > 0 && n % bs == 0, comm, PETSC_ERR_ARG_SIZ, "integer dataset %s/%s: %" PetscInt_FMT " values, block %" PetscInt_FMT, group, name, n,
+             bs);
   std::vector<hsize_t> dims = {(hsize_t)(n / bs)};
   if (bs != 1 || two_d) dims.push_back((hsize_t)bs);
   const std::vector<int> buf(data.begin(), data.end());

@@ -15,8 +15,7 @@ namespace nltopo {
 // another study or other options (io/run_options.hpp) is an error unless
 // -output_overwrite is given, or resumes(path) says this run continues that
 // very file (its resume check applies instead).
-PetscErrorCode OutputPathFromOptions(MPI_Comm comm, const char *study, std::string *path,
-                                     const std::function<bool(const std::string &)> &resumes = nullptr);
+PetscErrorCode OutputPathFromOptions(MPI_Comm comm, const char *study, std::string *path, const std::function<bool(const std::string &)> &resumes = nullptr);
 // The same options read without looking at the file (a study's options function, -help).
 PetscErrorCode DeclareOutputOptions(MPI_Comm comm, const char *study);
 

@@ -20,8 +20,8 @@ bool StartsWith(const std::string &s, const char *p) { return s.compare(0, std::
 
 Kind Classify(const std::string &key)
 {
-  static const char *bookkeeping[] = {"-cont_resume",   "-sweep_resume", "-cont_checkpoint_seconds", "-sweep_checkpoint",
-                                      "-sweep_progress", "-sim_progress", "-cont_verbose"};
+  static const char *bookkeeping[] = {"-cont_resume",  "-sweep_resume", "-cont_checkpoint_seconds", "-sweep_checkpoint", "-sweep_progress",
+                                      "-sim_progress", "-cont_verbose"};
   static const char *extent[] = {"-cont_energy_max", "-cont_max_points", "-cont_omega_max",     "-cont_mcr_min",
                                  "-cont_branch",     "-sim_store_u",     "-sim_store_u_stride", "-sim_sample_dt"};
   const std::vector<std::string> &prefixes = ComponentPrefixes();

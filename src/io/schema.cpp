@@ -10,25 +10,26 @@ using namespace schema_names;
 
 std::vector<Schema> &Registry()
 {
-  static std::vector<Schema> s = {
-    {"/", "",
-     {{"study", A, S, "scalar", "the -study that wrote the file"},
-      {"version", A, S, "scalar", "git describe or project version"},
-      {"options", A, S, "scalar", "the full options database, to repeat the run"},
-      {"wall_seconds", A, R, "scalar", "wall time of the run"},
-      {"complete", A, I, "scalar", "1; 0 for a checkpoint, a running sweep or an interrupted run"}}},
-    {"/cost", "",
-     {{"wall_seconds", A, R, "scalar", "wall time of the run"},
-      {"<prefix>integrator", A, S, "scalar", "sim_ (forced/free runs) or nnm_ (shooting): TS type and scheme"},
-      {"<prefix>accuracy", A, S, "scalar", "fixed step, or rtol and atol"},
-      {"<prefix>solves", A, I, "scalar", "time integrations"},
-      {"<prefix>steps", A, I, "scalar", "accepted steps"},
-      {"<prefix>rejected_steps", A, I, "scalar", "rejected steps"},
-      {"<prefix>force_evaluations", A, I, "scalar", "force evaluations over every rank"},
-      {"<prefix>dt_min", A, R, "scalar", "smallest fixed step"},
-      {"<prefix>dt_max", A, R, "scalar", "largest fixed step"},
-      {"error_estimate", A, R, "scalar", "the study's own error estimate, NaN if none"},
-      {"error_estimate_of", A, S, "scalar", "what error_estimate measures, none if none"}}}};
+  static std::vector<Schema> s = {{"/",
+                                   "",
+                                   {{"study", A, S, "scalar", "the -study that wrote the file"},
+                                    {"version", A, S, "scalar", "git describe or project version"},
+                                    {"options", A, S, "scalar", "the full options database, to repeat the run"},
+                                    {"wall_seconds", A, R, "scalar", "wall time of the run"},
+                                    {"complete", A, I, "scalar", "1; 0 for a checkpoint, a running sweep or an interrupted run"}}},
+                                  {"/cost",
+                                   "",
+                                   {{"wall_seconds", A, R, "scalar", "wall time of the run"},
+                                    {"<prefix>integrator", A, S, "scalar", "sim_ (forced/free runs) or nnm_ (shooting): TS type and scheme"},
+                                    {"<prefix>accuracy", A, S, "scalar", "fixed step, or rtol and atol"},
+                                    {"<prefix>solves", A, I, "scalar", "time integrations"},
+                                    {"<prefix>steps", A, I, "scalar", "accepted steps"},
+                                    {"<prefix>rejected_steps", A, I, "scalar", "rejected steps"},
+                                    {"<prefix>force_evaluations", A, I, "scalar", "force evaluations over every rank"},
+                                    {"<prefix>dt_min", A, R, "scalar", "smallest fixed step"},
+                                    {"<prefix>dt_max", A, R, "scalar", "largest fixed step"},
+                                    {"error_estimate", A, R, "scalar", "the study's own error estimate, NaN if none"},
+                                    {"error_estimate_of", A, S, "scalar", "what error_estimate measures, none if none"}}}};
   return s;
 }
 
@@ -108,9 +109,10 @@ PetscErrorCode SchemaCheckWrite(MPI_Comm comm, const char *group, const char *na
   PetscFunctionBeginUser;
   if (!CheckOn()) PetscFunctionReturn(0);
   const Field *f = FindField(group, name, kind);
-  PetscCheck(f, comm, PETSC_ERR_PLIB, "output schema has no %s %s in group %s: add it to the schema its study registers (studies/registry.hpp)", KindName(kind), name, group);
-  PetscCheck(f->type == type, comm, PETSC_ERR_PLIB, "output schema: %s %s/%s is %s there, written as %s", KindName(kind), group, name,
-             TypeName(f->type), TypeName(type));
+  PetscCheck(f, comm, PETSC_ERR_PLIB, "output schema has no %s %s in group %s: add it to the schema its study registers (studies/registry.hpp)", KindName(kind),
+             name, group);
+  PetscCheck(f->type == type, comm, PETSC_ERR_PLIB, "output schema: %s %s/%s is %s there, written as %s", KindName(kind), group, name, TypeName(f->type),
+             TypeName(type));
   PetscFunctionReturn(0);
 }
 

@@ -18,7 +18,7 @@ enum class FieldKind { Dataset, Attribute };
 enum class FieldType { Real, Int, String };
 
 struct Field {
-  const char *name;  // may hold one placeholder, e.g. "error_<observable>"
+  const char *name; // may hold one placeholder, e.g. "error_<observable>"
   FieldKind kind;
   FieldType type;
   const char *shape; // "scalar", or dimensions as outputs.md names them: "npts", "npts x 2N", "ne x no", ...

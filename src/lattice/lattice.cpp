@@ -15,8 +15,8 @@ PetscErrorCode Lattice::Setup(MPI_Comm comm, const LatticeParams &p)
   p_ = p;
   const PetscInt N = p.N();
   PetscCallMPI(MPI_Comm_size(comm, &size_));
-  PetscCheck(N >= size_, comm, PETSC_ERR_USER, "-lattice_cells %" PetscInt_FMT " gives N = %" PetscInt_FMT " sites, fewer than the %d MPI ranks",
-             p.cells, N, (int)size_);
+  PetscCheck(N >= size_, comm, PETSC_ERR_USER, "-lattice_cells %" PetscInt_FMT " gives N = %" PetscInt_FMT " sites, fewer than the %d MPI ranks", p.cells, N,
+             (int)size_);
   // K, L, the state and work vectors: a few hundred bytes per site (N = 10^6: ~0.3 GB).
   PetscCall(CheckMemory(comm, 300.0 * (double)N / size_, "the lattice (-lattice_cells)"));
   PetscCall(DMDACreate1d(comm, DM_BOUNDARY_NONE, N, 1, 1, NULL, da_.out()));
@@ -122,7 +122,8 @@ void Lattice::KRow(PetscInt i, PetscScalar c[3]) const
   c[2] = -kb[i];
 }
 
-PetscErrorCode Lattice::AssembleNearestNeighbour(const PetscScalar *kd, const PetscScalar *kb, const PetscScalar *c, Mat M, bool site_form, PetscReal beta) const
+PetscErrorCode Lattice::AssembleNearestNeighbour(const PetscScalar *kd, const PetscScalar *kb, const PetscScalar *c, Mat M, bool site_form,
+                                                 PetscReal beta) const
 {
   const PetscInt N = p_.N();
   PetscFunctionBeginUser;

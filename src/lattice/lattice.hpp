@@ -29,8 +29,8 @@ public:
   const LatticeParams &Params() const { return p_; }
   PetscInt N() const { return p_.N(); }
   MPI_Comm Comm() const { return comm_; }
-  DM SiteDM() const { return da_; }    // u-only vectors and K
-  Mat K() const { return K_; }         // N x N linear stiffness
+  DM SiteDM() const { return da_; } // u-only vectors and K
+  Mat K() const { return K_; }      // N x N linear stiffness
   PetscInt OwnedStart() const { return xs_; }
   PetscInt OwnedCount() const { return xm_; }
   bool Serial() const { return size_ == 1; }

@@ -37,30 +37,22 @@ void LatticeSprings(const LatticeParams &p, std::vector<PetscReal> *bonds, std::
 
 // The -lattice_* block of the geometry and the springs (model.md's parameters);
 // the cubic bonds read -lattice_cubic themselves (effects/lattice_effects.cpp).
-static const OptionTable<LatticeParams> &LatticeTable()
-{
-  static OptionTable<LatticeParams> t("lattice_", "Lattice model (docs/model.md)");
-  static const bool built = (t.Real("k", &LatticeParams::k, Closed(1e-6, 1e6), "Base coupling k")
-                                 .Why("a positive stiffness")
-                                 .Real("gamma", &LatticeParams::gamma, Open(-1, 1), "Dimerisation gamma: k1 = k(1+gamma) stiff, k2 = k(1-gamma) soft")
-                                 .Why("so that k1 = k(1+gamma) and k2 = k(1-gamma) are positive stiffnesses")
-                                 .Real("gamma0", &LatticeParams::gamma0, Closed(0, 1e6), "Grounding stiffness gamma0")
-                                 .Why("a non-negative stiffness")
-                                 // 2.5e6 cells: N ~ 10^7 sites, a few GB for a forced run (the state, TS stages, K and L); more would exhaust memory
-                                 .Int("cells", &LatticeParams::cells, Closed(1, kMaxCells),
-                                      "Unit cells per side Nc, at most 2.5e6 (interface: N = 4 Nc + 2; left/right: N = 2 Nc)")
-                                 .Enum("layout", &LatticeParams::layout, kLayoutNames, 3, "Lattice layout")
-                                 .Enum("perturbation", &LatticeParams::perturbation, kPerturbationNames, 3,
-                                       "Random spring perturbation (README.md): chiral keeps diag(K) = k_hat, achiral varies every spring")
-                                 .Real("delta", &LatticeParams::delta, RightOpen(0, 0.5),
-                                       "Perturbation level: springs change by k delta_b, delta_b uniform in (-2 delta, 2 delta) (mean |delta_b| = delta)")
-                                 .Int("seed", &LatticeParams::seed, Closed(PETSC_MIN_INT, PETSC_MAX_INT), "Seed of the perturbation's realisation")
-                                 .Register(),
-                             true);
-  (void)built;
-  return t;
-}
-static const auto &kLatticeTable = LatticeTable(); // registered at start-up
+static const auto &kLatticeTable = DeclareOptionTable<LatticeParams>("lattice_", "Lattice model", [](OptionTable<LatticeParams> &t) {
+  t.Real("k", &LatticeParams::k, Closed(1e-6, 1e6), "Base coupling k")
+      .Why("a positive stiffness")
+      .Real("gamma", &LatticeParams::gamma, Open(-1, 1), "Dimerisation gamma: k1 = k(1+gamma) stiff, k2 = k(1-gamma) soft")
+      .Why("so that k1 = k(1+gamma) and k2 = k(1-gamma) are positive stiffnesses")
+      .Real("gamma0", &LatticeParams::gamma0, Closed(0, 1e6), "Grounding stiffness gamma0")
+      .Why("a non-negative stiffness")
+      // 2.5e6 cells: N ~ 10^7 sites, a few GB for a forced run (the state, TS stages, K and L); more would exhaust memory
+      .Int("cells", &LatticeParams::cells, Closed(1, kMaxCells), "Unit cells per side Nc, at most 2.5e6 (interface: N = 4 Nc + 2; left/right: N = 2 Nc)")
+      .Enum("layout", &LatticeParams::layout, kLayoutNames, 3, "Lattice layout")
+      .Enum("perturbation", &LatticeParams::perturbation, kPerturbationNames, 3,
+            "Random spring perturbation (README.md): chiral keeps diag(K) = k_hat, achiral varies every spring")
+      .Real("delta", &LatticeParams::delta, RightOpen(0, 0.5),
+            "Perturbation level: springs change by k delta_b, delta_b uniform in (-2 delta, 2 delta) (mean |delta_b| = delta)")
+      .Int("seed", &LatticeParams::seed, Closed(PETSC_MIN_INT, PETSC_MAX_INT), "Seed of the perturbation's realisation");
+});
 
 PetscErrorCode LatticeParamsFromOptions(MPI_Comm comm, LatticeParams *p)
 {

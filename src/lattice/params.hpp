@@ -23,8 +23,8 @@ struct LatticeParams {
   PetscInt cells = 25;    // Nc, unit cells per side
   Layout layout = Layout::Interface;
   Perturbation perturbation = Perturbation::None;
-  PetscReal delta = 0;    // mean |relative perturbation| of the springs
-  PetscInt seed = 1;      // realisation of the perturbation (the same on any number of ranks)
+  PetscReal delta = 0; // mean |relative perturbation| of the springs
+  PetscInt seed = 1;   // realisation of the perturbation (the same on any number of ranks)
 
   PetscReal K1() const { return k * (1 + gamma); }
   PetscReal K2() const { return k * (1 - gamma); }
@@ -40,8 +40,8 @@ struct LatticeParams {
     const PetscInt i = b + 1; // model.md's 1-based bond index
     const bool odd = (i % 2) == 1;
     switch (layout) {
-    case Layout::Left: return !odd;  // 1-2 soft, then alternating
-    case Layout::Right: return odd;  // 1-2 stiff, then alternating
+    case Layout::Left: return !odd; // 1-2 soft, then alternating
+    case Layout::Right: return odd; // 1-2 stiff, then alternating
     case Layout::Interface:
     default: return i <= 2 * cells ? !odd : odd;
     }

@@ -14,20 +14,20 @@ PetscErrorCode ContinuationOptionsFromOptions(MPI_Comm comm, ContinuationOptions
   PetscCall(PetscOptionsReal("-energy_max", "Stop when the energy exceeds this", NULL, o->energy_max, &o->energy_max, NULL));
   PetscCall(PetscOptionsInt("-max_points", "Stop after this many orbits", NULL, o->max_points, &o->max_points, NULL));
   PetscCall(PetscOptionsReal("-omega_max", "Stop once the frequency exceeds this (0: no limit)", NULL, o->omega_max, &o->omega_max, NULL));
-  PetscCall(PetscOptionsReal("-mcr_min",
-                             "Stop once the orbit's mode concentration ratio falls below this: the mode has spread into the lattice (0: no limit)",
+  PetscCall(PetscOptionsReal("-mcr_min", "Stop once the orbit's mode concentration ratio falls below this: the mode has spread into the lattice (0: no limit)",
                              NULL, o->mcr_min, &o->mcr_min, NULL));
   PetscCall(PetscOptionsReal("-max_change", "Largest relative change of the orbit z0 per step", NULL, o->max_change, &o->max_change, NULL));
   PetscCall(PetscOptionsReal("-ds_min", "Step collapse: stop when the step falls below this times ||z0||", NULL, o->ds_min, &o->ds_min, NULL));
   PetscCall(PetscOptionsInt("-newton_target", "Newton iterations per point that the step size aims at", NULL, o->newton_target, &o->newton_target, NULL));
-  PetscCall(PetscOptionsReal("-interaction_corr", "Flag a modal interaction when consecutive shapes correlate less than this", NULL,
-                             o->interaction_corr, &o->interaction_corr, NULL));
+  PetscCall(PetscOptionsReal("-interaction_corr", "Flag a modal interaction when consecutive shapes correlate less than this", NULL, o->interaction_corr,
+                             &o->interaction_corr, NULL));
   PetscCall(PetscOptionsBool("-verbose", "Print one line per continuation point", NULL, o->verbose, &o->verbose, NULL));
   PetscOptionsEnd();
   PetscCheck(o->energy_min >= 1e-12 && o->energy_max <= 1e12 && o->energy_min < o->energy_max, comm, PETSC_ERR_USER,
              "-cont_energy_min and -cont_energy_max must satisfy 1e-12 <= min < max <= 1e12, got %g and %g", (double)o->energy_min, (double)o->energy_max);
   PetscCheck(o->max_points >= 1 && o->max_points <= 1000000, comm, PETSC_ERR_USER, "-cont_max_points must lie in [1, 1e6], got %" PetscInt_FMT, o->max_points);
-  PetscCheck(o->omega_max >= 0 && o->omega_max <= 1e3, comm, PETSC_ERR_USER, "-cont_omega_max must lie in [0, 1e3] (0: no limit), got %g", (double)o->omega_max);
+  PetscCheck(o->omega_max >= 0 && o->omega_max <= 1e3, comm, PETSC_ERR_USER, "-cont_omega_max must lie in [0, 1e3] (0: no limit), got %g",
+             (double)o->omega_max);
   PetscCheck(o->ds_min > 0 && o->ds_min < 1, comm, PETSC_ERR_USER, "-cont_ds_min must lie in (0, 1), got %g", (double)o->ds_min);
   PetscCheck(o->newton_target >= 1 && o->newton_target <= 100, comm, PETSC_ERR_USER, "-cont_newton_target must lie in [1, 100], got %" PetscInt_FMT,
              o->newton_target);
@@ -133,7 +133,7 @@ PetscErrorCode PassesFirst(Vec X0, Vec Xprev, Vec X, Vec w, Vec d, PetscReal *fa
   PetscCall(VecDot(w, d, &wd));
   PetscCall(VecDot(w, w, &ww));
   const PetscReal t = dd > 0 ? std::min(std::max(wd / dd, (PetscReal)0), (PetscReal)1) : 0; // the point of the step nearest X0
-  const PetscReal dist2 = ww - 2 * t * wd + t * t * dd;                                      // |X0 - Xprev - t d|^2
+  const PetscReal dist2 = ww - 2 * t * wd + t * t * dd;                                     // |X0 - Xprev - t d|^2
   *closed = dd > 0 && *far > 4 * std::sqrt(dd) && dist2 <= 0.01 * dd;
   *far = std::max(*far, dx);
   PetscFunctionReturn(0);
@@ -247,7 +247,7 @@ PetscErrorCode LastRows(const Lattice &lat, const Branch &b, PetscInt k, std::ve
 class BranchWalk {
 public:
   BranchWalk(Shooting &shoot, const ContinuationOptions &o, const char *name, Branch *b, PointHook *hook)
-    : shoot_(shoot), lat_(shoot.Flow().Lat()), comm_(lat_.Comm()), o_(o), name_(name), b_(b), hook_(hook)
+      : shoot_(shoot), lat_(shoot.Flow().Lat()), comm_(lat_.Comm()), o_(o), name_(name), b_(b), hook_(hook)
   {
   }
   PetscErrorCode Run(Vec u_guess, PetscReal T_guess, const Branch *resume);
@@ -330,8 +330,8 @@ PetscErrorCode BranchWalk::Start(Vec u_guess, PetscReal T_guess, const Branch *r
   PetscCallMPI(MPI_Comm_rank(comm_, &rank));
   PetscInt state[2] = {rank == 0 ? (PetscInt)b_->z0.size() : 0, rank == 0 && b_->next_tangent.size() == (size_t)(n2 + 2)}; // stored, exact
   PetscCallMPI(MPI_Bcast(state, 2, MPIU_INT, 0, comm_));
-  PetscCheck(state[0] == np * n2, comm_, PETSC_ERR_USER, "-cont_resume: branch %s has %" PetscInt_FMT " z0 values for %" PetscInt_FMT " points of 2N = %" PetscInt_FMT,
-             name_, state[0], np, n2);
+  PetscCheck(state[0] == np * n2, comm_, PETSC_ERR_USER,
+             "-cont_resume: branch %s has %" PetscInt_FMT " z0 values for %" PetscInt_FMT " points of 2N = %" PetscInt_FMT, name_, state[0], np, n2);
   if (state[1]) PetscCall(ResumeExact());
   else PetscCall(ResumeResolving());
   // A closed family (e.g. one born at a period doubling that returns to it)
@@ -367,8 +367,9 @@ PetscErrorCode BranchWalk::StartFromGuess(Vec u_guess, PetscReal T_guess)
   PetscCall(shoot_.Pack(z_, T_guess * (1 - 1e-7), 0.0, X_));
   PetscCall(shoot_.SetEnergyConstraint(z_, o_.energy_min));
   PetscCall(shoot_.Solve(X_, &ok, &its_));
-  PetscCheck(ok, comm_, PETSC_ERR_NOT_CONVERGED, "continuation %s: no periodic orbit found at -cont_energy_min %g (Newton failed after %" PetscInt_FMT " iterations)",
-             name_, (double)o_.energy_min, its_);
+  PetscCheck(ok, comm_, PETSC_ERR_NOT_CONVERGED,
+             "continuation %s: no periodic orbit found at -cont_energy_min %g (Newton failed after %" PetscInt_FMT " iterations)", name_, (double)o_.energy_min,
+             its_);
   PetscCall(shoot_.Tangent(X_, NULL, t_));
   PetscCall(shoot_.Unpack(X_, z_, &T, &beta));
   PetscCall(VecNorm(z_, NORM_2, &znorm_));
@@ -422,7 +423,8 @@ PetscErrorCode BranchWalk::ResumeResolving()
   PetscCall(shoot_.SetEnergyConstraint(z_, b_->energy.back()));
   PetscCall(shoot_.Solve(X_, &ok, &its_));
   PetscCheck(ok, comm_, PETSC_ERR_USER,
-             "-cont_resume: the last orbit of branch %s (E = %g) is not an orbit of this lattice (Newton failed after %" PetscInt_FMT " iterations): same -lattice_* options as the run that wrote it?",
+             "-cont_resume: the last orbit of branch %s (E = %g) is not an orbit of this lattice (Newton failed after %" PetscInt_FMT
+             " iterations): same -lattice_* options as the run that wrote it?",
              name_, (double)b_->energy.back(), its_);
   PetscCall(shoot_.Tangent(X_, NULL, t_));
   PetscCall(VecAXPY(zprev_, -1.0, z_));
@@ -476,14 +478,15 @@ PetscErrorCode BranchWalk::Report(const BranchPoint &p)
   PetscFunctionBeginUser;
   if (p.shape_corr < o_.interaction_corr) {
     b_->interactions.push_back(k);
-    PetscCall(PetscPrintf(comm_, "  [%s] modal interaction at point %" PetscInt_FMT ": shape correlation %.3f, MCR %.3f -> %.3f, omega %.6f, E %.4g\n", name_, k,
-                          (double)p.shape_corr, (double)b_->mcr[k - 1], (double)p.mcr, (double)p.omega, (double)p.energy));
+    PetscCall(PetscPrintf(comm_, "  [%s] modal interaction at point %" PetscInt_FMT ": shape correlation %.3f, MCR %.3f -> %.3f, omega %.6f, E %.4g\n", name_,
+                          k, (double)p.shape_corr, (double)b_->mcr[k - 1], (double)p.mcr, (double)p.omega, (double)p.energy));
   }
   if (o_.verbose) {
     PetscLogDouble now;
     PetscCall(PetscTime(&now));
-    PetscCall(PetscPrintf(comm_, "  [%s] %4" PetscInt_FMT "  E = %-11.5g omega = %.8f  MCR = %.4f  Newton %" PetscInt_FMT "  Krylov %" PetscInt_FMT "  |beta| = %.1e  %.0f s\n",
-                          name_, k, (double)p.energy, (double)p.omega, (double)p.mcr, p.newton_its, p.krylov_its, (double)std::abs(p.beta), now - t_begin_));
+    PetscCall(PetscPrintf(
+        comm_, "  [%s] %4" PetscInt_FMT "  E = %-11.5g omega = %.8f  MCR = %.4f  Newton %" PetscInt_FMT "  Krylov %" PetscInt_FMT "  |beta| = %.1e  %.0f s\n",
+        name_, k, (double)p.energy, (double)p.omega, (double)p.mcr, p.newton_its, p.krylov_its, (double)std::abs(p.beta), now - t_begin_));
   }
   PetscFunctionReturn(0);
 }

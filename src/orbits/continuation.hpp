@@ -14,8 +14,8 @@ namespace nltopo {
 
 struct ContinuationOptions {
   PetscReal energy_min = 1e-5, energy_max = 1e3;
-  PetscReal omega_max = 0;          // stop once omega exceeds this (0: no limit)
-  PetscReal mcr_min = 0;            // stop once the MCR falls below this: the mode has delocalized (0: no limit)
+  PetscReal omega_max = 0; // stop once omega exceeds this (0: no limit)
+  PetscReal mcr_min = 0;   // stop once the MCR falls below this: the mode has delocalized (0: no limit)
   PetscInt max_points = 1000;
   PetscReal max_change = 0.2;       // max ||z0_new - z0_old|| / ||z0_old|| per step
   PetscReal ds_min = 1e-9;          // relative to ||z0||: below it the branch stops
@@ -33,9 +33,9 @@ struct BranchPoint {
 
 struct Branch {
   std::vector<PetscReal> energy, omega, period, mcr, shape_corr, beta; // kPointColumns
-  std::vector<PetscInt> newton_its, krylov_its; // per point (krylov: the mf route's GMRES iterations, 0 for dense LU)
-  std::vector<PetscReal> z0;  // rank 0: npts x 2N rows [u_1..u_N, v_1..v_N]
-  std::vector<PetscInt> interactions; // point indices flagged as modal interactions
+  std::vector<PetscInt> newton_its, krylov_its;                        // per point (krylov: the mf route's GMRES iterations, 0 for dense LU)
+  std::vector<PetscReal> z0;                                           // rank 0: npts x 2N rows [u_1..u_N, v_1..v_N]
+  std::vector<PetscInt> interactions;                                  // point indices flagged as modal interactions
   std::string stop_reason;
   bool reached_max = false;
   // Where the continuation stands after the last point: the family tangent

@@ -15,9 +15,12 @@ PetscErrorCode FlowOptionsFromOptions(MPI_Comm comm, FlowOptions *o)
   PetscOptionsBegin(comm, "nnm_", "Periodic-orbit flow (TS options: -nnm_ts_*; -nnm_ts_type symsplit by default, scheme bm4)", NULL);
   static const char *const routes[] = {"variational", "tsforward"};
   PetscInt r = static_cast<PetscInt>(o->route);
-  PetscCall(PetscOptionsInt("-steps_per_period", "Fixed steps per period of the shooting integration (any -nnm_ts_type; default 128)", NULL, o->steps, &o->steps, NULL));
-  PetscCall(PetscOptionsEList("-monodromy", "Monodromy: variational (state and variational equations in one structured TS) or tsforward (TSForwardSetSensitivities, needs -nnm_ts_type rk)",
-                              NULL, routes, 2, routes[r], &r, NULL));
+  PetscCall(PetscOptionsInt("-steps_per_period", "Fixed steps per period of the shooting integration (any -nnm_ts_type; default 128)", NULL, o->steps,
+                            &o->steps, NULL));
+  PetscCall(PetscOptionsEList(
+      "-monodromy",
+      "Monodromy: variational (state and variational equations in one structured TS) or tsforward (TSForwardSetSensitivities, needs -nnm_ts_type rk)", NULL,
+      routes, 2, routes[r], &r, NULL));
   o->route = static_cast<MonodromyRoute>(r);
   PetscOptionsEnd();
   PetscCheck(o->steps >= 8 && o->steps <= 1000000, comm, PETSC_ERR_USER, "-nnm_steps_per_period must lie in [8, 1e6], got %" PetscInt_FMT, o->steps);

@@ -64,14 +64,13 @@ PetscErrorCode LinearMonodromyPC::SetStiffness(const std::vector<PetscReal> &dia
   PetscFunctionBeginUser;
   PetscCall(GatherChain(diag, off, &diag_, &off_));
   lambda_max_ = 0; // Gershgorin bound of the spectrum
-  for (PetscInt i = 0; i < N_; i++)
-    lambda_max_ = std::max(lambda_max_, std::abs(diag_[i]) + std::abs(off_[i]) + (i > 0 ? std::abs(off_[i - 1]) : 0.0));
+  for (PetscInt i = 0; i < N_; i++) lambda_max_ = std::max(lambda_max_, std::abs(diag_[i]) + std::abs(off_[i]) + (i > 0 ? std::abs(off_[i - 1]) : 0.0));
   T_ = 0; // refactor at the next SetPeriod
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode LinearMonodromyPC::SetParametricTerm(const std::vector<PetscReal> &cdiag, const std::vector<PetscReal> &coff, const std::vector<PetscReal> &sdiag,
-                                                    const std::vector<PetscReal> &soff, PetscReal weight)
+PetscErrorCode LinearMonodromyPC::SetParametricTerm(const std::vector<PetscReal> &cdiag, const std::vector<PetscReal> &coff,
+                                                    const std::vector<PetscReal> &sdiag, const std::vector<PetscReal> &soff, PetscReal weight)
 {
   PetscFunctionBeginUser;
   parametric_ = !cdiag.empty();

@@ -73,7 +73,7 @@ private:
   void MultK(const PetscReal *x, PetscReal *y) const; // y = K x on the whole chain
   void ApplyG(const PetscReal *r, PetscReal *y);      // y = g(K) r on the whole chain
   PetscErrorCode GatherChain(const std::vector<PetscReal> &diag, const std::vector<PetscReal> &off, std::vector<PetscReal> *d, std::vector<PetscReal> *e);
-  PetscErrorCode FactorRotatingWave();                       // B T of the header, banded LU
+  PetscErrorCode FactorRotatingWave();                              // B T of the header, banded LU
   void ApplyRotatingWave(const PetscReal *ru, const PetscReal *rv); // cu_, cv_ = the parametric correction
 
   const Lattice *lat_ = nullptr;
@@ -81,15 +81,15 @@ private:
   std::vector<PetscReal> diag_, off_; // K(i,i) and K(i,i+1) of the whole chain
   std::vector<PetscMPIInt> counts_, displs_;
   PetscReal lambda_max_ = 0, T_ = 0;
-  std::vector<TridiagonalLU> lu_; // shift 0, then w_1^2 .. w_nmax^2
+  std::vector<TridiagonalLU> lu_;    // shift 0, then w_1^2 .. w_nmax^2
   PetscReal tail_[4] = {0, 0, 0, 0}; // s_1 .. s_4
   std::vector<PetscReal> ru_, rv_, gu_, gv_, t1_, t2_;
   // -nnm_mf_pc parametric
   bool parametric_ = false;
   std::vector<PetscReal> kcd_, kco_, ksd_, kso_; // Kc, Ks of the whole chain
-  PetscReal pw_ = 1; // scale of Kc, Ks
-  PetscReal shift1_ = 0;                          // the shift of lu_[1]: w^2, nudged off K's spectrum
-  std::vector<PetscReal> band_, rhs2_;            // LAPACK band storage of B T (ldab 10), interleaved right-hand side
+  PetscReal pw_ = 1;                             // scale of Kc, Ks
+  PetscReal shift1_ = 0;                         // the shift of lu_[1]: w^2, nudged off K's spectrum
+  std::vector<PetscReal> band_, rhs2_;           // LAPACK band storage of B T (ldab 10), interleaved right-hand side
   std::vector<int> ipiv_;
   std::vector<PetscReal> cu_, cv_;
 };

@@ -39,7 +39,7 @@ public:
   PeriodicFlow &Flow() { return system_.Flow(); }
   PetscInt JacobianEvaluations() const { return system_.JacobianEvaluations(); }
   PetscInt ResidualEvaluations() const { return system_.ResidualEvaluations(); }
-  PetscInt TangentProducts() const { return system_.TangentProducts(); } // matrix-free Jacobian products
+  PetscInt TangentProducts() const { return system_.TangentProducts(); }   // matrix-free Jacobian products
   PetscInt KrylovIterations() const { return solver_.KrylovIterations(); } // linear iterations of all solves so far
 
   // The residual, and the main solver's Jacobian (Operator) evaluated at X.

@@ -8,32 +8,26 @@ namespace nltopo {
 static const char *const kJacobianNames[] = {"dense", "mf"};
 static const char *const kMfPcNames[] = {"none", "linear", "averaged", "parametric"};
 
-static const OptionTable<ShootingOptions> &ShootingTable()
-{
-  static OptionTable<ShootingOptions> t("nnm_", "Shooting Newton (SNES options: -nnm_snes_*, -nnm_ksp_*, -nnm_pc_*)");
-  static const bool built =
-    (t.Enum("jacobian", &ShootingOptions::jacobian, kJacobianNames, 2,
-            "Shooting Jacobian: dense (monodromy by forward sensitivities) or mf (one tangent-linear integration per product); -nnm_snes_mf for finite differences")
-       .Int("start_dense_max", &ShootingOptions::start_dense_max, Closed(0, 20000),
-            "Largest 2N for which the first orbit of a branch uses the dense SVD start solver (-nnm_start_*); default 4000 for the "
-            "dense Jacobian, 0 for mf (its preconditioner already treats the edge-mode direction exactly)")
-       .Default("4000 (dense), 0 (mf)")
-       .Enum("mf_pc", &ShootingOptions::mf_pc, kMfPcNames, 4,
-             "Preconditioner of the mf shooting Jacobian: linear (exact inverse of M_lin - I of the linear lattice, O(N) per "
-             "application), averaged (the same with K replaced by the orbit's time-averaged tangent stiffness), parametric (averaged "
-             "plus the orbit's 2 omega parametric term on the band modes near omega, rotating-wave approximation) or none (plain GMRES)")
-       .Real("mf_pc_parametric_weight", &ShootingOptions::parametric_weight, LeftOpen(0, 1),
-             "Scale of the 2 omega term in -nnm_mf_pc parametric; below 1 it keeps the block regular along the orbit's own phase "
-             "direction (1 makes GMRES break down at converged orbits)")
-       .Real("orbit_rtol", &ShootingOptions::orbit_rtol, RightOpen(0, 1),
-             "Newton also stops once |z(T) - z0| <= this times |z0| (0: only -nnm_snes_atol and -nnm_snes_rtol); for branches whose "
-             "amplitude grows by decades, where one absolute tolerance is too tight at the top or too loose at the bottom")
-       .Register(),
-     true);
-  (void)built;
-  return t;
-}
-static const auto &kShootingTable = ShootingTable(); // registered at start-up
+static const auto &kShootingTable = DeclareOptionTable<
+    ShootingOptions>("nnm_", "Shooting Newton (SNES options: -nnm_snes_*, -nnm_ksp_*, -nnm_pc_*)", [](OptionTable<ShootingOptions> &t) {
+  t.Enum(
+       "jacobian", &ShootingOptions::jacobian, kJacobianNames, 2,
+       "Shooting Jacobian: dense (monodromy by forward sensitivities) or mf (one tangent-linear integration per product); -nnm_snes_mf for finite differences")
+      .Int("start_dense_max", &ShootingOptions::start_dense_max, Closed(0, 20000),
+           "Largest 2N for which the first orbit of a branch uses the dense SVD start solver (-nnm_start_*); default 4000 for the "
+           "dense Jacobian, 0 for mf (its preconditioner already treats the edge-mode direction exactly)")
+      .Default("4000 (dense), 0 (mf)")
+      .Enum("mf_pc", &ShootingOptions::mf_pc, kMfPcNames, 4,
+            "Preconditioner of the mf shooting Jacobian: linear (exact inverse of M_lin - I of the linear lattice, O(N) per "
+            "application), averaged (the same with K replaced by the orbit's time-averaged tangent stiffness), parametric (averaged "
+            "plus the orbit's 2 omega parametric term on the band modes near omega, rotating-wave approximation) or none (plain GMRES)")
+      .Real("mf_pc_parametric_weight", &ShootingOptions::parametric_weight, LeftOpen(0, 1),
+            "Scale of the 2 omega term in -nnm_mf_pc parametric; below 1 it keeps the block regular along the orbit's own phase "
+            "direction (1 makes GMRES break down at converged orbits)")
+      .Real("orbit_rtol", &ShootingOptions::orbit_rtol, RightOpen(0, 1),
+            "Newton also stops once |z(T) - z0| <= this times |z0| (0: only -nnm_snes_atol and -nnm_snes_rtol); for branches whose "
+            "amplitude grows by decades, where one absolute tolerance is too tight at the top or too loose at the bottom");
+});
 
 PetscErrorCode ShootingOptionsFromOptions(MPI_Comm comm, ShootingOptions *o)
 {

@@ -24,7 +24,7 @@ struct ShootingOptions {
   PetscInt start_dense_max = 4000; // 2N up to which the first orbit uses the dense SVD start solver
   MatrixFreePC mf_pc = MatrixFreePC::Parametric;
   PetscReal parametric_weight = 0.95; // scale of the 2 omega term in -nnm_mf_pc parametric (linear_monodromy_pc.hpp)
-  PetscReal orbit_rtol = 0; // Newton also converged once |F| <= orbit_rtol |z0| (0: off)
+  PetscReal orbit_rtol = 0;           // Newton also converged once |F| <= orbit_rtol |z0| (0: off)
 };
 PetscErrorCode ShootingOptionsFromOptions(MPI_Comm comm, ShootingOptions *o);
 
@@ -57,7 +57,7 @@ private:
   ShootingOptions opt_;
   OwnedSNES snes_, snes_start_;
   OwnedMat Jdense_, Jshell_;
-  OwnedVec F_, rhs_, zT_; // residual; right-hand side of the tangent solve; scratch state
+  OwnedVec F_, rhs_, zT_;           // residual; right-hand side of the tangent solve; scratch state
   PetscBool snes_mf_ = PETSC_FALSE; // -nnm_snes_mf: finite-difference Jacobian
   bool fresh_ = false;              // the KSP holds this solve's last Jacobian
   PetscInt nkrylov_ = 0;            // linear iterations of all solves so far

@@ -28,9 +28,11 @@ PetscErrorCode ShootingSolver::SetupMatrixFree(KSP ksp, PC pc)
     PetscCall(PCSetType(pc, PCSHELL));
     PetscCall(PCShellSetContext(pc, this));
     PetscCall(PCShellSetApply(pc, ShootPCApply));
-    const char *name = opt_.mf_pc == MatrixFreePC::Linear     ? "exact inverse of M_lin - I (linear lattice) on the state rows, identity on the border"
-                       : opt_.mf_pc == MatrixFreePC::Averaged ? "exact inverse of M_avg - I (linear lattice with the orbit's time-averaged tangent stiffness) on the state rows, identity on the border"
-                                                              : "inverse of M_avg - I plus the rotating-wave 2 omega parametric block near the 1:1 resonance on the state rows, identity on the border";
+    const char *name =
+        opt_.mf_pc == MatrixFreePC::Linear ? "exact inverse of M_lin - I (linear lattice) on the state rows, identity on the border"
+        : opt_.mf_pc == MatrixFreePC::Averaged
+            ? "exact inverse of M_avg - I (linear lattice with the orbit's time-averaged tangent stiffness) on the state rows, identity on the border"
+            : "inverse of M_avg - I plus the rotating-wave 2 omega parametric block near the 1:1 resonance on the state rows, identity on the border";
     PetscCall(PCShellSetName(pc, name));
     PetscCall(KSPSetPCSide(ksp, PC_RIGHT)); // GMRES minimises the true residual
   } else PetscCall(PCSetType(pc, PCNONE));

@@ -308,7 +308,7 @@ PetscErrorCode ShootingSystem::ShellMult(Vec x, Vec y)
   PetscFunctionBeginUser;
   PetscCall(CheckInterrupt(lat_->Comm())); // a stop signal ends the solve here (core/signals.hpp)
   nlin_++;
-  PetscCall(Unpack(x, g_, &dT, &db)); // g_ as scratch for dz
+  PetscCall(Unpack(x, g_, &dT, &db));                                               // g_ as scratch for dz
   PetscCall(flow_->IntegrateWithTangent(zlin_, Tlin_, blin_, g_, db, dT, zT_, w_)); // the T column too
   // rows 2N, 2N+1: fref . dz and c_X . x, with the gathered rows
   PetscCall(VecGetOwnershipRange(x, &rs, NULL));

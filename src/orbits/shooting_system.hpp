@@ -78,8 +78,8 @@ private:
   OwnedVec z_, zT_, fref_, zref_, g_, tan_, Xpred_, work_, w_;
   Constraint kind_ = Constraint::Energy;
   PetscReal target_ = 0; // E_target or T_target
-  OwnedVec zlin_; // linearisation point of the matrix-free product
-  OwnedVec fT_;   // the assembled T column, f_beta(z(T))
+  OwnedVec zlin_;        // linearisation point of the matrix-free product
+  OwnedVec fT_;          // the assembled T column, f_beta(z(T))
   PetscReal Tlin_ = 0, blin_ = 0;
   std::vector<PetscReal> fr_, cr_; // gathered phase and constraint rows
   PetscInt njac_ = 0, nres_ = 0, nlin_ = 0;

@@ -136,7 +136,7 @@ PetscErrorCode SymplecticVariationalFlow::Integrate(Vec z0, PetscReal T, PetscRe
     if (dza) {
       q[1] = dza[k];
       p[1] = dza[xm + k] + s_ * z[xm + k]; // P = W_v + s v
-    } else { // identity on the state columns
+    } else {                               // identity on the state columns
       q[1 + lat_->StateIndexU(xs + k)] = 1.0;
       p[1 + lat_->StateIndexV(xs + k)] = 1.0;
     }

@@ -50,10 +50,10 @@ private:
   PetscInt ncol_ = 0, bs_ = 0, steps_ = 0; // bs_ = 1 + ncol: one site's q block
   PetscReal s_ = 0;                        // s_T / T: the T source
   OwnedTS ts_;
-  OwnedVec Y_, ghost_;  // ghost_: the q blocks of sites xs-1 and xs+xm (parallel only)
+  OwnedVec Y_, ghost_; // ghost_: the q blocks of sites xs-1 and xs+xm (parallel only)
   OwnedVecScatter to_ghost_;
   std::vector<PetscScalar> u_, a_, kd_, kb_; // displacement (ghosted), acceleration and K_T by global site; kb_[b + 1]: bond b
-  std::vector<PetscScalar> A_;     // the acceleration at the end (B_beta's derivative)
+  std::vector<PetscScalar> A_;               // the acceleration at the end (B_beta's derivative)
 };
 
 } // namespace nltopo

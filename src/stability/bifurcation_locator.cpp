@@ -164,8 +164,8 @@ PetscErrorCode BifurcationLocator::Folds(const Branch &b, PetscInt first_segment
     bool conv;
     PetscCall(LocateChange([&](PetscReal sg, BifurcationSample *s) { return Probe(sg, false, true, s); },
                            [&](const BifurcationSample &, const BifurcationSample &x) { return Sign(x.dEds) == sa; },
-                           [](const BifurcationSample &, const BifurcationSample &, const BifurcationSample &x) { return x.dEds; }, bo_.tol, bo_.max_probes, &a, &c,
-                           &used, &conv));
+                           [](const BifurcationSample &, const BifurcationSample &, const BifurcationSample &x) { return x.dEds; }, bo_.tol, bo_.max_probes, &a,
+                           &c, &used, &conv));
     BifurcationEvent e;
     BifurcationSample tip;
     e.kind = EventKind::Fold;
@@ -173,8 +173,8 @@ PetscErrorCode BifurcationLocator::Folds(const Branch &b, PetscInt first_segment
     Place(seg, a, c, &e);
     PetscCall(Probe(c.sigma, false, true, &tip, nullptr, nullptr, &e.vector)); // the family tangent there
     if (!conv)
-      PetscCall(PetscPrintf(shoot_->Flow().Lat().Comm(), "  warning: the energy fold after point %" PetscInt_FMT " was bracketed only to %.1e in omega (%s)\n", seg,
-                            (double)e.omega_bracket, "Newton failed inside it, or -cont_bif_max_probes were spent"));
+      PetscCall(PetscPrintf(shoot_->Flow().Lat().Comm(), "  warning: the energy fold after point %" PetscInt_FMT " was bracketed only to %.1e in omega (%s)\n",
+                            seg, (double)e.omega_bracket, "Newton failed inside it, or -cont_bif_max_probes were spent"));
     ev->push_back(std::move(e));
   }
   PetscFunctionReturn(0);
@@ -213,7 +213,8 @@ PetscErrorCode BifurcationLocator::StabilityChanges(PetscInt i, std::vector<Bifu
   for (PetscInt round = 0; round < 64; round++) {
     size_t k = 0;
     for (; k + 1 < seen.size(); k++)
-      if (!same(seen[k], seen[k + 1]) && !bracketed(seen[k], seen[k + 1]) && std::find(given_up.begin(), given_up.end(), seen[k].sigma) == given_up.end()) break;
+      if (!same(seen[k], seen[k + 1]) && !bracketed(seen[k], seen[k + 1]) && std::find(given_up.begin(), given_up.end(), seen[k].sigma) == given_up.end())
+        break;
     if (k + 1 >= seen.size()) break;
     BifurcationSample a = seen[k], c = seen[k + 1];
     PetscInt used;
@@ -221,8 +222,11 @@ PetscErrorCode BifurcationLocator::StabilityChanges(PetscInt i, std::vector<Bifu
     PetscCall(LocateChange(probe, same, G, bo_.tol, bo_.max_probes, &a, &c, &used, &conv));
     if (!conv) {
       given_up.push_back(a.sigma);
-      PetscCall(PetscPrintf(comm, "  warning: a change of stability after point %" PetscInt_FMT " was bracketed only to %.1e in omega, %.1e in E/E, sigma %.3e (%" PetscInt_FMT " probes%s)\n",
-                            i, (double)std::abs(c.omega - a.omega), (double)std::abs((c.energy - a.energy) / c.energy), (double)(c.sigma - a.sigma), used, used < bo_.max_probes ? ", Newton failed inside it" : ": -cont_bif_max_probes"));
+      PetscCall(PetscPrintf(comm,
+                            "  warning: a change of stability after point %" PetscInt_FMT
+                            " was bracketed only to %.1e in omega, %.1e in E/E, sigma %.3e (%" PetscInt_FMT " probes%s)\n",
+                            i, (double)std::abs(c.omega - a.omega), (double)std::abs((c.energy - a.energy) / c.energy), (double)(c.sigma - a.sigma), used,
+                            used < bo_.max_probes ? ", Newton failed inside it" : ": -cont_bif_max_probes"));
     }
   }
   for (size_t k = 0; k + 1 < seen.size(); k++) {
@@ -237,7 +241,7 @@ PetscErrorCode BifurcationLocator::StabilityChanges(PetscInt i, std::vector<Bifu
       // The signatures from the nearest orbit on the circle side where they are
       // defined: next to the collision the two eigenvectors merge and their
       // Krein values vanish (at +-1 the pair's eigenvalues may even round to real).
-      for (PetscInt q = born > 0 ? (PetscInt)k : (PetscInt)k + 1; q >= 0 && q < (PetscInt)seen.size(); q += born > 0 ? -1 : 1) {
+      for (PetscInt q = born > 0 ? (PetscInt)k : (PetscInt)k + 1; q >= 0 && q<(PetscInt)seen.size(); q += born> 0 ? -1 : 1) {
         CollidingSignatures(seen[q].fr, e.kind, o.angle, fo_.tol, e.krein, min_edge_);
         if (e.krein[0] && e.krein[1]) break;
       }
@@ -249,10 +253,11 @@ PetscErrorCode BifurcationLocator::StabilityChanges(PetscInt i, std::vector<Bifu
       PetscInt qv = born > 0 ? (PetscInt)k + 1 : (PetscInt)k;
       PetscReal target[2] = {e.mu_re, e.mu_im};
       PetscReal mod = o.modulus;
-      for (PetscInt q = qv; q >= 0 && q < (PetscInt)seen.size(); q += born > 0 ? 1 : -1) {
+      for (PetscInt q = qv; q >= 0 && q<(PetscInt)seen.size(); q += born> 0 ? 1 : -1) {
         const Outside *m = nullptr; // the same member: its kind, near in angle, nearest in modulus
         for (const Outside &x : seen[q].out)
-          if (x.kind == o.kind && std::abs(x.angle - o.angle) <= atol && (!m || std::abs(std::log(x.modulus / mod)) < std::abs(std::log(m->modulus / mod)))) m = &x;
+          if (x.kind == o.kind && std::abs(x.angle - o.angle) <= atol && (!m || std::abs(std::log(x.modulus / mod)) < std::abs(std::log(m->modulus / mod))))
+            m = &x;
         if (!m) break;
         mod = m->modulus;
         qv = q, target[0] = seen[q].fr.re[m->index], target[1] = std::abs(seen[q].fr.im[m->index]);
@@ -447,7 +452,8 @@ PetscErrorCode BifurcationLocator::Report(const char *name, PetscInt k, const Bi
   }
   if (e.kind == EventKind::KreinCollision || e.kind == EventKind::Resonance) {
     char what[64] = "";
-    if (e.kind == EventKind::Resonance) PetscCall(PetscSNPrintf(what, sizeof(what), " through exp(2 pi i %" PetscInt_FMT "/%" PetscInt_FMT ")", e.resonance[0], e.resonance[1]));
+    if (e.kind == EventKind::Resonance)
+      PetscCall(PetscSNPrintf(what, sizeof(what), " through exp(2 pi i %" PetscInt_FMT "/%" PetscInt_FMT ")", e.resonance[0], e.resonance[1]));
     char krein[32];
     if (e.kind == EventKind::Resonance) PetscCall(PetscSNPrintf(krein, sizeof(krein), "Krein %+d", (int)e.krein[0]));
     else PetscCall(PetscSNPrintf(krein, sizeof(krein), "Krein (%+d, %+d)", (int)e.krein[0], (int)e.krein[1]));
@@ -462,8 +468,9 @@ PetscErrorCode BifurcationLocator::Report(const char *name, PetscInt k, const Bi
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode BifurcationLocator::Locate(const Branch &b, const std::vector<PetscReal> &re, const std::vector<PetscReal> &im, const std::vector<PetscReal> &edge,
-                                          const char *name, std::vector<BifurcationEvent> *events, const std::vector<PetscInt> &krein, PetscInt first_segment)
+PetscErrorCode BifurcationLocator::Locate(const Branch &b, const std::vector<PetscReal> &re, const std::vector<PetscReal> &im,
+                                          const std::vector<PetscReal> &edge, const char *name, std::vector<BifurcationEvent> *events,
+                                          const std::vector<PetscInt> &krein, PetscInt first_segment)
 {
   const Lattice &lat = shoot_->Flow().Lat();
   MPI_Comm comm = lat.Comm();
@@ -496,8 +503,10 @@ PetscErrorCode BifurcationLocator::Locate(const Branch &b, const std::vector<Pet
     if (!finite) continue;
     FloquetResult fi, fj;
     fi.re.assign(r0, r0 + n2), fi.im.assign(i0, i0 + n2), fj.re.assign(r0 + n2, r0 + 2 * n2), fj.im.assign(i0 + n2, i0 + 2 * n2);
-    if (edge.size() == re.size()) fi.edge.assign(edge.begin() + i * n2, edge.begin() + (i + 1) * n2), fj.edge.assign(edge.begin() + (i + 1) * n2, edge.begin() + (i + 2) * n2);
-    if (!SameOutside(OutsideMultipliers(fi, fo_.tol, min_edge_), OutsideMultipliers(fj, fo_.tol, min_edge_), bo_.angle_tol)) PetscCall(StabilityChanges(i, &changes));
+    if (edge.size() == re.size())
+      fi.edge.assign(edge.begin() + i * n2, edge.begin() + (i + 1) * n2), fj.edge.assign(edge.begin() + (i + 1) * n2, edge.begin() + (i + 2) * n2);
+    if (!SameOutside(OutsideMultipliers(fi, fo_.tol, min_edge_), OutsideMultipliers(fj, fo_.tol, min_edge_), bo_.angle_tol))
+      PetscCall(StabilityChanges(i, &changes));
     if (krein.size() == re.size()) fi.krein.assign(krein.begin() + i * n2, krein.begin() + (i + 1) * n2);
     if (bo_.passes) PetscCall(Passes(i, fi, fj, &changes));
     if (bo_.resonance_order >= 3) PetscCall(Resonances(i, fi, fj, &changes));
@@ -509,14 +518,17 @@ PetscErrorCode BifurcationLocator::Locate(const Branch &b, const std::vector<Pet
     bool at_fold = false;
     const bool stability = c.kind == EventKind::BranchPoint || c.kind == EventKind::PeriodDoubling || c.kind == EventKind::HamiltonianHopf;
     for (const BifurcationEvent &f : *events)
-      if (stability && f.kind == EventKind::Fold && std::hypot(c.mu_re - 1, c.mu_im) < 0.05 && std::abs(c.s - f.s) <= 1e-4 * std::max(s_.back(), (PetscReal)1e-300))
+      if (stability && f.kind == EventKind::Fold && std::hypot(c.mu_re - 1, c.mu_im) < 0.05 &&
+          std::abs(c.s - f.s) <= 1e-4 * std::max(s_.back(), (PetscReal)1e-300))
         at_fold = true;
     if (!at_fold) events->push_back(std::move(c));
   }
   std::stable_sort(events->begin(), events->end(), [](const BifurcationEvent &x, const BifurcationEvent &y) { return x.s < y.s; });
   for (size_t k = 0; k < events->size(); k++) PetscCall(Report(name, (PetscInt)k, (*events)[k]));
   if (passes_avoided_ || resonances_undriven_)
-    PetscCall(PetscPrintf(comm, "  [%s] not events: %" PetscInt_FMT " avoided crossings of equal signature, %" PetscInt_FMT " root-of-unity crossings no harmonic of the orbit drives\n",
+    PetscCall(PetscPrintf(comm,
+                          "  [%s] not events: %" PetscInt_FMT " avoided crossings of equal signature, %" PetscInt_FMT
+                          " root-of-unity crossings no harmonic of the orbit drives\n",
                           name, passes_avoided_, resonances_undriven_));
   PetscCall(PetscLogEventEnd(Log().bifurcations, 0, 0, 0, 0));
   PetscFunctionReturn(0);

@@ -59,10 +59,10 @@ private:
   OwnedVec Xa_, Xb_, d_, X_, Xpred_, t_, z_, za_, zT_, tz_, g_;
   OwnedMat S_;
   PetscReal chord_ = 0;
-  PetscReal vectors_ = -1;  // >= 0: probes also keep the circle eigenvectors of at least this edge share (FloquetResult::vectors)
+  PetscReal vectors_ = -1; // >= 0: probes also keep the circle eigenvectors of at least this edge share (FloquetResult::vectors)
   PetscReal last_T_ = 0, last_beta_ = 0;
   PetscInt passes_avoided_ = 0, resonances_undriven_ = 0; // candidates that proved not to be events
-  PetscReal min_edge_ = 0; // outside multipliers with a smaller edge share are not tracked (B-B, unless -cont_bif_bulk)
+  PetscReal min_edge_ = 0;                                // outside multipliers with a smaller edge share are not tracked (B-B, unless -cont_bif_bulk)
   // orbits solved in each segment of the branch (sigma, local X): the predictors (kept for OrbitAt: at a
   // branch point only a start on the orbit itself keeps Newton from drifting along the near-null direction)
   std::map<PetscInt, std::vector<std::pair<PetscReal, std::vector<PetscScalar>>>> solved_;

@@ -153,7 +153,7 @@ std::vector<std::pair<PetscReal, PetscReal>> PassCandidates(const FloquetResult 
   const auto la = UpperCircle(a, tol, min_edge), lc = UpperCircle(c, tol, min_edge);
   std::vector<std::pair<PetscReal, PetscReal>> cand;
   if (la.size() != lc.size() || la.size() < 2) return cand; // a pair joined or left the circle: the outside set changed there
-  PetscReal move = 0; // the largest move of a member (in order of angle, which a pass leaves as it is)
+  PetscReal move = 0;                                       // the largest move of a member (in order of angle, which a pass leaves as it is)
   for (size_t k = 0; k < la.size(); k++) move = std::max(move, std::abs(lc[k].second - la[k].second));
   const bool signs = a.krein.size() == a.re.size();
   for (size_t k = 0; k + 1 < la.size(); k++) {
@@ -258,8 +258,8 @@ PetscErrorCode BifurcationOptionsFromOptions(MPI_Comm comm, PetscBool dense_floq
                              "Detect and locate energy folds, branch points (+1), period doublings (-1), Krein collisions and internal resonances along each "
                              "branch (needs -floquet without -floquet_mf; on with it)",
                              NULL, o->enabled, &o->enabled, &set));
-  PetscCall(PetscOptionsReal("-bif_tol", "Located event: the final bracket spans at most this in omega and this times E in energy", NULL, o->tol, &o->tol,
-                             NULL));
+  PetscCall(
+      PetscOptionsReal("-bif_tol", "Located event: the final bracket spans at most this in omega and this times E in energy", NULL, o->tol, &o->tol, NULL));
   PetscCall(PetscOptionsInt("-bif_max_probes", "Orbits solved at most to locate one event", NULL, o->max_probes, &o->max_probes, NULL));
   PetscCall(PetscOptionsBool("-bif_bulk",
                              "Also locate the events of bulk eigenvectors (B-B: collisions among band pairs, which shrink as the lattice grows); off: "
@@ -273,8 +273,8 @@ PetscErrorCode BifurcationOptionsFromOptions(MPI_Comm comm, PetscBool dense_floq
                             "Locate internal resonances: crossings of exp(2 pi i p/q) for 3 <= q <= this that the orbit's harmonics drive (kind 6); "
                             "below 3: none",
                             NULL, o->resonance_order, &o->resonance_order, NULL));
-  PetscCall(PetscOptionsReal("-bif_angle_tol", "Unstable multipliers of two orbits within this angle (rad) are the same one", NULL, o->angle_tol,
-                             &o->angle_tol, NULL));
+  PetscCall(PetscOptionsReal("-bif_angle_tol", "Unstable multipliers of two orbits within this angle (rad) are the same one", NULL, o->angle_tol, &o->angle_tol,
+                             NULL));
   PetscOptionsEnd();
   PetscCheck(!(set && o->enabled && !dense_floquet), comm, PETSC_ERR_USER,
              "-cont_bifurcations needs -floquet without -floquet_mf (the events are read from all 2N Floquet multipliers of every orbit)");
@@ -300,7 +300,7 @@ PetscErrorCode LocateChange(const SampleProbe &probe, const SamePredicate &same,
   // near the change: far from it the pair nearest a collision may be another),
   // so that two probes at least halve it.
   PetscReal fa = 1, fc = 1;
-  PetscInt kept = 0;        // +1: a was kept last, -1: c
+  PetscInt kept = 0; // +1: a was kept last, -1: c
   bool secant_failed = false;
   while (!done()) {
     const PetscReal w = c->sigma - a->sigma;
@@ -377,9 +377,9 @@ PetscErrorCode LocateTracked(const SampleProbe &probe, const BifurcationSample &
     PetscFunctionReturn(0);
   };
   bool conv;
-  PetscCall(LocateChange(tracked, [&](const BifurcationSample &, const BifurcationSample &x) { return x.aux * sa > 0; },
-                         [](const BifurcationSample &, const BifurcationSample &, const BifurcationSample &x) { return x.aux; }, tol, max_probes, a, c, probes,
-                         &conv));
+  PetscCall(LocateChange(
+      tracked, [&](const BifurcationSample &, const BifurcationSample &x) { return x.aux * sa > 0; },
+      [](const BifurcationSample &, const BifurcationSample &, const BifurcationSample &x) { return x.aux; }, tol, max_probes, a, c, probes, &conv));
   if (!conv) *out = TrackedOutcome::NotLocated;
   else if (std::max(std::abs(a->aux), std::abs(c->aux)) > 10 * slope * (c->sigma - a->sigma) + 1e-12) *out = TrackedOutcome::Avoided;
   else *out = TrackedOutcome::Crossed;

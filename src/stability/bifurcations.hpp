@@ -70,7 +70,7 @@ struct Outside {
   EventKind kind;  // BranchPoint (real > 1), PeriodDoubling (real < -1), HamiltonianHopf (complex)
   PetscReal angle; // arg mu in [0, pi]
   PetscReal modulus;
-  PetscInt index;  // in the FloquetResult
+  PetscInt index; // in the FloquetResult
 };
 // min_edge > 0: only those whose eigenvector has at least this share of its
 // displacement norm in the edge region (r.edge; all when r has none).
@@ -145,8 +145,8 @@ PetscErrorCode BifurcationOptionsFromOptions(MPI_Comm comm, PetscBool dense_floq
 // One located event (outputs.md /continuation/<branch>/bifurcations).
 struct BifurcationEvent {
   EventKind kind = EventKind::Fold;
-  PetscInt direction = 0;   // +1: a pair leaves the circle (fold: E has a maximum) along the branch; -1: returns (minimum)
-  PetscInt point = 0;       // the continuation point the event follows
+  PetscInt direction = 0;                 // +1: a pair leaves the circle (fold: E has a maximum) along the branch; -1: returns (minimum)
+  PetscInt point = 0;                     // the continuation point the event follows
   PetscReal energy = 0, omega = 0, s = 0; // at the located point; s: arclength from the first point
   PetscReal omega_bracket = 0;            // width in omega of the final bracket
   PetscReal mu_re = 1, mu_im = 0;         // the critical multiplier (just off the circle)
@@ -161,11 +161,11 @@ struct BifurcationEvent {
 struct BifurcationSample {
   PetscReal sigma = 0; // position in the segment, 0 .. 1
   PetscReal omega = 0, energy = 0;
-  PetscReal dEds = 0;  // fold test function
-  FloquetResult fr;    // the multipliers there (when probed with them)
+  PetscReal dEds = 0; // fold test function
+  FloquetResult fr;   // the multipliers there (when probed with them)
   std::vector<Outside> out;
-  bool ok = true;      // false: the orbit was not found there (Newton failed)
-  PetscReal aux = NAN; // the test function of a search that is not about fr's outside set (kinds 4, 6)
+  bool ok = true;          // false: the orbit was not found there (Newton failed)
+  PetscReal aux = NAN;     // the test function of a search that is not about fr's outside set (kinds 4, 6)
   PetscInt aux_index = -1; // and the member of fr it was measured on
 };
 using SampleProbe = std::function<PetscErrorCode(PetscReal sigma, BifurcationSample *)>;

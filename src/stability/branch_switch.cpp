@@ -31,7 +31,10 @@ const char *KindTag(EventKind k) { return k == EventKind::PeriodDoubling ? "pd" 
 const char *KindPlural(EventKind k) { return k == EventKind::PeriodDoubling ? "period doublings" : "branch points"; }
 // The label suffix of the family on side sign: none at a period doubling (one family).
 const char *SideSuffix(EventKind k, PetscInt sign) { return k == EventKind::PeriodDoubling ? "" : sign > 0 ? "_plus" : "_minus"; }
-bool AllDigits(const std::string &s) { return !s.empty() && s.size() <= 6 && std::all_of(s.begin(), s.end(), [](char c) { return std::isdigit((unsigned char)c); }); }
+bool AllDigits(const std::string &s)
+{
+  return !s.empty() && s.size() <= 6 && std::all_of(s.begin(), s.end(), [](char c) { return std::isdigit((unsigned char)c); });
+}
 
 // <branch>:<index> or <branch>:<kind>@<omega>.
 PetscErrorCode ParseSwitchSpec(MPI_Comm comm, const std::string &item, SwitchSpec *s)
@@ -128,8 +131,8 @@ PetscErrorCode CheckSwitchParents(MPI_Comm comm, const std::vector<SwitchSpec> &
   // each on a branch of -cont_branch, or on the family another switch starts
   // (insulated:34,insulated_bp34_plus:7 at N = 22: the period doubling of a switched family)
   for (const SwitchSpec &s : specs)
-    PetscCheck(Followed(specs, s.branch, among), comm, PETSC_ERR_USER, "-cont_switch %s: no branch %s among -cont_branch or the families of the other -cont_switch events",
-               s.text.c_str(), s.branch.c_str());
+    PetscCheck(Followed(specs, s.branch, among), comm, PETSC_ERR_USER,
+               "-cont_switch %s: no branch %s among -cont_branch or the families of the other -cont_switch events", s.text.c_str(), s.branch.c_str());
   PetscFunctionReturn(0);
 }
 
@@ -147,8 +150,8 @@ PetscErrorCode SwitchOptionsFromOptions(MPI_Comm comm, bool check, const std::fu
                                     "doublings (the doubled-period family): <branch>:<event index> (the event list of -cont_bifurcations) or "
                                     "<branch>:<kind>@<omega>, the event of that kind nearest omega (kind bp or branch_point, pd or period_doubling)",
                                     NULL, list, &n, &set));
-  PetscCall(PetscOptionsReal("-switch_step", "The first orbit of a switched family: this times |z*| along the critical eigenvector from the branch point", NULL, *step,
-                             step, NULL));
+  PetscCall(PetscOptionsReal("-switch_step", "The first orbit of a switched family: this times |z*| along the critical eigenvector from the branch point", NULL,
+                             *step, step, NULL));
   PetscOptionsEnd();
   PetscCheck(*step > 0 && *step < 1, comm, PETSC_ERR_USER, "-cont_switch_step must lie in (0, 1), got %g", (double)*step);
   for (PetscInt i = 0; set && i < n; i++) {
@@ -165,8 +168,10 @@ PetscErrorCode WarnUnusedSwitches(MPI_Comm comm, const std::vector<SwitchSpec> &
   PetscFunctionBeginUser;
   for (const SwitchSpec &sw : specs)
     if (!sw.used) // a family of another switch that was not followed (a numerical failure, warned about) or has another name
-      PetscCall(PetscPrintf(comm, "  warning: -cont_switch %s: no branch %s was followed (its switch failed, or its event started a family of another name, e.g. _pd<k> at a period doubling); not switched\n",
-                            sw.text.c_str(), sw.branch.c_str()));
+      PetscCall(PetscPrintf(
+          comm,
+          "  warning: -cont_switch %s: no branch %s was followed (its switch failed, or its event started a family of another name, e.g. _pd<k> at a period doubling); not switched\n",
+          sw.text.c_str(), sw.branch.c_str()));
   PetscFunctionReturn(0);
 }
 
@@ -174,8 +179,8 @@ PetscErrorCode SelectSwitchEvent(MPI_Comm comm, const SwitchSpec &s, const std::
 {
   PetscFunctionBeginUser;
   if (s.ByIndex()) {
-    PetscCheck(s.index < (PetscInt)ev.size(), comm, PETSC_ERR_USER, "-cont_switch %s: branch %s has %zu located events%s", s.text.c_str(), label.c_str(), ev.size(),
-               ev.empty() ? "" : (" (0 .. " + std::to_string(ev.size() - 1) + ")").c_str());
+    PetscCheck(s.index < (PetscInt)ev.size(), comm, PETSC_ERR_USER, "-cont_switch %s: branch %s has %zu located events%s", s.text.c_str(), label.c_str(),
+               ev.size(), ev.empty() ? "" : (" (0 .. " + std::to_string(ev.size() - 1) + ")").c_str());
     *index = s.index;
     PetscFunctionReturn(0);
   }
@@ -186,8 +191,8 @@ PetscErrorCode SelectSwitchEvent(MPI_Comm comm, const SwitchSpec &s, const std::
     if (best < 0 || dist(i) < dist(best)) next = best, best = i;
     else if (next < 0 || dist(i) < dist(next)) next = i;
   }
-  PetscCheck(best >= 0, comm, PETSC_ERR_USER, "-cont_switch %s: branch %s has no %s among its %zu located events", s.text.c_str(), label.c_str(), KindPlural(s.kind),
-             ev.size());
+  PetscCheck(best >= 0, comm, PETSC_ERR_USER, "-cont_switch %s: branch %s has no %s among its %zu located events", s.text.c_str(), label.c_str(),
+             KindPlural(s.kind), ev.size());
   PetscCheck(next < 0 || dist(next) > 2 * dist(best), comm, PETSC_ERR_USER,
              "-cont_switch %s: ambiguous: the %s of branch %s at omega %.9g (event %" PetscInt_FMT ") and %.9g (event %" PetscInt_FMT
              ") are about as near (the nearest must be less than half as far as the next); give omega nearer one of them, or the index",
@@ -242,16 +247,21 @@ PetscErrorCode StartFamily(Shooting &shoot, const SwitchJob &job, PetscReal step
   PetscCall(StartSwitchedBranch(shoot, job.Xs, e, step, sign, start, pinned, &away));
   if (!*pinned) {
     if (pd && sign > 0)
-      PetscCall(PetscPrintf(comm, "  warning: -cont_switch %s: no orbit found %g |z*| off the period doubling along +phi (Newton failed); trying -phi (the same family)\n",
-                            parent.c_str(), (double)step));
+      PetscCall(PetscPrintf(
+          comm, "  warning: -cont_switch %s: no orbit found %g |z*| off the period doubling along +phi (Newton failed); trying -phi (the same family)\n",
+          parent.c_str(), (double)step));
     else
-      PetscCall(PetscPrintf(comm, "  warning: -cont_switch %s: no orbit found %g |z*| off the %s along %sits critical eigenvector (Newton failed); %s not followed, try another -cont_switch_step\n",
-                            parent.c_str(), (double)step, job.plan.What(), pd ? "either side of " : "", label.c_str()));
+      PetscCall(PetscPrintf(
+          comm,
+          "  warning: -cont_switch %s: no orbit found %g |z*| off the %s along %sits critical eigenvector (Newton failed); %s not followed, try another -cont_switch_step\n",
+          parent.c_str(), (double)step, job.plan.What(), pd ? "either side of " : "", label.c_str()));
     PetscFunctionReturn(0);
   }
-  PetscCall(PetscPrintf(comm, "  [%s] from the %s %s at omega %.9f (E %.6g): first orbit at %g |z*| along %sthe critical eigenvector (%.0f %% of the step along it), E %.6g, omega %.9f%s\n",
-                        label.c_str(), job.plan.What(), parent.c_str(), (double)e.omega, (double)e.energy, (double)step, sign > 0 ? "" : "minus ", (double)(100 * away),
-                        (double)start->energy[1], (double)start->omega[1], pd ? " (period ~2 T*: the FEP plots it at 2 omega, attribute period_multiple 2)" : ""));
+  PetscCall(PetscPrintf(
+      comm,
+      "  [%s] from the %s %s at omega %.9f (E %.6g): first orbit at %g |z*| along %sthe critical eigenvector (%.0f %% of the step along it), E %.6g, omega %.9f%s\n",
+      label.c_str(), job.plan.What(), parent.c_str(), (double)e.omega, (double)e.energy, (double)step, sign > 0 ? "" : "minus ", (double)(100 * away),
+      (double)start->energy[1], (double)start->omega[1], pd ? " (period ~2 T*: the FEP plots it at 2 omega, attribute period_multiple 2)" : ""));
   // the Floquet data of the two start points, as of every other
   floquet.Clear();
   OwnedVec z;
@@ -279,8 +289,10 @@ PetscErrorCode StartSwitchedBranch(Shooting &shoot, Vec Xs, const BifurcationEve
   *start = Branch();
   *pinned = false;
   const PetscInt m = SwitchedPeriodMultiple(e.kind);
-  PetscCheck(m > 0, comm, PETSC_ERR_SUP, "-cont_switch follows branch points (kind 2) and period doublings (kind 3); this event is a %s", EventKindName(e.kind));
-  PetscCheck(shoot.Flow().PeriodMultiple() % m == 0, comm, PETSC_ERR_PLIB, "-cont_switch: the family born at a %s is integrated with period multiple %" PetscInt_FMT ", not a multiple of %" PetscInt_FMT,
+  PetscCheck(m > 0, comm, PETSC_ERR_SUP, "-cont_switch follows branch points (kind 2) and period doublings (kind 3); this event is a %s",
+             EventKindName(e.kind));
+  PetscCheck(shoot.Flow().PeriodMultiple() % m == 0, comm, PETSC_ERR_PLIB,
+             "-cont_switch: the family born at a %s is integrated with period multiple %" PetscInt_FMT ", not a multiple of %" PetscInt_FMT,
              EventKindName(e.kind), shoot.Flow().PeriodMultiple(), m);
   PetscCheck(e.vector.size() == (size_t)(2 * lat.N()), comm, PETSC_ERR_PLIB, "-cont_switch: the event has no critical eigenvector");
   for (OwnedVec *v : {&X1, &t, &Xpred, &d}) PetscCall(VecDuplicate(Xs, v->out()));

@@ -32,9 +32,9 @@ namespace nltopo {
 // the names of /bifurcations "kind"): indices move when the locator learns
 // new kinds of events, a kind and a frequency do not.
 struct SwitchSpec {
-  std::string text;   // the item as given (messages)
-  std::string branch; // a -cont_branch entry (name or mode<k>) or a switched family's label
-  PetscInt index = -1; // >= 0: by index
+  std::string text;                        // the item as given (messages)
+  std::string branch;                      // a -cont_branch entry (name or mode<k>) or a switched family's label
+  PetscInt index = -1;                     // >= 0: by index
   EventKind kind = EventKind::BranchPoint; // index < 0: by kind and nearest omega
   PetscReal omega = 0;
   bool used = false; // its branch was continued and its event looked up

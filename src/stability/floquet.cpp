@@ -14,9 +14,11 @@ PetscErrorCode FloquetOptionsFromOptions(MPI_Comm comm, FloquetOptions *o)
   PetscOptionsBegin(comm, "floquet_", "Floquet multipliers (eigensolver options: -floquet_eps_*)", NULL);
   PetscCall(PetscOptionsReal("-tol", "A multiplier with |mu| > 1 + tol makes the orbit unstable", NULL, o->tol, &o->tol, NULL));
   PetscCall(PetscOptionsReal("-krein_tol", "Krein signature 0 when |-i v^H J v| / |v|^2 is below this", NULL, o->krein_tol, &o->krein_tol, NULL));
-  PetscCall(PetscOptionsInt("-edge_sites", "Sites on each side of the interface cell that count as the edge region", NULL, o->edge_sites, &o->edge_sites, NULL));
-  PetscCall(PetscOptionsReal("-edge_weight", "Unstable eigenvector: edge (E-E) above this share of its displacement norm in the edge region, bulk (B-B) below 1 minus it, B-E between",
-                             NULL, o->edge_weight, &o->edge_weight, NULL));
+  PetscCall(
+      PetscOptionsInt("-edge_sites", "Sites on each side of the interface cell that count as the edge region", NULL, o->edge_sites, &o->edge_sites, NULL));
+  PetscCall(PetscOptionsReal(
+      "-edge_weight", "Unstable eigenvector: edge (E-E) above this share of its displacement norm in the edge region, bulk (B-B) below 1 minus it, B-E between",
+      NULL, o->edge_weight, &o->edge_weight, NULL));
   PetscOptionsEnd();
   PetscCheck(o->tol > 0 && o->tol < 1, comm, PETSC_ERR_USER, "-floquet_tol must lie in (0, 1), got %g", (double)o->tol);
   PetscCheck(o->krein_tol > 0 && o->krein_tol < 1, comm, PETSC_ERR_USER, "-floquet_krein_tol must lie in (0, 1), got %g", (double)o->krein_tol);
@@ -162,8 +164,8 @@ PetscErrorCode NaturalEigenvector(const Lattice &lat, EPS eps, PetscInt i, Vec x
 }
 
 // The eigenvector of the multiplier nearest target (see floquet.hpp).
-PetscErrorCode CriticalVector(const Lattice &lat, EPS eps, const std::vector<PetscReal> &re, const std::vector<PetscReal> &im, const PetscReal *target,
-                              Vec xr, Vec xi, std::vector<PetscReal> *vec)
+PetscErrorCode CriticalVector(const Lattice &lat, EPS eps, const std::vector<PetscReal> &re, const std::vector<PetscReal> &im, const PetscReal *target, Vec xr,
+                              Vec xi, std::vector<PetscReal> *vec)
 {
   std::vector<std::complex<PetscReal>> v;
   PetscFunctionBeginUser;
@@ -259,7 +261,8 @@ PetscErrorCode FloquetAnalysis(const Lattice &lat, Mat S, const FloquetOptions &
     r->vectors.assign(n, {});
     for (PetscInt k = 0; k < n; k++) {
       const PetscInt i = order[k];
-      if (im[i] > 0 && std::abs(std::hypot(re[i], im[i]) - 1) <= o.tol && edge[i] >= circle_vectors) PetscCall(NaturalEigenvector(lat, eps, i, xr, xi, &r->vectors[k]));
+      if (im[i] > 0 && std::abs(std::hypot(re[i], im[i]) - 1) <= o.tol && edge[i] >= circle_vectors)
+        PetscCall(NaturalEigenvector(lat, eps, i, xr, xi, &r->vectors[k]));
     }
   }
   PetscCall(PetscLogEventEnd(Log().floquet, 0, 0, 0, 0));

@@ -11,10 +11,10 @@
 namespace nltopo {
 
 struct FloquetOptions {
-  PetscReal tol = 1e-6;        // |mu| > 1 + tol is unstable
-  PetscReal krein_tol = 1e-6;  // |-i v^H J v| / |v|^2 below this: signature 0 (real or on a collision)
+  PetscReal tol = 1e-6;         // |mu| > 1 + tol is unstable
+  PetscReal krein_tol = 1e-6;   // |-i v^H J v| / |v|^2 below this: signature 0 (real or on a collision)
   PetscReal edge_weight = 0.75; // an eigenvector with more of its displacement norm than this
-                               // within +-edge_sites of the interface counts as an edge (localised) mode
+                                // within +-edge_sites of the interface counts as an edge (localised) mode
   PetscInt edge_sites = 10;
 };
 PetscErrorCode FloquetOptionsFromOptions(MPI_Comm comm, FloquetOptions *o);
@@ -26,11 +26,11 @@ struct FloquetResult {
   std::vector<PetscReal> kappa;  // the Krein value -i v^H J v / |v|^2 itself (krein is its sign above krein_tol)
   PetscReal max_modulus = 0;
   bool stable = true;
-  PetscInt instability = 0;      // 0 none, 1 bulk-bulk, 2 bulk-edge, 3 edge-edge
-  PetscInt trivial = 0;          // multipliers within 1e-4 of 1 (2 for an isolated NNM)
-  PetscReal det_error = 0;       // |det M - 1| with det M from an LU factorisation in extended
-                                 // precision (the product of the computed multipliers carries
-                                 // their rounding, ~2N eps): Liouville's theorem says det M = 1
+  PetscInt instability = 0; // 0 none, 1 bulk-bulk, 2 bulk-edge, 3 edge-edge
+  PetscInt trivial = 0;     // multipliers within 1e-4 of 1 (2 for an isolated NNM)
+  PetscReal det_error = 0;  // |det M - 1| with det M from an LU factorisation in extended
+                            // precision (the product of the computed multipliers carries
+                            // their rounding, ~2N eps): Liouville's theorem says det M = 1
   // Only when asked for (FloquetAnalysis circle_vectors): the eigenvectors of
   // the multipliers on the unit circle (||mu| - 1| <= tol) in the open upper
   // half plane with an edge share of at least circle_vectors, natural order

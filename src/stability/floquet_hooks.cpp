@@ -66,11 +66,14 @@ PetscErrorCode FloquetMfHook::Announce() const
   const PetscInt n2 = 2 * flow_.Lat().N();
   PetscFunctionBeginUser;
   if (Dense())
-    PetscCall(PetscPrintf(comm, "  Floquet: the dense monodromy (2N = %" PetscInt_FMT " <= -floquet_mf_dense_max %" PetscInt_FMT "): every multiplier, a stability verdict per orbit, cost ~(2N)^3\n",
+    PetscCall(PetscPrintf(comm,
+                          "  Floquet: the dense monodromy (2N = %" PetscInt_FMT " <= -floquet_mf_dense_max %" PetscInt_FMT
+                          "): every multiplier, a stability verdict per orbit, cost ~(2N)^3\n",
                           n2, mopt_.dense_max));
   else
-    PetscCall(PetscPrintf(comm, "  Floquet: matrix-free (2N = %" PetscInt_FMT " > -floquet_mf_dense_max %" PetscInt_FMT "): an orbit is unstable or not decided, never stable\n", n2,
-                          mopt_.dense_max));
+    PetscCall(PetscPrintf(
+        comm, "  Floquet: matrix-free (2N = %" PetscInt_FMT " > -floquet_mf_dense_max %" PetscInt_FMT "): an orbit is unstable or not decided, never stable\n",
+        n2, mopt_.dense_max));
   PetscFunctionReturn(0);
 }
 
@@ -81,11 +84,14 @@ PetscErrorCode PrintFloquetSummary(MPI_Comm comm, const std::string &label, cons
   PetscFunctionBeginUser;
   for (PetscInt s : f.stable) ns += s == kStable, nu += s == kUndecided;
   PetscCall(PetscPrintf(comm, "  [%s] Floquet%s: %" PetscInt_FMT " of %zu orbits stable (|mu| <= 1 + %g)", label.c_str(),
-                        !mf ? "" : dense ? " (-floquet_mf, dense: 2N <= -floquet_mf_dense_max)" : " (matrix-free, leading pairs)", ns, f.stable.size(), (double)tol));
+                        !mf     ? ""
+                        : dense ? " (-floquet_mf, dense: 2N <= -floquet_mf_dense_max)"
+                                : " (matrix-free, leading pairs)",
+                        ns, f.stable.size(), (double)tol));
   if (mf) {
     if (!dense)
-      PetscCall(PetscPrintf(comm, ", %" PetscInt_FMT " not decided (a complex quadruplet cannot be excluded matrix-free), %" PetscInt_FMT " monodromy products", nu,
-                            f.products));
+      PetscCall(PetscPrintf(comm, ", %" PetscInt_FMT " not decided (a complex quadruplet cannot be excluded matrix-free), %" PetscInt_FMT " monodromy products",
+                            nu, f.products));
   } else {
     PetscReal dmax = 0;
     for (PetscReal x : f.det_error) dmax = std::max(dmax, x); // NaN (resumed from an older file) ignored

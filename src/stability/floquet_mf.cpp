@@ -32,8 +32,8 @@ PetscErrorCode FloquetMfOptionsFromOptions(MPI_Comm comm, FloquetMfOptions *o)
                               "(Krylov-Schur on (M + M^-1)/2)",
                               NULL, kWhichNames, 2, kWhichNames[w], &w, NULL));
   PetscCall(PetscOptionsReal("-circle_tol",
-                             "critical: b = (mu + 1/mu)/2 within this of [-1, 1] is on the unit circle (|mu| - 1 is resolved down to sqrt(2 circle_tol))",
-                             NULL, o->circle_tol, &o->circle_tol, NULL));
+                             "critical: b = (mu + 1/mu)/2 within this of [-1, 1] is on the unit circle (|mu| - 1 is resolved down to sqrt(2 circle_tol))", NULL,
+                             o->circle_tol, &o->circle_tol, NULL));
   PetscCall(PetscOptionsInt("-dense_max",
                             "Orbits with 2N at most this take the dense monodromy (all 2N multipliers: the only route that can call an orbit stable; "
                             "its cost grows as (2N)^3); 0: always matrix-free",
@@ -43,7 +43,8 @@ PetscErrorCode FloquetMfOptionsFromOptions(MPI_Comm comm, FloquetMfOptions *o)
   PetscOptionsEnd();
   PetscCheck(o->circle_tol > 0 && o->circle_tol < 1, comm, PETSC_ERR_USER, "-floquet_mf_circle_tol must lie in (0, 1), got %g", (double)o->circle_tol);
   PetscCheck(o->nev >= 1 && o->nev <= 1000, comm, PETSC_ERR_USER, "-floquet_mf_nev must lie in [1, 1000], got %" PetscInt_FMT, o->nev);
-  PetscCheck(o->dense_max >= 0 && o->dense_max <= 20000, comm, PETSC_ERR_USER, "-floquet_mf_dense_max must lie in [0, 20000], got %" PetscInt_FMT, o->dense_max);
+  PetscCheck(o->dense_max >= 0 && o->dense_max <= 20000, comm, PETSC_ERR_USER, "-floquet_mf_dense_max must lie in [0, 20000], got %" PetscInt_FMT,
+             o->dense_max);
   o->which = static_cast<FloquetMfWhich>(w);
   PetscFunctionReturn(0);
 }
@@ -57,7 +58,6 @@ PetscInt MatrixFreeVerdict(const LeadingMultipliers &r, PetscReal tol)
   return kUndecided;
 }
 
-
 extern "C" { // LAPACK (Debian liblapack): Hessenberg reduction, eigenvectors of selected eigenvalues, Q applied
 void dgehrd_(const int *n, const int *ilo, const int *ihi, double *a, const int *lda, double *tau, double *work, const int *lwork, int *info);
 void dhseqr_(const char *job, const char *compz, const int *n, const int *ilo, const int *ihi, double *h, const int *ldh, double *wr, double *wi, double *z,
@@ -65,8 +65,8 @@ void dhseqr_(const char *job, const char *compz, const int *n, const int *ilo, c
 void dhsein_(const char *side, const char *eigsrc, const char *initv, int *select, const int *n, const double *h, const int *ldh, double *wr, const double *wi,
              double *vl, const int *ldvl, double *vr, const int *ldvr, const int *mm, int *m, double *work, int *ifaill, int *ifailr, int *info, size_t, size_t,
              size_t);
-void dormhr_(const char *side, const char *trans, const int *m, const int *n, const int *ilo, const int *ihi, const double *a, const int *lda, const double *tau,
-             double *c, const int *ldc, double *work, const int *lwork, int *info, size_t, size_t);
+void dormhr_(const char *side, const char *trans, const int *m, const int *n, const int *ilo, const int *ihi, const double *a, const int *lda,
+             const double *tau, double *c, const int *ldc, double *work, const int *lwork, int *info, size_t, size_t);
 }
 
 namespace {
@@ -126,7 +126,8 @@ std::vector<int> PickLeadingPairs(const std::vector<std::complex<PetscReal>> &mu
     if (m < 1 - 1e-9) {
       const std::complex<PetscReal> partner = 1.0 / std::conj(mu[i]);
       bool outer = false;
-      for (int j : idx) outer = outer || (j != i && mu[j].imag() >= 0 && std::abs(mu[j]) > 1 + 1e-9 && std::abs(mu[j] - partner) <= std::max(1e-7, 0.1 * (1 - m)));
+      for (int j : idx)
+        outer = outer || (j != i && mu[j].imag() >= 0 && std::abs(mu[j]) > 1 + 1e-9 && std::abs(mu[j] - partner) <= std::max(1e-7, 0.1 * (1 - m)));
       if (outer) continue;
     }
     cand.push_back(i);
@@ -170,9 +171,10 @@ PetscErrorCode PairVectors(int n, const PetscReal *a, const std::vector<PetscRea
   int got = 0;
   if (cols) {
     std::vector<PetscReal> wr2 = wr;
-    dhsein_("R", "Q", "N", select.data(), &n, h.data(), &n, wr2.data(), wi.data(), NULL, &one, vr->data(), &n, &cols, &got, hw.data(), ifl.data(), ifr->data(), &info,
-            1, 1, 1);
-    PetscCheck(info >= 0 && got == cols, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet (dense): LAPACK dhsein failed, info %d, %d of %d columns (2N = %d)", info, got, cols, n);
+    dhsein_("R", "Q", "N", select.data(), &n, h.data(), &n, wr2.data(), wi.data(), NULL, &one, vr->data(), &n, &cols, &got, hw.data(), ifl.data(), ifr->data(),
+            &info, 1, 1, 1);
+    PetscCheck(info >= 0 && got == cols, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet (dense): LAPACK dhsein failed, info %d, %d of %d columns (2N = %d)", info,
+               got, cols, n);
     lwork = -1;
     dormhr_("L", "N", &n, &cols, &one, &n, a, &n, tau.data(), vr->data(), &n, &wq, &lwork, &info, 1, 1);
     work.resize(std::max<size_t>(work.size(), (size_t)wq + 1));
@@ -464,8 +466,9 @@ static PetscErrorCode DistinctEigenvalues(MonodromyShell &shell, Vec z0, PetscIn
 // tol the eigensolver's. A rejected one is NaN, like an unconverged one
 // (not converged within -floquet_mf_eps_max_it: a continuation goes on, the
 // caller reports it; never a silent number). kept: the eigenpairs that passed.
-static PetscErrorCode AcceptMultipliers(MonodromyShell &shell, EPS eps, Vec z0, const std::vector<std::complex<PetscReal>> &seen, const std::vector<PetscInt> &first,
-                                        PetscReal tol, const FloquetMfOptions &o, LeadingMultipliers *r, std::vector<PetscInt> *kept)
+static PetscErrorCode AcceptMultipliers(MonodromyShell &shell, EPS eps, Vec z0, const std::vector<std::complex<PetscReal>> &seen,
+                                        const std::vector<PetscInt> &first, PetscReal tol, const FloquetMfOptions &o, LeadingMultipliers *r,
+                                        std::vector<PetscInt> *kept)
 {
   const PetscInt nev = o.nev;
   const bool critical = o.which == FloquetMfWhich::Critical;
@@ -478,7 +481,8 @@ static PetscErrorCode AcceptMultipliers(MonodromyShell &shell, EPS eps, Vec z0, 
     PetscCall(TrueResidual(shell, eps, first[k], z0, &res));
     if (!(res <= 100 * tol * std::max<PetscReal>(1, std::abs(seen[k])))) {
       r->spurious++;
-      PetscCall(PetscInfo(NULL, "matrix-free Floquet: Ritz value %g%+gi rejected, true residual %g\n", (double)seen[k].real(), (double)seen[k].imag(), (double)res));
+      PetscCall(
+          PetscInfo(NULL, "matrix-free Floquet: Ritz value %g%+gi rejected, true residual %g\n", (double)seen[k].real(), (double)seen[k].imag(), (double)res));
       continue;
     }
     kept->push_back(first[k]);

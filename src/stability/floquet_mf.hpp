@@ -91,12 +91,12 @@ PetscErrorCode FloquetMfOptionsFromOptions(MPI_Comm comm, FloquetMfOptions *o);
 enum FloquetVerdict : PetscInt { kUndecided = -1, kUnstable = 0, kStable = 1 };
 
 struct LeadingMultipliers {
-  std::vector<PetscReal> re, im; // the multipliers (|mu| >= 1 member of each pair)
-  PetscReal max_modulus = 0; // NaN unless all nev converged
-  PetscInt converged = 0;    // < nev: the rest are NaN (-floquet_mf_eps_max_it reached, or rejected)
-  PetscInt spurious = 0;     // Ritz values Krylov-Schur called converged whose true residual rejected them
+  std::vector<PetscReal> re, im;     // the multipliers (|mu| >= 1 member of each pair)
+  PetscReal max_modulus = 0;         // NaN unless all nev converged
+  PetscInt converged = 0;            // < nev: the rest are NaN (-floquet_mf_eps_max_it reached, or rejected)
+  PetscInt spurious = 0;             // Ritz values Krylov-Schur called converged whose true residual rejected them
   std::vector<PetscReal> resolution; // matrix-free: how far |mu| - 1 of each is resolved (from its true residual)
-  PetscInt products = 0;     // monodromy actions used (two per product of B)
+  PetscInt products = 0;             // monodromy actions used (two per product of B)
   PetscInt verdict = kUndecided;
   std::vector<PetscInt> krein; // per multiplier: sign(-i v^H J v) as in FloquetResult; 0 when not computed (matrix-free)
   PetscInt instability = -1;   // the leading unstable eigenvector's class as in FloquetResult (0 stable); -1 not computed
@@ -136,7 +136,7 @@ struct LeadingPairs {
   PetscReal max_modulus = 0;
   PetscInt instability = 0;
 };
-PetscErrorCode DenseLeadingPairs(PetscInt n, PetscReal *a, PetscInt nev, const FloquetOptions &o, const std::vector<PetscInt> &uidx, const std::vector<PetscInt> &vidx,
-                                 PetscInt iface, LeadingPairs *out);
+PetscErrorCode DenseLeadingPairs(PetscInt n, PetscReal *a, PetscInt nev, const FloquetOptions &o, const std::vector<PetscInt> &uidx,
+                                 const std::vector<PetscInt> &vidx, PetscInt iface, LeadingPairs *out);
 
 } // namespace nltopo

@@ -3,7 +3,7 @@
 namespace nltopo {
 
 CheckpointHook::CheckpointHook(MPI_Comm comm, PointHook *inner, PetscReal every, std::function<PetscErrorCode()> write)
-  : comm_(comm), inner_(inner), every_(every), write_(std::move(write))
+    : comm_(comm), inner_(inner), every_(every), write_(std::move(write))
 {
   PetscTime(&last_);
 }

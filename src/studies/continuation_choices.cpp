@@ -46,12 +46,12 @@ PetscErrorCode ReadStudyChoices(MPI_Comm comm, StudyChoices *c)
                              &c->floquet, NULL));
   PetscCall(PetscOptionsBool("-floquet_mf",
                              "With -floquet: only the -floquet_mf_nev leading multiplier pairs (long lattices): from the dense monodromy up to 2N = "
-                             "-floquet_mf_dense_max, matrix-free beyond (no stable verdict there)", NULL,
-                             c->floquet_mf, &c->floquet_mf, NULL));
+                             "-floquet_mf_dense_max, matrix-free beyond (no stable verdict there)",
+                             NULL, c->floquet_mf, &c->floquet_mf, NULL));
   PetscOptionsEnd();
   PetscOptionsBegin(comm, "cont_", "NNM branches", NULL);
-  PetscCall(PetscOptionsStringArray("-branch", "Comma-separated branches: insulated, interface, acoustic_top, optical_bottom, optical_top, mode<k> or k",
-                                    NULL, c->names, &c->nb, &set));
+  PetscCall(PetscOptionsStringArray("-branch", "Comma-separated branches: insulated, interface, acoustic_top, optical_bottom, optical_top, mode<k> or k", NULL,
+                                    c->names, &c->nb, &set));
   PetscCall(PetscOptionsReal("-checkpoint_seconds",
                              "Write -output with the points so far (root attribute complete = 0) at most this often, so that a killed run keeps them "
                              "(0: only at the end)",

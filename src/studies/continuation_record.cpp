@@ -131,7 +131,6 @@ PetscInt RowLength(const char *shape, PetscInt n2, PetscInt nev)
   return 0;
 }
 
-
 // /continuation/<branch>/bifurcations: each field of its schema from the events.
 struct EventColumn {
   const char *name;
@@ -220,7 +219,7 @@ PetscErrorCode WriteRecord(PetscViewer v, const BranchRecord &r, FloquetKind fk,
       else PetscCall(WriteAttr(v, gc, fd->name, a.s.c_str()));
       continue;
     }
-    if ((c->flags & kStepState) && !np) continue; // where the continuation stands: what -cont_resume needs to go on bit for bit
+    if ((c->flags & kStepState) && !np) continue;              // where the continuation stands: what -cont_resume needs to go on bit for bit
     const Cells d = DataOf(*c, const_cast<BranchRecord &>(r)); // the accessors only point, the record is not changed
     const PetscInt row = RowLength(fd->shape, n2, nev);
     if (d.scalar) PetscCall(WriteArray(v, gc, fd->name, std::vector<PetscReal>{*d.scalar}));
@@ -255,10 +254,11 @@ PetscErrorCode ReadResume(MPI_Comm comm, const std::string &file, const std::str
     status[1] = status[0] && has("energy");
   }
   PetscCallMPI(MPI_Bcast(status, 2, MPI_INT, 0, comm));
-  PetscCheck(status[0], comm, PETSC_ERR_FILE_OPEN, "-cont_resume %s: cannot open it, or it is not a continuation output (no /continuation group)", file.c_str());
+  PetscCheck(status[0], comm, PETSC_ERR_FILE_OPEN, "-cont_resume %s: cannot open it, or it is not a continuation output (no /continuation group)",
+             file.c_str());
   *found = status[1];
   if (!*found) PetscFunctionReturn(0);
-  PetscInt rowlen = 0; // values per stored orbit
+  PetscInt rowlen = 0;  // values per stored orbit
   int route_change = 0; // -floquet_mf: 1 the file's route was matrix-free and this run's is dense, 2 the reverse
   Branch &rb = rec.b;
   FloquetColumns &rf = rec.f;
@@ -322,8 +322,9 @@ PetscErrorCode ReadResume(MPI_Comm comm, const std::string &file, const std::str
              "its verdicts would mix",
              file.c_str(), label.c_str(), route_change == 1 ? "matrix-free" : "dense", route_change == 1 ? "dense" : "matrix-free");
   PetscCallMPI(MPI_Bcast(&rowlen, 1, MPIU_INT, 0, comm));
-  PetscCheck(rowlen == n2, comm, PETSC_ERR_USER, "-cont_resume %s: branch %s has orbits of %" PetscInt_FMT " values, this lattice has 2N = %" PetscInt_FMT " (same -lattice_cells?)",
-             file.c_str(), label.c_str(), rowlen, n2);
+  PetscCheck(rowlen == n2, comm, PETSC_ERR_USER,
+             "-cont_resume %s: branch %s has orbits of %" PetscInt_FMT " values, this lattice has 2N = %" PetscInt_FMT " (same -lattice_cells?)", file.c_str(),
+             label.c_str(), rowlen, n2);
   for (const auto &[fd, c, floquet] : fields) {
     if (fd->kind != FieldKind::Dataset || (c->flags & kRank0)) continue;
     const Cells d = DataOf(*c, rec);

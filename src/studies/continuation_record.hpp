@@ -14,7 +14,7 @@ namespace nltopo {
 // or matrix-free hook) and its cost.
 struct BranchRecord {
   std::string label;
-  std::string parent; // -cont_switch: the branch point or period doubling it starts from, "<branch>:<event>"; empty for a linear mode's
+  std::string parent;           // -cont_switch: the branch point or period doubling it starts from, "<branch>:<event>"; empty for a linear mode's
   PetscInt period_multiple = 1; // its orbits last this many periods of the parent's orbit at the event (2: born at a period doubling)
   PetscReal omega = 0, seconds = 0;
   Branch b;

@@ -55,10 +55,12 @@ protected:
     if (declaring_ || (ch_.floquet && ch_.floquet_mf)) PetscCall(FloquetMfOptionsFromOptions(comm_, &fmo_));
     fk_ = !ch_.floquet ? FloquetKind::None : ch_.floquet_mf ? FloquetKind::MatrixFree : FloquetKind::Dense;
     PetscCall(BifurcationOptionsFromOptions(comm_, (PetscBool)(fk_ == FloquetKind::Dense), &bo_));
-    PetscCall(SwitchOptionsFromOptions(comm_, !declaring_, [&](const std::string &b) { return AmongBranches(b); }, &switches_, &switch_step_));
+    PetscCall(SwitchOptionsFromOptions(
+        comm_, !declaring_, [&](const std::string &b) { return AmongBranches(b); }, &switches_, &switch_step_));
     PetscCheck(switches_.empty() || declaring_ || bo_.enabled, comm_, PETSC_ERR_USER,
                "-cont_switch needs -cont_bifurcations (on with -floquet): the branch points and period doublings are its events");
-    if (!declaring_ && ch_.resume) PetscCall(CheckResumeOptions(comm_, ch_.resume_file, name_, "-cont_resume")); // the same physics and numerics, or one line naming the first difference
+    if (!declaring_ && ch_.resume)
+      PetscCall(CheckResumeOptions(comm_, ch_.resume_file, name_, "-cont_resume")); // the same physics and numerics, or one line naming the first difference
     PetscFunctionReturn(0);
   }
   PetscErrorCode DeclareSolvers(MPI_Comm comm) override
@@ -121,7 +123,10 @@ private:
       if (SwitchNames(branch, ch_.names[k])) return true;
     return false;
   }
-  PointHook *FloquetPointHook() { return fk_ == FloquetKind::None ? nullptr : fk_ == FloquetKind::MatrixFree ? static_cast<PointHook *>(mf_hook_.get()) : hook_.get(); }
+  PointHook *FloquetPointHook()
+  {
+    return fk_ == FloquetKind::None ? nullptr : fk_ == FloquetKind::MatrixFree ? static_cast<PointHook *>(mf_hook_.get()) : hook_.get();
+  }
   // The record of a branch from its live data (also mid-branch, for a checkpoint).
   // (b by value: the final record moves the branch in, a checkpoint copies it).
   BranchRecord Snapshot(const LiveBranch &cur, Branch b) const
@@ -176,7 +181,8 @@ private:
       PetscFunctionReturn(0);
     });
     const bool mode = cur.parent.empty(); // a -cont_branch entry: from its linear mode unless resumed
-    const PetscErrorCode ic = ContinueBranch(nnm_.shoot, mode ? u_.get() : nullptr, mode ? 2 * PETSC_PI / cur.omega : 0, co, cur.label.c_str(), &cur.b, &ck, start);
+    const PetscErrorCode ic =
+        ContinueBranch(nnm_.shoot, mode ? u_.get() : nullptr, mode ? 2 * PETSC_PI / cur.omega : 0, co, cur.label.c_str(), &cur.b, &ck, start);
     if (IsInterrupt(ic)) PetscCall(Interrupted(cur, "")); // the points so far are the checkpoint a -cont_resume continues bit for bit
     PetscCall(ic);
     PetscCall(PetscTime(&b1));
@@ -217,7 +223,8 @@ private:
     const std::string reason = std::string("interrupted by ") + sn + (*doing ? std::string(" ") + doing : "") +
                                (cur.parent.empty() ? ": -cont_resume continues it" : ": -cont_resume with the same -cont_switch continues it");
     PetscCall(WritePartial(cur, reason.c_str()));
-    SETERRQ(comm_, PETSC_ERR_SIG, "interrupted by %s%s%s after %zu points of branch %s (last E = %g); partial output %s (complete = 0); -cont_resume %s continues it", sn,
+    SETERRQ(comm_, PETSC_ERR_SIG,
+            "interrupted by %s%s%s after %zu points of branch %s (last E = %g); partial output %s (complete = 0); -cont_resume %s continues it", sn,
             *doing ? " " : "", doing, b.energy.size(), cur.label.c_str(), b.energy.empty() ? 0.0 : (double)b.energy.back(), path_.c_str(), path_.c_str());
   }
 
@@ -239,7 +246,8 @@ private:
     d.located = rec.located, d.events = std::move(rec.events);
     d.bif_tol = rec.bif_tol, d.bif_seconds = rec.bif_seconds, d.bif_probes = rec.bif_probes;
     if (fk_ != FloquetKind::None) PetscCall(PrintFloquetSummary(comm_, label, d.f, flo_.tol, fk_ == FloquetKind::MatrixFree ? mf_hook_->Route() : nullptr));
-    PetscCall(PetscPrintf(comm_, "  [%s] %.2f s, %.3f s per new point\n", label.c_str(), (double)(b1 - cur.b0), (double)(b1 - cur.b0) / std::max<size_t>(nnew, 1)));
+    PetscCall(
+        PetscPrintf(comm_, "  [%s] %.2f s, %.3f s per new point\n", label.c_str(), (double)(b1 - cur.b0), (double)(b1 - cur.b0) / std::max<size_t>(nnew, 1)));
     PetscFunctionReturn(0);
   }
 
@@ -282,10 +290,12 @@ private:
     const size_t kept = found && start.energy.size() >= 2 ? start.energy.size() : 0;
     if (kept) {
       hook_->c = rf;
-      PetscCall(PetscPrintf(comm_, "  [%s] -cont_resume %s: %zu points of the family born at the %s %s, continued from the last\n", cur.label.c_str(), ch_.resume_file,
-                            kept, job.plan.What(), cur.parent.c_str()));
+      PetscCall(PetscPrintf(comm_, "  [%s] -cont_resume %s: %zu points of the family born at the %s %s, continued from the last\n", cur.label.c_str(),
+                            ch_.resume_file, kept, job.plan.What(), cur.parent.c_str()));
     } else {
-      if (ch_.resume) PetscCall(PetscPrintf(comm_, "  [%s] -cont_resume %s: fewer than 2 points of this family there, starting afresh\n", cur.label.c_str(), ch_.resume_file));
+      if (ch_.resume)
+        PetscCall(
+            PetscPrintf(comm_, "  [%s] -cont_resume %s: fewer than 2 points of this family there, starting afresh\n", cur.label.c_str(), ch_.resume_file));
       const PetscErrorCode is = StartFamily(nnm_.shoot, job, switch_step_, sign, *hook_, &start, &pinned);
       if (IsInterrupt(is)) PetscCall(Interrupted(cur, "while switching"));
       PetscCall(is);
@@ -308,8 +318,8 @@ private:
     PetscCall(locator_.Locate(b, hook_->c.re, hook_->c.im, hook_->c.edge, label.c_str(), &rec->events, hook_->c.krein, first_segment));
     PetscCall(PetscTime(&t1));
     rec->located = true, rec->bif_tol = bo_.tol, rec->bif_seconds = t1 - t0, rec->bif_probes = locator_.Probes() - p0;
-    PetscCall(PetscPrintf(comm_, "  [%s] bifurcations: %zu event(s) located to %g in omega, %" PetscInt_FMT " orbits solved, %.2f s\n", label.c_str(), rec->events.size(),
-                          (double)bo_.tol, rec->bif_probes, (double)(t1 - t0)));
+    PetscCall(PetscPrintf(comm_, "  [%s] bifurcations: %zu event(s) located to %g in omega, %" PetscInt_FMT " orbits solved, %.2f s\n", label.c_str(),
+                          rec->events.size(), (double)bo_.tol, rec->bif_probes, (double)(t1 - t0)));
     PetscFunctionReturn(0);
   }
 

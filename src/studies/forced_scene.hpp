@@ -19,7 +19,7 @@ struct ForcedScene {
   LinearModesOptions mo;
   Lattice lat;
   LinearModes modes;
-  ToneBurst burst;   // the scene's forcing (Build with_burst)
+  ToneBurst burst;    // the scene's forcing (Build with_burst)
   EffectList fx{lat}; // its effects with that forcing
 
   // When the linear modes are computed: when the forcing needs them, or always
@@ -86,8 +86,8 @@ private:
 
 // One forced run on lat with forcing pf (burst: set up here, kept for its
 // amplitude): its effects, then SimulateForced.
-inline PetscErrorCode RunForced(const Lattice &lat, const LinearModes *modes, const ToneBurstOptions &pf, const SimulationOptions &sim, SampleSink *sink, ToneBurst *burst,
-                                SimulationResult *r, PetscInt *rescalings)
+inline PetscErrorCode RunForced(const Lattice &lat, const LinearModes *modes, const ToneBurstOptions &pf, const SimulationOptions &sim, SampleSink *sink,
+                                ToneBurst *burst, SimulationResult *r, PetscInt *rescalings)
 {
   PetscFunctionBeginUser;
   PetscCall(burst->Setup(lat, pf, modes));

@@ -9,7 +9,8 @@ static const PetscReal kAxisMin = 1e-12, kAxisMax = 1e12;
 static const PetscInt kAxisMaxPoints = 100000;
 
 // An axis from -<name>_min/_max/_n/_spacing, or an explicit -<name>_list.
-PetscErrorCode ReadAxis(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char *prefix, const char *name, PetscReal lo, PetscReal hi, PetscInt n, bool log_default, std::vector<PetscReal> *axis)
+PetscErrorCode ReadAxis(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char *prefix, const char *name, PetscReal lo, PetscReal hi, PetscInt n,
+                        bool log_default, std::vector<PetscReal> *axis)
 {
   char opt[64], help[128];
   PetscReal list[4096];
@@ -43,8 +44,8 @@ PetscErrorCode ReadAxis(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, con
     PetscFunctionReturn(0);
   }
   PetscCheck(n >= 1 && n <= kAxisMaxPoints, comm, PETSC_ERR_USER, "-%s%s_n must lie in [1, %d], got %" PetscInt_FMT, prefix, name, (int)kAxisMaxPoints, n);
-  PetscCheck(lo >= kAxisMin && hi <= kAxisMax && lo <= hi, comm, PETSC_ERR_USER, "-%s%s_min/_max must satisfy %g <= min <= max <= %g, got %g, %g", prefix,
-             name, (double)kAxisMin, (double)kAxisMax, (double)lo, (double)hi); // false for nan
+  PetscCheck(lo >= kAxisMin && hi <= kAxisMax && lo <= hi, comm, PETSC_ERR_USER, "-%s%s_min/_max must satisfy %g <= min <= max <= %g, got %g, %g", prefix, name,
+             (double)kAxisMin, (double)kAxisMax, (double)lo, (double)hi); // false for nan
   for (PetscInt i = 0; i < n; i++) {
     const PetscReal s = n > 1 ? (PetscReal)i / (n - 1) : 0;
     axis->push_back(spacing ? lo * std::pow(hi / lo, s) : lo + s * (hi - lo));

@@ -148,7 +148,9 @@ protected:
       PetscCall(WriteAttr(v, g, "N", tr_.N));
       PetscCall(WriteAttr(v, g, "layout", LayoutName(lp_.layout)));
       PetscCall(WriteAttr(v, g, "nq", nq_));
-      PetscCall(WriteAttr(v, g, "zak_rule", "Wilson loop over 2 nq points of the Brillouin zone, wrapped to [-pi/2, 3 pi/2); NaN where k1 = k2 (gamma = 0: the gap closes, the Zak phase is undefined)"));
+      PetscCall(WriteAttr(
+          v, g, "zak_rule",
+          "Wilson loop over 2 nq points of the Brillouin zone, wrapped to [-pi/2, 3 pi/2); NaN where k1 = k2 (gamma = 0: the gap closes, the Zak phase is undefined)"));
     }
     PetscFunctionReturn(0);
   }
@@ -170,44 +172,46 @@ private:
 StudyContract LinearStudyContract()
 {
   using namespace schema_names;
-  return {{"-lattice_", "-linear_"}, {
-    {"/linear", "",
-     {{"omega", D, R, "N", "finite-lattice frequencies, ascending"},
-      {"modes", D, R, "N x N", "row j: mode j"},
-      {"modes_selected", D, R, "nsel x N", "shift-invert path: the computed modes only"},
-      {"insulated_mode", D, R, "N", "the insulated mode"},
-      {"insulated_omega", A, R, "scalar", "frequency of the insulated mode"},
-      {"interface_omega", A, R, "scalar", "frequency of the interface mode"},
-      {"acoustic_top", A, R, "scalar", "finite lattice: acoustic band top"},
-      {"optical_bottom", A, R, "scalar", "finite lattice: optical band bottom"},
-      {"optical_top", A, R, "scalar", "finite lattice: optical band top"},
-      {"interface_index", A, I, "scalar", "mode index of interface_omega (-1: none)"},
-      {"acoustic_top_index", A, I, "scalar", "mode index of acoustic_top"},
-      {"optical_bottom_index", A, I, "scalar", "mode index of optical_bottom"},
-      {"optical_top_index", A, I, "scalar", "mode index of optical_top"},
-      {"insulated_cluster", A, I, "scalar", "eigenpairs in the k_hat cluster"},
-      {"insulated_residual", A, R, "scalar", "||K x - omega^2 x|| of the insulated mode"},
-      {"layout", A, S, "scalar", "lattice layout"},
-      {"N", A, I, "scalar", "sites"}}},
-    {"/linear/bloch", "",
-     WithBandEdges({{"q", D, R, "nq", "Bloch wavenumbers"},
-                    {"omega_acoustic", D, R, "nq", "acoustic band"},
-                    {"omega_optical", D, R, "nq", "optical band"},
-                    {"zak_left_acoustic", A, R, "scalar", "Zak phase, left cell, acoustic (wrapped to [-pi/2, 3 pi/2))"},
-                    {"zak_left_optical", A, R, "scalar", "Zak phase, left cell, optical"},
-                    {"zak_right_acoustic", A, R, "scalar", "Zak phase, right cell, acoustic"},
-                    {"zak_right_optical", A, R, "scalar", "Zak phase, right cell, optical"}})},
-    {"/linear/transition", "",
-     {{"gamma", D, R, "ng", "dimerisation values of -linear_gamma_list"},
-      {"omega", D, R, "ng x N", "finite-lattice frequencies at each gamma, ascending"},
-      {"zak_left", D, R, "ng x 2", "Zak phase of the left cell (intra k2, inter k1): acoustic, optical; NaN where k1 = k2"},
-      {"zak_right", D, R, "ng x 2", "Zak phase of the right cell (intra k1, inter k2): acoustic, optical; NaN where k1 = k2"},
-      {"bands_inf", D, R, "ng x 4", "infinite lattice at each gamma: acoustic bottom, top, optical bottom, top (rad/s)"},
-      {"lambda_min", D, R, "ng", "smallest eigenvalue of K at each gamma (< 0: K not positive definite, omega clamped to 0 there)"},
-      {"N", A, I, "scalar", "sites"},
-      {"layout", A, S, "scalar", "lattice layout"},
-      {"nq", A, I, "scalar", "-linear_nq: the Zak loop uses 2 nq points"},
-      {"zak_rule", A, S, "scalar", "how the Zak phases were computed, and what NaN means"}}}}};
+  return {{"-lattice_", "-linear_"},
+          {{"/linear",
+            "",
+            {{"omega", D, R, "N", "finite-lattice frequencies, ascending"},
+             {"modes", D, R, "N x N", "row j: mode j"},
+             {"modes_selected", D, R, "nsel x N", "shift-invert path: the computed modes only"},
+             {"insulated_mode", D, R, "N", "the insulated mode"},
+             {"insulated_omega", A, R, "scalar", "frequency of the insulated mode"},
+             {"interface_omega", A, R, "scalar", "frequency of the interface mode"},
+             {"acoustic_top", A, R, "scalar", "finite lattice: acoustic band top"},
+             {"optical_bottom", A, R, "scalar", "finite lattice: optical band bottom"},
+             {"optical_top", A, R, "scalar", "finite lattice: optical band top"},
+             {"interface_index", A, I, "scalar", "mode index of interface_omega (-1: none)"},
+             {"acoustic_top_index", A, I, "scalar", "mode index of acoustic_top"},
+             {"optical_bottom_index", A, I, "scalar", "mode index of optical_bottom"},
+             {"optical_top_index", A, I, "scalar", "mode index of optical_top"},
+             {"insulated_cluster", A, I, "scalar", "eigenpairs in the k_hat cluster"},
+             {"insulated_residual", A, R, "scalar", "||K x - omega^2 x|| of the insulated mode"},
+             {"layout", A, S, "scalar", "lattice layout"},
+             {"N", A, I, "scalar", "sites"}}},
+           {"/linear/bloch", "",
+            WithBandEdges({{"q", D, R, "nq", "Bloch wavenumbers"},
+                           {"omega_acoustic", D, R, "nq", "acoustic band"},
+                           {"omega_optical", D, R, "nq", "optical band"},
+                           {"zak_left_acoustic", A, R, "scalar", "Zak phase, left cell, acoustic (wrapped to [-pi/2, 3 pi/2))"},
+                           {"zak_left_optical", A, R, "scalar", "Zak phase, left cell, optical"},
+                           {"zak_right_acoustic", A, R, "scalar", "Zak phase, right cell, acoustic"},
+                           {"zak_right_optical", A, R, "scalar", "Zak phase, right cell, optical"}})},
+           {"/linear/transition",
+            "",
+            {{"gamma", D, R, "ng", "dimerisation values of -linear_gamma_list"},
+             {"omega", D, R, "ng x N", "finite-lattice frequencies at each gamma, ascending"},
+             {"zak_left", D, R, "ng x 2", "Zak phase of the left cell (intra k2, inter k1): acoustic, optical; NaN where k1 = k2"},
+             {"zak_right", D, R, "ng x 2", "Zak phase of the right cell (intra k1, inter k2): acoustic, optical; NaN where k1 = k2"},
+             {"bands_inf", D, R, "ng x 4", "infinite lattice at each gamma: acoustic bottom, top, optical bottom, top (rad/s)"},
+             {"lambda_min", D, R, "ng", "smallest eigenvalue of K at each gamma (< 0: K not positive definite, omega clamped to 0 there)"},
+             {"N", A, I, "scalar", "sites"},
+             {"layout", A, S, "scalar", "lattice layout"},
+             {"nq", A, I, "scalar", "-linear_nq: the Zak loop uses 2 nq points"},
+             {"zak_rule", A, S, "scalar", "how the Zak phases were computed, and what NaN means"}}}}};
 }
 
 std::unique_ptr<Study> CreateLinearStudy() { return std::make_unique<LinearStudy>(); }

@@ -26,7 +26,8 @@ std::string ZakSummary(const TransitionResult &t, const std::vector<PetscReal> &
       continue;
     }
     if (std::isnan(last)) std::snprintf(buf, sizeof(buf), "%.6f from gamma = %g", (double)z, (double)g);
-    else if (std::abs(z - last) > PETSC_PI / 2) std::snprintf(buf, sizeof(buf), "; jumps to %.6f between gamma = %g and %g", (double)z, (double)last_g, (double)g);
+    else if (std::abs(z - last) > PETSC_PI / 2)
+      std::snprintf(buf, sizeof(buf), "; jumps to %.6f between gamma = %g and %g", (double)z, (double)last_g, (double)g);
     else buf[0] = 0;
     s += buf;
     last = z, last_g = g;
@@ -110,7 +111,8 @@ PetscErrorCode PrintTransitionSummary(MPI_Comm comm, const LatticeParams &lp, co
   const PetscReal root = std::sqrt(lp.KHat()), *w0 = &t.omega[i0 * (size_t)t.N];
   const PetscReal *above = std::upper_bound(w0, w0 + t.N, root), *below = above == w0 ? w0 : above - 1;
   if (above == w0 + t.N) above = below;
-  std::snprintf(line, sizeof(line), "  gamma = %g: infinite-lattice gap %.6f .. %.6f; finite frequencies next to sqrt(k_hat) = %.7f: %.7f and %.7f (spacing %.3g)\n",
+  std::snprintf(line, sizeof(line),
+                "  gamma = %g: infinite-lattice gap %.6f .. %.6f; finite frequencies next to sqrt(k_hat) = %.7f: %.7f and %.7f (spacing %.3g)\n",
                 (double)t.gamma[i0], (double)t.bands_inf[4 * i0 + 1], (double)t.bands_inf[4 * i0 + 2], (double)root, (double)*below, (double)*above,
                 (double)(*above - *below));
   PetscCall(PetscPrintf(comm, "%s", line));

@@ -99,8 +99,8 @@ PetscErrorCode PerturbOptionsFromOptions(MPI_Comm comm, PerturbOptions *po)
     PetscCall(PetscOptionsInt("-ensemble", "Realisations (seeds) per perturbation level", NULL, po->ensemble, &po->ensemble, NULL));
     PetscCall(PetscOptionsInt("-seed", "Seed of the first realisation (realisation r uses seed + r)", NULL, po->seed0, &po->seed0, NULL));
     PetscCall(ReadAxis(PetscOptionsObject, comm, "perturb_", "energy", 1e-2, 1e2, 9, true, &po->energy));
-    PetscCall(PetscOptionsString("-fep", "Continuation file with /continuation/insulated (omega(E) of the insulated NNM); default: computed here", NULL, po->fep,
-                                 po->fep, sizeof(po->fep), NULL));
+    PetscCall(PetscOptionsString("-fep", "Continuation file with /continuation/insulated (omega(E) of the insulated NNM); default: computed here", NULL,
+                                 po->fep, po->fep, sizeof(po->fep), NULL));
     PetscOptionsEnd();
   }
   PetscCheck(po->ensemble >= 1 && po->ensemble <= 100000, comm, PETSC_ERR_USER, "-perturb_ensemble must lie in [1, 100000], got %" PetscInt_FMT, po->ensemble);
@@ -121,13 +121,13 @@ PetscErrorCode ReadInsulatedBranch(MPI_Comm comm, const char *fep, std::vector<P
     PetscErrorCode ierr = 0;
     char why[480];
     PetscCall(CaptureError(
-      [&]() -> PetscErrorCode {
-        PetscFunctionBeginUser;
-        PetscCall(ReadDoubles(fep, "/continuation/insulated/energy", bE));
-        PetscCall(ReadDoubles(fep, "/continuation/insulated/omega", bw));
-        PetscFunctionReturn(0);
-      },
-      &ierr, why, sizeof(why)));
+        [&]() -> PetscErrorCode {
+          PetscFunctionBeginUser;
+          PetscCall(ReadDoubles(fep, "/continuation/insulated/energy", bE));
+          PetscCall(ReadDoubles(fep, "/continuation/insulated/omega", bw));
+          PetscFunctionReturn(0);
+        },
+        &ierr, why, sizeof(why)));
     if (ierr) PetscCall(PetscSNPrintf(msg, sizeof(msg), "-perturb_fep %s: %s", fep, why));
     n = ierr ? -1 : (PetscInt)bE->size();
     if (!ierr && bE->size() != bw->size()) {
@@ -240,7 +240,8 @@ protected:
       PetscCall(RejectGivenOptions(comm_, {"-lattice_perturbation", "-lattice_delta", "-lattice_seed", "-force_omega", "-force_energy"},
                                    "-study perturb (-perturb_kinds, -perturb_delta_list, -perturb_ensemble, -perturb_energy_*)"));
     PetscCall(nnm_.ReadOptions(comm_));
-    PetscCheck(declaring_ || nnm_.lp.layout == Layout::Interface, comm_, PETSC_ERR_USER, "-study perturb follows the insulated mode: -lattice_layout must be interface");
+    PetscCheck(declaring_ || nnm_.lp.layout == Layout::Interface, comm_, PETSC_ERR_USER,
+               "-study perturb follows the insulated mode: -lattice_layout must be interface");
     PetscCall(PerturbOptionsFromOptions(comm_, &po_));
     sc_.lp = nnm_.lp; // the scene's lattice is the NNM's, perturbed per realisation
     PetscCall(sc_.ReadOptions(comm_, declaring_, false, ForcedScene::Modes::Always, NULL));
@@ -266,8 +267,9 @@ protected:
     PetscCheck(bE.size() >= 2 && bE.back() >= Emax * (1 - 1e-9), comm_, PETSC_ERR_USER,
                "-study perturb: the insulated branch reaches E = %g only, below -perturb_energy_max %g", bE.empty() ? 0.0 : (double)bE.back(), (double)Emax);
     for (PetscReal e : po_.energy) wext_.push_back(BranchOmega(bE, bw, e));
-    PetscCall(PetscPrintf(comm_, "nltopo perturb: %" PetscInt_FMT " kind(s) x %" PetscInt_FMT " levels x %" PetscInt_FMT " realisations x %" PetscInt_FMT
-                                 " energies = %" PetscInt_FMT " forced runs, N = %" PetscInt_FMT "\n",
+    PetscCall(PetscPrintf(comm_,
+                          "nltopo perturb: %" PetscInt_FMT " kind(s) x %" PetscInt_FMT " levels x %" PetscInt_FMT " realisations x %" PetscInt_FMT
+                          " energies = %" PetscInt_FMT " forced runs, N = %" PetscInt_FMT "\n",
                           Kinds(), Levels(), po_.ensemble, Energies(), Items() * Energies(), nnm_.lp.N()));
     PetscFunctionReturn(0);
   }
@@ -278,7 +280,7 @@ protected:
     PetscFunctionBeginUser;
     auto item = [&](PetscInt it, PetscReal *row) { return Realisation(po_, nnm_.lp, nnm_.mo, sc_.fo, sc_.sim, wext_, it, row); };
     const PetscErrorCode irun = RunDistributed(comm_, items, 1 + ne, item, &res, &ran_);
-    if (!IsInterrupt(irun)) PetscCall(irun); // a stop signal: the realisations done are written, complete = 0
+    if (!IsInterrupt(irun)) PetscCall(irun);                                 // a stop signal: the realisations done are written, complete = 0
     if (!std::count(ran_.begin(), ran_.end(), 1)) PetscFunctionReturn(irun); // interrupted before any: nothing to tabulate
     for (PetscInt it = 0; it < items; it++)
       if (!ran_[it]) std::fill(res.begin() + it * (1 + ne), res.begin() + (it + 1) * (1 + ne), NAN); // not run
@@ -304,9 +306,11 @@ protected:
       PetscCall(WriteArray(v, g.c_str(), "omega_ext", wext_));
       PetscCall(WriteArrayND(v, g.c_str(), "mcr", mcr_[k], {nd, ne, ns}));
       PetscCall(WriteArrayND(v, g.c_str(), "insulated_omega", win_[k], {nd, ns}));
-      PetscCall(WriteIntArray(v, g.c_str(), "done", std::vector<PetscInt>(ran_.begin() + k * nd * ns, ran_.begin() + (k + 1) * nd * ns), ns)); // nd x ns; 0: not run (stop signal)
+      PetscCall(WriteIntArray(v, g.c_str(), "done", std::vector<PetscInt>(ran_.begin() + k * nd * ns, ran_.begin() + (k + 1) * nd * ns),
+                              ns)); // nd x ns; 0: not run (stop signal)
       PetscCall(WriteAttr(v, g.c_str(), "seed_first", po_.seed0));
-      PetscCall(WriteAttr(v, g.c_str(), "rule", "springs change by k delta_b, delta_b uniform in (-2 delta, 2 delta) (README.md); realisation r uses seed seed_first + r"));
+      PetscCall(WriteAttr(v, g.c_str(), "rule",
+                          "springs change by k delta_b, delta_b uniform in (-2 delta, 2 delta) (README.md); realisation r uses seed seed_first + r"));
     }
     PetscFunctionReturn(0);
   }
@@ -320,8 +324,8 @@ private:
   PerturbOptions po_;
   ForcedScene sc_; // its forcing and integrator options (its lattice: nnm_'s)
   NnmSetup nnm_;
-  std::vector<PetscReal> wext_;   // omega_ext at every E*
-  std::vector<PetscInt> ran_;     // per item; 0: not run (stop signal)
+  std::vector<PetscReal> wext_;                   // omega_ext at every E*
+  std::vector<PetscInt> ran_;                     // per item; 0: not run (stop signal)
   std::vector<std::vector<PetscReal>> mcr_, win_; // per kind
 };
 
@@ -330,16 +334,17 @@ private:
 StudyContract PerturbStudyContract()
 {
   using namespace schema_names;
-  return {WithPrefixes({ForcedScene::OptionPrefixes(), NnmSetup::OptionPrefixes(), {"-perturb_"}}), {
-    {"/perturb/<kind>", "",
-     {{"delta", D, R, "nd", "perturbation levels"},
-      {"energy", D, R, "ne", "target energies E*"},
-      {"omega_ext", D, R, "ne", "forcing frequencies"},
-      {"mcr", D, R, "nd x ne x nens", "MCR per level, energy, realisation (NaN: missed or not run)"},
-      {"insulated_omega", D, R, "nd x nens", "linear insulated frequency per realisation"},
-      {"done", D, I, "nd x nens", "0: not run (stop signal)"},
-      {"seed_first", A, I, "scalar", "seed of realisation 0"},
-      {"rule", A, S, "scalar", "the perturbation rule"}}}}};
+  return {WithPrefixes({ForcedScene::OptionPrefixes(), NnmSetup::OptionPrefixes(), {"-perturb_"}}),
+          {{"/perturb/<kind>",
+            "",
+            {{"delta", D, R, "nd", "perturbation levels"},
+             {"energy", D, R, "ne", "target energies E*"},
+             {"omega_ext", D, R, "ne", "forcing frequencies"},
+             {"mcr", D, R, "nd x ne x nens", "MCR per level, energy, realisation (NaN: missed or not run)"},
+             {"insulated_omega", D, R, "nd x nens", "linear insulated frequency per realisation"},
+             {"done", D, I, "nd x nens", "0: not run (stop signal)"},
+             {"seed_first", A, I, "scalar", "seed of realisation 0"},
+             {"rule", A, S, "scalar", "the perturbation rule"}}}}};
 }
 
 std::unique_ptr<Study> CreatePerturbStudy() { return std::make_unique<PerturbStudy>(); }

@@ -64,8 +64,7 @@ PetscErrorCode WriteBandEdges(PetscViewer v, const char *group, const BandEdges 
 std::map<std::string, OptionsFn> StudyOptionFunctions()
 {
   std::map<std::string, OptionsFn> m;
-  for (const auto &s : kStudies)
-    m[s.name] = [&s](MPI_Comm c) { return s.create()->DeclareOptions(c, s.name); };
+  for (const auto &s : kStudies) m[s.name] = [&s](MPI_Comm c) { return s.create()->DeclareOptions(c, s.name); };
   return m;
 }
 
@@ -87,7 +86,7 @@ PetscErrorCode RunStudyFromOptions(MPI_Comm comm)
   std::string known, help = "Study to run:";
   PetscBool list_help;
   PetscFunctionBeginUser;
-  RegisterStudyContracts(); // its schemas and compared option prefixes
+  RegisterStudyContracts();        // its schemas and compared option prefixes
   PetscCall(TSSymSplitRegister()); // nltopo's TS types, before any -*ts_type is read
   PetscCall(TSRknRegister());
   for (const auto &s : kStudies) {
@@ -106,11 +105,11 @@ PetscErrorCode RunStudyFromOptions(MPI_Comm comm)
   PetscCheck(entry, comm, PETSC_ERR_USER, "unknown -study %s (available: %s)", name, known.c_str());
   OptionList given;
   PetscCall(ListGivenOptions(&given));
-  PetscCall(CheckFiniteOptionValues(comm, given, true)); // nan/inf in solver options, whose own checks do not name them
+  PetscCall(CheckFiniteOptionValues(comm, given, true));                              // nan/inf in solver options, whose own checks do not name them
   PetscCall(CheckOptionValueShapes(comm, name, StudyOptionFunctions()[name], given)); // a missing value, an integer PETSc would wrap
   PetscCall(PetscOptionsHasHelp(NULL, &list_help));
   const OptionsFn options = StudyOptionFunctions()[name];
-  PetscCall(options(comm)); // -help: prints them all; otherwise marks them read and checks their ranges
+  PetscCall(options(comm));                               // -help: prints them all; otherwise marks them read and checks their ranges
   PetscCall(CheckFiniteOptionValues(comm, given, false)); // nan/inf that no range check of nltopo's caught
   if (list_help) {
     PetscCall(PetscPrintf(comm, "nltopo: -help listed the options of -study %s; nothing was computed\n", name));

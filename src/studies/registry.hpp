@@ -19,14 +19,15 @@ namespace nltopo {
 
 // The studies, one line each: -study name, class (its file defines
 // Create<Class>Study and <Class>StudyContract), and the help line -help shows.
-#define NLTOPO_STUDIES(X) \
-  X("linear", Linear, "linear modes of K, named modes, Bloch bands and Zak phases") \
-  X("simulate", Simulate, "one forced tone-burst run with energy cut-off") \
-  X("continuation", Continuation, "NNM branches by shooting and pseudo-arclength continuation") \
-  X("sweep", Sweep, "a grid of forced runs (omega_ext x E*) scored by MCR, 0-1 test and energy ratio; parallel, resumable") \
-  X("zak", Zak, "the half-lattice phase experiment: phi_0, phi_pi and the energy where they stop being distinct") \
-  X("perturb", Perturb, "chiral and achiral spring-perturbation ensembles: insulated frequency and MCR along the insulated NNM") \
-  X("workprecision", Workprecision, "what accuracy costs for one forced run: integrator configurations timed and scored against a converged reference, and the predictability floor") \
+#define NLTOPO_STUDIES(X)                                                                                                                                      \
+  X("linear", Linear, "linear modes of K, named modes, Bloch bands and Zak phases")                                                                            \
+  X("simulate", Simulate, "one forced tone-burst run with energy cut-off")                                                                                     \
+  X("continuation", Continuation, "NNM branches by shooting and pseudo-arclength continuation")                                                                \
+  X("sweep", Sweep, "a grid of forced runs (omega_ext x E*) scored by MCR, 0-1 test and energy ratio; parallel, resumable")                                    \
+  X("zak", Zak, "the half-lattice phase experiment: phi_0, phi_pi and the energy where they stop being distinct")                                              \
+  X("perturb", Perturb, "chiral and achiral spring-perturbation ensembles: insulated frequency and MCR along the insulated NNM")                               \
+  X("workprecision", Workprecision,                                                                                                                            \
+    "what accuracy costs for one forced run: integrator configurations timed and scored against a converged reference, and the predictability floor")          \
   X("stability", Stability, "perturbed insulated-branch NNMs integrated for many periods: does the standing wave persist")
 
 // What a study adds to the output contract, stated in its own file.
@@ -41,8 +42,8 @@ struct StudyContract {
 // The prefixes of several parts, each once, in order.
 std::vector<std::string> WithPrefixes(std::initializer_list<std::vector<std::string>> parts);
 
-#define NLTOPO_DECLARE_STUDY(name, Class, help) \
-  std::unique_ptr<Study> Create##Class##Study(); \
+#define NLTOPO_DECLARE_STUDY(name, Class, help)                                                                                                                \
+  std::unique_ptr<Study> Create##Class##Study();                                                                                                               \
   StudyContract Class##StudyContract();
 NLTOPO_STUDIES(NLTOPO_DECLARE_STUDY)
 #undef NLTOPO_DECLARE_STUDY

@@ -73,7 +73,8 @@ PetscErrorCode StoreOptionsFromOptions(MPI_Comm comm, const LatticeParams &lp, c
   // /simulate/u is held in memory and written at the end: at most 2.5e8 values (2 GB)
   const double samples = so.sample_dt > 0 ? std::floor(so.t_final / so.sample_dt) + 1 : 0, cols = std::ceil((double)lp.N() / (double)*stride);
   PetscCheck(!*store_u || samples * cols <= 2.5e8, comm, PETSC_ERR_USER,
-             "-sim_store_u: %g samples x %g sites is more than 2.5e8 values; raise -sim_sample_dt or -sim_store_u_stride, or give -sim_store_u 0", samples, cols);
+             "-sim_store_u: %g samples x %g sites is more than 2.5e8 values; raise -sim_sample_dt or -sim_store_u_stride, or give -sim_store_u 0", samples,
+             cols);
   PetscFunctionReturn(0);
 }
 
@@ -90,7 +91,8 @@ protected:
       PetscMPIInt nranks;
       PetscCallMPI(MPI_Comm_size(comm_, &nranks));
       const double samples = (sc_.sim.t_final - sc_.sim.t_start) / sc_.sim.sample_dt + 2, sites = std::ceil((double)sc_.lp.N() / stride_) / nranks;
-      PetscCall(CheckMemory(comm_, 8.0 * samples * sites, "/simulate/u (-lattice_cells x -sim_t_final / -sim_sample_dt; -sim_store_u_stride or -sim_store_u 0 shrink it)"));
+      PetscCall(CheckMemory(comm_, 8.0 * samples * sites,
+                            "/simulate/u (-lattice_cells x -sim_t_final / -sim_sample_dt; -sim_store_u_stride or -sim_store_u 0 shrink it)"));
       u_bytes_ = 8.0 * samples * sites * nranks;
     }
     PetscFunctionReturn(0);
@@ -116,16 +118,17 @@ protected:
     }
     PetscCall(PetscTime(&t1));
     solve_seconds_ = t1 - t0;
-    PetscCall(PetscPrintf(comm_, "nltopo simulate: N = %" PetscInt_FMT ", omega_ext = %.6f, E* = %g, S = %.6g (%s, %" PetscInt_FMT " rescalings), t_final = %g\n",
+    PetscCall(PetscPrintf(comm_,
+                          "nltopo simulate: N = %" PetscInt_FMT ", omega_ext = %.6f, E* = %g, S = %.6g (%s, %" PetscInt_FMT " rescalings), t_final = %g\n",
                           sc_.lat.N(), (double)sc_.burst.Omega(), (double)sc_.burst.EnergyStar(), (double)sc_.burst.Amplitude(),
                           sc_.burst.AmplitudeFromRule() ? "amplitude rule" : "-force_amplitude", rescalings_, (double)sc_.sim.t_final));
     if (r_.reached) PetscCall(PetscPrintf(comm_, "  cut-off at t_off = %.6f, E_final = %.10g\n", (double)r_.t_off, (double)r_.energy_final));
     else if (sc_.burst.Present())
       PetscCall(PetscPrintf(comm_, "  WARNING: E* = %g was NOT reached (E_final = %.6g); RMS window from t = %g\n", (double)sc_.burst.EnergyStar(),
                             (double)r_.energy_final, (double)r_.window_start));
-    PetscCall(PetscPrintf(comm_, "  MCR = %.10f, nl_ratio = %.6g, steps = %" PetscInt_FMT " (%" PetscInt_FMT " rejected), RHS evaluations = %" PetscInt_FMT
-                                 ", solve %.3f s\n",
-                          (double)r_.mcr, (double)r_.nl_ratio, r_.steps, r_.rejected, r_.counters.rhs, solve_seconds_));
+    PetscCall(PetscPrintf(
+        comm_, "  MCR = %.10f, nl_ratio = %.6g, steps = %" PetscInt_FMT " (%" PetscInt_FMT " rejected), RHS evaluations = %" PetscInt_FMT ", solve %.3f s\n",
+        (double)r_.mcr, (double)r_.nl_ratio, r_.steps, r_.rejected, r_.counters.rhs, solve_seconds_));
     PetscFunctionReturn(0);
   }
   // One run has nothing partial worth keeping: a stop signal ends it without output.
@@ -160,10 +163,12 @@ protected:
     PetscCall(WriteAttr(v, g, "omega_ext", sc_.burst.Omega()));
     PetscCall(WriteAttr(v, g, "energy_star", sc_.burst.EnergyStar()));
     PetscCall(WriteAttr(v, g, "amplitude", sc_.burst.Amplitude()));
-    PetscCall(WriteAttr(v, g, "amplitude_rule",
-                        !sc_.burst.Present() ? "none (no forcing)"
-                        : sc_.burst.AmplitudeFromRule() ? "linear Gaussian-burst energy = amplitude_safety * E*; a run whose burst ends before E* is repeated with a larger S (x (1.2 E*/E_peak)^(1/p), p the log-log slope of the misses) (README.md, Amplitude rule)"
-                                                     : "user (-force_amplitude)"));
+    PetscCall(WriteAttr(
+        v, g, "amplitude_rule",
+        !sc_.burst.Present() ? "none (no forcing)"
+        : sc_.burst.AmplitudeFromRule()
+            ? "linear Gaussian-burst energy = amplitude_safety * E*; a run whose burst ends before E* is repeated with a larger S (x (1.2 E*/E_peak)^(1/p), p the log-log slope of the misses) (README.md, Amplitude rule)"
+            : "user (-force_amplitude)"));
     PetscCall(WriteAttr(v, g, "amplitude_safety", sc_.fo.safety));
     PetscCall(WriteAttr(v, g, "amplitude_rescalings", rescalings_)); // -1: E* missed after -force_amplitude_retries
     PetscCall(WriteAttr(v, g, "tau", sc_.burst.Tau()));
@@ -187,32 +192,33 @@ private:
 StudyContract SimulateStudyContract()
 {
   using namespace schema_names;
-  return {ForcedScene::OptionPrefixes(), {
-    {"/simulate", "",
-     {{"t", D, R, "nt", "sample times"},
-      {"energy", D, R, "nt", "total energy"},
-      {"u", D, R, "nt x N", "displacements, sub-sampled (with u_stride)"},
-      {"rms", D, R, "N", "RMS per site after the cut-off"},
-      {"u_stride", A, I, "scalar", "-sim_store_u_stride"},
-      {"mcr", A, R, "scalar", "mode confinement ratio"},
-      {"t_off", A, R, "scalar", "cut-off time (-1: never)"},
-      {"energy_final", A, R, "scalar", "energy at the end"},
-      {"nl_ratio", A, R, "scalar", "nonlinear / linear energy"},
-      {"rhs_evals", A, I, "scalar", "RHS evaluations of the run"},
-      {"rhs_evals_all_attempts", A, I, "scalar", "RHS evaluations of every amplitude attempt"},
-      {"steps", A, I, "scalar", "accepted steps"},
-      {"rejected_steps", A, I, "scalar", "rejected steps"},
-      {"energy_reached", A, I, "scalar", "1 if E* was reached"},
-      {"window_start", A, R, "scalar", "start of the RMS window"},
-      {"omega_ext", A, R, "scalar", "forcing frequency"},
-      {"energy_star", A, R, "scalar", "target energy E*"},
-      {"amplitude", A, R, "scalar", "forcing amplitude S"},
-      {"amplitude_rule", A, S, "scalar", "how S was chosen"},
-      {"amplitude_safety", A, R, "scalar", "-force_amplitude_safety"},
-      {"amplitude_rescalings", A, I, "scalar", "repeats with a larger S (-1: E* missed)"},
-      {"tau", A, R, "scalar", "burst width"},
-      {"t0", A, R, "scalar", "burst centre"},
-      {"solve_seconds", A, R, "scalar", "wall time of the solve"}}}}};
+  return {ForcedScene::OptionPrefixes(),
+          {{"/simulate",
+            "",
+            {{"t", D, R, "nt", "sample times"},
+             {"energy", D, R, "nt", "total energy"},
+             {"u", D, R, "nt x N", "displacements, sub-sampled (with u_stride)"},
+             {"rms", D, R, "N", "RMS per site after the cut-off"},
+             {"u_stride", A, I, "scalar", "-sim_store_u_stride"},
+             {"mcr", A, R, "scalar", "mode confinement ratio"},
+             {"t_off", A, R, "scalar", "cut-off time (-1: never)"},
+             {"energy_final", A, R, "scalar", "energy at the end"},
+             {"nl_ratio", A, R, "scalar", "nonlinear / linear energy"},
+             {"rhs_evals", A, I, "scalar", "RHS evaluations of the run"},
+             {"rhs_evals_all_attempts", A, I, "scalar", "RHS evaluations of every amplitude attempt"},
+             {"steps", A, I, "scalar", "accepted steps"},
+             {"rejected_steps", A, I, "scalar", "rejected steps"},
+             {"energy_reached", A, I, "scalar", "1 if E* was reached"},
+             {"window_start", A, R, "scalar", "start of the RMS window"},
+             {"omega_ext", A, R, "scalar", "forcing frequency"},
+             {"energy_star", A, R, "scalar", "target energy E*"},
+             {"amplitude", A, R, "scalar", "forcing amplitude S"},
+             {"amplitude_rule", A, S, "scalar", "how S was chosen"},
+             {"amplitude_safety", A, R, "scalar", "-force_amplitude_safety"},
+             {"amplitude_rescalings", A, I, "scalar", "repeats with a larger S (-1: E* missed)"},
+             {"tau", A, R, "scalar", "burst width"},
+             {"t0", A, R, "scalar", "burst centre"},
+             {"solve_seconds", A, R, "scalar", "wall time of the solve"}}}}};
 }
 
 std::unique_ptr<Study> CreateSimulateStudy() { return std::make_unique<SimulateStudy>(); }

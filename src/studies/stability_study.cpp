@@ -122,7 +122,8 @@ PetscErrorCode StabilityOptionsFromOptions(MPI_Comm comm, StabilityOptions *o)
   PetscFunctionBeginUser;
   PetscCall(RejectGivenOptions(comm, {"-sim_t_final", "-sim_sample_dt"}, "-study stability (-stability_periods, 8 samples per period)"));
   PetscOptionsBegin(comm, "stability_", "NNM persistence under perturbation (insulated branch)", NULL);
-  PetscCall(PetscOptionsRealArray("-omega", "Frequencies of the insulated-branch orbits to test (paper: sqrt(3),1.8245,2.1876,2.2654)", NULL, o->omegas, &nw, &set));
+  PetscCall(
+      PetscOptionsRealArray("-omega", "Frequencies of the insulated-branch orbits to test (paper: sqrt(3),1.8245,2.1876,2.2654)", NULL, o->omegas, &nw, &set));
   PetscCall(PetscOptionsInt("-periods", "Periods to integrate each perturbed orbit", NULL, o->periods, &o->periods, NULL));
   PetscCall(PetscOptionsInt("-sample_periods", "Record the best shape correlation (8 snapshots per period) and its MCR per window of this many periods", NULL,
                             o->sample_periods, &o->sample_periods, NULL));
@@ -134,7 +135,8 @@ PetscErrorCode StabilityOptionsFromOptions(MPI_Comm comm, StabilityOptions *o)
   if (set) o->nw = nw;
   PetscCheck(o->nw >= 1, comm, PETSC_ERR_USER, "-stability_omega needs at least one frequency");
   for (PetscInt c = 0; c < o->nw; c++)
-    PetscCheck(o->omegas[c] > 0 && o->omegas[c] <= 1e3, comm, PETSC_ERR_USER, "-stability_omega: frequencies must lie in (0, 1e3], got %g", (double)o->omegas[c]);
+    PetscCheck(o->omegas[c] > 0 && o->omegas[c] <= 1e3, comm, PETSC_ERR_USER, "-stability_omega: frequencies must lie in (0, 1e3], got %g",
+               (double)o->omegas[c]);
   PetscCheck(o->periods >= 1 && o->periods <= 100000000 && o->sample_periods >= 1 && o->sample_periods <= o->periods, comm, PETSC_ERR_USER,
              "-stability_periods must lie in [1, 1e8] and -stability_sample_periods in [1, -stability_periods], got %" PetscInt_FMT " and %" PetscInt_FMT,
              o->periods, o->sample_periods);
@@ -197,7 +199,8 @@ protected:
   {
     const size_t done = cases_.size();
     char where[128];
-    (void)PetscSNPrintf(where, sizeof(where), "during stability case %" PetscInt_FMT " (omega %g)", (PetscInt)done, done < (size_t)st_.nw ? (double)st_.omegas[done] : 0.0);
+    (void)PetscSNPrintf(where, sizeof(where), "during stability case %" PetscInt_FMT " (omega %g)", (PetscInt)done,
+                        done < (size_t)st_.nw ? (double)st_.omegas[done] : 0.0);
     if (!done) *it = {false, "before the first stability case ended", ""};
     else *it = {true, where, " with the " + std::to_string(done) + " case(s) before it"};
     return true;
@@ -248,8 +251,8 @@ private:
     const PetscReal wt = st_.omegas[c];
     Shooting &shoot = nnm_.shoot;
     PetscFunctionBeginUser;
-    PetscCheck(b_.omega.back() >= wt, comm_, PETSC_ERR_USER, "-stability_omega %g: the insulated branch ends at omega %g (%s)", (double)wt, (double)b_.omega.back(),
-               b_.stop_reason.c_str());
+    PetscCheck(b_.omega.back() >= wt, comm_, PETSC_ERR_USER, "-stability_omega %g: the insulated branch ends at omega %g (%s)", (double)wt,
+               (double)b_.omega.back(), b_.stop_reason.c_str());
     // The orbit at omega = wt: Newton at fixed period from the first stored orbit
     // at or above wt (the low-energy orbit itself when wt is at or below its frequency).
     size_t j = 0;
@@ -283,7 +286,9 @@ private:
     const size_t ns = sink.corr_.size(), tail = std::max<size_t>(1, ns / 10);
     for (size_t i = ns - tail; i < ns; i++) k->tail_min = std::min(k->tail_min, sink.corr_[i]);
     k->persisted = k->tail_min >= st_.corr_min;
-    PetscCall(PetscPrintf(comm_, "nltopo stability: omega %.4f (E = %.4g): Floquet max |mu| = %.6f (%s), %" PetscInt_FMT " periods: shape correlation %.3f at the end (min %.3f over the last 10 %%), MCR %.3f -> %.3f: %s\n",
+    PetscCall(PetscPrintf(comm_,
+                          "nltopo stability: omega %.4f (E = %.4g): Floquet max |mu| = %.6f (%s), %" PetscInt_FMT
+                          " periods: shape correlation %.3f at the end (min %.3f over the last 10 %%), MCR %.3f -> %.3f: %s\n",
                           (double)(2 * PETSC_PI / T), (double)e.Total(), (double)k->fr.max_modulus, k->fr.stable ? "stable" : "unstable", st_.periods,
                           (double)sink.corr_.back(), (double)k->tail_min, (double)sink.mcr_.front(), (double)sink.mcr_.back(),
                           k->persisted ? "the standing wave persisted" : "the standing wave did NOT persist"));
@@ -310,25 +315,26 @@ private:
 StudyContract StabilityStudyContract()
 {
   using namespace schema_names;
-  return {WithPrefixes({NnmSetup::OptionPrefixes(), {"-floquet", "-sim_", "-stability_"}}), {
-    {"/stability", "", {{"cases_done", A, I, "scalar", "cases written"}}},
-    {"/stability/case<k>", "",
-     {{"t", D, R, "nt", "sample times"},
-      {"corr", D, R, "nt", "shape correlation with the NNM"},
-      {"mcr", D, R, "nt", "MCR"},
-      {"energy", D, R, "nt", "energy"},
-      {"multipliers_re", D, R, "2N", "Floquet multipliers, real part"},
-      {"multipliers_im", D, R, "2N", "Floquet multipliers, imaginary part"},
-      {"omega_target", A, R, "scalar", "-stability_omega"},
-      {"omega", A, R, "scalar", "orbit frequency"},
-      {"energy", A, R, "scalar", "orbit energy"},
-      {"period", A, R, "scalar", "orbit period"},
-      {"max_modulus", A, R, "scalar", "largest |mu|"},
-      {"floquet_stable", A, I, "scalar", "1 if Floquet-stable"},
-      {"instability", A, I, "scalar", "0 none, 1 B-B, 2 B-E, 3 E-E"},
-      {"persisted", A, I, "scalar", "1 if the shape persisted"},
-      {"corr_tail_min", A, R, "scalar", "min shape correlation over the last 10 %"},
-      {"energy_drift", A, R, "scalar", "relative energy drift"}}}}};
+  return {WithPrefixes({NnmSetup::OptionPrefixes(), {"-floquet", "-sim_", "-stability_"}}),
+          {{"/stability", "", {{"cases_done", A, I, "scalar", "cases written"}}},
+           {"/stability/case<k>",
+            "",
+            {{"t", D, R, "nt", "sample times"},
+             {"corr", D, R, "nt", "shape correlation with the NNM"},
+             {"mcr", D, R, "nt", "MCR"},
+             {"energy", D, R, "nt", "energy"},
+             {"multipliers_re", D, R, "2N", "Floquet multipliers, real part"},
+             {"multipliers_im", D, R, "2N", "Floquet multipliers, imaginary part"},
+             {"omega_target", A, R, "scalar", "-stability_omega"},
+             {"omega", A, R, "scalar", "orbit frequency"},
+             {"energy", A, R, "scalar", "orbit energy"},
+             {"period", A, R, "scalar", "orbit period"},
+             {"max_modulus", A, R, "scalar", "largest |mu|"},
+             {"floquet_stable", A, I, "scalar", "1 if Floquet-stable"},
+             {"instability", A, I, "scalar", "0 none, 1 B-B, 2 B-E, 3 E-E"},
+             {"persisted", A, I, "scalar", "1 if the shape persisted"},
+             {"corr_tail_min", A, R, "scalar", "min shape correlation over the last 10 %"},
+             {"energy_drift", A, R, "scalar", "relative energy drift"}}}}};
 }
 
 std::unique_ptr<Study> CreateStabilityStudy() { return std::make_unique<StabilityStudy>(); }

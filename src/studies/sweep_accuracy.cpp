@@ -9,10 +9,13 @@ PetscErrorCode McrAccuracyOptionsFromOptions(MPI_Comm comm, McrAccuracyOptions *
 {
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "sweep_", "Accuracy-aware sweep (-sweep_mcr_tol)", NULL);
-  PetscCall(PetscOptionsReal("-mcr_tol", "Target relative accuracy of each point's MCR: the step is halved until two runs agree to it; unpredictable points get twin-run statistics (0: off, the scene's own integration)",
-                             NULL, o->tol, &o->tol, NULL));
+  PetscCall(PetscOptionsReal(
+      "-mcr_tol",
+      "Target relative accuracy of each point's MCR: the step is halved until two runs agree to it; unpredictable points get twin-run statistics (0: off, the scene's own integration)",
+      NULL, o->tol, &o->tol, NULL));
   PetscCall(PetscOptionsInt("-mcr_levels", "-sweep_mcr_tol: at most this many halvings of the step", NULL, o->levels, &o->levels, NULL));
-  PetscCall(PetscOptionsInt("-mcr_twins", "-sweep_mcr_tol: twin runs (amplitude x (1 + k eps)) of a point that does not converge", NULL, o->twins, &o->twins, NULL));
+  PetscCall(
+      PetscOptionsInt("-mcr_twins", "-sweep_mcr_tol: twin runs (amplitude x (1 + k eps)) of a point that does not converge", NULL, o->twins, &o->twins, NULL));
   PetscCall(PetscOptionsReal("-mcr_twin_eps", "-sweep_mcr_tol: relative change of the amplitude of the twins", NULL, o->twin_eps, &o->twin_eps, NULL));
   PetscOptionsEnd();
   PetscCheck(o->tol >= 0 && o->tol < 1, comm, PETSC_ERR_USER, "-sweep_mcr_tol must lie in [0, 1), got %g", (double)o->tol);
@@ -40,7 +43,8 @@ namespace {
 PetscReal RelDiff(PetscReal a, PetscReal b) { return std::abs(a - b) / std::max(std::abs(a), std::abs(b)); }
 
 // One more run of the point with the step times scale and the amplitude times (1 + da).
-PetscErrorCode Rerun(const Lattice &lat, const ToneBurst &burst, const SimulationOptions &sim, PetscReal scale, PetscReal da, SimulationResult *r, SweepPoint *pt)
+PetscErrorCode Rerun(const Lattice &lat, const ToneBurst &burst, const SimulationOptions &sim, PetscReal scale, PetscReal da, SimulationResult *r,
+                     SweepPoint *pt)
 {
   PetscFunctionBeginUser;
   SimulationOptions o = sim;
@@ -124,9 +128,7 @@ PetscErrorCode RefineMcr(const Lattice &lat, const ToneBurst &burst, const Simul
     }
   }
   // The twins at the scene's step
-  for (PetscInt j = (PetscInt)m.size() - 1; j < o.twins; j++) {
-    PetscCall(twin(j));
-  }
+  for (PetscInt j = (PetscInt)m.size() - 1; j < o.twins; j++) { PetscCall(twin(j)); }
   const auto [lo, hi] = std::minmax_element(m.begin(), m.end());
   PetscReal mean = 0;
   for (PetscReal x : m) mean += x;

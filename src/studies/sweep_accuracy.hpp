@@ -13,9 +13,9 @@
 namespace nltopo {
 
 struct McrAccuracyOptions {
-  PetscReal tol = 0;        // relative; 0: off
-  PetscInt levels = 3;      // at most this many halvings of the step
-  PetscInt twins = 4;       // twin runs of an unpredictable point (besides the first run)
+  PetscReal tol = 0;   // relative; 0: off
+  PetscInt levels = 3; // at most this many halvings of the step
+  PetscInt twins = 4;  // twin runs of an unpredictable point (besides the first run)
   PetscReal twin_eps = 1e-10;
   PetscReal kcorr_chaotic = 0.7; // a 0-1 test score above this goes straight to the twins
 };

@@ -9,15 +9,9 @@ namespace nltopo {
 
 namespace {
 
-const SweepRealField kRealMembers[] = {{"mcr", &SweepPoint::mcr},
-                                       {"t_off", &SweepPoint::t_off},
-                                       {"kcorr", &SweepPoint::kcorr},
-                                       {"nl_ratio", &SweepPoint::nl_ratio},
-                                       {"amplitude", &SweepPoint::amplitude},
-                                       {"energy_final", &SweepPoint::energy_final},
-                                       {"seconds", &SweepPoint::seconds},
-                                       {"mcr_error", &SweepPoint::mcr_error},
-                                       {"mcr_spread", &SweepPoint::mcr_spread}};
+const SweepRealField kRealMembers[] = {{"mcr", &SweepPoint::mcr},           {"t_off", &SweepPoint::t_off},         {"kcorr", &SweepPoint::kcorr},
+                                       {"nl_ratio", &SweepPoint::nl_ratio}, {"amplitude", &SweepPoint::amplitude}, {"energy_final", &SweepPoint::energy_final},
+                                       {"seconds", &SweepPoint::seconds},   {"mcr_error", &SweepPoint::mcr_error}, {"mcr_spread", &SweepPoint::mcr_spread}};
 const SweepIntField kIntMembers[] = {{"reached", &SweepPoint::reached}, {"rescalings", &SweepPoint::rescalings}, {"rhs_evals", &SweepPoint::rhs},
                                      {"steps", &SweepPoint::steps},     {"failed", &SweepPoint::failed},         {"predictable", &SweepPoint::predictable},
                                      {"mcr_runs", &SweepPoint::runs}};
@@ -25,8 +19,7 @@ const SweepIntField kIntMembers[] = {{"reached", &SweepPoint::reached}, {"rescal
 bool PerPoint(const Field &f) { return f.kind == FieldKind::Dataset && !std::strcmp(f.shape, "ne x no") && std::strcmp(f.name, "done"); }
 
 // The members in the schema's order (a member it lacks is left out: SweepFieldsUnbound names it).
-template <typename F, size_t n>
-std::vector<F> InSchemaOrder(const F (&members)[n], FieldType type)
+template <typename F, size_t n> std::vector<F> InSchemaOrder(const F (&members)[n], FieldType type)
 {
   std::vector<F> out;
   if (const Schema *s = FindSchema("/sweep"))
@@ -94,8 +87,8 @@ PetscErrorCode SweepGrid::Load(const std::string &path)
   PetscCall(ReadDoubles(path, "/sweep/omega", &w));
   PetscCall(ReadDoubles(path, "/sweep/energy", &e));
   PetscCheck(w == omega && e == energy, PETSC_COMM_SELF, PETSC_ERR_USER,
-             "-sweep_resume: the grid stored in %s (%zu x %zu) differs from the -sweep_* axes (%zu x %zu)", path.c_str(), e.size(), w.size(),
-             energy.size(), omega.size());
+             "-sweep_resume: the grid stored in %s (%zu x %zu) differs from the -sweep_* axes (%zu x %zu)", path.c_str(), e.size(), w.size(), energy.size(),
+             omega.size());
   auto doubles = [&](const char *name, PetscReal SweepPoint::*field) -> PetscErrorCode {
     PetscFunctionBeginUser;
     PetscCall(ReadDoubles(path, (std::string("/sweep/") + name).c_str(), &v));

@@ -30,8 +30,14 @@ struct SweepPoint {
 // The per-point (ne x no) datasets of the /sweep schema (sweep_study.cpp) but
 // done, in its order, and the SweepPoint fields behind them: what the sweep
 // study writes, SweepGrid::Load reads back and a journal line holds.
-struct SweepRealField { const char *name; PetscReal SweepPoint::*field; };
-struct SweepIntField { const char *name; PetscInt SweepPoint::*field; };
+struct SweepRealField {
+  const char *name;
+  PetscReal SweepPoint::*field;
+};
+struct SweepIntField {
+  const char *name;
+  PetscInt SweepPoint::*field;
+};
 const std::vector<SweepRealField> &SweepRealFields();
 const std::vector<SweepIntField> &SweepIntFields();
 // Schema fields without a SweepPoint member, and members the schema lacks (tests: none).

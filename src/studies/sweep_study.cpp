@@ -65,7 +65,8 @@ PetscErrorCode SweepOptionsFromOptions(MPI_Comm comm, SweepOptions *o)
   PetscCall(ReadAxis(PetscOptionsObject, comm, "sweep_", "energy", 1e-3, 1e3, 50, true, &o->energy));
   PetscCall(PetscOptionsBool("-resume", "Continue the sweep stored in -output: compute only the points not done", NULL, o->resume, &o->resume, NULL));
   PetscCall(PetscOptionsBool("-kcorr", "Score every run with the 0-1 test for chaos (-kcorr_* options)", NULL, o->kcorr, &o->kcorr, NULL));
-  PetscCall(PetscOptionsReal("-checkpoint", "Rewrite -output with the points done so far every this many wall seconds", NULL, o->checkpoint, &o->checkpoint, NULL));
+  PetscCall(
+      PetscOptionsReal("-checkpoint", "Rewrite -output with the points done so far every this many wall seconds", NULL, o->checkpoint, &o->checkpoint, NULL));
   PetscCall(PetscOptionsReal("-progress", "Report progress every this many wall seconds (0: never)", NULL, o->progress, &o->progress, NULL));
   PetscOptionsEnd();
   PetscCall(McrAccuracyOptionsFromOptions(comm, &o->mcr));
@@ -85,7 +86,8 @@ PetscErrorCode SweepOptionsFromOptions(MPI_Comm comm, SweepOptions *o)
                             &o->kcorr_site_stride, NULL));
   PetscOptionsEnd();
   PetscCheck(o->kcorr_nc >= 1 && o->kcorr_nc <= 10000, comm, PETSC_ERR_USER, "-kcorr_nc must lie in [1, 10000], got %" PetscInt_FMT, o->kcorr_nc);
-  PetscCheck(o->kcorr_sample_dt >= 0 && o->kcorr_sample_dt <= 1e6, comm, PETSC_ERR_USER, "-kcorr_sample_dt must lie in [0, 1e6], got %g", (double)o->kcorr_sample_dt);
+  PetscCheck(o->kcorr_sample_dt >= 0 && o->kcorr_sample_dt <= 1e6, comm, PETSC_ERR_USER, "-kcorr_sample_dt must lie in [0, 1e6], got %g",
+             (double)o->kcorr_sample_dt);
   PetscCheck(o->kcorr_rms_fraction >= 0 && o->kcorr_rms_fraction <= 1, comm, PETSC_ERR_USER, "-kcorr_rms_fraction must lie in [0, 1], got %g",
              (double)o->kcorr_rms_fraction);
   PetscCheck(o->kcorr_record > 0 && o->kcorr_record <= 1e6, comm, PETSC_ERR_USER, "-kcorr_record must lie in (0, 1e6], got %g", (double)o->kcorr_record);
@@ -146,9 +148,10 @@ PetscErrorCode WriteSweep(const std::string &path, const SweepGrid &g, const Swe
   PetscCall(WriteAttr(w, grp, "kcorr_rms_fraction", so.kcorr_rms_fraction));
   PetscCall(WriteAttr(w, grp, "kcorr_record", so.kcorr_record));
   PetscCall(WriteAttr(w, grp, "kcorr_lags", so.kcorr_lags));
-  PetscCall(WriteAttr(w, grp, "amplitude_rule",
-                      "linear Gaussian-burst energy = -force_amplitude_safety * E*; a run whose burst ends before E* is repeated with a larger S (x "
-                      "(1.2 E*/E_peak)^(1/p), p the log-log slope of the misses) up to -force_amplitude_retries times (README.md, Amplitude rule); reached = 0 marks points that never reached E*"));
+  PetscCall(WriteAttr(
+      w, grp, "amplitude_rule",
+      "linear Gaussian-burst energy = -force_amplitude_safety * E*; a run whose burst ends before E* is repeated with a larger S (x "
+      "(1.2 E*/E_peak)^(1/p), p the log-log slope of the misses) up to -force_amplitude_retries times (README.md, Amplitude rule); reached = 0 marks points that never reached E*"));
   PetscCall(out.Commit("sweep", wall, complete));
   PetscCall(PetscLogEventEnd(Log().output, 0, 0, 0, 0));
   PetscFunctionReturn(0);
@@ -237,7 +240,8 @@ protected:
   {
     PetscFunctionBeginUser;
     PetscCall(OutputPathFromOptions(comm_, name_, path, [&](const std::string &) { return (bool)so_.resume; }));
-    if (so_.resume) PetscCall(CheckResumeOptions(comm_, *path, name_, "-sweep_resume")); // the same physics and numerics, or one line naming the first difference
+    if (so_.resume)
+      PetscCall(CheckResumeOptions(comm_, *path, name_, "-sweep_resume")); // the same physics and numerics, or one line naming the first difference
     PetscFunctionReturn(0);
   }
   bool WritesOwnFile() const override { return true; }
@@ -304,8 +308,9 @@ protected:
       SweepPoint pt;
       PetscErrorCode ierr = 0;
       char msg[1024];
-      PetscCall(CaptureError([&]() { return ComputePoint(sc_.lat, sc_.modes, sc_.fo, sc_.sim, so_, *zero_one_, so_.omega[idx % no], so_.energy[idx / no], &pt); }, &ierr, msg,
-                             sizeof(msg)));
+      PetscCall(
+          CaptureError([&]() { return ComputePoint(sc_.lat, sc_.modes, sc_.fo, sc_.sim, so_, *zero_one_, so_.omega[idx % no], so_.energy[idx / no], &pt); },
+                       &ierr, msg, sizeof(msg)));
       if (IsInterrupt(ierr)) {
         PetscCall(queue_.Stop());
         break;
@@ -329,14 +334,14 @@ protected:
         const bool ck = now - t_last_ck >= so_.checkpoint, pr = so_.progress > 0 && (tty_ || now - t_last_pr >= so_.progress);
         if (ck || pr) {
           PetscCall(CaptureError(
-            [&]() -> PetscErrorCode {
-              PetscInt lines;
-              PetscFunctionBeginUser;
-              PetscCall(grid_.MergeJournals(path_, &lines));
-              if (ck) PetscCall(WriteSweep(path_, grid_, so_, computed_, now - t_start_, false));
-              PetscFunctionReturn(0);
-            },
-            &failed, fail_msg, sizeof(fail_msg)));
+              [&]() -> PetscErrorCode {
+                PetscInt lines;
+                PetscFunctionBeginUser;
+                PetscCall(grid_.MergeJournals(path_, &lines));
+                if (ck) PetscCall(WriteSweep(path_, grid_, so_, computed_, now - t_start_, false));
+                PetscFunctionReturn(0);
+              },
+              &failed, fail_msg, sizeof(fail_msg)));
           if (failed) {
             PetscCall(queue_.Stop());
             break;
@@ -374,22 +379,22 @@ protected:
       // longer needed, also when the sweep was interrupted (the file is then
       // complete = 0 and -sweep_resume continues from it alone).
       PetscCall(CaptureError(
-        [&]() -> PetscErrorCode {
-          PetscInt lines;
-          PetscFunctionBeginUser;
-          PetscCall(grid_.MergeJournals(path_, &lines));
-          if (so_.mcr.tol > 0) {
-            PetscReal worst = 0;
-            for (size_t i = 0; i < grid_.Size(); i++)
-              if (grid_.done[i] && grid_.pts[i].predictable == 1 && grid_.pts[i].mcr_error <= so_.mcr.tol) worst = std::max(worst, grid_.pts[i].mcr_error);
-            CostSetErrorEstimate(worst, "the largest mcr_error of the points converged to -sweep_mcr_tol (relative)");
-          }
-          PetscCall(PetscTime(&now));
-          done_now = grid_.Done();
-          PetscCall(WriteSweep(path_, grid_, so_, total_computed, now - t_start_, done_now == (PetscInt)grid_.Size()));
-          PetscFunctionReturn(0);
-        },
-        &failed, fail_msg, sizeof(fail_msg)));
+          [&]() -> PetscErrorCode {
+            PetscInt lines;
+            PetscFunctionBeginUser;
+            PetscCall(grid_.MergeJournals(path_, &lines));
+            if (so_.mcr.tol > 0) {
+              PetscReal worst = 0;
+              for (size_t i = 0; i < grid_.Size(); i++)
+                if (grid_.done[i] && grid_.pts[i].predictable == 1 && grid_.pts[i].mcr_error <= so_.mcr.tol) worst = std::max(worst, grid_.pts[i].mcr_error);
+              CostSetErrorEstimate(worst, "the largest mcr_error of the points converged to -sweep_mcr_tol (relative)");
+            }
+            PetscCall(PetscTime(&now));
+            done_now = grid_.Done();
+            PetscCall(WriteSweep(path_, grid_, so_, total_computed, now - t_start_, done_now == (PetscInt)grid_.Size()));
+            PetscFunctionReturn(0);
+          },
+          &failed, fail_msg, sizeof(fail_msg)));
       if (!failed) {
         for (const std::string &f : JournalFiles(path_)) std::remove(f.c_str());
         PetscCall(PrintSummary(total_computed, now));
@@ -398,7 +403,8 @@ protected:
     PetscCall(FailTogether(comm_, failed, fail_msg));
     PetscCallMPI(MPI_Bcast(&done_now, 1, MPIU_INT, 0, comm_));
     PetscCheck(!sig || done_now == (PetscInt)grid_.Size(), comm_, PETSC_ERR_SIG,
-               "interrupted by %s between sweep points (%" PetscInt_FMT " of %zu done, %" PetscInt_FMT " by this run); partial output %s (complete = 0); -sweep_resume continues it",
+               "interrupted by %s between sweep points (%" PetscInt_FMT " of %zu done, %" PetscInt_FMT
+               " by this run); partial output %s (complete = 0); -sweep_resume continues it",
                SignalName(sig), done_now, grid_.Size(), total_computed, path_.c_str());
     PetscFunctionReturn(0);
   }
@@ -416,23 +422,23 @@ private:
       PetscErrorCode ierr = 0;
       PetscInt merged = 0;
       PetscCall(CaptureError(
-        [&]() -> PetscErrorCode {
-          PetscFunctionBeginUser;
-          if (so_.resume) {
-            PetscCheck(!access(path_.c_str(), F_OK), PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "-sweep_resume: no sweep file %s to resume", path_.c_str());
-            PetscCall(grid_.Load(path_));
-            PetscCall(grid_.MergeJournals(path_, &merged));
-          }
-          PetscCall(WriteSweep(path_, grid_, so_, 0, 0, false)); // the file exists (and is valid) from the start
-          PetscFunctionReturn(0);
-        },
-        &ierr, msg, sizeof(msg)));
+          [&]() -> PetscErrorCode {
+            PetscFunctionBeginUser;
+            if (so_.resume) {
+              PetscCheck(!access(path_.c_str(), F_OK), PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "-sweep_resume: no sweep file %s to resume", path_.c_str());
+              PetscCall(grid_.Load(path_));
+              PetscCall(grid_.MergeJournals(path_, &merged));
+            }
+            PetscCall(WriteSweep(path_, grid_, so_, 0, 0, false)); // the file exists (and is valid) from the start
+            PetscFunctionReturn(0);
+          },
+          &ierr, msg, sizeof(msg)));
       if (ierr) err = 1;
       else {
         for (const std::string &f : JournalFiles(path_)) std::remove(f.c_str()); // merged (resume) or stale (fresh start)
         if (so_.resume)
-          PetscCall(PetscPrintf(PETSC_COMM_SELF, "nltopo sweep: resuming %s: %" PetscInt_FMT " of %zu points done (%" PetscInt_FMT " from journals)\n", path_.c_str(),
-                                grid_.Done(), grid_.Size(), merged));
+          PetscCall(PetscPrintf(PETSC_COMM_SELF, "nltopo sweep: resuming %s: %" PetscInt_FMT " of %zu points done (%" PetscInt_FMT " from journals)\n",
+                                path_.c_str(), grid_.Done(), grid_.Size(), merged));
       }
     }
     PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm_));
@@ -472,12 +478,14 @@ private:
         runs += grid_.pts[i].runs;
       }
       PetscCall(PetscPrintf(PETSC_COMM_SELF,
-                            "  -sweep_mcr_tol %g: %" PetscInt_FMT " integrations; %" PetscInt_FMT " point(s) unpredictable (predictable = 0: mcr is the twins' mean, mcr_spread their spread), %" PetscInt_FMT
+                            "  -sweep_mcr_tol %g: %" PetscInt_FMT " integrations; %" PetscInt_FMT
+                            " point(s) unpredictable (predictable = 0: mcr is the twins' mean, mcr_spread their spread), %" PetscInt_FMT
                             " predictable but short of the tolerance after %" PetscInt_FMT " halvings (mcr_error > tol)\n",
                             (double)so_.mcr.tol, runs, unpredictable, short_of_tol, so_.mcr.levels));
     }
-    PetscCall(PetscPrintf(PETSC_COMM_SELF, "  computed %" PetscInt_FMT " points in %.2f s (%.2f points/s on %d ranks); %" PetscInt_FMT
-                                           " point(s) never reached E* (reached = 0), %" PetscInt_FMT " failed (failed = 1)\n  wrote %s\n",
+    PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                          "  computed %" PetscInt_FMT " points in %.2f s (%.2f points/s on %d ranks); %" PetscInt_FMT
+                          " point(s) never reached E* (reached = 0), %" PetscInt_FMT " failed (failed = 1)\n  wrote %s\n",
                           total_computed, (double)(now - t_loop_), total_computed / std::max(1e-9, (double)(now - t_loop_)), size_, missed, nfailed,
                           path_.c_str()));
     PetscFunctionReturn(0);
@@ -501,42 +509,42 @@ private:
 StudyContract SweepStudyContract()
 {
   using namespace schema_names;
-  return {WithPrefixes({ForcedScene::OptionPrefixes(), {"-sweep_", "-kcorr_"}}), {
-    {"/sweep", "",
-     WithBandEdges({{"omega", D, R, "no", "forcing frequencies"},
-                    {"energy", D, R, "ne", "target energies E*"},
-                    // per point, in the order of the journal (studies/sweep_store.cpp): reals, then ints
-                    {"mcr", D, R, "ne x no", "MCR"},
-                    {"t_off", D, R, "ne x no", "cut-off time (-1: never)"},
-                    {"kcorr", D, R, "ne x no", "0-1 test K (NaN without -sweep_kcorr)"},
-                    {"nl_ratio", D, R, "ne x no", "nonlinear / linear energy"},
-                    {"amplitude", D, R, "ne x no", "forcing amplitude S"},
-                    {"energy_final", D, R, "ne x no", "energy at the end"},
-                    {"seconds", D, R, "ne x no", "wall time of the point"},
-                    {"mcr_error", D, R, "ne x no", "estimated relative MCR error (-sweep_mcr_tol)"},
-                    {"mcr_spread", D, R, "ne x no", "MCR spread over the twins where unpredictable, else 0"},
-                    {"reached", D, I, "ne x no", "1 if E* was reached"},
-                    {"rescalings", D, I, "ne x no", "amplitude repeats"},
-                    {"rhs_evals", D, I, "ne x no", "RHS evaluations of every attempt"},
-                    {"steps", D, I, "ne x no", "accepted steps"},
-                    {"failed", D, I, "ne x no", "1 if the run stopped with an error"},
-                    {"predictable", D, I, "ne x no", "1, 0, or -1 without -sweep_mcr_tol"},
-                    {"mcr_runs", D, I, "ne x no", "integrations spent on the point"},
-                    {"done", D, I, "ne x no", "1 if the point is computed"},
-                    {"points_done", A, I, "scalar", "points computed so far"},
-                    {"points_computed", A, I, "scalar", "points computed by this invocation"},
-                    {"kcorr_computed", A, I, "scalar", "1 with -sweep_kcorr"},
-                    {"mcr_tol", A, R, "scalar", "-sweep_mcr_tol (0: off)"},
-                    {"kcorr_nc", A, I, "scalar", "-kcorr_nc"},
-                    {"kcorr_sample_dt", A, R, "scalar", "-kcorr_sample_dt"},
-                    {"kcorr_rms_fraction", A, R, "scalar", "-kcorr_rms_fraction"},
-                    {"kcorr_record", A, R, "scalar", "-kcorr_record"},
-                    {"kcorr_lags", A, I, "scalar", "-kcorr_lags"},
-                    {"amplitude_rule", A, S, "scalar", "how S was chosen"},
-                    {"force_eta", D, R, "N", "forcing profile eta per site, the same at every point (S scales it)"},
-                    {"insulated_mode", D, R, "N", "linear insulated mode, the exponential profile's fit target (absent without one)"},
-                    {"force_exp_a", A, R, "scalar", "-force_profile exponential: fitted a of eta_n = a e^{b |n - m|} (-1)^{n/2}"},
-                    {"force_exp_b", A, R, "scalar", "-force_profile exponential: fitted b (per site)"}})}}};
+  return {WithPrefixes({ForcedScene::OptionPrefixes(), {"-sweep_", "-kcorr_"}}),
+          {{"/sweep", "",
+            WithBandEdges({{"omega", D, R, "no", "forcing frequencies"},
+                           {"energy", D, R, "ne", "target energies E*"},
+                           // per point, in the order of the journal (studies/sweep_store.cpp): reals, then ints
+                           {"mcr", D, R, "ne x no", "MCR"},
+                           {"t_off", D, R, "ne x no", "cut-off time (-1: never)"},
+                           {"kcorr", D, R, "ne x no", "0-1 test K (NaN without -sweep_kcorr)"},
+                           {"nl_ratio", D, R, "ne x no", "nonlinear / linear energy"},
+                           {"amplitude", D, R, "ne x no", "forcing amplitude S"},
+                           {"energy_final", D, R, "ne x no", "energy at the end"},
+                           {"seconds", D, R, "ne x no", "wall time of the point"},
+                           {"mcr_error", D, R, "ne x no", "estimated relative MCR error (-sweep_mcr_tol)"},
+                           {"mcr_spread", D, R, "ne x no", "MCR spread over the twins where unpredictable, else 0"},
+                           {"reached", D, I, "ne x no", "1 if E* was reached"},
+                           {"rescalings", D, I, "ne x no", "amplitude repeats"},
+                           {"rhs_evals", D, I, "ne x no", "RHS evaluations of every attempt"},
+                           {"steps", D, I, "ne x no", "accepted steps"},
+                           {"failed", D, I, "ne x no", "1 if the run stopped with an error"},
+                           {"predictable", D, I, "ne x no", "1, 0, or -1 without -sweep_mcr_tol"},
+                           {"mcr_runs", D, I, "ne x no", "integrations spent on the point"},
+                           {"done", D, I, "ne x no", "1 if the point is computed"},
+                           {"points_done", A, I, "scalar", "points computed so far"},
+                           {"points_computed", A, I, "scalar", "points computed by this invocation"},
+                           {"kcorr_computed", A, I, "scalar", "1 with -sweep_kcorr"},
+                           {"mcr_tol", A, R, "scalar", "-sweep_mcr_tol (0: off)"},
+                           {"kcorr_nc", A, I, "scalar", "-kcorr_nc"},
+                           {"kcorr_sample_dt", A, R, "scalar", "-kcorr_sample_dt"},
+                           {"kcorr_rms_fraction", A, R, "scalar", "-kcorr_rms_fraction"},
+                           {"kcorr_record", A, R, "scalar", "-kcorr_record"},
+                           {"kcorr_lags", A, I, "scalar", "-kcorr_lags"},
+                           {"amplitude_rule", A, S, "scalar", "how S was chosen"},
+                           {"force_eta", D, R, "N", "forcing profile eta per site, the same at every point (S scales it)"},
+                           {"insulated_mode", D, R, "N", "linear insulated mode, the exponential profile's fit target (absent without one)"},
+                           {"force_exp_a", A, R, "scalar", "-force_profile exponential: fitted a of eta_n = a e^{b |n - m|} (-1)^{n/2}"},
+                           {"force_exp_b", A, R, "scalar", "-force_profile exponential: fitted b (per site)"}})}}};
 }
 
 std::unique_ptr<Study> CreateSweepStudy() { return std::make_unique<SweepStudy>(); }

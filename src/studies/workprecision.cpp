@@ -41,7 +41,7 @@ using namespace wp;
 
 struct Outcome {
   PetscReal obs[kWpNumObservables - 1] = {0}; // the scalars (mcr, t_off, nl_ratio, energy)
-  OwnedVec z;                                  // final state
+  OwnedVec z;                                 // final state
   PetscReal t_final = 0;
   SimulationResult r;
 };
@@ -113,25 +113,28 @@ PetscErrorCode WorkPrecisionOptionsFromOptions(MPI_Comm comm, WorkPrecisionOptio
   PetscCall(PetscStrncpy(configs, Join(o->configs, ",").c_str(), sizeof(configs)));
   PetscCall(PetscStrncpy(reference, o->reference.c_str(), sizeof(reference)));
   PetscOptionsBegin(comm, "wp_", "Work-precision study (-study workprecision)", NULL);
-  PetscCall(PetscOptionsString("-configs", "Comma-separated integrator configurations, each a space-separated list of -sim_ts_* options (begin the list with a space)", NULL, configs, configs,
-                               sizeof(configs), &given));
+  PetscCall(PetscOptionsString("-configs",
+                               "Comma-separated integrator configurations, each a space-separated list of -sim_ts_* options (begin the list with a space)",
+                               NULL, configs, configs, sizeof(configs), &given));
   PetscCall(PetscOptionsString("-reference", "Reference integrator (without tolerance; steps capped: the interpolant's window integrals)", NULL, reference,
                                reference, sizeof(reference), &given_ref));
   PetscCall(PetscOptionsReal("-reference_tol", "First reference tolerance (rtol = atol); tightened 10x until two successive references agree", NULL,
                              o->reference_tol, &o->reference_tol, NULL));
-  PetscCall(PetscOptionsReal("-reference_dt_max", "Step cap of the first reference (halved with each tightening: the window integrals on the interpolant converge with the step)", NULL,
-                             o->reference_dt_max, &o->reference_dt_max, NULL));
+  PetscCall(PetscOptionsReal("-reference_dt_max",
+                             "Step cap of the first reference (halved with each tightening: the window integrals on the interpolant converge with the step)",
+                             NULL, o->reference_dt_max, &o->reference_dt_max, NULL));
   PetscCall(PetscOptionsReal("-nnm_energy", "-wp_scene shooting: energy of the orbit of the insulated branch", NULL, o->nnm_energy, &o->nnm_energy, NULL));
   PetscCall(PetscOptionsString("-nnm_reference", "-wp_scene shooting: reference integrator (without -nnm_steps_per_period; begin it with a space)", NULL,
                                nnm_reference, nnm_reference, sizeof(nnm_reference), &given_nnm_ref));
-  PetscCall(PetscOptionsInt("-nnm_reference_steps", "-wp_scene shooting: steps per period of the first reference, doubled until two successive references agree", NULL,
+  PetscCall(PetscOptionsInt("-nnm_reference_steps",
+                            "-wp_scene shooting: steps per period of the first reference, doubled until two successive references agree", NULL,
                             o->nnm_reference_steps, &o->nnm_reference_steps, NULL));
   PetscCall(PetscOptionsReal("-reference_tol_min", "Tightest reference tolerance", NULL, o->reference_tol_min, &o->reference_tol_min, NULL));
   PetscCall(PetscOptionsReal("-reference_agreement", "Two successive references agree to this (relative, every observable): converged", NULL,
                              o->reference_agreement, &o->reference_agreement, NULL));
   PetscCall(PetscOptionsInt("-repeats", "Wall time of a configuration: the median of this many runs", NULL, o->repeats, &o->repeats, NULL));
-  PetscCall(PetscOptionsInt("-twins", "Predictability floor: this many reference runs with S x (1 + k eps), k = 1, -1, 2, -2, ...", NULL, o->twins, &o->twins,
-                            NULL));
+  PetscCall(
+      PetscOptionsInt("-twins", "Predictability floor: this many reference runs with S x (1 + k eps), k = 1, -1, 2, -2, ...", NULL, o->twins, &o->twins, NULL));
   PetscCall(PetscOptionsReal("-twin_eps", "Relative change of S of the twins", NULL, o->twin_eps, &o->twin_eps, NULL));
   PetscOptionsEnd();
   // PETSc takes a value that begins with "-x" for the next option (command line
@@ -146,8 +149,8 @@ PetscErrorCode WorkPrecisionOptionsFromOptions(MPI_Comm comm, WorkPrecisionOptio
              "-wp_nnm_reference has no value: PETSc reads a value that begins with '-' as the next option; begin it with a space");
   o->nnm_reference = SplitList(nnm_reference, ',').empty() ? "" : SplitList(nnm_reference, ',')[0];
   PetscCheck(o->nnm_energy > 0 && o->nnm_energy <= 1e6, comm, PETSC_ERR_USER, "-wp_nnm_energy must lie in (0, 1e6], got %g", (double)o->nnm_energy);
-  PetscCheck(o->nnm_reference_steps >= 8 && o->nnm_reference_steps <= 100000, comm, PETSC_ERR_USER, "-wp_nnm_reference_steps must lie in [8, 1e5], got %" PetscInt_FMT,
-             o->nnm_reference_steps);
+  PetscCheck(o->nnm_reference_steps >= 8 && o->nnm_reference_steps <= 100000, comm, PETSC_ERR_USER,
+             "-wp_nnm_reference_steps must lie in [8, 1e5], got %" PetscInt_FMT, o->nnm_reference_steps);
   if (given) {
     o->configs = SplitList(configs, ',');
     PetscCheck(std::strlen(configs) < sizeof(configs) - 1, comm, PETSC_ERR_USER, "-wp_configs: longer than %zu characters", sizeof(configs) - 2);
@@ -159,7 +162,8 @@ PetscErrorCode WorkPrecisionOptionsFromOptions(MPI_Comm comm, WorkPrecisionOptio
   for (size_t k = 0; k < o->configs.size(); k++) PetscCall(ParseConfig(comm, "-wp_configs: configuration", o->configs[k], &p, o->shooting));
   PetscCall(ParseConfig(comm, "-wp_nnm_reference", o->nnm_reference, &p, true));
   for (const auto &pr : p)
-    PetscCheck(pr.first != "-nnm_steps_per_period", comm, PETSC_ERR_USER, "-wp_nnm_reference: leave out -nnm_steps_per_period (-wp_nnm_reference_steps sets it)");
+    PetscCheck(pr.first != "-nnm_steps_per_period", comm, PETSC_ERR_USER,
+               "-wp_nnm_reference: leave out -nnm_steps_per_period (-wp_nnm_reference_steps sets it)");
   PetscCall(ParseConfig(comm, "-wp_reference", o->reference, &p));
   for (const auto &pr : p)
     PetscCheck(pr.first != "-sim_ts_rtol" && pr.first != "-sim_ts_atol" && pr.first != "-sim_ts_adapt_dt_max", comm, PETSC_ERR_USER,
@@ -270,7 +274,8 @@ PetscErrorCode RunWorkPrecision(const Lattice &lat, ToneBurst *burst, const Work
   for (size_t c = 0; c < o.configs.size(); c++) {
     WorkPrecisionRow row;
     Outcome out;
-    PetscCall(TimeConfiguration(comm, o.configs[c], false, o.repeats, [&](PetscReal *w) { return RunScene(lat, burst, false, &out, w); }, &row));
+    PetscCall(TimeConfiguration(
+        comm, o.configs[c], false, o.repeats, [&](PetscReal *w) { return RunScene(lat, burst, false, &out, w); }, &row));
     row.rhs_evals = out.r.counters.rhs;
     row.steps = out.r.steps;
     row.rejected = out.r.rejected;

@@ -19,14 +19,14 @@ extern const char *const kWpObservables[5];
 constexpr int kWpNumObservables = 5;
 
 struct WorkPrecisionOptions {
-  std::vector<std::string> configs;   // each a space-separated list of -sim_ts_* / -sim_dt_quartic_energy options
-  std::string reference;              // the reference integrator without its tolerance
-  PetscReal reference_tol = 1e-10;    // first reference tolerance (rtol = atol), tightened x 0.1
+  std::vector<std::string> configs; // each a space-separated list of -sim_ts_* / -sim_dt_quartic_energy options
+  std::string reference;            // the reference integrator without its tolerance
+  PetscReal reference_tol = 1e-10;  // first reference tolerance (rtol = atol), tightened x 0.1
   PetscReal reference_tol_min = 1e-13;
-  PetscReal reference_dt_max = 0.05;  // step cap of the first reference, halved with each tightening
+  PetscReal reference_dt_max = 0.05;    // step cap of the first reference, halved with each tightening
   PetscReal reference_agreement = 1e-9; // two successive references agree to this in every observable: converged
-  PetscInt repeats = 3;               // wall time: median of this many runs
-  PetscInt twins = 3;                 // predictability floor: S x (1 + k eps), k = 1, -1, 2, -2, ...
+  PetscInt repeats = 3;                 // wall time: median of this many runs
+  PetscInt twins = 3;                   // predictability floor: S x (1 + k eps), k = 1, -1, 2, -2, ...
   PetscReal twin_eps = 1e-10;
   // -wp_scene shooting: one orbit of the insulated NNM branch at energy nnm_energy
   bool shooting = false;
@@ -42,23 +42,23 @@ struct WorkPrecisionRow {
   std::string config, method, accuracy; // accuracy: the config's -sim_ts_rtol / -sim_ts_dt; method: the rest
   PetscReal wall = 0;                   // median wall seconds of the solve (max over ranks)
   PetscInt rhs_evals = 0, steps = 0, rejected = 0;
-  std::vector<PetscReal> error;                 // per observable (WorkPrecisionResult::observables)
-  std::vector<PetscReal> value;                 // the run's scalar observables (simulate: mcr, t_off, nl_ratio, energy)
-  std::vector<PetscReal> z_final;               // the run's final state, gathered on every rank (tests)
+  std::vector<PetscReal> error;   // per observable (WorkPrecisionResult::observables)
+  std::vector<PetscReal> value;   // the run's scalar observables (simulate: mcr, t_off, nl_ratio, energy)
+  std::vector<PetscReal> z_final; // the run's final state, gathered on every rank (tests)
 };
 
 struct WorkPrecisionResult {
-  std::vector<std::string> observables;          // error_<name>, spread_<name> of outputs.md
+  std::vector<std::string> observables; // error_<name>, spread_<name> of outputs.md
   std::vector<WorkPrecisionRow> rows;
-  std::string reference;                         // the reference configuration, with its final tolerance
+  std::string reference; // the reference configuration, with its final tolerance
   bool reference_converged = false;
-  std::vector<PetscReal> reference_change;       // between the last two references (relative)
-  std::vector<PetscReal> reference_value;        // the reference's observables (the state: its norm)
+  std::vector<PetscReal> reference_change; // between the last two references (relative)
+  std::vector<PetscReal> reference_value;  // the reference's observables (the state: its norm)
   PetscReal reference_wall = 0;
-  std::vector<PetscReal> spread;                 // the predictability floor
-  PetscReal lyapunov = 0;                        // finite-time estimate from the twins (1/s); 0 without cut-off
-  PetscReal amplitude = 0;                       // the S every run used
-  std::vector<PetscReal> reference_z;            // the reference's final state, gathered on every rank
+  std::vector<PetscReal> spread;      // the predictability floor
+  PetscReal lyapunov = 0;             // finite-time estimate from the twins (1/s); 0 without cut-off
+  PetscReal amplitude = 0;            // the S every run used
+  std::vector<PetscReal> reference_z; // the reference's final state, gathered on every rank
 };
 
 // Runs every configuration of o on the scene (lattice, burst: S from the

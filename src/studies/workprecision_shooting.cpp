@@ -70,7 +70,8 @@ PetscErrorCode SolveOrbit(const EffectList &fx, Vec z_guess, PetscReal T_guess, 
   PetscCall(shoot.SetEnergyConstraint(z_guess, E));
   PetscCall(shoot.Pack(z_guess, T_guess, 0, X));
   PetscCall(shoot.Solve(X, &converged, &orb->newton));
-  PetscCheck(converged, comm, PETSC_ERR_NOT_CONVERGED, "-study workprecision: the shooting Newton did not converge at E = %g (%s)", (double)E, shoot.LastReason());
+  PetscCheck(converged, comm, PETSC_ERR_NOT_CONVERGED, "-study workprecision: the shooting Newton did not converge at E = %g (%s)", (double)E,
+             shoot.LastReason());
   PetscCall(shoot.Unpack(X, orb->z0, &orb->T, &beta));
   FloquetResult r;
   PetscCall(flow.CreateSensitivityMatrix(S.out()));
@@ -167,16 +168,16 @@ PetscErrorCode RunWorkPrecisionShooting(MPI_Comm comm, const WorkPrecisionOption
     Orbit orb;
     PetscInt s0 = 0, e0 = 0, s1 = 0, e1 = 0;
     PetscCall(TimeConfiguration(
-      comm, o.configs[c], true, o.repeats,
-      [&](PetscReal *w) -> PetscErrorCode {
-        PetscFunctionBeginUser;
-        CostTotals(&s0, &e0);
-        PetscCall(SolveOrbit(nnm.fx, last.z, last.period, o.nnm_energy, &orb));
-        CostTotals(&s1, &e1);
-        *w = orb.wall;
-        PetscFunctionReturn(0);
-      },
-      &row));
+        comm, o.configs[c], true, o.repeats,
+        [&](PetscReal *w) -> PetscErrorCode {
+          PetscFunctionBeginUser;
+          CostTotals(&s0, &e0);
+          PetscCall(SolveOrbit(nnm.fx, last.z, last.period, o.nnm_energy, &orb));
+          CostTotals(&s1, &e1);
+          *w = orb.wall;
+          PetscFunctionReturn(0);
+        },
+        &row));
     PetscInt work[2] = {s1 - s0, e1 - e0}; // one solve's integration steps and force evaluations (rank 0 counts them)
     PetscCallMPI(MPI_Bcast(work, 2, MPIU_INT, 0, comm));
     row.steps = work[0];

@@ -25,7 +25,7 @@ protected:
   {
     PetscFunctionBeginUser;
     PetscCall(WorkPrecisionOptionsFromOptions(comm_, &wo_));
-    if (wo_.shooting) { // the insulated NNM: lattice, modes, flow, shooting, continuation, Floquet
+    if (wo_.shooting) {                   // the insulated NNM: lattice, modes, flow, shooting, continuation, Floquet
       PetscCall(nnm_.ReadOptions(comm_)); // bad options fail before the output file exists
       if (declaring_) {
         FloquetOptions flo; // read by RunWorkPrecisionShooting
@@ -57,7 +57,7 @@ protected:
   PetscErrorCode Build() override
   {
     PetscFunctionBeginUser;
-    if (wo_.shooting) PetscFunctionReturn(0); // RunWorkPrecisionShooting builds the NNM's objects
+    if (wo_.shooting) PetscFunctionReturn(0);              // RunWorkPrecisionShooting builds the NNM's objects
     PetscCall(sc_.Build(comm_, ForcedScene::Upto::Burst)); // RunWorkPrecision builds the effects of each run
     PetscFunctionReturn(0);
   }
@@ -65,8 +65,9 @@ protected:
   {
     PetscFunctionBeginUser;
     if (wo_.shooting) {
-      PetscCall(PetscPrintf(comm_, "nltopo workprecision: the insulated NNM at E = %g, N = %" PetscInt_FMT "; %zu shooting configurations x %" PetscInt_FMT
-                                   " repeats, reference %s from %" PetscInt_FMT " steps per period\n",
+      PetscCall(PetscPrintf(comm_,
+                            "nltopo workprecision: the insulated NNM at E = %g, N = %" PetscInt_FMT "; %zu shooting configurations x %" PetscInt_FMT
+                            " repeats, reference %s from %" PetscInt_FMT " steps per period\n",
                             (double)wo_.nnm_energy, nnm_.lp.N(), wo_.configs.size(), wo_.repeats, wo_.nnm_reference.c_str(), wo_.nnm_reference_steps));
       PetscCall(RunWorkPrecisionShooting(comm_, wo_, &res_));
       PetscCall(PetscPrintf(comm_, "  reference: %s (%s; last change: omega %.1e, max|mu| %.1e), omega = %.12f, max|mu| = %.10f\n", res_.reference.c_str(),
@@ -74,17 +75,19 @@ protected:
                             (double)res_.reference_value[0], (double)res_.reference_value[2]));
       PetscFunctionReturn(0);
     }
-    PetscCall(PetscPrintf(comm_, "nltopo workprecision: N = %" PetscInt_FMT ", omega_ext = %.6f, E* = %g, t_final = %g; %zu configurations x %" PetscInt_FMT
-                                 " repeats, reference %s from rtol = atol = %g, %" PetscInt_FMT " twins at S x (1 +- %g)\n",
+    PetscCall(PetscPrintf(comm_,
+                          "nltopo workprecision: N = %" PetscInt_FMT ", omega_ext = %.6f, E* = %g, t_final = %g; %zu configurations x %" PetscInt_FMT
+                          " repeats, reference %s from rtol = atol = %g, %" PetscInt_FMT " twins at S x (1 +- %g)\n",
                           sc_.lat.N(), (double)sc_.burst.Omega(), (double)sc_.burst.EnergyStar(), (double)sc_.sim.t_final, wo_.configs.size(), wo_.repeats,
                           wo_.reference.c_str(), (double)wo_.reference_tol, wo_.twins, (double)wo_.twin_eps));
     PetscCall(RunWorkPrecision(sc_.lat, &sc_.burst, wo_, &res_));
     PetscCall(PetscPrintf(comm_, "  reference: %s (%s; last change: MCR %.1e, state %.1e), MCR = %.10f, t_off = %.6f\n", res_.reference.c_str(),
                           res_.reference_converged ? "converged" : "NOT converged", (double)res_.reference_change[0],
                           (double)res_.reference_change[kWpNumObservables - 1], (double)res_.reference_value[0], (double)res_.reference_value[1]));
-    PetscCall(PetscPrintf(comm_, "  predictability floor (%" PetscInt_FMT " twins, S x (1 + k %g)): MCR %.1e, t_off %.1e, state %.1e; finite-time Lyapunov %.3g /s%s\n",
-                          wo_.twins, (double)wo_.twin_eps, (double)res_.spread[0], (double)res_.spread[1], (double)res_.spread[kWpNumObservables - 1],
-                          (double)res_.lyapunov, res_.spread[0] > 1e-3 ? " (chaotic: single-run MCRs are samples)" : ""));
+    PetscCall(PetscPrintf(
+        comm_, "  predictability floor (%" PetscInt_FMT " twins, S x (1 + k %g)): MCR %.1e, t_off %.1e, state %.1e; finite-time Lyapunov %.3g /s%s\n",
+        wo_.twins, (double)wo_.twin_eps, (double)res_.spread[0], (double)res_.spread[1], (double)res_.spread[kWpNumObservables - 1], (double)res_.lyapunov,
+        res_.spread[0] > 1e-3 ? " (chaotic: single-run MCRs are samples)" : ""));
     PetscFunctionReturn(0);
   }
   PetscErrorCode Write(PetscViewer v) override
@@ -134,7 +137,7 @@ protected:
 
 private:
   WorkPrecisionOptions wo_;
-  NnmSetup nnm_; // shooting: its options only (the header's N)
+  NnmSetup nnm_;   // shooting: its options only (the header's N)
   ForcedScene sc_; // simulate: the scene
   WorkPrecisionResult res_;
 };
@@ -144,31 +147,32 @@ private:
 StudyContract WorkprecisionStudyContract()
 {
   using namespace schema_names;
-  return {WithPrefixes({ForcedScene::OptionPrefixes(), NnmSetup::OptionPrefixes(), {"-floquet", "-wp_"}}), {
-    {"/workprecision", "",
-     {{"config", D, S, "nc", "the solver configuration as options"},
-      {"method", D, S, "nc", "method name"},
-      {"accuracy", D, S, "nc", "accuracy setting"},
-      {"wall_seconds", D, R, "nc", "median wall time"},
-      {"rhs_evals", D, I, "nc", "RHS evaluations"},
-      {"steps", D, I, "nc", "accepted steps"},
-      {"rejected_steps", D, I, "nc", "rejected steps"},
-      {"error_<observable>", D, R, "nc", "relative error against the reference"},
-      {"spread_<observable>", A, R, "scalar", "predictability floor"},
-      {"reference_change_<observable>", A, R, "scalar", "change between the last two references"},
-      {"reference_<observable>", A, R, "scalar", "the reference's value"},
-      {"scene", A, S, "scalar", "simulate or shooting"},
-      {"reference", A, S, "scalar", "the reference configuration"},
-      {"reference_converged", A, I, "scalar", "1 if the reference converged"},
-      {"reference_wall_seconds", A, R, "scalar", "wall time of the reference"},
-      {"lyapunov", A, R, "scalar", "finite-time Lyapunov estimate (1/s)"},
-      {"twins", A, I, "scalar", "-wp_twins"},
-      {"twin_eps", A, R, "scalar", "-wp_twin_eps"},
-      {"repeats", A, I, "scalar", "-wp_repeats"},
-      {"nnm_energy", A, R, "scalar", "shooting scene: orbit energy"},
-      {"amplitude", A, R, "scalar", "simulate scene: forcing amplitude"},
-      {"omega_ext", A, R, "scalar", "simulate scene: forcing frequency"},
-      {"energy_star", A, R, "scalar", "simulate scene: E*"}}}}};
+  return {WithPrefixes({ForcedScene::OptionPrefixes(), NnmSetup::OptionPrefixes(), {"-floquet", "-wp_"}}),
+          {{"/workprecision",
+            "",
+            {{"config", D, S, "nc", "the solver configuration as options"},
+             {"method", D, S, "nc", "method name"},
+             {"accuracy", D, S, "nc", "accuracy setting"},
+             {"wall_seconds", D, R, "nc", "median wall time"},
+             {"rhs_evals", D, I, "nc", "RHS evaluations"},
+             {"steps", D, I, "nc", "accepted steps"},
+             {"rejected_steps", D, I, "nc", "rejected steps"},
+             {"error_<observable>", D, R, "nc", "relative error against the reference"},
+             {"spread_<observable>", A, R, "scalar", "predictability floor"},
+             {"reference_change_<observable>", A, R, "scalar", "change between the last two references"},
+             {"reference_<observable>", A, R, "scalar", "the reference's value"},
+             {"scene", A, S, "scalar", "simulate or shooting"},
+             {"reference", A, S, "scalar", "the reference configuration"},
+             {"reference_converged", A, I, "scalar", "1 if the reference converged"},
+             {"reference_wall_seconds", A, R, "scalar", "wall time of the reference"},
+             {"lyapunov", A, R, "scalar", "finite-time Lyapunov estimate (1/s)"},
+             {"twins", A, I, "scalar", "-wp_twins"},
+             {"twin_eps", A, R, "scalar", "-wp_twin_eps"},
+             {"repeats", A, I, "scalar", "-wp_repeats"},
+             {"nnm_energy", A, R, "scalar", "shooting scene: orbit energy"},
+             {"amplitude", A, R, "scalar", "simulate scene: forcing amplitude"},
+             {"omega_ext", A, R, "scalar", "simulate scene: forcing frequency"},
+             {"energy_star", A, R, "scalar", "simulate scene: E*"}}}}};
 }
 
 std::unique_ptr<Study> CreateWorkprecisionStudy() { return std::make_unique<WorkprecisionStudy>(); }

@@ -58,9 +58,10 @@ inline PetscErrorCode ParseConfig(MPI_Comm comm, const char *what, const std::st
     const std::string &name = tok[i];
     PetscCheck(name.size() > 1 && name[0] == '-' && !LooksLikeValue(name), comm, PETSC_ERR_USER, "%s \"%s\": %s is not an option name", what, cfg.c_str(),
                name.c_str());
-    const bool ok = shooting ? name.rfind("-nnm_ts_", 0) == 0 || name == "-nnm_steps_per_period" : name.rfind("-sim_ts_", 0) == 0 || name == "-sim_dt_quartic_energy";
-    PetscCheck(ok, comm, PETSC_ERR_USER, "%s \"%s\": %s is not an integrator option (configurations take %s; the scene's options go outside)", what, cfg.c_str(),
-               name.c_str(), shooting ? "-nnm_ts_* and -nnm_steps_per_period" : "-sim_ts_* and -sim_dt_quartic_energy");
+    const bool ok =
+        shooting ? name.rfind("-nnm_ts_", 0) == 0 || name == "-nnm_steps_per_period" : name.rfind("-sim_ts_", 0) == 0 || name == "-sim_dt_quartic_energy";
+    PetscCheck(ok, comm, PETSC_ERR_USER, "%s \"%s\": %s is not an integrator option (configurations take %s; the scene's options go outside)", what,
+               cfg.c_str(), name.c_str(), shooting ? "-nnm_ts_* and -nnm_steps_per_period" : "-sim_ts_* and -sim_dt_quartic_energy");
     std::string value;
     if (i + 1 < tok.size() && LooksLikeValue(tok[i + 1])) value = tok[++i];
     out->push_back({name, value});
@@ -92,7 +93,7 @@ public:
     for (const auto &[name, old] : saved_) {
       PetscBool used;
       PetscCall(PetscOptionsUsed(NULL, name.c_str() + 1, &used)); // the database holds names without the dash
-      if (old != "\x01") continue; // an option the scene also sets keeps the scene's "used" mark: not checkable
+      if (old != "\x01") continue;                                // an option the scene also sets keeps the scene's "used" mark: not checkable
       PetscCheck(used, comm, PETSC_ERR_USER, "%s \"%s\": %s was not used by that run (an option of another TS type, or misspelt)", what, cfg.c_str(),
                  name.c_str());
     }
@@ -118,7 +119,6 @@ private:
   std::vector<std::pair<std::string, std::string>> saved_; // "\x01": was not set
 };
 
-
 inline bool EndsWith(const std::string &s, const std::string &end) { return s.size() >= end.size() && s.compare(s.size() - end.size(), end.size(), end) == 0; }
 
 inline void Label(const OptionPairs &opts, std::string *method, std::string *accuracy)
@@ -139,7 +139,6 @@ inline void Label(const OptionPairs &opts, std::string *method, std::string *acc
   *method = m.empty() ? "(scene)" : Join(m, " ");
   *accuracy = a.empty() ? "(scene)" : Join(a, " ");
 }
-
 
 // One configuration of a study: parsed, labelled, applied for its runs
 // (run(&wall) o.repeats times; it keeps the last run's results itself),

@@ -33,7 +33,7 @@ namespace {
 
 struct ZakOptions {
   std::vector<PetscReal> energy;
-  PetscInt windows = 4;             // steady windows after t_off
+  PetscInt windows = 4; // steady windows after t_off
   PetscInt samples_per_period = 16;
   PetscReal theta_tol = PETSC_PI / 4; // phases "distinct" while theta = phi_pi - phi_0 is within this of pi (mean and median)
 };
@@ -121,12 +121,13 @@ PetscErrorCode ZakOptionsFromOptions(MPI_Comm comm, LatticeParams *lp, ZakOption
   PetscCall(PetscOptionsInt("-windows", "Steady windows after t_off over which phases are taken", NULL, zo->windows, &zo->windows, NULL));
   PetscCall(PetscOptionsInt("-samples_per_period", "Samples per forcing period for the Fourier coefficients", NULL, zo->samples_per_period,
                             &zo->samples_per_period, NULL));
-  PetscCall(PetscOptionsReal("-theta_tol", "Threshold rule: phi_0 and phi_pi are distinct while theta = phi_pi - phi_0 (of the means and of the medians) is within this of pi",
-                             NULL, zo->theta_tol, &zo->theta_tol, NULL));
+  PetscCall(PetscOptionsReal(
+      "-theta_tol", "Threshold rule: phi_0 and phi_pi are distinct while theta = phi_pi - phi_0 (of the means and of the medians) is within this of pi", NULL,
+      zo->theta_tol, &zo->theta_tol, NULL));
   PetscOptionsEnd();
   PetscCheck(zo->windows >= 1 && zo->windows <= 1000, comm, PETSC_ERR_USER, "-zak_windows must lie in [1, 1000], got %" PetscInt_FMT, zo->windows);
-  PetscCheck(zo->samples_per_period >= 4 && zo->samples_per_period <= 10000, comm, PETSC_ERR_USER, "-zak_samples_per_period must lie in [4, 10000], got %" PetscInt_FMT,
-             zo->samples_per_period);
+  PetscCheck(zo->samples_per_period >= 4 && zo->samples_per_period <= 10000, comm, PETSC_ERR_USER,
+             "-zak_samples_per_period must lie in [4, 10000], got %" PetscInt_FMT, zo->samples_per_period);
   PetscCheck(zo->theta_tol > 0 && zo->theta_tol < PETSC_PI, comm, PETSC_ERR_USER, "-zak_theta_tol must lie in (0, pi), got %g", (double)zo->theta_tol);
   PetscFunctionReturn(0);
 }
@@ -159,10 +160,12 @@ PetscErrorCode Tabulate(MPI_Comm comm, const ZakOptions &zo, const std::vector<P
     if (ok && !distinct && t->threshold < 0) t->threshold = zo.energy[e];
     if (distinct && t->threshold < 0) t->last_distinct = zo.energy[e];
     PetscCall(PetscPrintf(comm, "  %9.4g   %8.4f  %8.4f    %8.4f  %8.4f    %8.4f %8.4f %s\n", (double)zo.energy[e], (double)t->p0m[e], (double)t->p0d[e],
-                          (double)t->ppm[e], (double)t->ppd[e], (double)t->thm[e], (double)t->thd[e], ok ? (distinct ? "" : " (not distinct)") : " (E* not reached)"));
+                          (double)t->ppm[e], (double)t->ppd[e], (double)t->thm[e], (double)t->thd[e],
+                          ok ? (distinct ? "" : " (not distinct)") : " (E* not reached)"));
   }
   if (t->threshold > 0)
-    PetscCall(PetscPrintf(comm, "  threshold: phi_0 and phi_pi stop being distinct at E = %g (last distinct: %g)\n", (double)t->threshold, (double)t->last_distinct));
+    PetscCall(
+        PetscPrintf(comm, "  threshold: phi_0 and phi_pi stop being distinct at E = %g (last distinct: %g)\n", (double)t->threshold, (double)t->last_distinct));
   else PetscCall(PetscPrintf(comm, "  threshold: phi_0 and phi_pi stay distinct over the whole energy range\n"));
   PetscFunctionReturn(0);
 }
@@ -187,8 +190,9 @@ protected:
     PetscCheck(nm.optical_bottom >= 0 && nm.optical_top >= 0, comm_, PETSC_ERR_USER, "-study zak: no optical band edges found for this lattice");
     // Paper's labels: mu = 0 is the optical band's lower edge, mu = pi its upper edge.
     edge_mode_[0] = nm.optical_bottom, edge_mode_[1] = nm.optical_top;
-    PetscCall(PetscPrintf(comm_, "nltopo zak: left lattice N = %" PetscInt_FMT ", mu = 0 edge omega = %.6f (mode %" PetscInt_FMT "), mu = pi edge omega = %.6f (mode %" PetscInt_FMT
-                                 "), %" PetscInt_FMT " energies\n",
+    PetscCall(PetscPrintf(comm_,
+                          "nltopo zak: left lattice N = %" PetscInt_FMT ", mu = 0 edge omega = %.6f (mode %" PetscInt_FMT
+                          "), mu = pi edge omega = %.6f (mode %" PetscInt_FMT "), %" PetscInt_FMT " energies\n",
                           sc_.lat.N(), (double)sc_.modes.Omega()[edge_mode_[0]], edge_mode_[0], (double)sc_.modes.Omega()[edge_mode_[1]], edge_mode_[1],
                           (PetscInt)zo_.energy.size()));
     PetscFunctionReturn(0);
@@ -199,9 +203,9 @@ protected:
     std::vector<PetscReal> res; // run r = 2 e + edge
     PetscFunctionBeginUser;
     const PetscErrorCode irun = RunDistributed(
-      comm_, 2 * ne, width, [&](PetscInt r, PetscReal *row) { return PhaseRun(sc_.lat, sc_.modes, sc_.fo, sc_.sim, zo_, edge_mode_[r % 2], zo_.energy[r / 2], row); },
-      &res, &ran_);
-    if (!IsInterrupt(irun)) PetscCall(irun); // a stop signal: the runs done are written, complete = 0
+        comm_, 2 * ne, width,
+        [&](PetscInt r, PetscReal *row) { return PhaseRun(sc_.lat, sc_.modes, sc_.fo, sc_.sim, zo_, edge_mode_[r % 2], zo_.energy[r / 2], row); }, &res, &ran_);
+    if (!IsInterrupt(irun)) PetscCall(irun);                                 // a stop signal: the runs done are written, complete = 0
     if (!std::count(ran_.begin(), ran_.end(), 1)) PetscFunctionReturn(irun); // interrupted before any: nothing to tabulate
     for (PetscInt r = 0; r < 2 * ne; r++)
       if (!ran_[r]) { // not run: reached 0, NaN phases
@@ -243,8 +247,9 @@ protected:
     PetscCall(WriteAttr(v, g, "modepi", edge_mode_[1]));
     PetscCall(WriteAttr(v, g, "samples_per_period", zo_.samples_per_period)); // with the run's t_off: the windows' samples
     PetscCall(WriteAttr(v, g, "theta_tol", zo_.theta_tol));
-    PetscCall(WriteAttr(v, g, "threshold_rule",
-                        "lowest E at which theta = phi_pi - phi_0 of the means or of the medians over cells and windows is more than theta_tol from pi (-1: never in range)"));
+    PetscCall(WriteAttr(
+        v, g, "threshold_rule",
+        "lowest E at which theta = phi_pi - phi_0 of the means or of the medians over cells and windows is more than theta_tol from pi (-1: never in range)"));
     PetscFunctionReturn(0);
   }
 
@@ -261,30 +266,31 @@ private:
 StudyContract ZakStudyContract()
 {
   using namespace schema_names;
-  return {WithPrefixes({ForcedScene::OptionPrefixes(), {"-zak_"}}), {
-    {"/zak", "",
-     {{"energy", D, R, "ne", "target energies E*"},
-      {"phi0_mean", D, R, "ne", "phi_0, mean over cells and windows"},
-      {"phi0_median", D, R, "ne", "phi_0, median"},
-      {"phipi_mean", D, R, "ne", "phi_pi, mean"},
-      {"phipi_median", D, R, "ne", "phi_pi, median"},
-      {"theta_mean", D, R, "ne", "phi_pi - phi_0 of the means"},
-      {"theta_median", D, R, "ne", "phi_pi - phi_0 of the medians"},
-      {"phi0_window_median", D, R, "ne x nwin", "phi_0 median per window"},
-      {"phipi_window_median", D, R, "ne x nwin", "phi_pi median per window"},
-      {"mcr0", D, R, "ne", "MCR of the mu = 0 run"},
-      {"mcrpi", D, R, "ne", "MCR of the mu = pi run"},
-      {"reached", D, I, "ne x 2", "1 if E* was reached (mu = 0, pi)"},
-      {"done", D, I, "ne x 2", "0: not run (stop signal)"},
-      {"energy_threshold", A, R, "scalar", "lowest E where phi_0, phi_pi stop being distinct (-1: never)"},
-      {"energy_last_distinct", A, R, "scalar", "highest E below it still distinct"},
-      {"omega0", A, R, "scalar", "frequency of the mu = 0 edge mode"},
-      {"omegapi", A, R, "scalar", "frequency of the mu = pi edge mode"},
-      {"mode0", A, I, "scalar", "linear mode index (0-based, ascending omega) of the mu = 0 edge: the runs' -force_mode_index"},
-      {"modepi", A, I, "scalar", "linear mode index of the mu = pi edge"},
-      {"samples_per_period", A, I, "scalar", "-zak_samples_per_period"},
-      {"theta_tol", A, R, "scalar", "-zak_theta_tol"},
-      {"threshold_rule", A, S, "scalar", "the threshold's definition"}}}}};
+  return {WithPrefixes({ForcedScene::OptionPrefixes(), {"-zak_"}}),
+          {{"/zak",
+            "",
+            {{"energy", D, R, "ne", "target energies E*"},
+             {"phi0_mean", D, R, "ne", "phi_0, mean over cells and windows"},
+             {"phi0_median", D, R, "ne", "phi_0, median"},
+             {"phipi_mean", D, R, "ne", "phi_pi, mean"},
+             {"phipi_median", D, R, "ne", "phi_pi, median"},
+             {"theta_mean", D, R, "ne", "phi_pi - phi_0 of the means"},
+             {"theta_median", D, R, "ne", "phi_pi - phi_0 of the medians"},
+             {"phi0_window_median", D, R, "ne x nwin", "phi_0 median per window"},
+             {"phipi_window_median", D, R, "ne x nwin", "phi_pi median per window"},
+             {"mcr0", D, R, "ne", "MCR of the mu = 0 run"},
+             {"mcrpi", D, R, "ne", "MCR of the mu = pi run"},
+             {"reached", D, I, "ne x 2", "1 if E* was reached (mu = 0, pi)"},
+             {"done", D, I, "ne x 2", "0: not run (stop signal)"},
+             {"energy_threshold", A, R, "scalar", "lowest E where phi_0, phi_pi stop being distinct (-1: never)"},
+             {"energy_last_distinct", A, R, "scalar", "highest E below it still distinct"},
+             {"omega0", A, R, "scalar", "frequency of the mu = 0 edge mode"},
+             {"omegapi", A, R, "scalar", "frequency of the mu = pi edge mode"},
+             {"mode0", A, I, "scalar", "linear mode index (0-based, ascending omega) of the mu = 0 edge: the runs' -force_mode_index"},
+             {"modepi", A, I, "scalar", "linear mode index of the mu = pi edge"},
+             {"samples_per_period", A, I, "scalar", "-zak_samples_per_period"},
+             {"theta_tol", A, R, "scalar", "-zak_theta_tol"},
+             {"threshold_rule", A, S, "scalar", "the threshold's definition"}}}}};
 }
 
 std::unique_ptr<Study> CreateZakStudy() { return std::make_unique<ZakStudy>(); }

@@ -34,6 +34,7 @@ struct Pair {
   std::vector<double> c, A, bbar, b, bhatbar, bhat; // A row-major, stages x stages
 };
 
+// clang-format off
 inline const std::vector<Pair> &Pairs()
 {
   static const std::vector<Pair> pairs = {
@@ -114,6 +115,7 @@ inline const std::vector<Pair> &Pairs()
   };
   return pairs;
 }
+// clang-format on
 
 } // namespace rkn
 } // namespace nltopo

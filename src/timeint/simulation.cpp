@@ -241,8 +241,8 @@ struct Run {
   ProgressLine progress;
 
   Run(const EffectList &e, const SimulationOptions &o, SampleSink *s, SimulationResult *res)
-    : lat(&e.Lat()), fx(&e), rhs(e), r(res), estar(e.Burst() ? e.Burst()->EnergyStar() : 0), crossing(e, estar), window(e), sampler(e, s, o),
-      progress(e.Lat().Comm(), o.progress, o.t_final)
+      : lat(&e.Lat()), fx(&e), rhs(e), r(res), estar(e.Burst() ? e.Burst()->EnergyStar() : 0), crossing(e, estar), window(e), sampler(e, s, o),
+        progress(e.Lat().Comm(), o.progress, o.t_final)
   {
   }
 
@@ -343,7 +343,8 @@ PetscErrorCode CutOffIndicator(TS ts, PetscReal t, Vec z, PetscScalar *fv, void 
     PetscCall(run->energy.At(*run->fx, ts, t, z, &e));
     fv[0] = e.Total() / run->estar - 1; // relative, so the event tolerance means the same at any E*
   } else {
-    fv[0] = -1.0; // after the cut-off the event can never fire again (it fires on upward crossings only, and a cut-off found inside a step leaves a negative value behind)
+    fv[0] =
+        -1.0; // after the cut-off the event can never fire again (it fires on upward crossings only, and a cut-off found inside a step leaves a negative value behind)
   }
   PetscFunctionReturn(0);
 }
@@ -442,7 +443,7 @@ PetscErrorCode CreateRunTS(const EffectList &fx, const SimulationOptions &o, Run
   PetscCall(TSSetFromOptions(*ts));
   PetscCall(TSGetType(*ts, &type));
   PetscCall(TSGetTraits(*ts, &traits)); // a type the integrator table lacks is refused here
-  if (!traits->explicit_step) { // the state Jacobian only for the types that solve with it
+  if (!traits->explicit_step) {         // the state Jacobian only for the types that solve with it
     PetscCall(lat.CreateStateMatrix(J.out()));
     PetscCall(TSSetRHSJacobian(*ts, J, J, RhsJacobian, run));
   }
@@ -572,14 +573,15 @@ PetscErrorCode Integrate(const SimulationOptions &o, Run *run, TS ts, Vec z)
   PetscErrorCode ierr;
   char msg[512];
   PetscCall(CaptureError([&]() { return TSSolve(ts, z); }, &ierr, msg, sizeof msg));
-  PetscCall(CostRecordSolve(ts, run->rhs.Counters().rhs)); // the work, also of a failed solve
+  PetscCall(CostRecordSolve(ts, run->rhs.Counters().rhs));       // the work, also of a failed solve
   PetscCheck(!IsInterrupt(ierr), comm, PETSC_ERR_SIG, "%s", ""); // stopped by a signal: passed on, silent
   PetscCall(TSGetTime(ts, &t));
   PetscCheck(!ierr, comm, PETSC_ERR_NOT_CONVERGED, "time integration failed at t = %g: %s", (double)t, msg);
   PetscCall(TSGetConvergedReason(ts, &reason));
-  PetscCheck(reason >= 0, comm, PETSC_ERR_NOT_CONVERGED, "time integration failed at t = %g: %s (see -sim_ts_* options)", (double)t, TSConvergedReasons[reason]);
-  PetscCheck(t >= o.t_final * (1 - 1e-10) || run->r->aborted, comm, PETSC_ERR_NOT_CONVERGED, "time integration stopped at t = %g before -sim_t_final %g", (double)t,
-             (double)o.t_final);
+  PetscCheck(reason >= 0, comm, PETSC_ERR_NOT_CONVERGED, "time integration failed at t = %g: %s (see -sim_ts_* options)", (double)t,
+             TSConvergedReasons[reason]);
+  PetscCheck(t >= o.t_final * (1 - 1e-10) || run->r->aborted, comm, PETSC_ERR_NOT_CONVERGED, "time integration stopped at t = %g before -sim_t_final %g",
+             (double)t, (double)o.t_final);
   PetscFunctionReturn(0);
 }
 

@@ -11,13 +11,13 @@
 namespace nltopo {
 
 struct SimulationOptions {
-  PetscReal t_final = 1000;  // simulated time (the run ends here)
-  PetscReal t_start = 0;     // the run starts here (continuing an earlier run from its final state)
-  PetscReal sample_dt = 1.0; // spacing of the stored samples (0: store none)
-  PetscReal progress = 10;   // wall seconds between progress lines (0: none)
+  PetscReal t_final = 1000;        // simulated time (the run ends here)
+  PetscReal t_start = 0;           // the run starts here (continuing an earlier run from its final state)
+  PetscReal sample_dt = 1.0;       // spacing of the stored samples (0: store none)
+  PetscReal progress = 10;         // wall seconds between progress lines (0: none)
   PetscReal dt_quartic_energy = 0; // fixed-step types: above this energy the step shrinks as (this / E)^(1/4) (0: off)
   PetscReal dt_scale = 1;          // fixed-step types: the step times this (set by code: the sweep's accuracy ladder)
-  bool abort_if_missed = false; // end the run at the end of the burst (t0 + 3 tau) if E* was not reached
+  bool abort_if_missed = false;    // end the run at the end of the burst (t0 + 3 tau) if E* was not reached
 };
 PetscErrorCode SimulationOptionsFromOptions(MPI_Comm comm, SimulationOptions *o);
 
@@ -61,18 +61,18 @@ private:
 };
 
 struct SimulationResult {
-  PetscReal t_off = -1;        // time the forcing stopped (-1: never)
-  PetscReal window_start = 0;  // start of the RMS window (t_off, else README.md's rule)
+  PetscReal t_off = -1;       // time the forcing stopped (-1: never)
+  PetscReal window_start = 0; // start of the RMS window (t_off, else README.md's rule)
   PetscReal energy_final = 0;
   PetscReal mcr = 0, nl_ratio = 0;
   PetscInt steps = 0, rejected = 0;
-  bool reached = false;        // E* reached while the forcing was on
-  bool aborted = false;        // stopped at the end of the burst, E* missed (abort_if_missed)
-  PetscReal energy_peak = 0;   // largest E at a step end while the forcing was on
-  EffectCounters counters;     // counters.rhs = RHS evaluations (of this run)
+  bool reached = false;          // E* reached while the forcing was on
+  bool aborted = false;          // stopped at the end of the burst, E* missed (abort_if_missed)
+  PetscReal energy_peak = 0;     // largest E at a step end while the forcing was on
+  EffectCounters counters;       // counters.rhs = RHS evaluations (of this run)
   PetscInt rhs_all_attempts = 0; // RHS evaluations of every attempt of SimulateForced (the work done)
-  OwnedVec rms;                // RMS displacement per site (SiteDM)
-  OwnedVec z_final;            // final state
+  OwnedVec rms;                  // RMS displacement per site (SiteDM)
+  OwnedVec z_final;              // final state
 };
 
 // A forced run under the amplitude rule (README.md "Amplitude rule"): with S

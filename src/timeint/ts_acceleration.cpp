@@ -96,7 +96,8 @@ PetscErrorCode SecondOrderProblem::Reset()
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode HermiteInterpolate(Vec z0v, Vec z1v, const PetscScalar *a0, const PetscScalar *a1, PetscInt n, PetscReal h, PetscReal s, Vec X, bool positions_only)
+PetscErrorCode HermiteInterpolate(Vec z0v, Vec z1v, const PetscScalar *a0, const PetscScalar *a1, PetscInt n, PetscReal h, PetscReal s, Vec X,
+                                  bool positions_only)
 {
   const PetscScalar *z0, *z1;
   PetscScalar *x;
@@ -106,7 +107,8 @@ PetscErrorCode HermiteInterpolate(Vec z0v, Vec z1v, const PetscScalar *a0, const
   const PetscReal H3 = 10 * s3 - 15 * s4 + 6 * s5, H4 = -4 * s3 + 7 * s4 - 3 * s5, H5 = 0.5 * (s3 - 2 * s4 + s5);
   const PetscReal D0 = -30 * s2 + 60 * s3 - 30 * s4, D1 = 1 - 18 * s2 + 32 * s3 - 15 * s4, D2 = 0.5 * (2 * s - 9 * s2 + 12 * s3 - 5 * s4);
   const PetscReal D4 = -12 * s2 + 28 * s3 - 15 * s4, D5 = 0.5 * (3 * s2 - 8 * s3 + 5 * s4);
-  PetscCheck(X != z0v && X != z1v, PetscObjectComm((PetscObject)X), PETSC_ERR_ARG_IDN, "HermiteInterpolate: the output may not be an end state (u and v are written in separate passes)");
+  PetscCheck(X != z0v && X != z1v, PetscObjectComm((PetscObject)X), PETSC_ERR_ARG_IDN,
+             "HermiteInterpolate: the output may not be an end state (u and v are written in separate passes)");
   PetscCall(VecGetArrayRead(z0v, &z0));
   PetscCall(VecGetArrayRead(z1v, &z1));
   PetscCall(VecGetArray(X, &x));

@@ -20,10 +20,10 @@ constexpr PetscInt kBlock = 512;
 struct Rkn {
   PetscInt pair = 0;
   Vec z_prev = NULL, stage = NULL, emb = NULL; // step start; stage state; embedded solution
-  std::vector<std::vector<PetscScalar>> k; // stage accelerations k[i][site]
-  std::vector<PetscScalar> a_end;          // a(t + h, u1) of the last accepted step (pairs without FSAL)
-  bool end_ready = false;                  // the end acceleration of the last step is that of the current state
-  SecondOrderProblem p;                    // owned positions, the acceleration
+  std::vector<std::vector<PetscScalar>> k;     // stage accelerations k[i][site]
+  std::vector<PetscScalar> a_end;              // a(t + h, u1) of the last accepted step (pairs without FSAL)
+  bool end_ready = false;                      // the end acceleration of the last step is that of the current state
+  SecondOrderProblem p;                        // owned positions, the acceleration
   TSStepStatus status = TS_STEP_COMPLETE;
   // per pair: nonzero A_ij of each row (j, A_ij); the four weight sets in one array per stage
   std::vector<std::vector<std::pair<PetscInt, PetscReal>>> rows;
@@ -267,7 +267,8 @@ PetscErrorCode TSStep_Rkn(TS ts)
     accept = PETSC_FALSE;
     if (!ts->reason && ++rejections > ts->max_reject && ts->max_reject >= 0) {
       ts->reason = TS_DIVERGED_STEP_REJECTED;
-      PetscCall(PetscInfo(ts, "Step %" PetscInt_FMT ": %" PetscInt_FMT " rejections, more than -%sts_max_reject %" PetscInt_FMT "\n", ts->steps, rejections, Prefix(ts), ts->max_reject));
+      PetscCall(PetscInfo(ts, "Step %" PetscInt_FMT ": %" PetscInt_FMT " rejections, more than -%sts_max_reject %" PetscInt_FMT "\n", ts->steps, rejections,
+                          Prefix(ts), ts->max_reject));
     }
   }
   PetscFunctionReturn(0);
@@ -374,8 +375,8 @@ PetscErrorCode TSSetFromOptions_Rkn(TS ts, PetscOptionItems *PetscOptionsObject)
   PetscFunctionBegin;
   for (const Pair &p : Pairs()) names.push_back(p.name);
   PetscOptionsHeadBegin(PetscOptionsObject, "Embedded Runge-Kutta-Nystrom pairs (nltopo)");
-  PetscCall(PetscOptionsString("-ts_rkn_scheme", "Pair: dep64 = 6(4), dep86 = 8(6), dep1210 = 12(10) (Dormand, El-Mikkawy & Prince 1987)", "", names[d->pair], value,
-                               sizeof(value), &set));
+  PetscCall(PetscOptionsString("-ts_rkn_scheme", "Pair: dep64 = 6(4), dep86 = 8(6), dep1210 = 12(10) (Dormand, El-Mikkawy & Prince 1987)", "", names[d->pair],
+                               value, sizeof(value), &set));
   PetscOptionsHeadEnd();
   if (set) {
     PetscInt found = -1;
@@ -401,8 +402,8 @@ PetscErrorCode TSView_Rkn(TS ts, PetscViewer viewer)
   PetscFunctionBegin;
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
   if (ascii)
-    PetscCall(PetscViewerASCIIPrintf(viewer, "  rkn pair %s (%s): order %d, embedded %d, %d accelerations per accepted step%s\n", P.name, P.label, P.order, P.order_embedded,
-                                     P.fsal ? P.stages - 1 : P.stages, P.fsal ? " (FSAL)" : ""));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  rkn pair %s (%s): order %d, embedded %d, %d accelerations per accepted step%s\n", P.name, P.label, P.order,
+                                     P.order_embedded, P.fsal ? P.stages - 1 : P.stages, P.fsal ? " (FSAL)" : ""));
   PetscFunctionReturn(0);
 }
 

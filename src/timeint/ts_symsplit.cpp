@@ -16,11 +16,11 @@ using symsplit::Schemes;
 
 struct SymSplit {
   PetscInt scheme = 0;
-  Vec z_prev = NULL;                       // state at the step start
-  std::vector<PetscScalar> a0, a1;         // acceleration at the step start / end (a1: stages, then the end: FSAL)
-  bool fsal = false;                       // a1 holds a(t, u) of the current state
-  PetscReal h_nominal = 0;                 // the fixed step; events and the final time shorten single steps
-  SecondOrderProblem p;                    // owned positions, the acceleration
+  Vec z_prev = NULL;               // state at the step start
+  std::vector<PetscScalar> a0, a1; // acceleration at the step start / end (a1: stages, then the end: FSAL)
+  bool fsal = false;               // a1 holds a(t, u) of the current state
+  PetscReal h_nominal = 0;         // the fixed step; events and the final time shorten single steps
+  SecondOrderProblem p;            // owned positions, the acceleration
 };
 
 PetscErrorCode Accelerate(TS ts, SymSplit *d, PetscReal t, Vec z, PetscScalar *a) { return d->p.Evaluate(ts, t, z, a); }
@@ -37,7 +37,7 @@ PetscErrorCode TSStep_SymSplit(TS ts)
   if (ts->steps == 0 && !ts->steprollback) d->h_nominal = h; // the step a solve starts with is the fixed step
   if (ts->steprollback || ts->steprestart || !d->fsal) PetscCall(Accelerate(ts, d, t0, ts->vec_sol, d->a0.data()));
   else std::swap(d->a0, d->a1); // the last step's final acceleration is this one's first
-  PetscReal c = 0;             // drift time so far, in units of h
+  PetscReal c = 0;              // drift time so far, in units of h
   for (PetscInt k = 0; k < stages; k++) {
     PetscScalar *z, *zp;
     const PetscScalar *a = k == 0 ? d->a0.data() : d->a1.data();
@@ -155,8 +155,10 @@ PetscErrorCode TSSetFromOptions_SymSplit(TS ts, PetscOptionItems *PetscOptionsOb
   PetscFunctionBegin;
   for (const Scheme &s : Schemes()) names.push_back(s.name);
   PetscOptionsHeadBegin(PetscOptionsObject, "Symmetric symplectic splitting (nltopo)");
-  PetscCall(PetscOptionsEList("-ts_symsplit_scheme", "Splitting scheme: verlet (order 2); yoshida4, yoshida6, yoshida8 (Yoshida's compositions of Verlet); bm4, bm6 (Blanes-Moan optimised RKN splittings, orders 4 and 6); ss8 (McLachlan's order-8 composition)", "",
-                              names.data(), (PetscInt)names.size(), names[d->scheme], &d->scheme, NULL));
+  PetscCall(PetscOptionsEList(
+      "-ts_symsplit_scheme",
+      "Splitting scheme: verlet (order 2); yoshida4, yoshida6, yoshida8 (Yoshida's compositions of Verlet); bm4, bm6 (Blanes-Moan optimised RKN splittings, orders 4 and 6); ss8 (McLachlan's order-8 composition)",
+      "", names.data(), (PetscInt)names.size(), names[d->scheme], &d->scheme, NULL));
   PetscOptionsHeadEnd();
   PetscFunctionReturn(0);
 }

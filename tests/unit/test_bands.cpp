@@ -18,7 +18,7 @@ TEST_CASE("insulated mode: omega = sqrt(3), even-site support, -k2/k1 decay", "[
   REQUIRE(modes.Complete());
   const NamedModes &nm = modes.Named();
   REQUIRE(std::abs(nm.insulated_omega - std::sqrt(3.0)) < 1e-10);
-  REQUIRE(nm.insulated_cluster == 2); // the insulated mode and the left-end edge mode (model.md "Trap")
+  REQUIRE(nm.insulated_cluster == 2);    // the insulated mode and the left-end edge mode (model.md "Trap")
   REQUIRE(nm.insulated_residual < 1e-8); // the projection is an eigenvector (its Rayleigh quotient is k_hat by construction)
   // It is an eigenvector of K to the accuracy of the finite lattice: ||K x - 3 x|| tiny.
   OwnedVec r;
@@ -130,7 +130,7 @@ TEST_CASE("Zak phase: pi for the left cell, 0 for the right, gauge invariant", "
   for (int band = 0; band < 2; band++) {
     REQUIRE(ZakPhase(k2, k1, band, 50) == Approx(PETSC_PI).epsilon(1e-10)); // left: intra soft, inter stiff
     REQUIRE(ZakPhase(k1, k2, band, 50) == Approx(0.0).margin(1e-10));       // right: intra stiff
-    for (unsigned seed : {1u, 2u, 3u}) { // random phase per k-point: same loop product
+    for (unsigned seed : {1u, 2u, 3u}) {                                    // random phase per k-point: same loop product
       REQUIRE(ZakPhase(k2, k1, band, 50, seed) == Approx(PETSC_PI).epsilon(1e-10));
       REQUIRE(ZakPhase(k1, k2, band, 50, seed) == Approx(0.0).margin(1e-10));
     }

@@ -61,8 +61,8 @@ FloquetResult Constructed(PetscReal s, PetscReal sign, PetscReal eps)
   const PetscReal D[3] = {1, sign, 1};
   const PetscReal K[3][3] = {{1, eps, 0}, {eps, sign * (1 + s), 0}, {0, 0, 0}};
   for (int i = 0; i < 3; i++) {
-    A[i * n + 3 + i] = D[i];                                             // dq/dt = D p
-    for (int j = 0; j < 3; j++) A[(3 + i) * n + j] = -K[i][j];           // dp/dt = -K q
+    A[i * n + 3 + i] = D[i];                                   // dq/dt = D p
+    for (int j = 0; j < 3; j++) A[(3 + i) * n + j] = -K[i][j]; // dp/dt = -K q
   }
   const std::vector<PetscReal> M = Expm(A, n);
   Mat m;
@@ -112,7 +112,6 @@ FloquetResult Constructed(PetscReal s, PetscReal sign, PetscReal eps)
   return r;
 }
 
-
 // The coupled dimers, their upper (3) or lower (2) optical NNM continued up
 // to Omega^2 = lambda_hi + 3 kappa, and the events located along it.
 struct DimerEvents {
@@ -140,7 +139,6 @@ struct DimerEvents {
   }
 };
 
-
 } // namespace
 
 TEST_CASE("the Krein rule on constructed symplectic matrices: opposite signatures leave the circle where theory says, equal ones pass", "[bifurcations]")
@@ -154,7 +152,7 @@ TEST_CASE("the Krein rule on constructed symplectic matrices: opposite signature
     REQUIRE(OutsideMultipliers(r, 1e-6).empty());
     PetscInt kr[2];
     CollidingSignatures(r, EventKind::HamiltonianHopf, 1.0, 1e-6, kr);
-    REQUIRE(kr[0] == kr[1]); // both pairs near e^{i} carry the same signature ...
+    REQUIRE(kr[0] == kr[1]);                                                   // both pairs near e^{i} carry the same signature ...
     REQUIRE(KreinCollisionOutcome(kr[0], kr[1]) == EventKind::KreinCollision); // ... so they pass
   }
   REQUIRE(worst < 1e-10);
@@ -247,7 +245,8 @@ TEST_CASE("Krein collisions of equal signature: two uncoupled oscillators pass w
   }
 }
 
-TEST_CASE("internal resonances: a pair crosses exp(2 pi i/3) where its angle is 2 pi/3, and the orbit's harmonics drive odd orders with nu^q = -1 only", "[bifurcations]")
+TEST_CASE("internal resonances: a pair crosses exp(2 pi i/3) where its angle is 2 pi/3, and the orbit's harmonics drive odd orders with nu^q = -1 only",
+          "[bifurcations]")
 {
   // oscillator 2 at angle sqrt(1 + s): the root e^{2 pi i/3} at s* = (2 pi/3)^2 - 1
   const PetscReal tol = 1e-10, sstar = std::pow(2 * PETSC_PI / 3, 2) - 1;
@@ -440,7 +439,9 @@ TEST_CASE("energy folds of a folded branch are located at the extrema of E, and 
   }
 }
 
-TEST_CASE("branch switching at the dimer pitchfork: the new family breaks the mirror symmetry, its asymmetry grows like the root of the distance, and it meets the parent at the located point", "[bifurcations][switch]")
+TEST_CASE(
+    "branch switching at the dimer pitchfork: the new family breaks the mirror symmetry, its asymmetry grows like the root of the distance, and it meets the parent at the located point",
+    "[bifurcations][switch]")
 {
   DimerEvents de;
   PCHK(de.Setup());
@@ -518,8 +519,7 @@ TEST_CASE("branch switching at the dimer pitchfork: the new family breaks the mi
 namespace {
 
 // The message of fn's error ("" when it succeeds).
-template <typename Fn>
-std::string ErrorOf(Fn &&fn)
+template <typename Fn> std::string ErrorOf(Fn &&fn)
 {
   PetscErrorCode code;
   char msg[512];
@@ -529,7 +529,8 @@ std::string ErrorOf(Fn &&fn)
 
 } // namespace
 
-TEST_CASE("-cont_switch items: parsed by index or by kind and omega, an event selected by kind and nearest omega, refused with one line when none or two fit", "[bifurcations][switch][switch_spec]")
+TEST_CASE("-cont_switch items: parsed by index or by kind and omega, an event selected by kind and nearest omega, refused with one line when none or two fit",
+          "[bifurcations][switch][switch_spec]")
 {
   const MPI_Comm self = PETSC_COMM_SELF;
   std::vector<SwitchSpec> sp;
@@ -539,25 +540,29 @@ TEST_CASE("-cont_switch items: parsed by index or by kind and omega, an event se
   REQUIRE((sp[1].branch == "insulated" && !sp[1].ByIndex() && sp[1].kind == EventKind::BranchPoint && sp[1].omega == 2.418));
   REQUIRE((sp[2].branch == "mode3_bp4_plus" && sp[2].kind == EventKind::PeriodDoubling && sp[2].omega == 1.5));
   REQUIRE(sp[3].text == "3:pd@2");
-  for (const char *bad : {"insulated", "insulated:x", "insulated:-1", ":3", "insulated:bp", "insulated:bp@", "insulated:fold@2", "insulated:bp@-1", "insulated:bp@2x",
-                          "insulated:pd@nan"})
-    REQUIRE(ErrorOf([&]() { return ParseSwitchSpecs(self, {bad}, &sp); }).rfind(std::string("-cont_switch ") + bad + ": expected <branch>:<event index> or", 0) == 0);
-  REQUIRE(ErrorOf([&]() { return ParseSwitchSpecs(self, {"insulated:bp@2.4", "insulated:branch_point@2.4"}, &sp); }) ==
-          "-cont_switch insulated:branch_point@2.4: given twice");
+  for (const char *bad : {"insulated", "insulated:x", "insulated:-1", ":3", "insulated:bp", "insulated:bp@", "insulated:fold@2", "insulated:bp@-1",
+                          "insulated:bp@2x", "insulated:pd@nan"})
+    REQUIRE(ErrorOf([&]() {
+              return ParseSwitchSpecs(self, {bad}, &sp);
+            }).rfind(std::string("-cont_switch ") + bad + ": expected <branch>:<event index> or", 0) == 0);
+  REQUIRE(ErrorOf([&]() {
+            return ParseSwitchSpecs(self, {"insulated:bp@2.4", "insulated:branch_point@2.4"}, &sp);
+          }) == "-cont_switch insulated:branch_point@2.4: given twice");
   REQUIRE(ErrorOf([&]() { return ParseSwitchSpecs(self, {"3:5", "mode3:5"}, &sp); }) == "-cont_switch mode3:5: given twice");
   PCHK(ParseSwitchSpecs(self, {"insulated:bp@2.4", "insulated:bp@2.5", "insulated:5"}, &sp)); // different omegas: two items
 
   // the families' names come from the typed plan
   SwitchPlan plan{"insulated", 21, EventKind::BranchPoint, 1};
-  REQUIRE((plan.Label(1) == "insulated_bp21_plus" && plan.Label(-1) == "insulated_bp21_minus" && plan.ParentAttribute() == "insulated:21" && !plan.OneFamily()));
+  REQUIRE(
+      (plan.Label(1) == "insulated_bp21_plus" && plan.Label(-1) == "insulated_bp21_minus" && plan.ParentAttribute() == "insulated:21" && !plan.OneFamily()));
   plan = {"insulated_bp21_minus", 15, EventKind::PeriodDoubling, 2};
   REQUIRE((plan.Label(1) == "insulated_bp21_minus_pd15" && plan.Label(-1) == plan.Label(1) && plan.OneFamily()));
 
   // an event table: kind, omega
   std::vector<BifurcationEvent> ev(7);
-  const std::pair<EventKind, PetscReal> table[] = {{EventKind::HamiltonianHopf, 1.80}, {EventKind::BranchPoint, 2.418248}, {EventKind::Resonance, 2.0275},
-                                                   {EventKind::PeriodDoubling, 2.704867}, {EventKind::PeriodDoubling, 2.705080}, {EventKind::BranchPoint, 3.1},
-                                                   {EventKind::Fold, 2.418}};
+  const std::pair<EventKind, PetscReal> table[] = {
+      {EventKind::HamiltonianHopf, 1.80},    {EventKind::BranchPoint, 2.418248}, {EventKind::Resonance, 2.0275}, {EventKind::PeriodDoubling, 2.704867},
+      {EventKind::PeriodDoubling, 2.705080}, {EventKind::BranchPoint, 3.1},      {EventKind::Fold, 2.418}};
   for (size_t i = 0; i < ev.size(); i++) ev[i].kind = table[i].first, ev[i].omega = table[i].second;
   const auto select = [&](const std::string &item, PetscInt *k) {
     return ErrorOf([&]() -> PetscErrorCode {
@@ -574,16 +579,18 @@ TEST_CASE("-cont_switch items: parsed by index or by kind and omega, an event se
   REQUIRE(k == 5);
   REQUIRE(select("insulated:bp@3.5", &k) == "");
   REQUIRE(k == 5);
-  REQUIRE(select("insulated:bp@9", &k).find("ambiguous: the branch points of branch insulated at omega 3.1 (event 5) and 2.418248 (event 1)") != std::string::npos);
+  REQUIRE(select("insulated:bp@9", &k).find("ambiguous: the branch points of branch insulated at omega 3.1 (event 5) and 2.418248 (event 1)") !=
+          std::string::npos);
   REQUIRE(select("insulated:pd@2.70487", &k) == "");
   REQUIRE(k == 3);
   REQUIRE(select("insulated:pd@2.70508", &k) == "");
   REQUIRE(k == 4);
   REQUIRE(select("insulated:4", &k) == "");
   REQUIRE(k == 4);
-  REQUIRE(select("insulated:pd@2.705", &k) ==
-          "-cont_switch insulated:pd@2.705: ambiguous: the period doublings of branch insulated at omega 2.70508 (event 4) and 2.704867 (event 3) are about as near "
-          "(the nearest must be less than half as far as the next); give omega nearer one of them, or the index");
+  REQUIRE(
+      select("insulated:pd@2.705", &k) ==
+      "-cont_switch insulated:pd@2.705: ambiguous: the period doublings of branch insulated at omega 2.70508 (event 4) and 2.704867 (event 3) are about as near "
+      "(the nearest must be less than half as far as the next); give omega nearer one of them, or the index");
   REQUIRE(select("insulated:7", &k) == "-cont_switch insulated:7: branch insulated has 7 located events (0 .. 6)");
   ev.erase(ev.begin() + 3, ev.begin() + 5);
   REQUIRE(select("insulated:pd@2.7", &k) == "-cont_switch insulated:pd@2.7: branch insulated has no period doublings among its 5 located events");

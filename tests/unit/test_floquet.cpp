@@ -49,7 +49,6 @@ struct CaptureAll : public PointHook {
 };
 } // namespace
 
-
 TEST_CASE("Floquet multipliers in the linear limit, symplectic pairs, det M = 1, Krein signs", "[floquet]")
 {
   LatticeParams p;
@@ -87,9 +86,9 @@ TEST_CASE("Floquet multipliers in the linear limit, symplectic pairs, det M = 1,
     cplx prod = 1;
     for (auto &m : mu) {
       prod *= m;
-      REQUIRE(std::abs(mu[nearest(1.0 / m)] - 1.0 / m) < 1e-6); // reciprocal partner
+      REQUIRE(std::abs(mu[nearest(1.0 / m)] - 1.0 / m) < 1e-6);           // reciprocal partner
       REQUIRE(std::abs(mu[nearest(std::conj(m))] - std::conj(m)) < 1e-6); // conjugate partner
-      REQUIRE(std::abs(std::abs(m) - 1) < 1e-6); // the linear limit is stable
+      REQUIRE(std::abs(std::abs(m) - 1) < 1e-6);                          // the linear limit is stable
     }
     REQUIRE(std::abs(prod - 1.0) < 1e-8); // det M = exp(int trace A) = 1
     REQUIRE(r.stable);
@@ -109,8 +108,6 @@ TEST_CASE("Floquet multipliers in the linear limit, symplectic pairs, det M = 1,
     }
   }
 }
-
-
 
 // A known unstable orbit from theory. Layout `right` with Nc = 2 and gamma =
 // 0.9 is two stiff dimers (k1 = 1.9, cubic) joined by a weak soft bond (k2 =
@@ -178,7 +175,7 @@ TEST_CASE("matrix-free monodromy action and leading multiplier equal the dense o
   Lattice &lat = d.lat;
   PeriodicFlow &flow = d.flow;
   const auto &w = d.modes.Omega();
-  CaptureAll last(flow); // also the dense monodromy S and multipliers of the last orbit
+  CaptureAll last(flow);                                         // also the dense monodromy S and multipliers of the last orbit
   PCHK(d.Continue(3, std::sqrt(w[3] * w[3] + 3 * 0.05), &last)); // s = 3 kappa: unstable, mu ~ 1.09
   const FloquetResult &dense = last.res.back();
   Mat S = last.S;
@@ -293,7 +290,7 @@ TEST_CASE("deflating the trivial pair, the critical route returns the leading no
   std::vector<cplx> distinct; // one b per pair
   for (cplx b : bd)
     if (distinct.empty() || std::abs(b - distinct.back()) > 1e-6) distinct.push_back(b);
-  REQUIRE(distinct.size() == 3); // 4 sites: the trivial pair and three nontrivial pairs
+  REQUIRE(distinct.size() == 3);               // 4 sites: the trivial pair and three nontrivial pairs
   REQUIRE(std::abs(distinct[0] - 1.0) > 1e-3); // well away from the trivial pair here
   FloquetMfOptions mo;
   mo.nev = 2;
@@ -303,7 +300,8 @@ TEST_CASE("deflating the trivial pair, the critical route returns the leading no
     PCHK(FloquetLeading(d.flow, cap.z, cap.T, cap.beta, mo, &lead, nullptr, cap.dz));
     REQUIRE(lead.converged == 2);
     const cplx b0 = bval(cplx(lead.re[0], lead.im[0])), b1 = bval(cplx(lead.re[1], lead.im[1]));
-    INFO("deflate " << deflate << ": mf b = " << b0 << ", " << b1 << "; dense nontrivial " << distinct[0] << ", " << distinct[1] << "; " << lead.products << " products");
+    INFO("deflate " << deflate << ": mf b = " << b0 << ", " << b1 << "; dense nontrivial " << distinct[0] << ", " << distinct[1] << "; " << lead.products
+                    << " products");
     if (deflate) {
       REQUIRE(std::abs(b0 - distinct[0]) < 1e-8);
       REQUIRE(std::abs(b1 - distinct[1]) < 1e-8);
@@ -351,7 +349,7 @@ std::vector<PetscReal> KreinOperator(PetscReal w1, PetscReal w2, PetscReal eps, 
   auto at = [&](std::vector<PetscReal> &m, int i, int j) -> PetscReal & { return m[j * n + i]; };
   at(A, 0, 3) = 1, at(A, 3, 0) = -w1 * w1, at(A, 3, 1) = -eps; // q1' = p1, p1' = -w1^2 q1 - eps q2
   at(A, 1, 4) = -1, at(A, 4, 1) = w2 * w2, at(A, 4, 0) = -eps; // q2' = -p2, p2' = w2^2 q2 - eps q1
-  at(A, 2, 5) = 1;                                              // q3' = p3
+  at(A, 2, 5) = 1;                                             // q3' = p3
   int squarings = 10;
   const PetscReal h = T / std::pow(2.0, squarings);
   std::vector<PetscReal> M(n * n, 0.0), term(n * n, 0.0), next(n * n);

@@ -99,8 +99,8 @@ TEST_CASE("tangent T column is the derivative of the discrete flow", "[orbits][m
   PCHK(flow.Integrate(z0, T + h, beta, zp));
   PCHK(flow.Integrate(z0, T - h, beta, zm));
   PCHK(VecAXPY(zp, -1.0, zm));
-  PCHK(VecScale(zp, 0.5 / h)); // central difference of the discrete map
-  PCHK(flow.EvalRhs(T, zT, f));    // the exact flow's derivative at the discrete z(T)
+  PCHK(VecScale(zp, 0.5 / h));  // central difference of the discrete map
+  PCHK(flow.EvalRhs(T, zT, f)); // the exact flow's derivative at the discrete z(T)
   PetscReal nfd, ew, ef;
   PCHK(VecNorm(zp, NORM_INFINITY, &nfd));
   PCHK(VecAXPY(w, -1.0, zp));
@@ -141,7 +141,7 @@ static PetscReal PreconditionerError(const Lattice &lat, LinearMonodromyPC &pc, 
   PCHK(VecZeroEntries(z0));
   SetState(lat, Pseudo(lat.N(), seed), Pseudo(lat.N(), seed + 1), x);
   PCHK(flow.IntegrateWithTangent(z0, T, 0.0, x, 0.0, 0.0, zT, w)); // w = M x
-  PCHK(VecAXPY(w, -1.0, x));                                   // (M - I) x
+  PCHK(VecAXPY(w, -1.0, x));                                       // (M - I) x
   PCHK(pc.Apply(w, y));
   PetscReal e, nx;
   PCHK(VecAXPY(y, -1.0, x));
@@ -227,7 +227,9 @@ TEST_CASE("parametric preconditioner inverts M - I of a Hill equation near the 1
   MPI_Allreduce(MPI_IN_PLACE, kd.data(), (int)N, MPIU_REAL, MPI_SUM, PETSC_COMM_WORLD);
   MPI_Allreduce(MPI_IN_PLACE, ko.data(), (int)N, MPIU_REAL, MPI_SUM, PETSC_COMM_WORLD);
   co[N - 1] = so[N - 1] = 0;
-  auto owned = [&](const std::vector<PetscReal> &a) { return std::vector<PetscReal>(a.begin() + lat.OwnedStart(), a.begin() + lat.OwnedStart() + lat.OwnedCount()); };
+  auto owned = [&](const std::vector<PetscReal> &a) {
+    return std::vector<PetscReal>(a.begin() + lat.OwnedStart(), a.begin() + lat.OwnedStart() + lat.OwnedCount());
+  };
   // y = (M - I) x by RK4 on z = (u, v), 4000 steps
   auto hill = [&](const std::vector<PetscReal> &u0, const std::vector<PetscReal> &v0, std::vector<PetscReal> *yu, std::vector<PetscReal> *yv) {
     const PetscInt steps = 4000;
@@ -332,8 +334,8 @@ TEST_CASE_METHOD(NonlinearChain14, "orbit tangent-stiffness harmonics equal thei
   PetscReal err = 0, dmax = 0, herr = 0;
   for (PetscInt i = lat.OwnedStart(); i < lat.OwnedStart() + lat.OwnedCount(); i++) {
     PetscScalar c[3];
-    lat.KRow(i, c); // K
-    PetscReal dd = 0, de = 0;   // predicted additions to K(i,i) and K(i,i+1)
+    lat.KRow(i, c);           // K
+    PetscReal dd = 0, de = 0; // predicted additions to K(i,i) and K(i,i+1)
     for (PetscInt b : {i - 1, i}) {
       if (b < 0 || b + 1 >= N || !p.Stiff(b)) continue;
       const PetscReal s = 1.5 * p.Gamma * a * a * (ph[b] - ph[b + 1]) * (ph[b] - ph[b + 1]);

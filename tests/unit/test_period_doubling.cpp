@@ -45,7 +45,7 @@ public:
   {
     PetscReal qa, qs;
     Modes(u, &qa, &qs);
-    const PetscReal dVa = 0.5 * c_ * qs * qs, dVs = c_ * qa * qs; // dV/dq_a, dV/dq_s
+    const PetscReal dVa = 0.5 * c_ * qs * qs, dVs = c_ * qa * qs;                        // dV/dq_a, dV/dq_s
     const PetscReal g[2] = {(dVa + dVs) / std::sqrt(2.0), (dVs - dVa) / std::sqrt(2.0)}; // dV/du_i
     for (PetscInt i = xs_; i < xe_; i++) a[i] -= g[i];
   }
@@ -113,7 +113,6 @@ struct PumpedDimer {
   }
 };
 
-
 // Mathieu's first tongue, upper boundary: eps where eps/2 - eps^2/8 - eps^3/32 = d (Newton from 2 d).
 PetscReal TongueEps(PetscReal d)
 {
@@ -164,10 +163,11 @@ void FitLine(const std::vector<PetscReal> &x, const std::vector<PetscReal> &y, P
   *zero = -((sy - *slope * sx) / m) / *slope;
 }
 
-
 } // namespace
 
-TEST_CASE("period doubling of a Mathieu-pumped dimer: located on the tongue boundary, the doubled family has period 2T, leaves the parent like the root of the distance, and its orbits close over 2T", "[bifurcations][switch][period_doubling]")
+TEST_CASE(
+    "period doubling of a Mathieu-pumped dimer: located on the tongue boundary, the doubled family has period 2T, leaves the parent like the root of the distance, and its orbits close over 2T",
+    "[bifurcations][switch][period_doubling]")
 {
   PumpedDimer pd;
   PCHK(pd.Setup());
@@ -301,13 +301,14 @@ TEST_CASE("period doubling of a Mathieu-pumped dimer: located on the tongue boun
   FitLine(dE, a2, &sE, &xE);
   FitLine(dW, a2, &sW, &xW);
   const PetscReal root = std::log(amp[m] / amp[1]) / std::log(dE[m - 1] / dE[0]);
-  INFO("amp^2 = " << sE << " (E - E*) vanishes at E* + " << xE << " (span " << dE.back() << "); = " << sW << " (2W - w*) vanishes at w* + " << xW
-                  << " (span " << dW.back() << "); log-log slope " << root);
-  PCHK(PetscPrintf(PETSC_COMM_WORLD,
-                   "  period doubling: eps* located %.10f, Mathieu to eps^3 %.10f, integrated %.10f; doubled family: closure <= %.1e, |z(T/2) - z0| / |z0| >= %.3f, "
-                   "amp^2 fits vanish at E* %+.1e (span %.1e) and w* %+.1e (span %.1e), log-log slope %.4f\n",
-                   (double)eps_loc, (double)eps_th, (double)eps_ex, (double)worst_closure, (double)least_half, (double)xE, (double)dE.back(), (double)xW, (double)dW.back(),
-                   (double)root));
+  INFO("amp^2 = " << sE << " (E - E*) vanishes at E* + " << xE << " (span " << dE.back() << "); = " << sW << " (2W - w*) vanishes at w* + " << xW << " (span "
+                  << dW.back() << "); log-log slope " << root);
+  PCHK(PetscPrintf(
+      PETSC_COMM_WORLD,
+      "  period doubling: eps* located %.10f, Mathieu to eps^3 %.10f, integrated %.10f; doubled family: closure <= %.1e, |z(T/2) - z0| / |z0| >= %.3f, "
+      "amp^2 fits vanish at E* %+.1e (span %.1e) and w* %+.1e (span %.1e), log-log slope %.4f\n",
+      (double)eps_loc, (double)eps_th, (double)eps_ex, (double)worst_closure, (double)least_half, (double)xE, (double)dE.back(), (double)xW, (double)dW.back(),
+      (double)root));
   REQUIRE(std::abs(xE) < 0.05 * dE.back());
   REQUIRE(std::abs(xW) < 0.05 * std::abs(dW.back()));
   REQUIRE(std::abs(root - 0.5) < 0.05);

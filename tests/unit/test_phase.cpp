@@ -25,7 +25,7 @@ TEST_CASE("Fourier phase of two sinusoids recovers their offset; the wrap keeps 
     REQUIRE(std::abs(d - want) < 1e-8);
     REQUIRE((d >= -PETSC_PI / 2 && d < 1.5 * PETSC_PI));
   }
-  REQUIRE(std::abs(WrapDimerPhase(-0.01) + 0.01) < 1e-15);           // near 0 stays near 0
+  REQUIRE(std::abs(WrapDimerPhase(-0.01) + 0.01) < 1e-15);                         // near 0 stays near 0
   REQUIRE(std::abs(WrapDimerPhase(-PETSC_PI + 0.01) - (PETSC_PI + 0.01)) < 1e-14); // near -pi becomes near pi
   REQUIRE(std::abs(WrapDimerPhase(2 * PETSC_PI - 0.01) + 0.01) < 1e-14);
 }

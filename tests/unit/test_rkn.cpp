@@ -22,11 +22,11 @@ namespace {
 struct RunSpec {
   const char *pair;
   PetscReal h, t_final, eps, u0;
-  bool generic = false;    // the RHS path instead of TSSetAcceleration
-  PetscReal tol = 0;       // > 0: adaptive (rtol = atol = tol, -ts_adapt_type from adapt); 0: fixed step h
+  bool generic = false; // the RHS path instead of TSSetAcceleration
+  PetscReal tol = 0;    // > 0: adaptive (rtol = atol = tol, -ts_adapt_type from adapt); 0: fixed step h
   const char *adapt = "basic";
   PetscInt max_steps = -1; // > 0: stop after this many steps
-  bool vector_tol = false;  // tolerances as Vecs: the error norm by PETSc's TSErrorWeightedNorm (else rkn's fused one)
+  bool vector_tol = false; // tolerances as Vecs: the error norm by PETSc's TSErrorWeightedNorm (else rkn's fused one)
 };
 
 struct RunResult {
@@ -58,7 +58,6 @@ TS NewRkn(const RunSpec &s)
   } else if (s.tol > 0) PCHK(TSSetTolerances(ts, s.tol, NULL, s.tol, NULL));
   return ts;
 }
-
 
 // Integrates one oscillator from t = 0 and returns the state at t_final.
 RunResult Integrate(const RunSpec &s)
@@ -201,8 +200,8 @@ TEST_CASE("rkn: adaptive runs reach their tolerance on Duffing", "[rkn][serial]"
         const PetscReal tol = j ? 1e-9 : 1e-6;
         r[j] = Integrate({info.name, 0.01, T, 1, A, false, tol, adapt});
         err[j] = std::hypot(r[j].u - uT, r[j].v - vT);
-        INFO(info.name << " " << adapt << " tol " << tol << ": global error " << err[j] << ", " << r[j].steps << " steps, " << r[j].rejects
-                       << " rejected, " << r[j].calls << " accelerations");
+        INFO(info.name << " " << adapt << " tol " << tol << ": global error " << err[j] << ", " << r[j].steps << " steps, " << r[j].rejects << " rejected, "
+                       << r[j].calls << " accelerations");
         CHECK(err[j] < 10 * tol * A); // the local tolerance, over ~3 periods
         CHECK(err[j] > 1e-15);
       }
@@ -344,7 +343,8 @@ TEST_CASE("rkn: a forced lattice run cuts off at E* (TS event, rollback) and giv
   // simulation locates the cut-off with a TS event (the type rolls back).
   SimulationResult r[2];
   for (int j = 0; j < 2; j++) {
-    r[j] = ShortForcedRun(j ? PETSC_COMM_WORLD : PETSC_COMM_SELF, {{"-sim_ts_type", "rkn"}, {"-sim_ts_rkn_scheme", "dep86"}, {"-sim_ts_rtol", "1e-10"}, {"-sim_ts_atol", "1e-10"}});
+    r[j] = ShortForcedRun(j ? PETSC_COMM_WORLD : PETSC_COMM_SELF,
+                          {{"-sim_ts_type", "rkn"}, {"-sim_ts_rkn_scheme", "dep86"}, {"-sim_ts_rtol", "1e-10"}, {"-sim_ts_atol", "1e-10"}});
     REQUIRE(r[j].reached);
     INFO("t_off " << r[j].t_off << ", E_final " << r[j].energy_final << ", MCR " << r[j].mcr);
     CHECK(std::abs(r[j].energy_final - 1) < 1e-8);

@@ -189,7 +189,7 @@ TEST_CASE("a cut-off inside a long step is found: E reaches E* between two step 
   REQUIRE(rkn.reached);
   REQUIRE(ref.t_off == Approx(420.31).margin(0.01));
   REQUIRE(std::abs(rkn.t_off - ref.t_off) < 0.02); // the same crossing: the next one is ~1.9 later
-  REQUIRE(500.0 / rkn.steps > 0.3);                 // the steps are long against the energy's period
+  REQUIRE(500.0 / rkn.steps > 0.3);                // the steps are long against the energy's period
 }
 
 TEST_CASE("-sim_dt_quartic_energy: the fixed step shrinks as E^(-1/4) and keeps the energy error of the E_q level", "[simulation]")
@@ -224,10 +224,10 @@ TEST_CASE("-sim_dt_quartic_energy: the fixed step shrinks as E^(-1/4) and keeps 
   };
   PetscReal e1, e100, e100_fixed, e_below;
   PetscInt s1, s100, s100_fixed, s_below;
-  run(1, 1, &e1, &s1);                 // at E_q: the step as given
-  run(100, 1, &e100, &s100);           // E = 100 E_q: h = 0.4 / 100^(1/4)
+  run(1, 1, &e1, &s1);                   // at E_q: the step as given
+  run(100, 1, &e100, &s100);             // E = 100 E_q: h = 0.4 / 100^(1/4)
   run(100, 0, &e100_fixed, &s100_fixed); // the rule off
-  run(100, 1000, &e_below, &s_below);  // E below E_q: the step as given
+  run(100, 1000, &e_below, &s_below);    // E below E_q: the step as given
   INFO("max relative energy error: E = 1, h = 0.4: " << e1 << "; E = 100, h = 0.4 / 100^(1/4): " << e100 << "; E = 100, h = 0.4: " << e100_fixed);
   REQUIRE(s1 == 250);
   REQUIRE(s100_fixed == 250);

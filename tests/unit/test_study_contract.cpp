@@ -94,7 +94,7 @@ TEST_CASE("two workprecision runs that differ only in a -wp_ option do not repla
 {
   const std::string path = "contract_wp.h5";
   for (const auto &o : std::vector<std::pair<std::string, std::pair<const char *, const char *>>>{
-         {"-wp_twins", {"3", "5"}}, {"-wp_repeats", {"1", "3"}}, {"-wp_twin_eps", {"1e-8", "1e-7"}}}) {
+           {"-wp_twins", {"3", "5"}}, {"-wp_repeats", {"1", "3"}}, {"-wp_twin_eps", {"1e-8", "1e-7"}}}) {
     INFO(o.first);
     REQUIRE(PetscOptionsSetValue(NULL, o.first.c_str(), o.second.first) == 0);
     {
@@ -107,7 +107,7 @@ TEST_CASE("two workprecision runs that differ only in a -wp_ option do not repla
     REQUIRE(PetscOptionsSetValue(NULL, o.first.c_str(), o.second.second) == 0);
     CHECK(OverwriteVerdict(path, PETSC_FALSE, &msg) != 0);
     CHECK(msg == "-output " + path + " holds the complete output of a run with " + o.first + " " + o.second.first + " (now " + o.second.second +
-                   "); choose another -output or give -output_overwrite");
+                     "); choose another -output or give -output_overwrite");
     CHECK(OverwriteVerdict(path, PETSC_TRUE, &msg) == 0);
     REQUIRE(PetscOptionsClearValue(NULL, o.first.c_str()) == 0);
   }
@@ -139,7 +139,8 @@ TEST_CASE("every option a study reads is under a prefix its contract registers",
   }
   CHECK(compared > 100);
   // The registered prefixes themselves: the study prefixes that a forgotten line would drop.
-  for (const char *p : {"-wp_", "-zak_", "-perturb_", "-stability_", "-sweep_", "-kcorr_", "-cont_", "-nnm_", "-floquet", "-lattice_", "-force_", "-sim_", "-linear_"}) {
+  for (const char *p :
+       {"-wp_", "-zak_", "-perturb_", "-stability_", "-sweep_", "-kcorr_", "-cont_", "-nnm_", "-floquet", "-lattice_", "-force_", "-sim_", "-linear_"}) {
     INFO(p);
     CHECK(std::count(ComparedPrefixes().begin(), ComparedPrefixes().end(), std::string(p)) == 1);
   }

@@ -146,7 +146,7 @@ TEST_CASE("symsplit: the one-step map is symplectic to rounding (J^T Omega J = O
     PCHK(VecGetArray(z, &x));
     x[0] = 0.9, x[1] = -0.4, x[10] = 0.3, x[11] = 0.7; // a large-amplitude state
     // tangent k = unit vector e_k of (u1, u2, v1, v2)
-    x[2 + 0] = 1, x[2 + 3] = 1;   // du of e_1, e_2
+    x[2 + 0] = 1, x[2 + 3] = 1;           // du of e_1, e_2
     x[10 + 2 + 4] = 1, x[10 + 2 + 7] = 1; // dv of e_3, e_4
     PCHK(VecRestoreArray(z, &x));
     ts = NewSymSplit(info.name);
@@ -157,9 +157,7 @@ TEST_CASE("symsplit: the one-step map is symplectic to rounding (J^T Omega J = O
     PCHK(TSSolve(ts, z));
     PCHK(VecGetArray(z, &x));
     double J[4][4]; // J[row][k]: rows u1, u2, v1, v2
-    for (int k = 0; k < 4; k++) {
-      J[0][k] = x[2 + 2 * k], J[1][k] = x[3 + 2 * k], J[2][k] = x[12 + 2 * k], J[3][k] = x[13 + 2 * k];
-    }
+    for (int k = 0; k < 4; k++) { J[0][k] = x[2 + 2 * k], J[1][k] = x[3 + 2 * k], J[2][k] = x[12 + 2 * k], J[3][k] = x[13 + 2 * k]; }
     PCHK(VecRestoreArray(z, &x));
     double worst = 0;
     for (int r = 0; r < 4; r++)
@@ -214,8 +212,8 @@ TEST_CASE("symsplit: 10^5 periods of Duffing keep the energy error bounded, with
   PCHK(VecDestroy(&z));
   REQUIRE(worst.size() >= 20);
   INFO("max relative energy error, first and last 5000 periods: " << worst.front() << ", " << worst.back());
-  CHECK(worst.front() > 1e-4);                    // h^2 error visible: the test can fail
-  CHECK(worst.back() < 1.05 * worst.front());     // bounded: no growth over 10^5 periods
+  CHECK(worst.front() > 1e-4);                // h^2 error visible: the test can fail
+  CHECK(worst.back() < 1.05 * worst.front()); // bounded: no growth over 10^5 periods
   CHECK(*std::max_element(worst.begin(), worst.end()) < 1.05 * worst.front());
 }
 
@@ -258,7 +256,8 @@ TEST_CASE("symsplit: a forced lattice run cuts off at E* and gives the same resu
   REQUIRE(SchemeIndex("yoshida6") >= 0);
   SimulationResult r[2];
   for (int j = 0; j < 2; j++) {
-    r[j] = ShortForcedRun(j ? PETSC_COMM_WORLD : PETSC_COMM_SELF, {{"-sim_ts_type", "symsplit"}, {"-sim_ts_symsplit_scheme", "yoshida6"}, {"-sim_ts_dt", "0.05"}});
+    r[j] =
+        ShortForcedRun(j ? PETSC_COMM_WORLD : PETSC_COMM_SELF, {{"-sim_ts_type", "symsplit"}, {"-sim_ts_symsplit_scheme", "yoshida6"}, {"-sim_ts_dt", "0.05"}});
     REQUIRE(r[j].reached);
     INFO("t_off " << r[j].t_off << ", E_final " << r[j].energy_final);
     CHECK(std::abs(r[j].energy_final - 1) < 1e-7);

@@ -111,7 +111,7 @@ TEST_CASE("transition: finite spectrum at gamma = +-1 (decoupled dimers, trimers
 {
   for (PetscInt Nc : {1, 3, 25}) {
     LatticeParams p;
-    p.k = 1.3; // not the defaults, so that k, gamma0 and k_hat enter separately
+    p.k = 1.3;      // not the defaults, so that k, gamma0 and k_hat enter separately
     p.gamma0 = 1.2; // > (2 sqrt(2) - 2) k: K stays positive definite at gamma = 1
     p.cells = Nc;
     const PetscReal kh = p.KHat(), k = p.k; // k_hat = k1 + k2 + gamma0 = 2k + gamma0 at every gamma
@@ -121,7 +121,8 @@ TEST_CASE("transition: finite spectrum at gamma = +-1 (decoupled dimers, trimers
     // Nc dimers (m+2, m+3).. on the right. A dimer: k_hat -+ 2k; the trimer: k_hat, k_hat -+ 2 sqrt(2) k.
     p.gamma = 1;
     p.layout = Layout::Interface;
-    RequireSpectrum(p, Levels({{kh, 2}, {kh - 2 * k, 2 * Nc - 1}, {kh + 2 * k, 2 * Nc - 1}, {kh - 2 * std::sqrt(2.0) * k, 1}, {kh + 2 * std::sqrt(2.0) * k, 1}}));
+    RequireSpectrum(p,
+                    Levels({{kh, 2}, {kh - 2 * k, 2 * Nc - 1}, {kh + 2 * k, 2 * Nc - 1}, {kh - 2 * std::sqrt(2.0) * k, 1}, {kh + 2 * std::sqrt(2.0) * k, 1}}));
     // gamma = -1: k1 = 0, k2 = 2k: Nc dimers, m alone, Nc dimers, the last site alone.
     p.gamma = -1;
     RequireSpectrum(p, Levels({{kh, 2}, {kh - 2 * k, 2 * Nc}, {kh + 2 * k, 2 * Nc}}));

@@ -75,21 +75,21 @@ using Getter = PetscErrorCode (*)(TS, const char **);
 const std::map<std::string, Getter> &PublicGetters()
 {
   static const std::map<std::string, Getter> m = {
-    {TSRK, [](TS ts, const char **s) { return TSRKGetType(ts, s); }},
-    {TSSSP, [](TS ts, const char **s) { return TSSSPGetType(ts, s); }},
-    {TSBASICSYMPLECTIC, [](TS ts, const char **s) { return TSBasicSymplecticGetType(ts, s); }},
-    {TSARKIMEX, [](TS ts, const char **s) { return TSARKIMEXGetType(ts, s); }},
-    {TSROSW, [](TS ts, const char **s) { return TSRosWGetType(ts, s); }},
-    {TSIRK, [](TS ts, const char **s) { return TSIRKGetType(ts, s); }},
-    {TSEIMEX, nullptr},
-    {TSRKN, TSRknGetScheme},
-    {TSSYMSPLIT, TSSymSplitGetScheme},
-    {TSEULER, nullptr},
-    {TSBEULER, nullptr},
-    {TSCN, nullptr},
-    {TSTHETA, nullptr},
-    {TSALPHA, nullptr},
-    {TSBDF, nullptr},
+      {TSRK, [](TS ts, const char **s) { return TSRKGetType(ts, s); }},
+      {TSSSP, [](TS ts, const char **s) { return TSSSPGetType(ts, s); }},
+      {TSBASICSYMPLECTIC, [](TS ts, const char **s) { return TSBasicSymplecticGetType(ts, s); }},
+      {TSARKIMEX, [](TS ts, const char **s) { return TSARKIMEXGetType(ts, s); }},
+      {TSROSW, [](TS ts, const char **s) { return TSRosWGetType(ts, s); }},
+      {TSIRK, [](TS ts, const char **s) { return TSIRKGetType(ts, s); }},
+      {TSEIMEX, nullptr},
+      {TSRKN, TSRknGetScheme},
+      {TSSYMSPLIT, TSSymSplitGetScheme},
+      {TSEULER, nullptr},
+      {TSBEULER, nullptr},
+      {TSCN, nullptr},
+      {TSTHETA, nullptr},
+      {TSALPHA, nullptr},
+      {TSBDF, nullptr},
   };
   return m;
 }

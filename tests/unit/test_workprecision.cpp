@@ -175,7 +175,8 @@ TEST_CASE("work-precision on a linear lattice: the reported errors are the error
 
   WorkPrecisionOptions o;
   o.configs = {"-sim_ts_type symsplit -sim_ts_symsplit_scheme bm4 -sim_ts_dt 0.4", "-sim_ts_type symsplit -sim_ts_symsplit_scheme bm4 -sim_ts_dt 0.2",
-               "-sim_ts_type rk -sim_ts_rk_type 5dp -sim_ts_rtol 1e-6 -sim_ts_atol 1e-6", "-sim_ts_type rkn -sim_ts_rkn_scheme dep86 -sim_ts_rtol 1e-6 -sim_ts_atol 1e-6"};
+               "-sim_ts_type rk -sim_ts_rk_type 5dp -sim_ts_rtol 1e-6 -sim_ts_atol 1e-6",
+               "-sim_ts_type rkn -sim_ts_rkn_scheme dep86 -sim_ts_rtol 1e-6 -sim_ts_atol 1e-6"};
   o.repeats = 1;
   o.twins = 2;
   ScopedOptions opt({{"-sim_t_final", "700"}});
@@ -205,10 +206,10 @@ TEST_CASE("work-precision on a linear lattice: the reported errors are the error
     return std::sqrt(d / n);
   };
   // The converged reference is the exact run to its own accuracy.
-  const PetscReal ref_mcr = Rel(res.reference_value[0], ex.mcr), ref_toff = Rel(res.reference_value[1], ex.t_off),
-                  ref_state = state_error(res.reference_z), ref_energy = Rel(res.reference_value[3], ex.estar);
-  INFO("reference against the exact solution: MCR " << ref_mcr << ", t_off " << ref_toff << " (" << res.reference_value[1] << " vs " << ex.t_off
-                                                     << "), state " << ref_state << ", energy " << ref_energy << "; exact MCR " << ex.mcr);
+  const PetscReal ref_mcr = Rel(res.reference_value[0], ex.mcr), ref_toff = Rel(res.reference_value[1], ex.t_off), ref_state = state_error(res.reference_z),
+                  ref_energy = Rel(res.reference_value[3], ex.estar);
+  INFO("reference against the exact solution: MCR " << ref_mcr << ", t_off " << ref_toff << " (" << res.reference_value[1] << " vs " << ex.t_off << "), state "
+                                                    << ref_state << ", energy " << ref_energy << "; exact MCR " << ex.mcr);
   REQUIRE(ref_mcr < 1e-11);
   REQUIRE(ref_toff < 1e-10);
   REQUIRE(ref_state < 1e-8);
@@ -255,8 +256,8 @@ TEST_CASE("predictability floor: below 1e-8 for a regular run (E* = 1), above 1e
     PCHK(burst.Setup(lat, fo, &modes));
     WorkPrecisionResult res;
     PCHK(RunWorkPrecision(lat, &burst, o, &res));
-    INFO("E* = " << estar << ": MCR spread " << res.spread[0] << ", state spread " << res.spread[4] << ", Lyapunov " << res.lyapunov
-                 << ", reference converged " << res.reference_converged);
+    INFO("E* = " << estar << ": MCR spread " << res.spread[0] << ", state spread " << res.spread[4] << ", Lyapunov " << res.lyapunov << ", reference converged "
+                 << res.reference_converged);
     if (estar == 1.0) {
       REQUIRE(res.spread[0] < 1e-8);
       REQUIRE(res.reference_converged);
