@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Every figure of the paper (Tempelman, Matlack & Vakakis; ../shared/seed) from
+# Every figure of the paper (Tempelman, Matlack & Vakakis) from
 # one command, on the options files, with the built nltopo (README.md
 # "Figures of the paper"):
 #

@@ -20,7 +20,7 @@ static PetscErrorCode ReadOutputOptions(MPI_Comm comm, const char *study, std::s
   PetscFunctionBeginUser;
   *overwrite = PETSC_FALSE;
   PetscCall(PetscSNPrintf(buf, sizeof(buf), "%s.h5", study));
-  PetscOptionsBegin(comm, NULL, "Output (shared/spec/outputs.md)", NULL);
+  PetscOptionsBegin(comm, NULL, "Output (docs/outputs.md)", NULL);
   PetscCall(PetscOptionsString("-output", "HDF5 file to write (default <study>.h5)", NULL, buf, buf, sizeof(buf), NULL));
   PetscCall(PetscOptionsBool(
       "-output_overwrite",

@@ -1,5 +1,5 @@
 #pragma once
-// HDF5 output per shared/spec/outputs.md. The file is written under a
+// HDF5 output per docs/outputs.md. The file is written under a
 // temporary name and renamed at Commit(), so a failed or killed run never
 // leaves a partial file at the -output path. The one exception is asked for:
 // a continuation with -cont_checkpoint_seconds commits whole, readable files
