@@ -148,7 +148,6 @@ std::string RunOptions()
 
 } // namespace
 
-const std::vector<std::string> &ComparedPrefixes() { return ComponentPrefixes(); }
 
 std::string FirstOptionDifference(const std::string &file_options, const std::string &run_options, OptionRule rule)
 {

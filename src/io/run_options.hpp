@@ -30,10 +30,6 @@
 
 namespace nltopo {
 
-// The option prefixes compared: those each study's contract registers
-// (core/option_table.hpp RegisterComponentPrefixes, from studies/registry.cpp).
-const std::vector<std::string> &ComparedPrefixes();
-
 enum class OptionRule { Resume, Overwrite };
 
 // The first difference (in option-name order) between the options a file was

@@ -4,6 +4,7 @@
 // option is refused with one line naming it; Study::Run ends an interrupted
 // Solve with its partial output and one line; the forced scene's
 // needs-linear-modes rule is what the tone burst needs.
+#include "core/option_table.hpp"
 #include "helpers.hpp"
 #include "core/errors.hpp"
 #include "core/signals.hpp"
@@ -132,7 +133,7 @@ TEST_CASE("every option a study reads is under a prefix its contract registers",
       if (outside.count(name) || name.find("monitor") != std::string::npos) continue;
       INFO("-study " << k.first << ": -" << name);
       bool under = false;
-      for (const std::string &p : ComparedPrefixes()) under |= ("-" + name).compare(0, p.size(), p) == 0;
+      for (const std::string &p : ComponentPrefixes()) under |= ("-" + name).compare(0, p.size(), p) == 0;
       CHECK(under);
       compared += under;
     }
@@ -142,7 +143,7 @@ TEST_CASE("every option a study reads is under a prefix its contract registers",
   for (const char *p :
        {"-wp_", "-zak_", "-perturb_", "-stability_", "-sweep_", "-kcorr_", "-cont_", "-nnm_", "-floquet", "-lattice_", "-force_", "-sim_", "-linear_"}) {
     INFO(p);
-    CHECK(std::count(ComparedPrefixes().begin(), ComparedPrefixes().end(), std::string(p)) == 1);
+    CHECK(std::count(ComponentPrefixes().begin(), ComponentPrefixes().end(), std::string(p)) == 1);
   }
 }
 
