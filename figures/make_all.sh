@@ -71,7 +71,8 @@ case "$SIZE" in
     PERT=(-options_file "$OPT/perturb.opts" -perturb_ensemble 4)
     ;;
   test)
-    FEP=(-options_file "$OPT/fep.opts" -cont_energy_min 1e-3 -cont_energy_max 30 -cont_max_change 0.4 -cont_bif_tol 1e-5)
+    # no bifurcation location (3/4 of the run): plot_fep.py's events are drawn and checked in the bifurcations scene
+    FEP=(-options_file "$OPT/fep.opts" -cont_energy_min 1e-3 -cont_energy_max 30 -cont_max_change 0.4 -cont_bifurcations 0)
     STAB=(-options_file "$OPT/stability.opts" -stability_omega "$SQRT3,1.8245" -stability_periods 300)
     ZAK=(-options_file "$OPT/zak.opts" -zak_energy_n 7)
     ZAK_RUN_E="0.01 100"

@@ -194,13 +194,21 @@ PetscErrorCode ShootingSystem::SetRows(Vec a, Vec b, PetscReal p, PetscReal c, V
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode CheckDenseJacobianMemory(MPI_Comm comm, PetscInt sites, PetscInt local_rows)
+{
+  const double M = 2.0 * (double)sites + 2.0;
+  PetscFunctionBeginUser;
+  // Dense-pattern AIJ (12 bytes per entry) plus the sensitivity matrix and MUMPS's factor.
+  PetscCall(CheckMemory(comm, 4.0 * 12.0 * M * (double)local_rows, "the dense shooting Jacobian (2N = -lattice_cells x 4; -nnm_jacobian mf avoids it)"));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode ShootingSystem::CreateDenseJacobian(Mat *J)
 {
   MPI_Comm comm = lat_->Comm();
   const PetscInt M = n_ + 2;
   PetscFunctionBeginUser;
-  // Dense-pattern AIJ (12 bytes per entry) plus the sensitivity matrix and MUMPS's factor.
-  PetscCall(CheckMemory(comm, 4.0 * 12.0 * (double)M * (double)nlocx_, "the dense shooting Jacobian (2N = -lattice_cells x 4; -nnm_jacobian mf avoids it)"));
+  PetscCall(CheckDenseJacobianMemory(comm, lat_->N(), nlocx_));
   if (!S_) PetscCall(flow_->CreateSensitivityMatrix(S_.out()));
   PetscCall(MatCreateAIJ(comm, nlocx_, nlocx_, M, M, nlocx_, NULL, M - nlocx_, NULL, J)); // dense pattern
   PetscFunctionReturn(0);

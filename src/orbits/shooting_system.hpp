@@ -21,6 +21,12 @@
 
 namespace nltopo {
 
+// Refuses a dense shooting Jacobian of a lattice of `sites` sites (rows of
+// this rank: `local_rows` of X) that would not fit in memory. Called before
+// any work that precedes the Jacobian (NnmSetup::Build), and again when it
+// is created.
+PetscErrorCode CheckDenseJacobianMemory(MPI_Comm comm, PetscInt sites, PetscInt local_rows);
+
 class ShootingSystem {
 public:
   PetscErrorCode Setup(PeriodicFlow &flow);
@@ -43,7 +49,7 @@ public:
   PetscErrorCode Residual(Vec X, Vec F);
 
   // The assembled Jacobian: a dense-pattern AIJ matrix (refused when it would
-  // not fit in memory), filled at X by AssembleJacobian.
+  // not fit in memory, CheckDenseJacobianMemory), filled at X by AssembleJacobian.
   PetscErrorCode CreateDenseJacobian(Mat *J);
   PetscErrorCode AssembleJacobian(Vec X, Mat J);
   // The matrix-free Jacobian: a MATSHELL whose product (ShellMult) is taken at

@@ -54,6 +54,8 @@ struct NnmSetup {
     PetscCall(lat.Setup(comm, lp));
     PetscCall(BuildEffects(lat, nullptr, &fx));
     PetscCall(fx.RequireConservative(study));
+    // before the linear modes, which take minutes on a lattice too long for it
+    if (so.jacobian == ShootingJacobian::Dense) PetscCall(CheckDenseJacobianMemory(comm, lat.N(), 2 * lat.OwnedCount() + 2));
     PetscCall(modes.Compute(lat, mo));
     PetscCall(flow.Setup(fx, fo));
     PetscCall(shoot.Setup(flow, so));

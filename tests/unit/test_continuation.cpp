@@ -80,8 +80,10 @@ TEST_CASE("every branch starts at its linear frequency (to 1e-6) at E = 1e-5", "
   }
 }
 
-TEST_CASE("a branch with energy folds is followed through them, and every orbit closes", "[continuation]")
+TEST_CASE("a branch with energy folds is followed through them, and every orbit closes", "[continuation][once]")
 {
+  // [once]: at 2 ranks the same continuation through the folds runs in test_bifurcations.cpp
+  // ("energy folds of a folded branch are located ..."); repeating it here only repeats the physics.
   // Mode 0 of the N = 6 interface lattice: its energy rises to ~66, falls to ~8
   // and rises again (two folds) while the frequency turns twice.
   // rk 5dp: with the default splitting the secant steps cut the sharp fold at

@@ -234,8 +234,11 @@ TEST_CASE("work-precision on a linear lattice: the reported errors are the error
   REQUIRE(res.spread[0] < 1e-8);
 }
 
-TEST_CASE("predictability floor: below 1e-8 for a regular run (E* = 1), above 1e-2 for a chaotic one (E* = 100, omega = 2)", "[workprecision]")
+TEST_CASE("predictability floor: below 1e-8 for a regular run (E* = 1), above 1e-2 for a chaotic one (E* = 100, omega = 2)", "[workprecision][once]")
 {
+  // [once]: the study's distributed path (twins, reference, collective norms) runs at 2 ranks in
+  // "work-precision on a linear lattice" above; this case checks the physics of the floor, and at
+  // 2 ranks a 102-site lattice pays a message latency per step for the same numbers.
   LatticeParams p;
   Lattice lat;
   PCHK(lat.Setup(PETSC_COMM_WORLD, p));
