@@ -9,7 +9,21 @@
 
 static const char help[] = "nltopo: nonlinear SSH interface lattice (see README.md). Use -study <name> with -options_file options/<scene>.opts.\n";
 
+static int Run(int argc, char **argv);
+
+// MPI starts first, and every rank leaves through MPI_Finalize, whose fence
+// keeps each rank alive until all have reported: mpiexec kills the others as
+// soon as one rank exits non-zero, so a rank that exits early could cut off
+// rank 0's one line (a refusal before PETSc starts) or its clean-up.
 int main(int argc, char **argv)
+{
+  if (MPI_Init(&argc, &argv) != MPI_SUCCESS) return 1;
+  const int rc = Run(argc, argv);
+  MPI_Finalize();
+  return rc;
+}
+
+static int Run(int argc, char **argv)
 {
   if (!nltopo::PreflightArguments(argc, argv)) return 1;
   std::signal(SIGXFSZ, SIG_IGN); // a file-size limit (ulimit -f) is a failed write with one line, not a kill

@@ -122,12 +122,13 @@ PetscErrorCode RejectGivenOptions(MPI_Comm comm, std::initializer_list<const cha
   PetscFunctionReturn(0);
 }
 
-// Before MPI starts: only the first rank of a launch prints (every rank exits).
+// Before PETSc starts (MPI has: main.cpp): only rank 0 prints; every rank exits.
 static bool FirstRank()
 {
-  for (const char *v : {"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"})
-    if (const char *r = std::getenv(v)) return std::atoi(r) == 0;
-  return true;
+  int up = 0, rank = 0;
+  MPI_Initialized(&up);
+  if (up) MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  return rank == 0;
 }
 #define PREFLIGHT_ERROR(...) (FirstRank() ? (void)std::fprintf(stderr, __VA_ARGS__) : (void)0)
 PetscErrorCode FailTogether(MPI_Comm comm, PetscErrorCode code, const char *msg)

@@ -21,6 +21,9 @@ const char *OptionTypeName(OptionType t)
   case OptionType::Int: return "int";
   case OptionType::Bool: return "bool";
   case OptionType::Enum: return "enum";
+  case OptionType::String: return "string";
+  case OptionType::RealList: return "real list";
+  case OptionType::StringList: return "string list";
   }
   return "?";
 }

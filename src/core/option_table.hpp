@@ -36,7 +36,7 @@ inline Bounds LeftOpen(double lo, double hi) { return {lo, hi, true, false}; }
 inline Bounds RightOpen(double lo, double hi) { return {lo, hi, false, true}; }
 inline Bounds Open(double lo, double hi) { return {lo, hi, true, true}; }
 
-enum class OptionType { Real, Int, Bool, Enum };
+enum class OptionType { Real, Int, Bool, Enum, String, RealList, StringList };
 const char *OptionTypeName(OptionType t);
 
 // One row as tools see it (no binding to a struct).
@@ -130,6 +130,56 @@ public:
     rows_.push_back(std::move(r));
     return *this;
   }
+  // A text value (a file, a configuration string); "" when not given.
+  OptionTable &String(const char *name, std::string S::*m, const char *help, OptionClass c = OptionClass::Physics)
+  {
+    Row r = NewRow(name, OptionType::String, Bounds{}, help, c);
+    r.info.default_text = S{}.*m;
+    r.read = [m](PetscOptionItems *PetscOptionsObject, const char *opt, const char *text, S *s, PetscBool *set) -> PetscErrorCode {
+      char buf[PETSC_MAX_PATH_LEN];
+      PetscCall(PetscStrncpy(buf, (s->*m).c_str(), sizeof(buf)));
+      PetscCall(PetscOptionsString(opt, text, NULL, buf, buf, sizeof(buf), set));
+      s->*m = buf;
+      return 0;
+    };
+    rows_.push_back(std::move(r));
+    return *this;
+  }
+  // A comma-separated list of at most max_count reals, each in b (checked by Read).
+  OptionTable &RealList(const char *name, std::vector<PetscReal> S::*m, PetscInt max_count, Bounds b, const char *help, OptionClass c = OptionClass::Physics)
+  {
+    Row r = NewRow(name, OptionType::RealList, b, help, c);
+    r.info.default_text = ListText(S{}.*m);
+    r.read = [m, max_count](PetscOptionItems *PetscOptionsObject, const char *opt, const char *text, S *s, PetscBool *set) -> PetscErrorCode {
+      std::vector<PetscReal> v(max_count);
+      PetscInt n = max_count;
+      PetscCall(PetscOptionsRealArray(opt, text, NULL, v.data(), &n, set));
+      if (*set) s->*m = std::vector<PetscReal>(v.begin(), v.begin() + n);
+      return 0;
+    };
+    r.values = [m](const S &s) { return std::vector<double>((s.*m).begin(), (s.*m).end()); };
+    rows_.push_back(std::move(r));
+    return *this;
+  }
+  // A comma-separated list of at most max_count words.
+  OptionTable &StringList(const char *name, std::vector<std::string> S::*m, PetscInt max_count, const char *help, OptionClass c = OptionClass::Physics)
+  {
+    Row r = NewRow(name, OptionType::StringList, Bounds{}, help, c);
+    for (const std::string &w : S{}.*m) r.info.default_text += (r.info.default_text.empty() ? "" : ",") + w;
+    r.read = [m, max_count](PetscOptionItems *PetscOptionsObject, const char *opt, const char *text, S *s, PetscBool *set) -> PetscErrorCode {
+      std::vector<char *> v(max_count, nullptr);
+      PetscInt n = max_count;
+      PetscCall(PetscOptionsStringArray(opt, text, NULL, v.data(), &n, set));
+      if (*set) {
+        (s->*m).clear();
+        for (PetscInt k = 0; k < n; k++) (s->*m).push_back(v[k]);
+      }
+      for (PetscInt k = 0; k < n; k++) PetscCall(PetscFree(v[k]));
+      return 0;
+    };
+    rows_.push_back(std::move(r));
+    return *this;
+  }
   // Modifiers of the last row.
   OptionTable &Why(const char *why) { return rows_.back().info.why = why, *this; }
   OptionTable &Default(const char *rule) { return rows_.back().info.default_text = rule, *this; }
@@ -168,9 +218,13 @@ public:
     PetscOptionsEnd();
     for (size_t k = 0; k < rows_.size(); k++) {
       const Row &r = rows_[k];
-      if (!r.value || (r.info.only_if_set && !given[k])) continue;
-      const double x = r.value(*s);
-      PetscCheck(r.info.bounds.Contains(x), comm, PETSC_ERR_USER, "%s", RangeMessage(r.info, x).c_str());
+      if (r.info.only_if_set && !given[k]) continue;
+      if (r.value) {
+        const double x = r.value(*s);
+        PetscCheck(r.info.bounds.Contains(x), comm, PETSC_ERR_USER, "%s", RangeMessage(r.info, x).c_str());
+      }
+      if (r.values)
+        for (double x : r.values(*s)) PetscCheck(r.info.bounds.Contains(x), comm, PETSC_ERR_USER, "%s", RangeMessage(r.info, x).c_str());
     }
     if (set) *set = given;
     PetscFunctionReturn(0);
@@ -181,7 +235,8 @@ private:
     OptionInfo info;
     std::string short_name; // "-k" (PetscOptionsBegin adds the prefix)
     std::function<PetscErrorCode(PetscOptionItems *, const char *, const char *, S *, PetscBool *)> read;
-    std::function<double(const S &)> value; // numeric rows
+    std::function<double(const S &)> value;               // numeric rows
+    std::function<std::vector<double>(const S &)> values; // list rows, each entry in the bounds
   };
   Row NewRow(const char *name, OptionType t, Bounds b, const char *help, OptionClass c) const
   {
@@ -197,6 +252,12 @@ private:
     return r;
   }
   static std::string Num(double x, bool integer);
+  static std::string ListText(const std::vector<PetscReal> &v)
+  {
+    std::string t;
+    for (PetscReal x : v) t += (t.empty() ? "" : ",") + Num(x, false);
+    return t;
+  }
   const char *prefix_, *title_;
   std::vector<Row> rows_;
   std::vector<OptionInfo> infos_;
