@@ -120,8 +120,10 @@ TEST_CASE("Floquet multipliers in the linear limit, symplectic pairs, det M = 1,
 // frequency shift Omega^2 - lambda_hi reaches kappa, then a real pair of multipliers
 // leaves +1 (pitchfork to localised NNMs) with
 // mu = exp(pi sqrt(s^2 - (s - 2 kappa)^2) / Omega^2), s = Omega^2 - lambda_hi.
-TEST_CASE("Floquet flags the symmetry-breaking instability of two coupled dimers, as averaging predicts", "[floquet]")
+TEST_CASE("Floquet flags the symmetry-breaking instability of two coupled dimers, as averaging predicts", "[floquet][once]")
 {
+  // [once]: at 2 ranks the same continuation with Floquet multipliers of the dimers runs in
+  // test_bifurcations.cpp ("branch switching at the dimer pitchfork ...").
   CoupledDimers d;
   PCHK(d.Setup());
   PeriodicFlow &flow = d.flow;

@@ -178,7 +178,7 @@ TEST_CASE("work-precision on a linear lattice: the reported errors are the error
                "-sim_ts_type rk -sim_ts_rk_type 5dp -sim_ts_rtol 1e-6 -sim_ts_atol 1e-6",
                "-sim_ts_type rkn -sim_ts_rkn_scheme dep86 -sim_ts_rtol 1e-6 -sim_ts_atol 1e-6"};
   o.repeats = 1;
-  o.twins = 2;
+  o.twins = 1;
   ScopedOptions opt({{"-sim_t_final", "700"}});
   WorkPrecisionResult res;
   PCHK(WorkPrecisionOptionsFromOptions(PETSC_COMM_WORLD, &o));
