@@ -9,6 +9,7 @@
 //
 // What options must not combine to (a site beyond N, a profile that needs a
 // layout) stays the component's own check after Read: a row knows one option.
+#include "core/effective_options.hpp"
 #include <petscsys.h>
 #include <cmath>
 #include <functional>
@@ -91,6 +92,7 @@ public:
       return PetscOptionsReal(opt, text, NULL, s->*m, &(s->*m), set);
     };
     r.value = [m](const S &s) { return (double)(s.*m); };
+    r.text = [m](const S &s) { return Num(s.*m, false); };
     rows_.push_back(std::move(r));
     return *this;
   }
@@ -102,6 +104,7 @@ public:
       return PetscOptionsInt(opt, text, NULL, s->*m, &(s->*m), set);
     };
     r.value = [m](const S &s) { return (double)(s.*m); };
+    r.text = [m](const S &s) { return Num((double)(s.*m), true); };
     rows_.push_back(std::move(r));
     return *this;
   }
@@ -112,6 +115,7 @@ public:
     r.read = [m](PetscOptionItems *PetscOptionsObject, const char *opt, const char *text, S *s, PetscBool *set) -> PetscErrorCode {
       return PetscOptionsBool(opt, text, NULL, s->*m, &(s->*m), set);
     };
+    r.text = [m](const S &s) { return std::string((s.*m) ? "true" : "false"); };
     rows_.push_back(std::move(r));
     return *this;
   }
@@ -127,6 +131,7 @@ public:
       s->*m = static_cast<E>(k);
       return 0;
     };
+    r.text = [m, names](const S &s) { return std::string(names[static_cast<int>(s.*m)]); };
     rows_.push_back(std::move(r));
     return *this;
   }
@@ -142,6 +147,7 @@ public:
       s->*m = buf;
       return 0;
     };
+    r.text = [m](const S &s) { return s.*m; };
     rows_.push_back(std::move(r));
     return *this;
   }
@@ -158,6 +164,7 @@ public:
       return 0;
     };
     r.values = [m](const S &s) { return std::vector<double>((s.*m).begin(), (s.*m).end()); };
+    r.text = [m](const S &s) { return ListText(s.*m); };
     rows_.push_back(std::move(r));
     return *this;
   }
@@ -176,6 +183,11 @@ public:
       }
       for (PetscInt k = 0; k < n; k++) PetscCall(PetscFree(v[k]));
       return 0;
+    };
+    r.text = [m](const S &s) {
+      std::string t;
+      for (const std::string &w : s.*m) t += (t.empty() ? "" : ",") + w;
+      return t;
     };
     rows_.push_back(std::move(r));
     return *this;
@@ -226,6 +238,8 @@ public:
       if (r.values)
         for (double x : r.values(*s)) PetscCheck(r.info.bounds.Contains(x), comm, PETSC_ERR_USER, "%s", RangeMessage(r.info, x).c_str());
     }
+    for (const Row &r : rows_)
+      if (r.text) NoteEffectiveOption(r.info.name, r.text(*s)); // the run's provenance (core/effective_options.hpp)
     if (set) *set = given;
     PetscFunctionReturn(0);
   }
@@ -237,6 +251,7 @@ private:
     std::function<PetscErrorCode(PetscOptionItems *, const char *, const char *, S *, PetscBool *)> read;
     std::function<double(const S &)> value;               // numeric rows
     std::function<std::vector<double>(const S &)> values; // list rows, each entry in the bounds
+    std::function<std::string(const S &)> text;           // the value as the provenance records it
   };
   Row NewRow(const char *name, OptionType t, Bounds b, const char *help, OptionClass c) const
   {

@@ -1,4 +1,5 @@
 #include "core/options_audit.hpp"
+#include "core/effective_options.hpp"
 #include "core/option_table.hpp"
 #include "core/ts_traits.hpp"
 #include <petscts.h>
@@ -29,7 +30,18 @@ static PetscErrorCode Declare(MPI_Comm comm, const char *prefix)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode DeclareTS(MPI_Comm comm, const char *prefix) { return Declare<TS, TSCreate, TSSetOptionsPrefix, TSSetFromOptions, TSDestroy>(comm, prefix); }
+PetscErrorCode DeclareTS(MPI_Comm comm, const char *prefix)
+{
+  char type[64] = "";
+  PetscBool set;
+  PetscFunctionBeginUser;
+  PetscCall(Declare<TS, TSCreate, TSSetOptionsPrefix, TSSetFromOptions, TSDestroy>(comm, prefix));
+  // the provenance's effective type: given, or the code's default for this prefix (a default that changes is then caught on resume)
+  PetscCall(PetscOptionsGetString(NULL, prefix, "-ts_type", type, sizeof(type), &set));
+  if (!set && TSDefaultType(prefix)) PetscCall(PetscStrncpy(type, TSDefaultType(prefix), sizeof(type)));
+  if (type[0]) NoteEffectiveOption(std::string("-") + prefix + "ts_type", type);
+  PetscFunctionReturn(0);
+}
 PetscErrorCode DeclareSNES(MPI_Comm comm, const char *prefix)
 {
   return Declare<SNES, SNESCreate, SNESSetOptionsPrefix, SNESSetFromOptions, SNESDestroy>(comm, prefix);
@@ -320,7 +332,10 @@ PetscErrorCode CollectKnownOptions(MPI_Comm comm, const std::map<std::string, Op
     // has read already count as printed, so forget them.
     PetscCall(PetscOptionsHelpPrintedDestroy(&PetscOptionsHelpPrintedSingleton));
     g_capture = &text;
-    (void)s.second(comm); // a validation error of another study's options stops its listing, nothing else
+    {
+      EffectiveOptionsPause pause; // names only: not this run's values
+      (void)s.second(comm);        // a validation error of another study's options stops its listing, nothing else
+    }
     g_capture = nullptr;
     ParseHelp(text, &(*known)[s.first], kinds);
   }

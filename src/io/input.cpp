@@ -95,6 +95,7 @@ bool ReadRootAttribute(const std::string &file, const char *name, std::string *v
       char *s = NULL;
       hid_t mt = H5Tcopy(H5T_C_S1);
       H5Tset_size(mt, H5T_VARIABLE);
+      H5Tset_cset(mt, H5Tget_cset(t)); // h5py writes str as UTF-8, which HDF5 will not convert to ASCII
       if (H5Aread(a, mt, &s) >= 0 && s) {
         *value = s;
         ok = true;

@@ -1,5 +1,6 @@
 #include "io/output.hpp"
 #include "io/cost_card.hpp"
+#include "core/effective_options.hpp"
 #include "core/errors.hpp"
 #include "core/log.hpp"
 #include "io/run_options.hpp"
@@ -141,6 +142,7 @@ PetscErrorCode OutputFile::Commit(const char *study, PetscReal wall_seconds, boo
   PetscCall(WriteAttr(viewer_, "/", "study", study));
   PetscCall(WriteAttr(viewer_, "/", "version", NLTOPO_VERSION));
   PetscCall(WriteAttr(viewer_, "/", "options", opts));
+  PetscCall(WriteAttr(viewer_, "/", "effective_options", EffectiveOptionsText().c_str()));
   PetscCall(WriteAttr(viewer_, "/", "wall_seconds", wall_seconds));
   PetscCall(WriteAttr(viewer_, "/", "complete", (PetscInt)complete));
   PetscCall(PetscFree(opts));

@@ -1,4 +1,5 @@
 #include "io/run_options.hpp"
+#include "core/effective_options.hpp"
 #include "core/option_table.hpp"
 #include "io/input.hpp"
 #include <algorithm>
@@ -146,12 +147,43 @@ std::string RunOptions()
   return s;
 }
 
+// effective_options' "-name value" lines.
+std::map<std::string, std::string> ParseLines(const std::string &text)
+{
+  std::map<std::string, std::string> m;
+  size_t i = 0;
+  while (i < text.size()) {
+    size_t j = text.find('\n', i);
+    if (j == std::string::npos) j = text.size();
+    const std::string line = text.substr(i, j - i);
+    const size_t sp = line.find(' ');
+    if (!line.empty()) m[Lower(line.substr(0, sp))] = sp == std::string::npos ? "" : line.substr(sp + 1);
+    i = j + 1;
+  }
+  return m;
+}
+
+// Options given on neither side, whose effective values both records hold and that differ under the rule.
+std::string EffectiveDifference(const std::map<std::string, std::string> &fe, const std::map<std::string, std::string> &re,
+                                const std::map<std::string, std::string> &fg, const std::map<std::string, std::string> &rg,
+                                const std::function<bool(const std::string &)> &compared)
+{
+  for (const auto &kv : fe) {
+    const std::string &key = kv.first;
+    if (fg.count(key) || rg.count(key) || !re.count(key) || !compared(key)) continue;
+    if (!SameValue(kv.second, re.at(key))) return "with " + Shown(key, kv.second) + ", the default then (now " + re.at(key) + ")";
+  }
+  return "";
+}
+
 } // namespace
 
+RunRecord ThisRunRecord() { return {RunOptions(), EffectiveOptionsText()}; }
 
-std::string FirstOptionDifference(const std::string &file_options, const std::string &run_options, OptionRule rule)
+std::string FirstOptionDifference(const RunRecord &file, const RunRecord &run, OptionRule rule)
 {
-  const auto f = Parse(file_options), r = Parse(run_options);
+  const auto f = Parse(file.given), r = Parse(run.given);
+  const auto fe = ParseLines(file.effective), re = ParseLines(run.effective);
   // Floquet multipliers post-process each stored orbit and never feed back: a
   // resume that does not compute them (-floquet off) ignores their options.
   const auto fl = r.find("-floquet");
@@ -161,23 +193,29 @@ std::string FirstOptionDifference(const std::string &file_options, const std::st
     if (rule == OptionRule::Resume && !floquet_now && StartsWith(key, "-floquet")) return false;
     return k == Kind::Physics || (k == Kind::Extent && rule == OptionRule::Overwrite);
   };
+  // a side's value of key: given, else its effective value, else nltopo's internal default; false: unknown
+  auto value = [&](const std::map<std::string, std::string> &given, const std::map<std::string, std::string> &eff, const std::string &key, std::string *v) {
+    const auto g = given.find(key), e = eff.find(key), d = InternalDefaults().find(key);
+    if (g != given.end()) *v = g->second;
+    else if (e != eff.end()) *v = e->second;
+    else if (d != InternalDefaults().end()) *v = d->second;
+    else return false;
+    return true;
+  };
   std::map<std::string, int> keys;
   for (const auto &kv : f) keys[kv.first] |= 1;
   for (const auto &kv : r) keys[kv.first] |= 2;
   for (const auto &k : keys) {
     const std::string &key = k.first;
     if (!compared(key)) continue;
-    const auto def = InternalDefaults().find(key);
-    const bool in_f = k.second & 1, in_r = k.second & 2;
-    const std::string fv = in_f ? f.at(key) : def != InternalDefaults().end() ? def->second : "";
-    const std::string rv = in_r ? r.at(key) : def != InternalDefaults().end() ? def->second : "";
-    const bool known_f = in_f || def != InternalDefaults().end(), known_r = in_r || def != InternalDefaults().end();
-    if (known_f && known_r) {
-      if (!SameValue(fv, rv)) return "with " + Shown(key, fv) + " (now " + (rv.empty() ? key : rv) + ")";
-    } else if (known_f) return "with " + Shown(key, fv) + " (now not given)";
-    else return "without " + key + " (now " + (rv.empty() ? key : rv) + ")";
+    std::string fv, rv;
+    const bool known_f = value(f, fe, key, &fv), known_r = value(r, re, key, &rv);
+    if (known_f && known_r && SameValue(fv, rv)) continue; // e.g. given on one side, the same default on the other
+    if (k.second == 3 || InternalDefaults().count(key)) return "with " + Shown(key, fv) + " (now " + (rv.empty() ? key : rv) + ")";
+    if (k.second == 1) return "with " + Shown(key, fv) + " (now not given)";
+    return "without " + key + " (now " + (rv.empty() ? key : rv) + ")";
   }
-  return "";
+  return EffectiveDifference(fe, re, f, r, compared);
 }
 
 bool SameFile(const std::string &a, const std::string &b)
@@ -195,12 +233,13 @@ PetscErrorCode CheckResumeOptions(MPI_Comm comm, const std::string &file, const 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   if (!rank && !stat(file.c_str(), &st)) { // a missing file is the caller's error (it names what it expected)
-    std::string s, o;
+    std::string s, o, e;
     if (!ReadRootAttribute(file, "study", &s) || !ReadRootAttribute(file, "options", &o))
       msg = std::string(what) + " " + file + ": not an nltopo output (no root attributes study and options)";
     else if (s != study) msg = std::string(what) + " " + file + " was written by -study " + s + " (now " + study + ")";
     else {
-      const std::string d = FirstOptionDifference(o, RunOptions(), OptionRule::Resume);
+      ReadRootAttribute(file, "effective_options", &e); // absent in files of before it existed
+      const std::string d = FirstOptionDifference({o, e}, ThisRunRecord(), OptionRule::Resume);
       if (!d.empty()) msg = std::string(what) + " " + file + " was written " + d;
     }
   }
@@ -215,16 +254,17 @@ PetscErrorCode CheckOverwrite(MPI_Comm comm, const std::string &path, const char
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   if (!rank && !overwrite) {
-    std::string s, o;
+    std::string s, o, e;
     long complete = 1;
     if (ReadRootAttribute(path, "study", &s)) { // an nltopo output
       ReadRootAttribute(path, "options", &o);
+      ReadRootAttribute(path, "effective_options", &e);
       ReadRootAttribute(path, "complete", &complete);
       const std::string held = complete ? "the complete output" : "a partial output (complete = 0)";
       std::string d;
       if (s != study) d = held + " of -study " + s + " (this run: -study " + study + ")";
       else {
-        d = FirstOptionDifference(o, RunOptions(), OptionRule::Overwrite);
+        d = FirstOptionDifference({o, e}, ThisRunRecord(), OptionRule::Overwrite);
         if (!d.empty()) d = held + " of a run " + d;
       }
       if (!d.empty()) msg = "-output " + path + " holds " + d + "; choose another -output or give -output_overwrite";

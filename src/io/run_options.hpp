@@ -32,10 +32,22 @@ namespace nltopo {
 
 enum class OptionRule { Resume, Overwrite };
 
+// What a run was given (root attribute options: PetscOptionsGetAll's text)
+// and the effective values it used, defaults included (root attribute
+// effective_options, core/effective_options.hpp; "" in files written before
+// it existed).
+struct RunRecord {
+  std::string given, effective;
+};
+// This run's record so far.
+RunRecord ThisRunRecord();
+
 // The first difference (in option-name order) between the options a file was
 // written with and this run's, as "with -x 2 (now 1)", "with -x 2 (now not
-// given)" or "without -x (now 1)"; empty when they agree under the rule.
-std::string FirstOptionDifference(const std::string &file_options, const std::string &run_options, OptionRule rule);
+// given)" or "without -x (now 1)"; empty when they agree under the rule. An
+// option given on neither side compares by its effective values where both
+// records have one: "with -nnm_ts_type rk, the default then (now symsplit)".
+std::string FirstOptionDifference(const RunRecord &file, const RunRecord &run, OptionRule rule);
 
 // -sweep_resume / -cont_resume: the file must be an nltopo output of `study`
 // whose options agree with this run's under OptionRule::Resume; otherwise one

@@ -15,6 +15,8 @@ std::vector<Schema> &Registry()
                                    {{"study", A, S, "scalar", "the -study that wrote the file"},
                                     {"version", A, S, "scalar", "git describe or project version"},
                                     {"options", A, S, "scalar", "the full options database, to repeat the run"},
+                                    {"effective_options", A, S, "scalar",
+                                     "every option the run read, with the value it used (defaults included), one \"-name value\" per line"},
                                     {"wall_seconds", A, R, "scalar", "wall time of the run"},
                                     {"complete", A, I, "scalar", "1; 0 for a checkpoint, a running sweep or an interrupted run"}}},
                                   {"/cost",

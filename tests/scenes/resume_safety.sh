@@ -41,6 +41,17 @@ for np in 1 2; do
   refused "-cont_resume co$np.h5 was written without -nnm_steps_per_period (now 64)" co$np.h5 "${CO[@]}" -nnm_steps_per_period 64 -cont_resume co$np.h5 -output res$np.h5
   refused "-cont_resume co$np.h5 was written without -lattice_gamma (now 0.3)" co$np.h5 "${CO[@]}" -lattice_gamma 0.3 -cont_resume co$np.h5 -output res$np.h5
   refused "-cont_resume sw$np.h5 was written by -study sweep (now continuation)" sw$np.h5 "${CO[@]}" -cont_resume sw$np.h5 -output res$np.h5
+  # a code default changed since the file was written: its effective -nnm_ts_type rk (the default before symsplit)
+  cp co$np.h5 old$np.h5
+  $PY - old$np.h5 <<'PYEOF'
+import sys, h5py
+f = h5py.File(sys.argv[1], "r+")
+e = f.attrs["effective_options"]
+e = e.decode() if isinstance(e, bytes) else e
+assert "-nnm_ts_type symsplit\n" in e and "-lattice_k 1\n" in e, e   # defaults included
+f.attrs["effective_options"] = e.replace("-nnm_ts_type symsplit", "-nnm_ts_type rk")
+PYEOF
+  refused "-cont_resume old$np.h5 was written with -nnm_ts_type rk, the default then (now symsplit)" old$np.h5 "${CO[@]}" -cont_resume old$np.h5 -output res$np.h5
   [ ! -e res$np.h5 ] || { echo "FAILED: a refused resume wrote its -output"; exit 1; }
   # extent (-cont_energy_max, -cont_max_points) and diagnostics may change; into the same file
   ok "${CO[@]}" -lattice_cubic 5e-1 -cont_energy_max 2e-4 -cont_max_points 6 -nnm_snes_converged_reason -cont_resume co$np.h5 -output co$np.h5

@@ -4,7 +4,11 @@
 // option is refused with one line naming it; Study::Run ends an interrupted
 // Solve with its partial output and one line; the forced scene's
 // needs-linear-modes rule is what the tone burst needs.
+#include "core/effective_options.hpp"
 #include "core/option_table.hpp"
+#include "core/options_audit.hpp"
+#include "core/ts_traits.hpp"
+#include "effects/effect.hpp"
 #include "helpers.hpp"
 #include "core/errors.hpp"
 #include "core/signals.hpp"
@@ -172,4 +176,54 @@ TEST_CASE("the forced scene computes the linear modes exactly when the tone burs
     }
   PetscPopErrorHandler();
   CHECK(needed == 5); // mode and exponential at either amplitude, the site profile under the amplitude rule
+}
+
+TEST_CASE("a resume or an overwrite compares effective values: a changed code default is caught, the same value given or defaulted is not a change",
+          "[contract][serial]")
+{
+  RegisterStudyContracts(); // the compared option prefixes
+  const std::string given = "-study continuation -lattice_cells 5";
+  // written when the shooting integrator's default was rk; this run's default is symsplit
+  const RunRecord old_file{given, "-lattice_k 1\n-nnm_ts_type rk\n"}, now{given, "-lattice_k 1\n-nnm_ts_type symsplit\n"};
+  CHECK(FirstOptionDifference(old_file, now, OptionRule::Resume) == "with -nnm_ts_type rk, the default then (now symsplit)");
+  CHECK(FirstOptionDifference(old_file, now, OptionRule::Overwrite) == "with -nnm_ts_type rk, the default then (now symsplit)");
+  CHECK(FirstOptionDifference(now, now, OptionRule::Resume).empty());
+  // given on one side, the same value by default on the other: the same run
+  const RunRecord explicit_now{given + " -nnm_ts_type symsplit", "-lattice_k 1\n-nnm_ts_type symsplit\n"};
+  CHECK(FirstOptionDifference(explicit_now, now, OptionRule::Resume).empty());
+  CHECK(FirstOptionDifference(now, explicit_now, OptionRule::Resume).empty());
+  // given on one side, another default on the other: named as before
+  const RunRecord explicit_rk{given + " -nnm_ts_type rk", "-lattice_k 1\n-nnm_ts_type rk\n"};
+  CHECK(FirstOptionDifference(explicit_rk, now, OptionRule::Resume) == "with -nnm_ts_type rk (now not given)");
+  CHECK(FirstOptionDifference(now, explicit_rk, OptionRule::Resume) == "without -nnm_ts_type (now rk)");
+  // a file of before effective_options existed: only what was given is compared
+  const RunRecord legacy{given, ""};
+  CHECK(FirstOptionDifference(legacy, now, OptionRule::Resume).empty());
+  // bookkeeping is never compared, whatever its effective value
+  const RunRecord verbose0{given, "-cont_verbose 0\n"}, verbose1{given, "-cont_verbose 1\n"};
+  CHECK(FirstOptionDifference(verbose0, verbose1, OptionRule::Overwrite).empty());
+}
+
+TEST_CASE("the output records the effective value of every option the run read, defaults included", "[contract]")
+{
+  // -lattice_k's table read with its default: its note is the default, and the TS prefix declared is its code default
+  ClearEffectiveOptions();
+  LatticeParams p;
+  PCHK(LatticeModelFromOptions(PETSC_COMM_WORLD, &p));
+  PCHK(DeclareTS(PETSC_COMM_WORLD, "nnm_"));
+  const std::string text = EffectiveOptionsText();
+  INFO(text);
+  CHECK(text.find("-lattice_k 1\n") != std::string::npos);
+  CHECK(text.find(std::string("-nnm_ts_type ") + TSDefaultType("nnm_") + "\n") != std::string::npos);
+  {
+    test::ScopedOptions o{{"-lattice_k", "2.5"}};
+    PCHK(LatticeModelFromOptions(PETSC_COMM_WORLD, &p));
+  }
+  CHECK(EffectiveOptionsText().find("-lattice_k 2.5\n") != std::string::npos);
+  {
+    EffectiveOptionsPause pause; // the audit's reads of other studies' options are not this run's
+    test::ScopedOptions o{{"-lattice_k", "3"}};
+    PCHK(LatticeModelFromOptions(PETSC_COMM_WORLD, &p));
+  }
+  CHECK(EffectiveOptionsText().find("-lattice_k 2.5\n") != std::string::npos);
 }
