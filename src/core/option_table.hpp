@@ -79,6 +79,7 @@ std::string RangeMessage(const OptionInfo &row, double value);
 // A component's table, bound to its options struct S.
 template <class S> class OptionTable {
 public:
+  // prefix: "lattice_", or NULL for options without one (-output).
   OptionTable(const char *prefix, const char *title) : prefix_(prefix), title_(title) {}
   ~OptionTable() = default;
   OptionTable(const OptionTable &) = delete;
@@ -172,7 +173,8 @@ public:
   OptionTable &StringList(const char *name, std::vector<std::string> S::*m, PetscInt max_count, const char *help, OptionClass c = OptionClass::Physics)
   {
     Row r = NewRow(name, OptionType::StringList, Bounds{}, help, c);
-    for (const std::string &w : S{}.*m) r.info.default_text += (r.info.default_text.empty() ? "" : ",") + w;
+    const S defaults{}; // not S{}.*m in the loop: the temporary would end before the loop runs
+    for (const std::string &w : defaults.*m) r.info.default_text += (r.info.default_text.empty() ? "" : ",") + w;
     r.read = [m, max_count](PetscOptionItems *PetscOptionsObject, const char *opt, const char *text, S *s, PetscBool *set) -> PetscErrorCode {
       std::vector<char *> v(max_count, nullptr);
       PetscInt n = max_count;
@@ -257,7 +259,7 @@ private:
   {
     Row r;
     r.short_name = std::string("-") + name;
-    r.info.name = std::string("-") + prefix_ + name;
+    r.info.name = std::string("-") + (prefix_ ? prefix_ : "") + name;
     r.info.type = t;
     r.info.bounds = b;
     r.info.help = help;

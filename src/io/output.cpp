@@ -3,6 +3,7 @@
 #include "core/effective_options.hpp"
 #include "core/errors.hpp"
 #include "core/log.hpp"
+#include "core/option_table.hpp"
 #include "io/run_options.hpp"
 #include "io/schema.hpp"
 #include <petscviewerhdf5.h>
@@ -15,21 +16,31 @@
 
 namespace nltopo {
 
+namespace {
+struct OutputOptions {
+  std::string path; // the study's name + ".h5" when not given
+  PetscBool overwrite = PETSC_FALSE;
+};
+} // namespace
+
+// Where the output goes is never compared (io/run_options.hpp).
+static const auto &kOutputTable = DeclareOptionTable<OutputOptions>(NULL, "Output (docs/outputs.md)", [](OptionTable<OutputOptions> &t) {
+  t.String("output", &OutputOptions::path, "HDF5 file to write (default <study>.h5)", OptionClass::Bookkeeping)
+      .Default("<study>.h5")
+      .Bool("output_overwrite", &OutputOptions::overwrite,
+            "Replace -output even if it holds the output of another study or of other physics/numerics options (README.md, Signals and resume rules)",
+            OptionClass::Bookkeeping);
+});
+
 static PetscErrorCode ReadOutputOptions(MPI_Comm comm, const char *study, std::string *path, PetscBool *overwrite)
 {
-  char buf[PETSC_MAX_PATH_LEN];
+  OutputOptions o;
   PetscFunctionBeginUser;
-  *overwrite = PETSC_FALSE;
-  PetscCall(PetscSNPrintf(buf, sizeof(buf), "%s.h5", study));
-  PetscOptionsBegin(comm, NULL, "Output (docs/outputs.md)", NULL);
-  PetscCall(PetscOptionsString("-output", "HDF5 file to write (default <study>.h5)", NULL, buf, buf, sizeof(buf), NULL));
-  PetscCall(PetscOptionsBool(
-      "-output_overwrite",
-      "Replace -output even if it holds the output of another study or of other physics/numerics options (README.md, Signals and resume rules)", NULL,
-      *overwrite, overwrite, NULL));
-  PetscOptionsEnd();
-  PetscCheck(buf[0], comm, PETSC_ERR_USER, "-output must name a file");
-  *path = buf;
+  o.path = std::string(study) + ".h5";
+  PetscCall(kOutputTable.Read(comm, &o));
+  PetscCheck(!o.path.empty(), comm, PETSC_ERR_USER, "-output must name a file");
+  *path = o.path;
+  *overwrite = o.overwrite;
   PetscFunctionReturn(0);
 }
 

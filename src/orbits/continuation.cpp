@@ -1,40 +1,37 @@
 #include "orbits/continuation.hpp"
 #include "core/gather.hpp"
+#include "core/option_table.hpp"
 #include "core/signals.hpp"
 #include "diagnostics/mcr.hpp"
 #include <cmath>
 
 namespace nltopo {
 
+// The -cont_* block of one branch's continuation. How far a branch goes
+// (energy, points, frequency, MCR) is its extent: a resume may take it further.
+static const auto &kContinuationTable = DeclareOptionTable<ContinuationOptions>("cont_", "NNM continuation", [](OptionTable<ContinuationOptions> &t) {
+  using C = ContinuationOptions;
+  t.Real("energy_min", &C::energy_min, Closed(1e-12, 1e12), "Energy of the first orbit (near the linear mode)")
+      .Real("energy_max", &C::energy_max, Closed(1e-12, 1e12), "Stop when the energy exceeds this", OptionClass::Extent)
+      .Int("max_points", &C::max_points, Closed(1, 1000000), "Stop after this many orbits", OptionClass::Extent)
+      .Real("omega_max", &C::omega_max, Closed(0, 1e3), "Stop once the frequency exceeds this (0: no limit)", OptionClass::Extent)
+      .Real("mcr_min", &C::mcr_min, RightOpen(0, 1),
+            "Stop once the orbit's mode concentration ratio falls below this: the mode has spread into the lattice (0: no limit)", OptionClass::Extent)
+      .Why("an MCR lies in [1/N, 1]")
+      .Real("max_change", &C::max_change, Open(0, 1), "Largest relative change of the orbit z0 per step")
+      .Real("ds_min", &C::ds_min, Open(0, 1), "Step collapse: stop when the step falls below this times ||z0||")
+      .Int("newton_target", &C::newton_target, Closed(1, 100), "Newton iterations per point that the step size aims at")
+      .Real("interaction_corr", &C::interaction_corr, Closed(0, 1), "Flag a modal interaction when consecutive shapes correlate less than this")
+      .Why("a correlation lies in [0, 1]")
+      .Bool("verbose", &C::verbose, "Print one line per continuation point", OptionClass::Bookkeeping);
+});
+
 PetscErrorCode ContinuationOptionsFromOptions(MPI_Comm comm, ContinuationOptions *o)
 {
   PetscFunctionBeginUser;
-  PetscOptionsBegin(comm, "cont_", "NNM continuation", NULL);
-  PetscCall(PetscOptionsReal("-energy_min", "Energy of the first orbit (near the linear mode)", NULL, o->energy_min, &o->energy_min, NULL));
-  PetscCall(PetscOptionsReal("-energy_max", "Stop when the energy exceeds this", NULL, o->energy_max, &o->energy_max, NULL));
-  PetscCall(PetscOptionsInt("-max_points", "Stop after this many orbits", NULL, o->max_points, &o->max_points, NULL));
-  PetscCall(PetscOptionsReal("-omega_max", "Stop once the frequency exceeds this (0: no limit)", NULL, o->omega_max, &o->omega_max, NULL));
-  PetscCall(PetscOptionsReal("-mcr_min", "Stop once the orbit's mode concentration ratio falls below this: the mode has spread into the lattice (0: no limit)",
-                             NULL, o->mcr_min, &o->mcr_min, NULL));
-  PetscCall(PetscOptionsReal("-max_change", "Largest relative change of the orbit z0 per step", NULL, o->max_change, &o->max_change, NULL));
-  PetscCall(PetscOptionsReal("-ds_min", "Step collapse: stop when the step falls below this times ||z0||", NULL, o->ds_min, &o->ds_min, NULL));
-  PetscCall(PetscOptionsInt("-newton_target", "Newton iterations per point that the step size aims at", NULL, o->newton_target, &o->newton_target, NULL));
-  PetscCall(PetscOptionsReal("-interaction_corr", "Flag a modal interaction when consecutive shapes correlate less than this", NULL, o->interaction_corr,
-                             &o->interaction_corr, NULL));
-  PetscCall(PetscOptionsBool("-verbose", "Print one line per continuation point", NULL, o->verbose, &o->verbose, NULL));
-  PetscOptionsEnd();
-  PetscCheck(o->energy_min >= 1e-12 && o->energy_max <= 1e12 && o->energy_min < o->energy_max, comm, PETSC_ERR_USER,
+  PetscCall(kContinuationTable.Read(comm, o));
+  PetscCheck(o->energy_min < o->energy_max, comm, PETSC_ERR_USER,
              "-cont_energy_min and -cont_energy_max must satisfy 1e-12 <= min < max <= 1e12, got %g and %g", (double)o->energy_min, (double)o->energy_max);
-  PetscCheck(o->max_points >= 1 && o->max_points <= 1000000, comm, PETSC_ERR_USER, "-cont_max_points must lie in [1, 1e6], got %" PetscInt_FMT, o->max_points);
-  PetscCheck(o->omega_max >= 0 && o->omega_max <= 1e3, comm, PETSC_ERR_USER, "-cont_omega_max must lie in [0, 1e3] (0: no limit), got %g",
-             (double)o->omega_max);
-  PetscCheck(o->ds_min > 0 && o->ds_min < 1, comm, PETSC_ERR_USER, "-cont_ds_min must lie in (0, 1), got %g", (double)o->ds_min);
-  PetscCheck(o->newton_target >= 1 && o->newton_target <= 100, comm, PETSC_ERR_USER, "-cont_newton_target must lie in [1, 100], got %" PetscInt_FMT,
-             o->newton_target);
-  PetscCheck(o->interaction_corr >= 0 && o->interaction_corr <= 1, comm, PETSC_ERR_USER, "-cont_interaction_corr must lie in [0, 1], got %g",
-             (double)o->interaction_corr);
-  PetscCheck(o->max_change > 0 && o->max_change < 1, comm, PETSC_ERR_USER, "-cont_max_change must lie in (0, 1), got %g", (double)o->max_change);
-  PetscCheck(o->mcr_min >= 0 && o->mcr_min < 1, comm, PETSC_ERR_USER, "-cont_mcr_min must lie in [0, 1), got %g", (double)o->mcr_min);
   PetscFunctionReturn(0);
 }
 

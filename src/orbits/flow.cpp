@@ -1,6 +1,7 @@
 #include "orbits/flow.hpp"
 #include "core/cost.hpp"
 #include "core/log.hpp"
+#include "core/option_table.hpp"
 #include "core/ts_traits.hpp"
 #include "orbits/period_ts.hpp"
 #include "timeint/ts_symsplit.hpp"
@@ -9,21 +10,21 @@
 
 namespace nltopo {
 
+static const char *const kRouteNames[] = {"variational", "tsforward"};
+
+// The flow's -nnm_* options; the TS itself reads -nnm_ts_* (PETSc's, with nltopo's default type, core/ts_traits.hpp).
+static const auto &kFlowTable = DeclareOptionTable<FlowOptions>(
+    "nnm_", "Periodic-orbit flow (TS options: -nnm_ts_*; -nnm_ts_type symsplit by default, scheme bm4)", [](OptionTable<FlowOptions> &t) {
+      t.Int("steps_per_period", &FlowOptions::steps, Closed(8, 1000000), "Fixed steps per period of the shooting integration (any -nnm_ts_type; default 128)")
+          .Enum(
+              "monodromy", &FlowOptions::route, kRouteNames, 2,
+              "Monodromy: variational (state and variational equations in one structured TS) or tsforward (TSForwardSetSensitivities, needs -nnm_ts_type rk)");
+    });
+
 PetscErrorCode FlowOptionsFromOptions(MPI_Comm comm, FlowOptions *o)
 {
   PetscFunctionBeginUser;
-  PetscOptionsBegin(comm, "nnm_", "Periodic-orbit flow (TS options: -nnm_ts_*; -nnm_ts_type symsplit by default, scheme bm4)", NULL);
-  static const char *const routes[] = {"variational", "tsforward"};
-  PetscInt r = static_cast<PetscInt>(o->route);
-  PetscCall(PetscOptionsInt("-steps_per_period", "Fixed steps per period of the shooting integration (any -nnm_ts_type; default 128)", NULL, o->steps,
-                            &o->steps, NULL));
-  PetscCall(PetscOptionsEList(
-      "-monodromy",
-      "Monodromy: variational (state and variational equations in one structured TS) or tsforward (TSForwardSetSensitivities, needs -nnm_ts_type rk)", NULL,
-      routes, 2, routes[r], &r, NULL));
-  o->route = static_cast<MonodromyRoute>(r);
-  PetscOptionsEnd();
-  PetscCheck(o->steps >= 8 && o->steps <= 1000000, comm, PETSC_ERR_USER, "-nnm_steps_per_period must lie in [8, 1e6], got %" PetscInt_FMT, o->steps);
+  PetscCall(kFlowTable.Read(comm, o));
   PetscFunctionReturn(0);
 }
 

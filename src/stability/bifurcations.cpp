@@ -1,4 +1,5 @@
 #include "stability/bifurcations.hpp"
+#include "core/option_table.hpp"
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -248,42 +249,36 @@ bool ResonanceDriven(PetscInt q, PetscReal nu_re, PetscReal nu_im)
 
 EventKind KreinCollisionOutcome(PetscInt k1, PetscInt k2) { return k1 * k2 < 0 ? EventKind::HamiltonianHopf : EventKind::KreinCollision; }
 
+// -cont_bifurcations and -cont_bif_*: the events located along each branch.
+static const auto &kBifurcationTable =
+    DeclareOptionTable<BifurcationOptions>("cont_", "Bifurcations along the branches", [](OptionTable<BifurcationOptions> &t) {
+      using B = BifurcationOptions;
+      t.Bool("bifurcations", &B::enabled,
+             "Detect and locate energy folds, branch points (+1), period doublings (-1), Krein collisions and internal resonances along each "
+             "branch (needs -floquet without -floquet_mf; on with it)")
+          .Default("on with -floquet without -floquet_mf")
+          .Real("bif_tol", &B::tol, Closed(1e-14, 1e-2), "Located event: the final bracket spans at most this in omega and this times E in energy")
+          .Int("bif_max_probes", &B::max_probes, Closed(1, 1000), "Orbits solved at most to locate one event")
+          .Bool("bif_bulk", &B::bulk,
+                "Also locate the events of bulk eigenvectors (B-B: collisions among band pairs, which shrink as the lattice grows); off: "
+                "only those with an edge part (B-E, E-E) and folds")
+          .Bool("bif_passes", &B::passes,
+                "Also locate Krein collisions of equal signature, where two pairs on the circle meet and pass (kind 4; tracked by their "
+                "eigenvectors)")
+          .Int("bif_resonance_order", &B::resonance_order, Closed(0, 12),
+               "Locate internal resonances: crossings of exp(2 pi i p/q) for 3 <= q <= this that the orbit's harmonics drive (kind 6); "
+               "below 3: none")
+          .Real("bif_angle_tol", &B::angle_tol, Open(0, 1), "Unstable multipliers of two orbits within this angle (rad) are the same one");
+    });
+
 PetscErrorCode BifurcationOptionsFromOptions(MPI_Comm comm, PetscBool dense_floquet, BifurcationOptions *o)
 {
-  PetscBool set;
+  std::vector<PetscBool> set;
   PetscFunctionBeginUser;
   o->enabled = dense_floquet;
-  PetscOptionsBegin(comm, "cont_", "Bifurcations along the branches", NULL);
-  PetscCall(PetscOptionsBool("-bifurcations",
-                             "Detect and locate energy folds, branch points (+1), period doublings (-1), Krein collisions and internal resonances along each "
-                             "branch (needs -floquet without -floquet_mf; on with it)",
-                             NULL, o->enabled, &o->enabled, &set));
-  PetscCall(
-      PetscOptionsReal("-bif_tol", "Located event: the final bracket spans at most this in omega and this times E in energy", NULL, o->tol, &o->tol, NULL));
-  PetscCall(PetscOptionsInt("-bif_max_probes", "Orbits solved at most to locate one event", NULL, o->max_probes, &o->max_probes, NULL));
-  PetscCall(PetscOptionsBool("-bif_bulk",
-                             "Also locate the events of bulk eigenvectors (B-B: collisions among band pairs, which shrink as the lattice grows); off: "
-                             "only those with an edge part (B-E, E-E) and folds",
-                             NULL, o->bulk, &o->bulk, NULL));
-  PetscCall(PetscOptionsBool("-bif_passes",
-                             "Also locate Krein collisions of equal signature, where two pairs on the circle meet and pass (kind 4; tracked by their "
-                             "eigenvectors)",
-                             NULL, o->passes, &o->passes, NULL));
-  PetscCall(PetscOptionsInt("-bif_resonance_order",
-                            "Locate internal resonances: crossings of exp(2 pi i p/q) for 3 <= q <= this that the orbit's harmonics drive (kind 6); "
-                            "below 3: none",
-                            NULL, o->resonance_order, &o->resonance_order, NULL));
-  PetscCall(PetscOptionsReal("-bif_angle_tol", "Unstable multipliers of two orbits within this angle (rad) are the same one", NULL, o->angle_tol, &o->angle_tol,
-                             NULL));
-  PetscOptionsEnd();
-  PetscCheck(!(set && o->enabled && !dense_floquet), comm, PETSC_ERR_USER,
+  PetscCall(kBifurcationTable.Read(comm, o, &set));
+  PetscCheck(!(kBifurcationTable.Given(set, "bifurcations") && o->enabled && !dense_floquet), comm, PETSC_ERR_USER,
              "-cont_bifurcations needs -floquet without -floquet_mf (the events are read from all 2N Floquet multipliers of every orbit)");
-  PetscCheck(o->tol >= 1e-14 && o->tol <= 1e-2, comm, PETSC_ERR_USER, "-cont_bif_tol must lie in [1e-14, 1e-2], got %g", (double)o->tol);
-  PetscCheck(o->max_probes >= 1 && o->max_probes <= 1000, comm, PETSC_ERR_USER, "-cont_bif_max_probes must lie in [1, 1000], got %" PetscInt_FMT,
-             o->max_probes);
-  PetscCheck(o->resonance_order >= 0 && o->resonance_order <= 12, comm, PETSC_ERR_USER, "-cont_bif_resonance_order must lie in [0, 12], got %" PetscInt_FMT,
-             o->resonance_order);
-  PetscCheck(o->angle_tol > 0 && o->angle_tol < 1, comm, PETSC_ERR_USER, "-cont_bif_angle_tol must lie in (0, 1), got %g", (double)o->angle_tol);
   PetscFunctionReturn(0);
 }
 

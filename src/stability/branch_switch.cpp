@@ -1,5 +1,6 @@
 #include "stability/branch_switch.hpp"
 #include "core/gather.hpp"
+#include "core/option_table.hpp"
 #include <cctype>
 #include <cmath>
 #include <algorithm>
@@ -136,29 +137,32 @@ PetscErrorCode CheckSwitchParents(MPI_Comm comm, const std::vector<SwitchSpec> &
   PetscFunctionReturn(0);
 }
 
+namespace {
+struct SwitchOptions {
+  std::vector<std::string> items; // -cont_switch, parsed by ParseSwitchSpecs
+  PetscReal step = 0.02;
+};
+} // namespace
+
+static const auto &kSwitchTable = DeclareOptionTable<SwitchOptions>("cont_", "Branch switching", [](OptionTable<SwitchOptions> &t) {
+  t.StringList("switch", &SwitchOptions::items, 16,
+               "Follow the families born at these located branch points (on both sides of the critical eigenvector) or period "
+               "doublings (the doubled-period family): <branch>:<event index> (the event list of -cont_bifurcations) or "
+               "<branch>:<kind>@<omega>, the event of that kind nearest omega (kind bp or branch_point, pd or period_doubling)")
+      .Default("none")
+      .Real("switch_step", &SwitchOptions::step, Open(0, 1),
+            "The first orbit of a switched family: this times |z*| along the critical eigenvector from the branch point");
+});
+
 PetscErrorCode SwitchOptionsFromOptions(MPI_Comm comm, bool check, const std::function<bool(const std::string &)> &among, std::vector<SwitchSpec> *specs,
                                         PetscReal *step)
 {
-  char *list[16] = {};
-  PetscInt n = 16;
-  PetscBool set;
-  std::vector<std::string> items;
+  SwitchOptions o;
   PetscFunctionBeginUser;
-  PetscOptionsBegin(comm, "cont_", "Branch switching", NULL);
-  PetscCall(PetscOptionsStringArray("-switch",
-                                    "Follow the families born at these located branch points (on both sides of the critical eigenvector) or period "
-                                    "doublings (the doubled-period family): <branch>:<event index> (the event list of -cont_bifurcations) or "
-                                    "<branch>:<kind>@<omega>, the event of that kind nearest omega (kind bp or branch_point, pd or period_doubling)",
-                                    NULL, list, &n, &set));
-  PetscCall(PetscOptionsReal("-switch_step", "The first orbit of a switched family: this times |z*| along the critical eigenvector from the branch point", NULL,
-                             *step, step, NULL));
-  PetscOptionsEnd();
-  PetscCheck(*step > 0 && *step < 1, comm, PETSC_ERR_USER, "-cont_switch_step must lie in (0, 1), got %g", (double)*step);
-  for (PetscInt i = 0; set && i < n; i++) {
-    items.push_back(list[i]);
-    PetscCall(PetscFree(list[i]));
-  }
-  PetscCall(ParseSwitchSpecs(comm, items, specs));
+  o.step = *step;
+  PetscCall(kSwitchTable.Read(comm, &o));
+  *step = o.step;
+  PetscCall(ParseSwitchSpecs(comm, o.items, specs));
   if (check) PetscCall(CheckSwitchParents(comm, *specs, among));
   PetscFunctionReturn(0);
 }

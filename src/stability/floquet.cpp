@@ -1,6 +1,7 @@
 #include "stability/floquet.hpp"
 #include "core/gather.hpp"
 #include "core/log.hpp"
+#include "core/option_table.hpp"
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -8,22 +9,20 @@
 
 namespace nltopo {
 
+static const auto &kFloquetTable =
+    DeclareOptionTable<FloquetOptions>("floquet_", "Floquet multipliers (eigensolver options: -floquet_eps_*)", [](OptionTable<FloquetOptions> &t) {
+      t.Real("tol", &FloquetOptions::tol, Open(0, 1), "A multiplier with |mu| > 1 + tol makes the orbit unstable")
+          .Real("krein_tol", &FloquetOptions::krein_tol, Open(0, 1), "Krein signature 0 when |-i v^H J v| / |v|^2 is below this")
+          .Int("edge_sites", &FloquetOptions::edge_sites, Closed(0, PETSC_MAX_INT), "Sites on each side of the interface cell that count as the edge region")
+          .Real("edge_weight", &FloquetOptions::edge_weight, Open(0.5, 1),
+                "Unstable eigenvector: edge (E-E) above this share of its displacement norm in the edge region, bulk (B-B) below 1 minus it, B-E between")
+          .Why("edge above it and bulk below 1 minus it must not overlap");
+    });
+
 PetscErrorCode FloquetOptionsFromOptions(MPI_Comm comm, FloquetOptions *o)
 {
   PetscFunctionBeginUser;
-  PetscOptionsBegin(comm, "floquet_", "Floquet multipliers (eigensolver options: -floquet_eps_*)", NULL);
-  PetscCall(PetscOptionsReal("-tol", "A multiplier with |mu| > 1 + tol makes the orbit unstable", NULL, o->tol, &o->tol, NULL));
-  PetscCall(PetscOptionsReal("-krein_tol", "Krein signature 0 when |-i v^H J v| / |v|^2 is below this", NULL, o->krein_tol, &o->krein_tol, NULL));
-  PetscCall(
-      PetscOptionsInt("-edge_sites", "Sites on each side of the interface cell that count as the edge region", NULL, o->edge_sites, &o->edge_sites, NULL));
-  PetscCall(PetscOptionsReal(
-      "-edge_weight", "Unstable eigenvector: edge (E-E) above this share of its displacement norm in the edge region, bulk (B-B) below 1 minus it, B-E between",
-      NULL, o->edge_weight, &o->edge_weight, NULL));
-  PetscOptionsEnd();
-  PetscCheck(o->tol > 0 && o->tol < 1, comm, PETSC_ERR_USER, "-floquet_tol must lie in (0, 1), got %g", (double)o->tol);
-  PetscCheck(o->krein_tol > 0 && o->krein_tol < 1, comm, PETSC_ERR_USER, "-floquet_krein_tol must lie in (0, 1), got %g", (double)o->krein_tol);
-  PetscCheck(o->edge_sites >= 0, comm, PETSC_ERR_USER, "-floquet_edge_sites must be >= 0, got %" PetscInt_FMT, o->edge_sites);
-  PetscCheck(o->edge_weight > 0.5 && o->edge_weight < 1, comm, PETSC_ERR_USER, "-floquet_edge_weight must lie in (0.5, 1), got %g", (double)o->edge_weight);
+  PetscCall(kFloquetTable.Read(comm, o));
   PetscFunctionReturn(0);
 }
 

@@ -1,6 +1,7 @@
 #include "stability/floquet_mf.hpp"
 #include "core/errors.hpp"
 #include "core/memory_guard.hpp"
+#include "core/option_table.hpp"
 #include "core/log.hpp"
 #include <algorithm>
 #include <cmath>
@@ -21,31 +22,25 @@ static PetscErrorCode ShellMult(Mat M, Vec x, Vec y)
 
 static const char *const kWhichNames[] = {"largest", "critical"};
 
+static const auto &kFloquetMfTable = DeclareOptionTable<FloquetMfOptions>(
+    "floquet_mf_", "Matrix-free Floquet multipliers (eigensolver options: -floquet_mf_eps_*)", [](OptionTable<FloquetMfOptions> &t) {
+      t.Int("nev", &FloquetMfOptions::nev, Closed(1, 1000), "Leading multiplier pairs wanted per orbit (critical: one per distinct b)")
+          .Enum("which", &FloquetMfOptions::which, kWhichNames, 2,
+                "largest: largest modulus (Krylov-Schur on M); critical: nearest the critical points +-1 or off the unit circle "
+                "(Krylov-Schur on (M + M^-1)/2)")
+          .Real("circle_tol", &FloquetMfOptions::circle_tol, Open(0, 1),
+                "critical: b = (mu + 1/mu)/2 within this of [-1, 1] is on the unit circle (|mu| - 1 is resolved down to sqrt(2 circle_tol))")
+          .Int("dense_max", &FloquetMfOptions::dense_max, Closed(0, 20000),
+               "Orbits with 2N at most this take the dense monodromy (all 2N multipliers: the only route that can call an orbit stable; "
+               "its cost grows as (2N)^3); 0: always matrix-free")
+          .Bool("deflate", &FloquetMfOptions::deflate,
+                "Deflate the trivial pair mu = 1 (span of f(z0) and the family tangent) so that the nev multipliers are nontrivial");
+    });
+
 PetscErrorCode FloquetMfOptionsFromOptions(MPI_Comm comm, FloquetMfOptions *o)
 {
-  PetscInt w = static_cast<PetscInt>(o->which);
   PetscFunctionBeginUser;
-  PetscOptionsBegin(comm, "floquet_mf_", "Matrix-free Floquet multipliers (eigensolver options: -floquet_mf_eps_*)", NULL);
-  PetscCall(PetscOptionsInt("-nev", "Leading multiplier pairs wanted per orbit (critical: one per distinct b)", NULL, o->nev, &o->nev, NULL));
-  PetscCall(PetscOptionsEList("-which",
-                              "largest: largest modulus (Krylov-Schur on M); critical: nearest the critical points +-1 or off the unit circle "
-                              "(Krylov-Schur on (M + M^-1)/2)",
-                              NULL, kWhichNames, 2, kWhichNames[w], &w, NULL));
-  PetscCall(PetscOptionsReal("-circle_tol",
-                             "critical: b = (mu + 1/mu)/2 within this of [-1, 1] is on the unit circle (|mu| - 1 is resolved down to sqrt(2 circle_tol))", NULL,
-                             o->circle_tol, &o->circle_tol, NULL));
-  PetscCall(PetscOptionsInt("-dense_max",
-                            "Orbits with 2N at most this take the dense monodromy (all 2N multipliers: the only route that can call an orbit stable; "
-                            "its cost grows as (2N)^3); 0: always matrix-free",
-                            NULL, o->dense_max, &o->dense_max, NULL));
-  PetscCall(PetscOptionsBool("-deflate", "Deflate the trivial pair mu = 1 (span of f(z0) and the family tangent) so that the nev multipliers are nontrivial",
-                             NULL, o->deflate, &o->deflate, NULL));
-  PetscOptionsEnd();
-  PetscCheck(o->circle_tol > 0 && o->circle_tol < 1, comm, PETSC_ERR_USER, "-floquet_mf_circle_tol must lie in (0, 1), got %g", (double)o->circle_tol);
-  PetscCheck(o->nev >= 1 && o->nev <= 1000, comm, PETSC_ERR_USER, "-floquet_mf_nev must lie in [1, 1000], got %" PetscInt_FMT, o->nev);
-  PetscCheck(o->dense_max >= 0 && o->dense_max <= 20000, comm, PETSC_ERR_USER, "-floquet_mf_dense_max must lie in [0, 20000], got %" PetscInt_FMT,
-             o->dense_max);
-  o->which = static_cast<FloquetMfWhich>(w);
+  PetscCall(kFloquetMfTable.Read(comm, o));
   PetscFunctionReturn(0);
 }
 

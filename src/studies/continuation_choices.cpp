@@ -1,4 +1,5 @@
 #include "studies/continuation_choices.hpp"
+#include "core/option_table.hpp"
 #include <cstdlib>
 #include <cstring>
 
@@ -37,37 +38,60 @@ PetscErrorCode BranchStart(const Lattice &lat, const LinearModes &modes, const c
   PetscFunctionReturn(0);
 }
 
+namespace {
+struct FloquetChoice {
+  PetscBool floquet = PETSC_FALSE, floquet_mf = PETSC_FALSE;
+};
+struct BranchChoices {
+  std::vector<std::string> branch = {"insulated"};
+  PetscReal checkpoint_seconds = 0;
+  std::string resume; // an earlier -output
+};
+} // namespace
+
+static const auto &kFloquetChoiceTable = DeclareOptionTable<FloquetChoice>(NULL, "Floquet stability along the branches", [](OptionTable<FloquetChoice> &t) {
+  t.Bool("floquet", &FloquetChoice::floquet, "Add Floquet multipliers, Krein signatures and stability to every orbit (-floquet_* options)")
+      .Bool("floquet_mf", &FloquetChoice::floquet_mf,
+            "With -floquet: only the -floquet_mf_nev leading multiplier pairs (long lattices): from the dense monodromy up to 2N = "
+            "-floquet_mf_dense_max, matrix-free beyond (no stable verdict there)");
+});
+
+// Which branches a run follows is its extent (a resume may add branches); checkpoints and the resume file are bookkeeping.
+static const auto &kBranchChoiceTable = DeclareOptionTable<BranchChoices>("cont_", "NNM branches", [](OptionTable<BranchChoices> &t) {
+  t.StringList("branch", &BranchChoices::branch, 16, "Comma-separated branches: insulated, interface, acoustic_top, optical_bottom, optical_top, mode<k> or k",
+               OptionClass::Extent)
+      .Real("checkpoint_seconds", &BranchChoices::checkpoint_seconds, Closed(0, 1e7),
+            "Write -output with the points so far (root attribute complete = 0) at most this often, so that a killed run keeps them "
+            "(0: only at the end)",
+            OptionClass::Bookkeeping)
+      .String("resume", &BranchChoices::resume,
+              "Continue the branches of this earlier -output (complete or a checkpoint) from their last points, keeping their "
+              "points; branches it lacks start afresh",
+              OptionClass::Bookkeeping)
+      .Default("none");
+});
+
 PetscErrorCode ReadStudyChoices(MPI_Comm comm, StudyChoices *c)
 {
-  PetscBool set;
+  FloquetChoice f;
+  BranchChoices b;
+  std::vector<PetscBool> set;
   PetscFunctionBeginUser;
-  PetscOptionsBegin(comm, NULL, "Floquet stability along the branches", NULL);
-  PetscCall(PetscOptionsBool("-floquet", "Add Floquet multipliers, Krein signatures and stability to every orbit (-floquet_* options)", NULL, c->floquet,
-                             &c->floquet, NULL));
-  PetscCall(PetscOptionsBool("-floquet_mf",
-                             "With -floquet: only the -floquet_mf_nev leading multiplier pairs (long lattices): from the dense monodromy up to 2N = "
-                             "-floquet_mf_dense_max, matrix-free beyond (no stable verdict there)",
-                             NULL, c->floquet_mf, &c->floquet_mf, NULL));
-  PetscOptionsEnd();
-  PetscOptionsBegin(comm, "cont_", "NNM branches", NULL);
-  PetscCall(PetscOptionsStringArray("-branch", "Comma-separated branches: insulated, interface, acoustic_top, optical_bottom, optical_top, mode<k> or k", NULL,
-                                    c->names, &c->nb, &set));
-  PetscCall(PetscOptionsReal("-checkpoint_seconds",
-                             "Write -output with the points so far (root attribute complete = 0) at most this often, so that a killed run keeps them "
-                             "(0: only at the end)",
-                             NULL, c->checkpoint_seconds, &c->checkpoint_seconds, NULL));
-  PetscCall(PetscOptionsString("-resume",
-                               "Continue the branches of this earlier -output (complete or a checkpoint) from their last points, keeping their "
-                               "points; branches it lacks start afresh",
-                               NULL, c->resume_file, c->resume_file, sizeof(c->resume_file), &c->resume));
-  PetscOptionsEnd();
-  PetscCheck(c->checkpoint_seconds >= 0 && c->checkpoint_seconds <= 1e7, comm, PETSC_ERR_USER, "-cont_checkpoint_seconds must lie in [0, 1e7], got %g",
-             (double)c->checkpoint_seconds);
-  if (!set) {
-    PetscCall(PetscStrallocpy("insulated", &c->names[0]));
-    c->nb = 1;
-  }
-  PetscCheck(c->nb >= 1, comm, PETSC_ERR_USER, "-cont_branch needs at least one branch name");
+  f.floquet = c->floquet;
+  f.floquet_mf = c->floquet_mf;
+  PetscCall(kFloquetChoiceTable.Read(comm, &f));
+  c->floquet = f.floquet;
+  c->floquet_mf = f.floquet_mf;
+  b.checkpoint_seconds = c->checkpoint_seconds;
+  b.resume = c->resume_file;
+  PetscCall(kBranchChoiceTable.Read(comm, &b, &set));
+  PetscCheck(!b.branch.empty(), comm, PETSC_ERR_USER, "-cont_branch needs at least one branch name");
+  c->checkpoint_seconds = b.checkpoint_seconds;
+  for (char *&n : c->names) PetscCall(PetscFree(n));
+  c->nb = (PetscInt)b.branch.size();
+  for (PetscInt k = 0; k < c->nb; k++) PetscCall(PetscStrallocpy(b.branch[k].c_str(), &c->names[k]));
+  c->resume = (PetscBool)kBranchChoiceTable.Given(set, "resume");
+  PetscCall(PetscStrncpy(c->resume_file, b.resume.c_str(), sizeof(c->resume_file)));
   PetscFunctionReturn(0);
 }
 

@@ -2,6 +2,7 @@
 #include "core/cost.hpp"
 #include "core/errors.hpp"
 #include "core/log.hpp"
+#include "core/option_table.hpp"
 #include "core/signals.hpp"
 #include "core/ts_traits.hpp"
 #include "diagnostics/mcr.hpp"
@@ -15,23 +16,22 @@
 
 namespace nltopo {
 
+// The -sim_* block; the TS itself reads -sim_ts_*.
+static const auto &kSimulationTable =
+    DeclareOptionTable<SimulationOptions>("sim_", "Forced simulation (TS options: -sim_ts_*)", [](OptionTable<SimulationOptions> &t) {
+      t.Real("t_final", &SimulationOptions::t_final, Closed(1e-6, 1e9), "Simulated time")
+          .Real("sample_dt", &SimulationOptions::sample_dt, Closed(0, 1e9), "Spacing of stored samples of u and E (0: none)", OptionClass::Extent)
+          .Real("progress", &SimulationOptions::progress, Closed(0, 1e7), "Print a progress line every this many wall seconds (0: never)",
+                OptionClass::Bookkeeping)
+          .Real("dt_quartic_energy", &SimulationOptions::dt_quartic_energy, Closed(0, 1e12),
+                "Fixed-step types (symsplit, basicsymplectic): at a run energy E above this, -sim_ts_dt is scaled by (this / E)^(1/4), "
+                "as the hardened bonds' frequencies grow (E: E* of a forced run, else the initial energy; 0: off)");
+    });
+
 PetscErrorCode SimulationOptionsFromOptions(MPI_Comm comm, SimulationOptions *o)
 {
   PetscFunctionBeginUser;
-  PetscOptionsBegin(comm, "sim_", "Forced simulation (TS options: -sim_ts_*)", NULL);
-  PetscCall(PetscOptionsReal("-t_final", "Simulated time", NULL, o->t_final, &o->t_final, NULL));
-  PetscCall(PetscOptionsReal("-sample_dt", "Spacing of stored samples of u and E (0: none)", NULL, o->sample_dt, &o->sample_dt, NULL));
-  PetscCall(PetscOptionsReal("-progress", "Print a progress line every this many wall seconds (0: never)", NULL, o->progress, &o->progress, NULL));
-  PetscCall(PetscOptionsReal("-dt_quartic_energy",
-                             "Fixed-step types (symsplit, basicsymplectic): at a run energy E above this, -sim_ts_dt is scaled by (this / E)^(1/4), "
-                             "as the hardened bonds' frequencies grow (E: E* of a forced run, else the initial energy; 0: off)",
-                             NULL, o->dt_quartic_energy, &o->dt_quartic_energy, NULL));
-  PetscOptionsEnd();
-  PetscCheck(o->dt_quartic_energy >= 0 && o->dt_quartic_energy <= 1e12, comm, PETSC_ERR_USER, "-sim_dt_quartic_energy must lie in [0, 1e12], got %g",
-             (double)o->dt_quartic_energy);
-  PetscCheck(o->t_final >= 1e-6 && o->t_final <= 1e9, comm, PETSC_ERR_USER, "-sim_t_final must lie in [1e-6, 1e9], got %g", (double)o->t_final);
-  PetscCheck(o->progress >= 0 && o->progress <= 1e7, comm, PETSC_ERR_USER, "-sim_progress must lie in [0, 1e7] seconds, got %g", (double)o->progress);
-  PetscCheck(o->sample_dt >= 0 && o->sample_dt <= 1e9, comm, PETSC_ERR_USER, "-sim_sample_dt must lie in [0, 1e9], got %g", (double)o->sample_dt);
+  PetscCall(kSimulationTable.Read(comm, o));
   // every sample is kept in memory (E, and u in the simulate study)
   PetscCheck(o->sample_dt == 0 || o->t_final / o->sample_dt <= 1e7, comm, PETSC_ERR_USER,
              "-sim_t_final / -sim_sample_dt must be at most 1e7 samples, got %g / %g", (double)o->t_final, (double)o->sample_dt);
