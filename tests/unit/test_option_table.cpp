@@ -133,7 +133,7 @@ TEST_CASE("option tables: a row's class is how a resume and an overwrite compare
       INFO(r.name << " (" << OptionClassName(r.cls) << ")");
       // a resume compares -floquet* options only when it computes the multipliers
       const std::string floquet = r.name.compare(0, 8, "-floquet") == 0 && r.name != "-floquet" ? " -floquet 1" : "";
-      const std::string file = r.name + " 0" + floquet, run = r.name + " 1" + floquet;
+      const RunRecord file{r.name + " 0" + floquet, ""}, run{r.name + " 1" + floquet, ""};
       CHECK(FirstOptionDifference(file, run, OptionRule::Resume).empty() == (r.cls != OptionClass::Physics));
       CHECK(FirstOptionDifference(file, run, OptionRule::Overwrite).empty() == (r.cls == OptionClass::Bookkeeping));
       compared++;
