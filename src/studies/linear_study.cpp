@@ -8,6 +8,7 @@
 #include "core/memory_guard.hpp"
 #include "effects/effect.hpp"
 #include "core/log.hpp"
+#include "core/option_table.hpp"
 #include "core/options_audit.hpp"
 #include "io/output.hpp"
 #include "io/schema.hpp"
@@ -15,7 +16,6 @@
 #include "studies/study.hpp"
 #include <petscviewerhdf5.h>
 #include <cmath>
-#include <cstring>
 
 namespace nltopo {
 
@@ -23,25 +23,31 @@ namespace {
 
 PetscReal OmegaOf(const LinearModes &m, PetscInt j) { return j >= 0 ? m.Omega()[j] : NAN; }
 
-const PetscInt kBlochDefaultNq = 201; // -linear_nq
-
 // The linear study's own block: -linear_nq and -linear_gamma_list (off unless given).
+struct LinearStudyOptions {
+  PetscInt nq = 201;
+  std::string gamma_list; // min:max:n, "" = off
+};
+
+const auto &kLinearStudyTable = DeclareOptionTable<LinearStudyOptions>("linear_", "Linear study", [](OptionTable<LinearStudyOptions> &t) {
+  t.Int("nq", &LinearStudyOptions::nq, Closed(4, 1000000), "Wavenumbers for the Bloch bands; the Zak loop uses 2 nq points")
+      .String("gamma_list", &LinearStudyOptions::gamma_list,
+              "Topological transition (paper Fig. 2a): min:max:n values of gamma in [-1, 1], the finite spectrum and the Zak phases at each "
+              "-> /linear/transition (default: none, off)")
+      .Default("none (off)");
+});
+
 PetscErrorCode LinearStudyOptionsFromOptions(MPI_Comm comm, PetscInt *nq, GammaList *gl)
 {
-  char list[256] = "";
-  PetscBool set = PETSC_FALSE;
+  LinearStudyOptions o;
+  std::vector<PetscBool> set;
   PetscFunctionBeginUser;
-  PetscOptionsBegin(comm, "linear_", "Linear study", NULL);
-  PetscCall(PetscOptionsInt("-nq", "Wavenumbers for the Bloch bands; the Zak loop uses 2 nq points", NULL, *nq, nq, NULL));
-  PetscCall(PetscOptionsString("-gamma_list",
-                               "Topological transition (paper Fig. 2a): min:max:n values of gamma in [-1, 1], the finite spectrum and the Zak phases at each "
-                               "-> /linear/transition (default: none, off)",
-                               NULL, list, list, sizeof(list), &set));
-  PetscOptionsEnd();
-  PetscCheck(*nq >= 4 && *nq <= 1000000, comm, PETSC_ERR_USER, "-linear_nq must lie in [4, 1e6], got %" PetscInt_FMT, *nq);
-  PetscCheck(std::strlen(list) < sizeof(list) - 1, comm, PETSC_ERR_USER, "-linear_gamma_list %s...: too long, expected min:max:n", list);
+  PetscCall(kLinearStudyTable.Read(comm, &o, &set));
+  // the value is at most 255 characters, as it always was
+  PetscCheck(o.gamma_list.size() < 255, comm, PETSC_ERR_USER, "-linear_gamma_list %.255s...: too long, expected min:max:n", o.gamma_list.c_str());
+  *nq = o.nq;
   *gl = GammaList();
-  if (set) PetscCall(ParseGammaList(comm, list, gl));
+  if (kLinearStudyTable.Given(set, "gamma_list")) PetscCall(ParseGammaList(comm, o.gamma_list, gl));
   PetscFunctionReturn(0);
 }
 
@@ -158,7 +164,7 @@ protected:
 private:
   LatticeParams lp_;
   LinearModesOptions mo_;
-  PetscInt nq_ = kBlochDefaultNq;
+  PetscInt nq_ = LinearStudyOptions().nq;
   GammaList gl_; // -linear_gamma_list (n = 0: off)
   TransitionResult tr_;
   Lattice lat_;

@@ -8,6 +8,7 @@
 #include "bands/linear_modes.hpp"
 #include "core/errors.hpp"
 #include "core/log.hpp"
+#include "core/option_table.hpp"
 #include "core/options_audit.hpp"
 #include "core/signals.hpp"
 #include "core/work_queue.hpp"
@@ -27,10 +28,15 @@ namespace nltopo {
 namespace {
 
 struct PerturbOptions {
-  std::vector<PetscReal> delta{0, 0.01, 0.025, 0.05, 0.1, 0.25}, energy;
+  std::vector<PetscReal> delta{0, 0.01, 0.025, 0.05, 0.1, 0.25};
   std::vector<Perturbation> kinds{Perturbation::Chiral, Perturbation::Achiral};
+  // the energy grid (-perturb_energy_*: studies/grid_axis.hpp), made from its fields after the table's Read
+  PetscReal energy_min = 1e-2, energy_max = 1e2;
+  PetscInt energy_n = 9;
+  AxisSpacing energy_spacing = AxisSpacing::Log;
+  std::vector<PetscReal> energy_list, energy;
   PetscInt ensemble = 16, seed0 = 1;
-  char fep[PETSC_MAX_PATH_LEN] = "";
+  std::string fep;
 };
 
 // omega(E) on the insulated branch, linear in log E between stored orbits.
@@ -69,42 +75,60 @@ PetscErrorCode InsulatedOmega(const Lattice &lat, const LinearModes &modes, Pets
   PetscFunctionReturn(0);
 }
 
+const GridAxisFields<PerturbOptions> kEnergyAxis = {"energy",
+                                                    &PerturbOptions::energy_min,
+                                                    &PerturbOptions::energy_max,
+                                                    &PerturbOptions::energy_n,
+                                                    &PerturbOptions::energy_spacing,
+                                                    &PerturbOptions::energy_list};
+
+const auto &kPerturbTable = DeclareOptionTable<PerturbOptions>("perturb_", "Perturbation ensembles", [](OptionTable<PerturbOptions> &t) {
+  t.RealList("delta_list", &PerturbOptions::delta, 64, RightOpen(0, 0.5), "Perturbation levels delta (mean |relative spring change|)")
+      .Int("ensemble", &PerturbOptions::ensemble, Closed(1, 100000), "Realisations (seeds) per perturbation level")
+      .Int("seed", &PerturbOptions::seed0, Closed(PETSC_MIN_INT, PETSC_MAX_INT), "Seed of the first realisation (realisation r uses seed + r)");
+  GridAxisRows(t, kEnergyAxis);
+  t.String("fep", &PerturbOptions::fep, "Continuation file with /continuation/insulated (omega(E) of the insulated NNM); default: computed here")
+      .Default("computed here");
+});
+
+// -perturb_kinds.
+// raw: the StringList row builds its default text by iterating a member of a
+// temporary options struct that is already destroyed (core/option_table.hpp,
+// StringList: range-for over S{}.*m; AddressSanitizer: stack-use-after-scope).
+PetscErrorCode ReadPerturbKinds(MPI_Comm comm, PerturbOptions *po)
+{
+  char *kinds[2];
+  PetscInt nk = 2;
+  PetscBool set;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, "perturb_", "Perturbation ensembles: kinds", NULL);
+  PetscCall(PetscOptionsStringArray("-kinds", "Perturbation kinds: chiral, achiral", NULL, kinds, &nk, &set));
+  PetscOptionsEnd();
+  PetscCheck(!set || nk > 0, comm, PETSC_ERR_USER, "-perturb_kinds is empty (chiral, achiral)");
+  if (set) {
+    po->kinds.clear();
+    for (PetscInt k = 0; k < nk; k++) {
+      PetscBool c, a;
+      PetscCall(PetscStrcmp(kinds[k], "chiral", &c));
+      PetscCall(PetscStrcmp(kinds[k], "achiral", &a));
+      PetscCheck(c || a, comm, PETSC_ERR_USER, "-perturb_kinds: unknown kind %s (chiral, achiral)", kinds[k]);
+      po->kinds.push_back(c ? Perturbation::Chiral : Perturbation::Achiral);
+      PetscCall(PetscFree(kinds[k]));
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
 // The -perturb_ block (the study sets the spring perturbation, omega_ext and E* itself).
 PetscErrorCode PerturbOptionsFromOptions(MPI_Comm comm, PerturbOptions *po)
 {
+  std::vector<PetscBool> set;
   PetscFunctionBeginUser;
   PetscCall(RejectGivenOptions(comm, {"-sim_progress", "-sim_sample_dt"}, "-study perturb (no progress lines or samples per run)"));
-  {
-    PetscReal dl[64];
-    PetscInt nd = 64, nk = 2;
-    PetscBool set;
-    char *kinds[2];
-    PetscOptionsBegin(comm, "perturb_", "Perturbation ensembles", NULL);
-    PetscCall(PetscOptionsRealArray("-delta_list", "Perturbation levels delta (mean |relative spring change|)", NULL, dl, &nd, &set));
-    PetscCheck(!set || nd > 0, comm, PETSC_ERR_USER, "-perturb_delta_list is empty");
-    if (set) po->delta.assign(dl, dl + nd);
-    PetscCall(PetscOptionsStringArray("-kinds", "Perturbation kinds: chiral, achiral", NULL, kinds, &nk, &set));
-    PetscCheck(!set || nk > 0, comm, PETSC_ERR_USER, "-perturb_kinds is empty (chiral, achiral)");
-    if (set) {
-      po->kinds.clear();
-      for (PetscInt k = 0; k < nk; k++) {
-        PetscBool c, a;
-        PetscCall(PetscStrcmp(kinds[k], "chiral", &c));
-        PetscCall(PetscStrcmp(kinds[k], "achiral", &a));
-        PetscCheck(c || a, comm, PETSC_ERR_USER, "-perturb_kinds: unknown kind %s (chiral, achiral)", kinds[k]);
-        po->kinds.push_back(c ? Perturbation::Chiral : Perturbation::Achiral);
-        PetscCall(PetscFree(kinds[k]));
-      }
-    }
-    PetscCall(PetscOptionsInt("-ensemble", "Realisations (seeds) per perturbation level", NULL, po->ensemble, &po->ensemble, NULL));
-    PetscCall(PetscOptionsInt("-seed", "Seed of the first realisation (realisation r uses seed + r)", NULL, po->seed0, &po->seed0, NULL));
-    PetscCall(ReadAxis(PetscOptionsObject, comm, "perturb_", "energy", 1e-2, 1e2, 9, true, &po->energy));
-    PetscCall(PetscOptionsString("-fep", "Continuation file with /continuation/insulated (omega(E) of the insulated NNM); default: computed here", NULL,
-                                 po->fep, po->fep, sizeof(po->fep), NULL));
-    PetscOptionsEnd();
-  }
-  PetscCheck(po->ensemble >= 1 && po->ensemble <= 100000, comm, PETSC_ERR_USER, "-perturb_ensemble must lie in [1, 100000], got %" PetscInt_FMT, po->ensemble);
-  for (PetscReal d : po->delta) PetscCheck(d >= 0 && d < 0.5, comm, PETSC_ERR_USER, "-perturb_delta_list: values must lie in [0, 0.5), got %g", (double)d);
+  PetscCall(kPerturbTable.Read(comm, po, &set));
+  PetscCheck(!kPerturbTable.Given(set, "delta_list") || !po->delta.empty(), comm, PETSC_ERR_USER, "-perturb_delta_list is empty");
+  PetscCall(ReadPerturbKinds(comm, po));
+  PetscCall(GridAxisFromTable(comm, "perturb_", kPerturbTable, set, *po, kEnergyAxis, &po->energy));
   PetscFunctionReturn(0);
 }
 
@@ -262,7 +286,7 @@ protected:
     std::vector<PetscReal> bE, bw;
     PetscFunctionBeginUser;
     const PetscReal Emax = *std::max_element(po_.energy.begin(), po_.energy.end());
-    if (po_.fep[0]) PetscCall(ReadInsulatedBranch(comm_, po_.fep, &bE, &bw));
+    if (!po_.fep.empty()) PetscCall(ReadInsulatedBranch(comm_, po_.fep.c_str(), &bE, &bw));
     else PetscCall(ContinueInsulatedBranch(comm_, &nnm_, Emax, &bE, &bw));
     PetscCheck(bE.size() >= 2 && bE.back() >= Emax * (1 - 1e-9), comm_, PETSC_ERR_USER,
                "-study perturb: the insulated branch reaches E = %g only, below -perturb_energy_max %g", bE.empty() ? 0.0 : (double)bE.back(), (double)Emax);

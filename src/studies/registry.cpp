@@ -80,28 +80,34 @@ PetscErrorCode AuditOptionsBeforeCommit(MPI_Comm comm)
   PetscFunctionReturn(0);
 }
 
+namespace {
+struct StudyOption {
+  std::string name = "linear";
+};
+
+// -study: no prefix. Physics: a resume or an overwrite compares the study itself (io/run_options.hpp).
+const auto &kStudyTable = DeclareOptionTable<StudyOption>("", "nltopo", [](OptionTable<StudyOption> &t) {
+  std::string help = "Study to run:";
+  for (const auto &s : kStudies) help += std::string(" ") + s.name + " (" + s.help + ");";
+  t.String("study", &StudyOption::name, help.c_str());
+});
+} // namespace
+
 PetscErrorCode RunStudyFromOptions(MPI_Comm comm)
 {
-  char name[64] = "linear";
-  std::string known, help = "Study to run:";
+  StudyOption study;
+  std::string known;
   PetscBool list_help;
   PetscFunctionBeginUser;
   RegisterStudyContracts();        // its schemas and compared option prefixes
   PetscCall(TSSymSplitRegister()); // nltopo's TS types, before any -*ts_type is read
   PetscCall(TSRknRegister());
-  for (const auto &s : kStudies) {
-    known += std::string(known.empty() ? "" : ", ") + s.name;
-    help += std::string(" ") + s.name + " (" + s.help + ");";
-  }
-  PetscOptionsBegin(comm, NULL, "nltopo", NULL);
-  PetscCall(PetscOptionsString("-study", help.c_str(), NULL, name, name, sizeof(name), NULL));
-  PetscOptionsEnd();
+  for (const auto &s : kStudies) known += std::string(known.empty() ? "" : ", ") + s.name;
+  PetscCall(kStudyTable.Read(comm, &study));
+  const char *name = study.name.c_str();
   const StudyEntry *entry = nullptr;
-  for (const auto &s : kStudies) {
-    PetscBool match;
-    PetscCall(PetscStrcmp(name, s.name, &match));
-    if (match) entry = &s;
-  }
+  for (const auto &s : kStudies)
+    if (study.name == s.name) entry = &s;
   PetscCheck(entry, comm, PETSC_ERR_USER, "unknown -study %s (available: %s)", name, known.c_str());
   OptionList given;
   PetscCall(ListGivenOptions(&given));

@@ -2,15 +2,26 @@
 #include "bands/linear_modes.hpp"
 #include "core/memory_guard.hpp"
 #include "core/log.hpp"
+#include "core/option_table.hpp"
 #include "core/options_audit.hpp"
 #include "core/signals.hpp"
 #include "io/output.hpp"
 #include "studies/forced_scene.hpp"
 #include "studies/registry.hpp"
+#include "studies/simulate_store.hpp"
 #include "studies/study.hpp"
 #include "timeint/simulation.hpp"
 
 namespace nltopo {
+
+// Extent: how much of the run the output keeps (a resume or an overwrite may change it).
+static const auto &kStoreTable = DeclareOptionTable<SimulateStoreOptions>("sim_", "Simulate study output", [](OptionTable<SimulateStoreOptions> &t) {
+  t.Bool("store_u", &SimulateStoreOptions::store_u, "Store the sub-sampled displacement u(t) (/simulate/u)", OptionClass::Extent)
+      .Int("store_u_stride", &SimulateStoreOptions::stride, Closed(1, PETSC_MAX_INT),
+           "Store u at every this many sites (0-based index divisible by it; long lattices)", OptionClass::Extent);
+});
+
+PetscErrorCode SimulateStoreOptionsFromOptions(MPI_Comm comm, SimulateStoreOptions *o) { return kStoreTable.Read(comm, o); }
 
 namespace {
 
@@ -62,17 +73,13 @@ private:
   PetscInt col0_ = 0, ncols_ = 0;
 };
 
-PetscErrorCode StoreOptionsFromOptions(MPI_Comm comm, const LatticeParams &lp, const SimulationOptions &so, PetscBool *store_u, PetscInt *stride)
+PetscErrorCode StoreOptionsFromOptions(MPI_Comm comm, const LatticeParams &lp, const SimulationOptions &so, SimulateStoreOptions *o)
 {
   PetscFunctionBeginUser;
-  PetscOptionsBegin(comm, "sim_", "Simulate study output", NULL);
-  PetscCall(PetscOptionsBool("-store_u", "Store the sub-sampled displacement u(t) (/simulate/u)", NULL, *store_u, store_u, NULL));
-  PetscCall(PetscOptionsInt("-store_u_stride", "Store u at every this many sites (0-based index divisible by it; long lattices)", NULL, *stride, stride, NULL));
-  PetscOptionsEnd();
-  PetscCheck(*stride >= 1, comm, PETSC_ERR_USER, "-sim_store_u_stride must be >= 1, got %" PetscInt_FMT, *stride);
+  PetscCall(SimulateStoreOptionsFromOptions(comm, o));
   // /simulate/u is held in memory and written at the end: at most 2.5e8 values (2 GB)
-  const double samples = so.sample_dt > 0 ? std::floor(so.t_final / so.sample_dt) + 1 : 0, cols = std::ceil((double)lp.N() / (double)*stride);
-  PetscCheck(!*store_u || samples * cols <= 2.5e8, comm, PETSC_ERR_USER,
+  const double samples = so.sample_dt > 0 ? std::floor(so.t_final / so.sample_dt) + 1 : 0, cols = std::ceil((double)lp.N() / (double)o->stride);
+  PetscCheck(!o->store_u || samples * cols <= 2.5e8, comm, PETSC_ERR_USER,
              "-sim_store_u: %g samples x %g sites is more than 2.5e8 values; raise -sim_sample_dt or -sim_store_u_stride, or give -sim_store_u 0", samples,
              cols);
   PetscFunctionReturn(0);
@@ -84,13 +91,13 @@ protected:
   {
     PetscFunctionBeginUser;
     PetscCall(sc_.ReadOptions(comm_, declaring_, true, ForcedScene::Modes::Needed, NULL)); // -force_profile none: a free run
-    PetscCall(StoreOptionsFromOptions(comm_, sc_.lp, sc_.sim, &store_u_, &stride_));
+    PetscCall(StoreOptionsFromOptions(comm_, sc_.lp, sc_.sim, &store_));
     PetscCall(sc_.ReadModeOptions(comm_, declaring_));
     if (declaring_) PetscFunctionReturn(0);
-    if (store_u_ && sc_.sim.sample_dt > 0) {
+    if (store_.store_u && sc_.sim.sample_dt > 0) {
       PetscMPIInt nranks;
       PetscCallMPI(MPI_Comm_size(comm_, &nranks));
-      const double samples = (sc_.sim.t_final - sc_.sim.t_start) / sc_.sim.sample_dt + 2, sites = std::ceil((double)sc_.lp.N() / stride_) / nranks;
+      const double samples = (sc_.sim.t_final - sc_.sim.t_start) / sc_.sim.sample_dt + 2, sites = std::ceil((double)sc_.lp.N() / store_.stride) / nranks;
       PetscCall(CheckMemory(comm_, 8.0 * samples * sites,
                             "/simulate/u (-lattice_cells x -sim_t_final / -sim_sample_dt; -sim_store_u_stride or -sim_store_u 0 shrink it)"));
       u_bytes_ = 8.0 * samples * sites * nranks;
@@ -103,7 +110,7 @@ protected:
   {
     PetscFunctionBeginUser;
     PetscCall(sc_.Build(comm_, ForcedScene::Upto::Effects));
-    sink_ = std::make_unique<Samples>(sc_.lat, store_u_, stride_);
+    sink_ = std::make_unique<Samples>(sc_.lat, store_.store_u, store_.stride);
     PetscFunctionReturn(0);
   }
   PetscErrorCode Solve() override
@@ -145,9 +152,9 @@ protected:
     PetscFunctionBeginUser;
     PetscCall(WriteArray(v, g, "t", sink.t_));
     PetscCall(WriteArray(v, g, "energy", sink.energy_));
-    if (store_u_ && !sink.t_.empty()) {
+    if (store_.store_u && !sink.t_.empty()) {
       PetscCall(WriteColumnBlock(v, g, "u", (PetscInt)sink.t_.size(), sink.Cols(), sink.Col0(), sink.LocalCols(), sink.u_));
-      PetscCall(WriteAttr(v, g, "u_stride", stride_));
+      PetscCall(WriteAttr(v, g, "u_stride", store_.stride));
     }
     PetscCall(WriteDistributed(v, g, "rms", r.rms));
     PetscCall(WriteAttr(v, g, "mcr", r.mcr));
@@ -179,8 +186,8 @@ protected:
 
 private:
   ForcedScene sc_;
-  PetscBool store_u_ = PETSC_TRUE;
-  PetscInt stride_ = 1, rescalings_ = 0;
+  SimulateStoreOptions store_;
+  PetscInt rescalings_ = 0;
   double u_bytes_ = 0;
   PetscReal solve_seconds_ = 0;
   std::unique_ptr<Samples> sink_;

@@ -6,6 +6,7 @@
 #include "core/gather.hpp"
 #include "core/errors.hpp"
 #include "core/log.hpp"
+#include "core/option_table.hpp"
 #include "core/options_audit.hpp"
 #include "core/signals.hpp"
 #include "io/output.hpp"
@@ -111,37 +112,33 @@ PetscErrorCode PerturbState(const Lattice &lat, Vec z, PetscReal eps, PetscInt s
 }
 
 struct StabilityOptions {
-  PetscReal omegas[16] = {std::sqrt(3.0), 1.8245, 2.1876, 2.2654}, eps = 0.01, corr_min = 0.9;
-  PetscInt nw = 4, periods = 30000, sample_periods = 10, seed = 1;
+  std::vector<PetscReal> omegas{std::sqrt(3.0), 1.8245, 2.1876, 2.2654};
+  PetscReal eps = 0.01, corr_min = 0.9;
+  PetscInt periods = 30000, sample_periods = 10, seed = 1;
 };
+
+const auto &kStabilityTable =
+    DeclareOptionTable<StabilityOptions>("stability_", "NNM persistence under perturbation (insulated branch)", [](OptionTable<StabilityOptions> &t) {
+      t.RealList("omega", &StabilityOptions::omegas, 16, LeftOpen(0, 1e3),
+                 "Frequencies of the insulated-branch orbits to test (paper: sqrt(3),1.8245,2.1876,2.2654)")
+          .Int("periods", &StabilityOptions::periods, Closed(1, 100000000), "Periods to integrate each perturbed orbit")
+          .Int("sample_periods", &StabilityOptions::sample_periods, Closed(1, 100000000),
+               "Record the best shape correlation (8 snapshots per period) and its MCR per window of this many periods (at most -stability_periods)")
+          .Real("perturbation", &StabilityOptions::eps, RightOpen(0, 1), "Perturbation size relative to the orbit's norm (uniform random per entry)")
+          .Int("seed", &StabilityOptions::seed, Closed(PETSC_MIN_INT, PETSC_MAX_INT), "Seed of the perturbation")
+          .Real("corr_min", &StabilityOptions::corr_min, LeftOpen(0, 1),
+                "The standing wave persisted if its shape correlation stays above this over the last 10 % of the run");
+    });
 
 PetscErrorCode StabilityOptionsFromOptions(MPI_Comm comm, StabilityOptions *o)
 {
-  PetscInt nw = 16;
-  PetscBool set;
   PetscFunctionBeginUser;
   PetscCall(RejectGivenOptions(comm, {"-sim_t_final", "-sim_sample_dt"}, "-study stability (-stability_periods, 8 samples per period)"));
-  PetscOptionsBegin(comm, "stability_", "NNM persistence under perturbation (insulated branch)", NULL);
-  PetscCall(
-      PetscOptionsRealArray("-omega", "Frequencies of the insulated-branch orbits to test (paper: sqrt(3),1.8245,2.1876,2.2654)", NULL, o->omegas, &nw, &set));
-  PetscCall(PetscOptionsInt("-periods", "Periods to integrate each perturbed orbit", NULL, o->periods, &o->periods, NULL));
-  PetscCall(PetscOptionsInt("-sample_periods", "Record the best shape correlation (8 snapshots per period) and its MCR per window of this many periods", NULL,
-                            o->sample_periods, &o->sample_periods, NULL));
-  PetscCall(PetscOptionsReal("-perturbation", "Perturbation size relative to the orbit's norm (uniform random per entry)", NULL, o->eps, &o->eps, NULL));
-  PetscCall(PetscOptionsInt("-seed", "Seed of the perturbation", NULL, o->seed, &o->seed, NULL));
-  PetscCall(PetscOptionsReal("-corr_min", "The standing wave persisted if its shape correlation stays above this over the last 10 % of the run", NULL,
-                             o->corr_min, &o->corr_min, NULL));
-  PetscOptionsEnd();
-  if (set) o->nw = nw;
-  PetscCheck(o->nw >= 1, comm, PETSC_ERR_USER, "-stability_omega needs at least one frequency");
-  for (PetscInt c = 0; c < o->nw; c++)
-    PetscCheck(o->omegas[c] > 0 && o->omegas[c] <= 1e3, comm, PETSC_ERR_USER, "-stability_omega: frequencies must lie in (0, 1e3], got %g",
-               (double)o->omegas[c]);
-  PetscCheck(o->periods >= 1 && o->periods <= 100000000 && o->sample_periods >= 1 && o->sample_periods <= o->periods, comm, PETSC_ERR_USER,
-             "-stability_periods must lie in [1, 1e8] and -stability_sample_periods in [1, -stability_periods], got %" PetscInt_FMT " and %" PetscInt_FMT,
-             o->periods, o->sample_periods);
-  PetscCheck(o->eps >= 0 && o->eps < 1, comm, PETSC_ERR_USER, "-stability_perturbation must lie in [0, 1), got %g", (double)o->eps);
-  PetscCheck(o->corr_min > 0 && o->corr_min <= 1, comm, PETSC_ERR_USER, "-stability_corr_min must lie in (0, 1], got %g", (double)o->corr_min);
+  PetscCall(kStabilityTable.Read(comm, o));
+  PetscCheck(!o->omegas.empty(), comm, PETSC_ERR_USER, "-stability_omega needs at least one frequency");
+  PetscCheck(o->sample_periods <= o->periods, comm, PETSC_ERR_USER,
+             "-stability_sample_periods must lie in [1, -stability_periods], got %" PetscInt_FMT " with -stability_periods %" PetscInt_FMT, o->sample_periods,
+             o->periods);
   PetscFunctionReturn(0);
 }
 
@@ -179,7 +176,7 @@ protected:
     PetscCheck(nnm_.modes.Insulated(), comm_, PETSC_ERR_USER, "-study stability follows the insulated branch: use -lattice_layout interface");
     nnm_.co.verbose = PETSC_FALSE;
     // One continuation of the insulated branch up to the highest frequency asked for.
-    nnm_.co.omega_max = *std::max_element(st_.omegas, st_.omegas + st_.nw);
+    nnm_.co.omega_max = *std::max_element(st_.omegas.begin(), st_.omegas.end());
     PetscCall(nnm_.lat.CreateStateVector(z_.out()));
     PetscCall(VecDuplicate(z_, zT_.out()));
     PetscCall(nnm_.shoot.CreateUnknowns(X_.out()));
@@ -200,7 +197,7 @@ protected:
     const size_t done = cases_.size();
     char where[128];
     (void)PetscSNPrintf(where, sizeof(where), "during stability case %" PetscInt_FMT " (omega %g)", (PetscInt)done,
-                        done < (size_t)st_.nw ? (double)st_.omegas[done] : 0.0);
+                        done < st_.omegas.size() ? (double)st_.omegas[done] : 0.0);
     if (!done) *it = {false, "before the first stability case ended", ""};
     else *it = {true, where, " with the " + std::to_string(done) + " case(s) before it"};
     return true;
@@ -238,7 +235,7 @@ private:
   {
     PetscFunctionBeginUser;
     PetscCall(ContinueBranch(nnm_.shoot, nnm_.modes.Insulated(), 2 * PETSC_PI / nnm_.modes.Named().insulated_omega, nnm_.co, "insulated", &b_));
-    for (PetscInt c = 0; c < st_.nw; c++) {
+    for (PetscInt c = 0; c < (PetscInt)st_.omegas.size(); c++) {
       StabilityCase k;
       PetscCall(RunCase(c, &k));
       cases_.push_back(std::move(k));

@@ -1,29 +1,22 @@
 #include "studies/sweep_accuracy.hpp"
+#include "core/option_table.hpp"
 #include "core/ts_traits.hpp"
 #include <algorithm>
 #include <cmath>
 
 namespace nltopo {
 
-PetscErrorCode McrAccuracyOptionsFromOptions(MPI_Comm comm, McrAccuracyOptions *o)
-{
-  PetscFunctionBeginUser;
-  PetscOptionsBegin(comm, "sweep_", "Accuracy-aware sweep (-sweep_mcr_tol)", NULL);
-  PetscCall(PetscOptionsReal(
-      "-mcr_tol",
-      "Target relative accuracy of each point's MCR: the step is halved until two runs agree to it; unpredictable points get twin-run statistics (0: off, the scene's own integration)",
-      NULL, o->tol, &o->tol, NULL));
-  PetscCall(PetscOptionsInt("-mcr_levels", "-sweep_mcr_tol: at most this many halvings of the step", NULL, o->levels, &o->levels, NULL));
-  PetscCall(
-      PetscOptionsInt("-mcr_twins", "-sweep_mcr_tol: twin runs (amplitude x (1 + k eps)) of a point that does not converge", NULL, o->twins, &o->twins, NULL));
-  PetscCall(PetscOptionsReal("-mcr_twin_eps", "-sweep_mcr_tol: relative change of the amplitude of the twins", NULL, o->twin_eps, &o->twin_eps, NULL));
-  PetscOptionsEnd();
-  PetscCheck(o->tol >= 0 && o->tol < 1, comm, PETSC_ERR_USER, "-sweep_mcr_tol must lie in [0, 1), got %g", (double)o->tol);
-  PetscCheck(o->levels >= 0 && o->levels <= 8, comm, PETSC_ERR_USER, "-sweep_mcr_levels must lie in [0, 8], got %" PetscInt_FMT, o->levels);
-  PetscCheck(o->twins >= 1 && o->twins <= 100, comm, PETSC_ERR_USER, "-sweep_mcr_twins must lie in [1, 100], got %" PetscInt_FMT, o->twins);
-  PetscCheck(o->twin_eps >= 1e-15 && o->twin_eps <= 1e-2, comm, PETSC_ERR_USER, "-sweep_mcr_twin_eps must lie in [1e-15, 1e-2], got %g", (double)o->twin_eps);
-  PetscFunctionReturn(0);
-}
+static const auto &kMcrAccuracyTable =
+    DeclareOptionTable<McrAccuracyOptions>("sweep_", "Accuracy-aware sweep (-sweep_mcr_tol)", [](OptionTable<McrAccuracyOptions> &t) {
+      t.Real("mcr_tol", &McrAccuracyOptions::tol, RightOpen(0, 1),
+             "Target relative accuracy of each point's MCR: the step is halved until two runs agree to it; unpredictable points get twin-run statistics (0: "
+             "off, the scene's own integration)")
+          .Int("mcr_levels", &McrAccuracyOptions::levels, Closed(0, 8), "-sweep_mcr_tol: at most this many halvings of the step")
+          .Int("mcr_twins", &McrAccuracyOptions::twins, Closed(1, 100), "-sweep_mcr_tol: twin runs (amplitude x (1 + k eps)) of a point that does not converge")
+          .Real("mcr_twin_eps", &McrAccuracyOptions::twin_eps, Closed(1e-15, 1e-2), "-sweep_mcr_tol: relative change of the amplitude of the twins");
+    });
+
+PetscErrorCode McrAccuracyOptionsFromOptions(MPI_Comm comm, McrAccuracyOptions *o) { return kMcrAccuracyTable.Read(comm, o); }
 
 PetscErrorCode CheckMcrAccuracyIntegrator(MPI_Comm comm, const McrAccuracyOptions &o)
 {

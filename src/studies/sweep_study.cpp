@@ -9,6 +9,7 @@
 #include "core/errors.hpp"
 #include "core/gather.hpp"
 #include "core/log.hpp"
+#include "core/option_table.hpp"
 #include "core/options_audit.hpp"
 #include "core/signals.hpp"
 #include "core/work_queue.hpp"
@@ -36,6 +37,11 @@ namespace nltopo {
 namespace {
 
 struct SweepOptions {
+  // the grid (-sweep_omega_*, -sweep_energy_*: studies/grid_axis.hpp), made from its fields after the table's Read
+  PetscReal omega_min = std::sqrt(3.0) / 2, omega_max = 1.5 * std::sqrt(3.0), energy_min = 1e-3, energy_max = 1e3;
+  PetscInt omega_n = 50, energy_n = 50;
+  AxisSpacing omega_spacing = AxisSpacing::Linear, energy_spacing = AxisSpacing::Log;
+  std::vector<PetscReal> omega_list, energy_list;
   std::vector<PetscReal> omega, energy;
   PetscBool resume = PETSC_FALSE, kcorr = PETSC_FALSE;
   PetscReal checkpoint = 5, progress = 10;
@@ -56,47 +62,50 @@ struct SweepOptions {
   PetscReal exp_a = 0, exp_b = 0;
 };
 
+const GridAxisFields<SweepOptions> kOmegaAxis = {
+    "omega", &SweepOptions::omega_min, &SweepOptions::omega_max, &SweepOptions::omega_n, &SweepOptions::omega_spacing, &SweepOptions::omega_list};
+const GridAxisFields<SweepOptions> kEnergyAxis = {
+    "energy", &SweepOptions::energy_min, &SweepOptions::energy_max, &SweepOptions::energy_n, &SweepOptions::energy_spacing, &SweepOptions::energy_list};
+
+const auto &kSweepTable = DeclareOptionTable<SweepOptions>("sweep_", "Sweep: grid of forced runs (omega_ext x E*)", [](OptionTable<SweepOptions> &t) {
+  GridAxisRows(t, kOmegaAxis);
+  GridAxisRows(t, kEnergyAxis);
+  t.Bool("resume", &SweepOptions::resume, "Continue the sweep stored in -output: compute only the points not done", OptionClass::Bookkeeping)
+      .Bool("kcorr", &SweepOptions::kcorr, "Score every run with the 0-1 test for chaos (-kcorr_* options)")
+      .Real("checkpoint", &SweepOptions::checkpoint, LeftOpen(0, 1e7), "Rewrite -output with the points done so far every this many wall seconds",
+            OptionClass::Bookkeeping)
+      .Real("progress", &SweepOptions::progress, Closed(0, 1e7), "Report progress every this many wall seconds (0: never)", OptionClass::Bookkeeping);
+});
+
+const auto &kZeroOneTable = DeclareOptionTable<SweepOptions>("kcorr_", "0-1 test for chaos (with -sweep_kcorr)", [](OptionTable<SweepOptions> &t) {
+  t.Int("nc", &SweepOptions::kcorr_nc, Closed(1, 10000), "Number of random frequencies c in (pi/5, 4 pi/5); K is the median over them")
+      .Int("seed", &SweepOptions::kcorr_seed, Closed(PETSC_MIN_INT, PETSC_MAX_INT), "Seed of the c draw (the same c for every run)")
+      .Real("sample_dt", &SweepOptions::kcorr_sample_dt, Closed(0, 1e6),
+            "Sampling interval of u after t_off (0: pi / (2 sqrt(k_hat)), a quarter of the insulated period)")
+      .Default("pi / (2 sqrt(k_hat))")
+      .Real("rms_fraction", &SweepOptions::kcorr_rms_fraction, Closed(0, 1),
+            "Test only sites whose RMS after t_off is at least this fraction of the largest (README.md)")
+      .Real("record", &SweepOptions::kcorr_record, LeftOpen(0, 1e6),
+            "Length of the free motion after t_off that the test analyses; the run continues past -sim_t_final when needed")
+      .Int("lags", &SweepOptions::kcorr_lags, Closed(0, 100000), "Lags m at which D(m) is evaluated, evenly spread over 1..n/10 (0: all)")
+      .Int("site_stride", &SweepOptions::kcorr_site_stride, Closed(1, PETSC_MAX_INT),
+           "Test every this many sites (1: all; the score is the max over tested sites)");
+});
+
 PetscErrorCode SweepOptionsFromOptions(MPI_Comm comm, SweepOptions *o)
 {
+  std::vector<PetscBool> set;
   PetscFunctionBeginUser;
-  const PetscReal w0 = std::sqrt(3.0);
-  PetscOptionsBegin(comm, "sweep_", "Sweep: grid of forced runs (omega_ext x E*)", NULL);
-  PetscCall(ReadAxis(PetscOptionsObject, comm, "sweep_", "omega", w0 / 2, 1.5 * w0, 50, false, &o->omega));
-  PetscCall(ReadAxis(PetscOptionsObject, comm, "sweep_", "energy", 1e-3, 1e3, 50, true, &o->energy));
-  PetscCall(PetscOptionsBool("-resume", "Continue the sweep stored in -output: compute only the points not done", NULL, o->resume, &o->resume, NULL));
-  PetscCall(PetscOptionsBool("-kcorr", "Score every run with the 0-1 test for chaos (-kcorr_* options)", NULL, o->kcorr, &o->kcorr, NULL));
-  PetscCall(
-      PetscOptionsReal("-checkpoint", "Rewrite -output with the points done so far every this many wall seconds", NULL, o->checkpoint, &o->checkpoint, NULL));
-  PetscCall(PetscOptionsReal("-progress", "Report progress every this many wall seconds (0: never)", NULL, o->progress, &o->progress, NULL));
-  PetscOptionsEnd();
+  PetscCall(kSweepTable.Read(comm, o, &set));
+  PetscCall(GridAxisFromTable(comm, "sweep_", kSweepTable, set, *o, kOmegaAxis, &o->omega));
+  PetscCall(GridAxisFromTable(comm, "sweep_", kSweepTable, set, *o, kEnergyAxis, &o->energy));
   PetscCall(McrAccuracyOptionsFromOptions(comm, &o->mcr));
-  PetscCheck(o->checkpoint > 0 && o->checkpoint <= 1e7, comm, PETSC_ERR_USER, "-sweep_checkpoint must lie in (0, 1e7] seconds, got %g", (double)o->checkpoint);
-  PetscCheck(o->progress >= 0 && o->progress <= 1e7, comm, PETSC_ERR_USER, "-sweep_progress must lie in [0, 1e7] seconds, got %g", (double)o->progress);
-  PetscOptionsBegin(comm, "kcorr_", "0-1 test for chaos (with -sweep_kcorr)", NULL);
-  PetscCall(PetscOptionsInt("-nc", "Number of random frequencies c in (pi/5, 4 pi/5); K is the median over them", NULL, o->kcorr_nc, &o->kcorr_nc, NULL));
-  PetscCall(PetscOptionsInt("-seed", "Seed of the c draw (the same c for every run)", NULL, o->kcorr_seed, &o->kcorr_seed, NULL));
-  PetscCall(PetscOptionsReal("-sample_dt", "Sampling interval of u after t_off (0: pi / (2 sqrt(k_hat)), a quarter of the insulated period)", NULL,
-                             o->kcorr_sample_dt, &o->kcorr_sample_dt, NULL));
-  PetscCall(PetscOptionsReal("-rms_fraction", "Test only sites whose RMS after t_off is at least this fraction of the largest (README.md)", NULL,
-                             o->kcorr_rms_fraction, &o->kcorr_rms_fraction, NULL));
-  PetscCall(PetscOptionsReal("-record", "Length of the free motion after t_off that the test analyses; the run continues past -sim_t_final when needed", NULL,
-                             o->kcorr_record, &o->kcorr_record, NULL));
-  PetscCall(PetscOptionsInt("-lags", "Lags m at which D(m) is evaluated, evenly spread over 1..n/10 (0: all)", NULL, o->kcorr_lags, &o->kcorr_lags, NULL));
-  PetscCall(PetscOptionsInt("-site_stride", "Test every this many sites (1: all; the score is the max over tested sites)", NULL, o->kcorr_site_stride,
-                            &o->kcorr_site_stride, NULL));
-  PetscOptionsEnd();
-  PetscCheck(o->kcorr_nc >= 1 && o->kcorr_nc <= 10000, comm, PETSC_ERR_USER, "-kcorr_nc must lie in [1, 10000], got %" PetscInt_FMT, o->kcorr_nc);
-  PetscCheck(o->kcorr_sample_dt >= 0 && o->kcorr_sample_dt <= 1e6, comm, PETSC_ERR_USER, "-kcorr_sample_dt must lie in [0, 1e6], got %g",
-             (double)o->kcorr_sample_dt);
-  PetscCheck(o->kcorr_rms_fraction >= 0 && o->kcorr_rms_fraction <= 1, comm, PETSC_ERR_USER, "-kcorr_rms_fraction must lie in [0, 1], got %g",
-             (double)o->kcorr_rms_fraction);
-  PetscCheck(o->kcorr_record > 0 && o->kcorr_record <= 1e6, comm, PETSC_ERR_USER, "-kcorr_record must lie in (0, 1e6], got %g", (double)o->kcorr_record);
+  PetscCall(kZeroOneTable.Read(comm, o));
   // the record is kept as samples per tested site: at most 2e6 of them
   PetscCheck(o->kcorr_sample_dt == 0 || o->kcorr_record / o->kcorr_sample_dt <= 2e6, comm, PETSC_ERR_USER,
              "-kcorr_record / -kcorr_sample_dt must be at most 2e6 samples, got %g / %g", (double)o->kcorr_record, (double)o->kcorr_sample_dt);
-  PetscCheck(o->kcorr_lags == 0 || (o->kcorr_lags >= 3 && o->kcorr_lags <= 100000), comm, PETSC_ERR_USER,
-             "-kcorr_lags must be 0 (all) or lie in [3, 100000], got %" PetscInt_FMT, o->kcorr_lags);
-  PetscCheck(o->kcorr_site_stride >= 1, comm, PETSC_ERR_USER, "-kcorr_site_stride must be >= 1, got %" PetscInt_FMT, o->kcorr_site_stride);
+  PetscCheck(o->kcorr_lags == 0 || o->kcorr_lags >= 3, comm, PETSC_ERR_USER, "-kcorr_lags must be 0 (all) or lie in [3, 100000], got %" PetscInt_FMT,
+             o->kcorr_lags);
   PetscCall(RejectGivenOptions(comm, {"-force_omega", "-force_energy"}, "the sweep axes (-sweep_omega_*, -sweep_energy_*) per point"));
   PetscFunctionReturn(0);
 }

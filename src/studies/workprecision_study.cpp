@@ -9,6 +9,7 @@
 #include "studies/forced_scene.hpp"
 #include "studies/nnm_setup.hpp"
 #include "studies/registry.hpp"
+#include "studies/simulate_store.hpp"
 #include "studies/study.hpp"
 #include "studies/workprecision.hpp"
 
@@ -37,12 +38,8 @@ protected:
     if (declaring_) {
       // A simulate scene's output options are accepted and ignored (nothing is sampled):
       // any simulate options file can be the base scene.
-      PetscBool store_u = PETSC_FALSE;
-      PetscInt stride = 1;
-      PetscOptionsBegin(comm_, "sim_", "Simulate study output (ignored by -study workprecision)", NULL);
-      PetscCall(PetscOptionsBool("-store_u", "Ignored here (a simulate scene's option)", NULL, store_u, &store_u, NULL));
-      PetscCall(PetscOptionsInt("-store_u_stride", "Ignored here (a simulate scene's option)", NULL, stride, &stride, NULL));
-      PetscOptionsEnd();
+      SimulateStoreOptions store;
+      PetscCall(SimulateStoreOptionsFromOptions(comm_, &store));
     }
     PetscCall(sc_.ReadModeOptions(comm_, true)); // accepted whether or not the forcing needs the modes
     PetscFunctionReturn(0);

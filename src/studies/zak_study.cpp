@@ -13,6 +13,7 @@
 #include "bands/linear_modes.hpp"
 #include "core/errors.hpp"
 #include "core/log.hpp"
+#include "core/option_table.hpp"
 #include "core/options_audit.hpp"
 #include "core/signals.hpp"
 #include "core/work_queue.hpp"
@@ -32,7 +33,11 @@ namespace nltopo {
 namespace {
 
 struct ZakOptions {
-  std::vector<PetscReal> energy;
+  // the energy grid (-zak_energy_*: studies/grid_axis.hpp), made from its fields after the table's Read
+  PetscReal energy_min = 1e-2, energy_max = 1e3;
+  PetscInt energy_n = 21;
+  AxisSpacing energy_spacing = AxisSpacing::Log;
+  std::vector<PetscReal> energy_list, energy;
   PetscInt windows = 4; // steady windows after t_off
   PetscInt samples_per_period = 16;
   PetscReal theta_tol = PETSC_PI / 4; // phases "distinct" while theta = phi_pi - phi_0 is within this of pi (mean and median)
@@ -102,9 +107,22 @@ PetscErrorCode PhaseRun(const Lattice &lat, const LinearModes &modes, const Tone
   PetscFunctionReturn(0);
 }
 
+const GridAxisFields<ZakOptions> kEnergyAxis = {
+    "energy", &ZakOptions::energy_min, &ZakOptions::energy_max, &ZakOptions::energy_n, &ZakOptions::energy_spacing, &ZakOptions::energy_list};
+
+const auto &kZakTable = DeclareOptionTable<ZakOptions>("zak_", "Half-lattice phase (Zak) experiment", [](OptionTable<ZakOptions> &t) {
+  GridAxisRows(t, kEnergyAxis);
+  t.Int("windows", &ZakOptions::windows, Closed(1, 1000), "Steady windows after t_off over which phases are taken")
+      .Int("samples_per_period", &ZakOptions::samples_per_period, Closed(4, 10000), "Samples per forcing period for the Fourier coefficients")
+      .Real("theta_tol", &ZakOptions::theta_tol, Open(0, PETSC_PI),
+            "Threshold rule: phi_0 and phi_pi are distinct while theta = phi_pi - phi_0 (of the means and of the medians) is within this of pi")
+      .Why("the upper end is pi");
+});
+
 // The left half lattice's defaults, the fixed forcing and the -zak_ block.
 PetscErrorCode ZakOptionsFromOptions(MPI_Comm comm, LatticeParams *lp, ZakOptions *zo)
 {
+  std::vector<PetscBool> set;
   PetscFunctionBeginUser;
   PetscCall(RejectGivenOptions(comm, {"-sim_progress", "-sim_sample_dt"}, "-study zak (-zak_samples_per_period)"));
   {
@@ -116,19 +134,8 @@ PetscErrorCode ZakOptionsFromOptions(MPI_Comm comm, LatticeParams *lp, ZakOption
     PetscCall(RejectGivenOptions(comm, {"-force_omega", "-force_energy", "-force_profile", "-force_mode_index"},
                                  "-study zak (the optical band-edge modes, -zak_energy_*)"));
   }
-  PetscOptionsBegin(comm, "zak_", "Half-lattice phase (Zak) experiment", NULL);
-  PetscCall(ReadAxis(PetscOptionsObject, comm, "zak_", "energy", 1e-2, 1e3, 21, true, &zo->energy));
-  PetscCall(PetscOptionsInt("-windows", "Steady windows after t_off over which phases are taken", NULL, zo->windows, &zo->windows, NULL));
-  PetscCall(PetscOptionsInt("-samples_per_period", "Samples per forcing period for the Fourier coefficients", NULL, zo->samples_per_period,
-                            &zo->samples_per_period, NULL));
-  PetscCall(PetscOptionsReal(
-      "-theta_tol", "Threshold rule: phi_0 and phi_pi are distinct while theta = phi_pi - phi_0 (of the means and of the medians) is within this of pi", NULL,
-      zo->theta_tol, &zo->theta_tol, NULL));
-  PetscOptionsEnd();
-  PetscCheck(zo->windows >= 1 && zo->windows <= 1000, comm, PETSC_ERR_USER, "-zak_windows must lie in [1, 1000], got %" PetscInt_FMT, zo->windows);
-  PetscCheck(zo->samples_per_period >= 4 && zo->samples_per_period <= 10000, comm, PETSC_ERR_USER,
-             "-zak_samples_per_period must lie in [4, 10000], got %" PetscInt_FMT, zo->samples_per_period);
-  PetscCheck(zo->theta_tol > 0 && zo->theta_tol < PETSC_PI, comm, PETSC_ERR_USER, "-zak_theta_tol must lie in (0, pi), got %g", (double)zo->theta_tol);
+  PetscCall(kZakTable.Read(comm, zo, &set));
+  PetscCall(GridAxisFromTable(comm, "zak_", kZakTable, set, *zo, kEnergyAxis, &zo->energy));
   PetscFunctionReturn(0);
 }
 

@@ -89,7 +89,7 @@ const std::vector<BadCase> &OptionCases()
       {"-floquet_tol must lie in (0, 1), got inf", C + "-floquet -floquet_tol inf"},
       {"-sim_t_final must lie in \\[1e-6, 1e9\\], got nan", "-study simulate -sim_t_final nan"},
       {"-force_omega must lie in \\[1e-6, 1e3\\], got -inf", S + "-force_omega -inf"},
-      {"-sweep_energy_list: values must lie in \\[1e-12, 1e+12\\], got nan", W + "-sweep_energy_list 1,nan"},
+      {"-sweep_energy_list must lie in \\[1e-12, 1e12\\], got nan", W + "-sweep_energy_list 1,nan"},
       {"-sim_ts_rtol 1e999: the value must be a finite number", S + "-sim_ts_rtol 1e999"},
       {"-linear_bv_orthog_eta inf: the value must be a finite number", L + "-linear_bv_orthog_eta inf"},
       // values PETSc would silently drop or wrap: a missing value, an integer beyond 32 bits
