@@ -158,9 +158,13 @@ public:
     Row r = NewRow(name, OptionType::RealList, b, help, c);
     r.info.default_text = ListText(S{}.*m);
     r.read = [m, max_count](PetscOptionItems *PetscOptionsObject, const char *opt, const char *text, S *s, PetscBool *set) -> PetscErrorCode {
-      std::vector<PetscReal> v(max_count);
-      PetscInt n = max_count;
+      // one more than allowed, so that a longer list is refused rather than cut; the current values for -help
+      std::vector<PetscReal> v(s->*m);
+      v.resize(max_count + 1);
+      PetscInt n = max_count + 1;
       PetscCall(PetscOptionsRealArray(opt, text, NULL, v.data(), &n, set));
+      PetscCheck(!*set || n <= max_count, PetscOptionsObject->comm, PETSC_ERR_USER, "-%s%s takes at most %" PetscInt_FMT " values",
+                 PetscOptionsObject->prefix ? PetscOptionsObject->prefix : "", opt + 1, max_count);
       if (*set) s->*m = std::vector<PetscReal>(v.begin(), v.begin() + n);
       return 0;
     };
@@ -176,9 +180,14 @@ public:
     const S defaults{}; // not S{}.*m in the loop: the temporary would end before the loop runs
     for (const std::string &w : defaults.*m) r.info.default_text += (r.info.default_text.empty() ? "" : ",") + w;
     r.read = [m, max_count](PetscOptionItems *PetscOptionsObject, const char *opt, const char *text, S *s, PetscBool *set) -> PetscErrorCode {
-      std::vector<char *> v(max_count, nullptr);
-      PetscInt n = max_count;
+      std::vector<char *> v(max_count + 1, nullptr); // one more than allowed: a longer list is refused, not cut
+      PetscInt n = max_count + 1;
       PetscCall(PetscOptionsStringArray(opt, text, NULL, v.data(), &n, set));
+      if (*set && n > max_count) {
+        for (PetscInt k = 0; k < n; k++) PetscCall(PetscFree(v[k]));
+        SETERRQ(PetscOptionsObject->comm, PETSC_ERR_USER, "-%s%s takes at most %" PetscInt_FMT " values", PetscOptionsObject->prefix ? PetscOptionsObject->prefix : "",
+                opt + 1, max_count);
+      }
       if (*set) {
         (s->*m).clear();
         for (PetscInt k = 0; k < n; k++) (s->*m).push_back(v[k]);

@@ -21,21 +21,13 @@ bool StartsWith(const std::string &s, const char *p) { return s.compare(0, std::
 
 Kind Classify(const std::string &key)
 {
-  static const char *bookkeeping[] = {"-cont_resume",  "-sweep_resume", "-cont_checkpoint_seconds", "-sweep_checkpoint", "-sweep_progress",
-                                      "-sim_progress", "-cont_verbose"};
-  static const char *extent[] = {"-cont_energy_max", "-cont_max_points", "-cont_omega_max",     "-cont_mcr_min",
-                                 "-cont_branch",     "-sim_store_u",     "-sim_store_u_stride", "-sim_sample_dt"};
   const std::vector<std::string> &prefixes = ComponentPrefixes();
   if (std::none_of(prefixes.begin(), prefixes.end(), [&](const std::string &p) { return StartsWith(key, p.c_str()); })) return Kind::Ignore;
-  if (const OptionInfo *row = FindOption(key)) // a declared option: its table's class
+  if (const OptionInfo *row = FindOption(key)) // nltopo's own option: its table's class
     return row->cls == OptionClass::Bookkeeping ? Kind::Ignore : row->cls == OptionClass::Extent ? Kind::Extent : Kind::Physics;
-  // options not yet declared in a table (core/option_table.hpp)
-  for (const char *b : bookkeeping)
-    if (key == b) return Kind::Ignore;
+  // a solver option (-sim_ts_*, -nnm_snes_*, ...): its monitors and views are bookkeeping, the rest numerics
   for (const char *d : {"monitor", "_view", "converged_reason"})
     if (key.find(d) != std::string::npos) return Kind::Ignore;
-  for (const char *e : extent)
-    if (key == e) return Kind::Extent;
   return Kind::Physics;
 }
 

@@ -29,6 +29,7 @@ namespace {
 
 struct PerturbOptions {
   std::vector<PetscReal> delta{0, 0.01, 0.025, 0.05, 0.1, 0.25};
+  std::vector<std::string> kind_names{"chiral", "achiral"}; // -perturb_kinds, as given
   std::vector<Perturbation> kinds{Perturbation::Chiral, Perturbation::Achiral};
   // the energy grid (-perturb_energy_*: studies/grid_axis.hpp), made from its fields after the table's Read
   PetscReal energy_min = 1e-2, energy_max = 1e2;
@@ -87,37 +88,10 @@ const auto &kPerturbTable = DeclareOptionTable<PerturbOptions>("perturb_", "Pert
       .Int("ensemble", &PerturbOptions::ensemble, Closed(1, 100000), "Realisations (seeds) per perturbation level")
       .Int("seed", &PerturbOptions::seed0, Closed(PETSC_MIN_INT, PETSC_MAX_INT), "Seed of the first realisation (realisation r uses seed + r)");
   GridAxisRows(t, kEnergyAxis);
+  t.StringList("kinds", &PerturbOptions::kind_names, 2, "Perturbation kinds: chiral, achiral");
   t.String("fep", &PerturbOptions::fep, "Continuation file with /continuation/insulated (omega(E) of the insulated NNM); default: computed here")
       .Default("computed here");
 });
-
-// -perturb_kinds.
-// raw: the StringList row builds its default text by iterating a member of a
-// temporary options struct that is already destroyed (core/option_table.hpp,
-// StringList: range-for over S{}.*m; AddressSanitizer: stack-use-after-scope).
-PetscErrorCode ReadPerturbKinds(MPI_Comm comm, PerturbOptions *po)
-{
-  char *kinds[2];
-  PetscInt nk = 2;
-  PetscBool set;
-  PetscFunctionBeginUser;
-  PetscOptionsBegin(comm, "perturb_", "Perturbation ensembles: kinds", NULL);
-  PetscCall(PetscOptionsStringArray("-kinds", "Perturbation kinds: chiral, achiral", NULL, kinds, &nk, &set));
-  PetscOptionsEnd();
-  PetscCheck(!set || nk > 0, comm, PETSC_ERR_USER, "-perturb_kinds is empty (chiral, achiral)");
-  if (set) {
-    po->kinds.clear();
-    for (PetscInt k = 0; k < nk; k++) {
-      PetscBool c, a;
-      PetscCall(PetscStrcmp(kinds[k], "chiral", &c));
-      PetscCall(PetscStrcmp(kinds[k], "achiral", &a));
-      PetscCheck(c || a, comm, PETSC_ERR_USER, "-perturb_kinds: unknown kind %s (chiral, achiral)", kinds[k]);
-      po->kinds.push_back(c ? Perturbation::Chiral : Perturbation::Achiral);
-      PetscCall(PetscFree(kinds[k]));
-    }
-  }
-  PetscFunctionReturn(0);
-}
 
 // The -perturb_ block (the study sets the spring perturbation, omega_ext and E* itself).
 PetscErrorCode PerturbOptionsFromOptions(MPI_Comm comm, PerturbOptions *po)
@@ -127,7 +101,12 @@ PetscErrorCode PerturbOptionsFromOptions(MPI_Comm comm, PerturbOptions *po)
   PetscCall(RejectGivenOptions(comm, {"-sim_progress", "-sim_sample_dt"}, "-study perturb (no progress lines or samples per run)"));
   PetscCall(kPerturbTable.Read(comm, po, &set));
   PetscCheck(!kPerturbTable.Given(set, "delta_list") || !po->delta.empty(), comm, PETSC_ERR_USER, "-perturb_delta_list is empty");
-  PetscCall(ReadPerturbKinds(comm, po));
+  PetscCheck(!po->kind_names.empty(), comm, PETSC_ERR_USER, "-perturb_kinds is empty (chiral, achiral)");
+  po->kinds.clear();
+  for (const std::string &k : po->kind_names) {
+    PetscCheck(k == "chiral" || k == "achiral", comm, PETSC_ERR_USER, "-perturb_kinds: unknown kind %s (chiral, achiral)", k.c_str());
+    po->kinds.push_back(k == "chiral" ? Perturbation::Chiral : Perturbation::Achiral);
+  }
   PetscCall(GridAxisFromTable(comm, "perturb_", kPerturbTable, set, *po, kEnergyAxis, &po->energy));
   PetscFunctionReturn(0);
 }
