@@ -64,11 +64,11 @@ static std::vector<RegisteredOptionTable> &Tables()
 
 const std::vector<RegisteredOptionTable> &OptionTables() { return Tables(); }
 
-void RegisterOptionTable(const std::vector<OptionInfo> *rows, std::function<PetscErrorCode(MPI_Comm)> read_defaults)
+void RegisterOptionTable(const char *title, const std::vector<OptionInfo> *rows, std::function<PetscErrorCode(MPI_Comm)> read_defaults)
 {
   for (const auto &t : Tables())
     if (t.rows == rows) return;
-  Tables().push_back({rows, std::move(read_defaults)});
+  Tables().push_back({title ? title : "", rows, std::move(read_defaults)});
 }
 
 const OptionInfo *FindOption(const std::string &name)

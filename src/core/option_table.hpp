@@ -56,11 +56,12 @@ struct OptionInfo {
 // at start-up): its rows, and its reader run on the struct's defaults (the
 // in-process validator tests).
 struct RegisteredOptionTable {
+  std::string title; // the -help heading
   const std::vector<OptionInfo> *rows;
   std::function<PetscErrorCode(MPI_Comm)> read_defaults;
 };
 const std::vector<RegisteredOptionTable> &OptionTables();
-void RegisterOptionTable(const std::vector<OptionInfo> *rows, std::function<PetscErrorCode(MPI_Comm)> read_defaults);
+void RegisterOptionTable(const char *title, const std::vector<OptionInfo> *rows, std::function<PetscErrorCode(MPI_Comm)> read_defaults);
 // The row of a full option name ("-lattice_k"), NULL if no table declares it.
 const OptionInfo *FindOption(const std::string &name);
 
@@ -214,7 +215,7 @@ public:
   {
     infos_.clear();
     for (const Row &r : rows_) infos_.push_back(r.info);
-    RegisterOptionTable(&infos_, [this, seed](MPI_Comm comm) -> PetscErrorCode {
+    RegisterOptionTable(title_, &infos_, [this, seed](MPI_Comm comm) -> PetscErrorCode {
       S s = seed;
       return Read(comm, &s);
     });

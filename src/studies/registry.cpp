@@ -1,4 +1,5 @@
 #include "studies/registry.hpp"
+#include "core/option_reference.hpp"
 #include "timeint/ts_rkn.hpp"
 #include "timeint/ts_symsplit.hpp"
 #include "core/option_table.hpp"
@@ -83,6 +84,7 @@ PetscErrorCode AuditOptionsBeforeCommit(MPI_Comm comm)
 namespace {
 struct StudyOption {
   std::string name = "linear";
+  std::string option_tables; // md or json: print the option tables and stop
 };
 
 // -study: no prefix. Physics: a resume or an overwrite compares the study itself (io/run_options.hpp).
@@ -90,6 +92,11 @@ const auto &kStudyTable = DeclareOptionTable<StudyOption>("", "nltopo", [](Optio
   std::string help = "Study to run:";
   for (const auto &s : kStudies) help += std::string(" ") + s.name + " (" + s.help + ");";
   t.String("study", &StudyOption::name, help.c_str());
+  t.String("option_tables", &StudyOption::option_tables,
+           "Print every option nltopo declares and stop: md (the options reference, docs/options.md) or json (for tools: "
+           "tests/fuzz/fuzz.py)",
+           OptionClass::Bookkeeping)
+      .Default("(not given: run the study)");
 });
 } // namespace
 
@@ -104,6 +111,12 @@ PetscErrorCode RunStudyFromOptions(MPI_Comm comm)
   PetscCall(TSRknRegister());
   for (const auto &s : kStudies) known += std::string(known.empty() ? "" : ", ") + s.name;
   PetscCall(kStudyTable.Read(comm, &study));
+  if (!study.option_tables.empty()) {
+    const bool md = study.option_tables == "md";
+    PetscCheck(md || study.option_tables == "json", comm, PETSC_ERR_USER, "-option_tables %s: md or json", study.option_tables.c_str());
+    PetscCall(PetscPrintf(comm, "%s", (md ? OptionReferenceMarkdown() : OptionReferenceJson()).c_str()));
+    PetscFunctionReturn(0);
+  }
   const char *name = study.name.c_str();
   const StudyEntry *entry = nullptr;
   for (const auto &s : kStudies)

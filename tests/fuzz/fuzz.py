@@ -18,8 +18,10 @@ and never hangs, dies of a signal, aborts, calls MPI_Abort or prints a PETSc
 traceback. Unparsable and non-finite values must never be accepted.
 
 The option table below is nltopo's own options with a type and a range that
-keeps an accepted run small; the fuzzer checks it against the -help listing
-of every study, so an option added to nltopo without an entry here fails the
+keeps an accepted run small; the fuzzer checks it against the option tables
+the binary declares (nltopo -option_tables json: names, types, enum choices,
+ranges) and against the -help listing of every study (which options each
+study reads), so an option added to nltopo without an entry here fails the
 test (add it with its type and range).
 
 Usage: fuzz.py NLTOPO WORKDIR [--cases N] [--seed S] [--jobs J] [--only CASE]
@@ -126,6 +128,7 @@ T = {
     "wp_reference_agreement": ("real", 1e-9, 1e-3), "wp_repeats": ("int", 1, 2), "wp_twins": ("int", 1, 2), "wp_twin_eps": ("real", 1e-12, 1e-6),
 }
 NOT_FUZZED = {"study", "output"}  # the scene itself
+RAW = {"wp_configs"}  # read outside the option tables (longer than a string row holds: src/studies/workprecision.cpp)
 
 OWN = re.compile(r"^(lattice_|force_|sim_|sweep_|kcorr_|zak_|perturb_|stability_|cont_|nnm_|floquet|linear_|wp_)")
 SOLVER = re.compile(r"^(sim_|nnm_start_|nnm_|linear_|floquet_mf_|floquet_)(ts|snes|ksp|pc|eps|st|bv|ds|rg|fn|mat|dm|tao|sf)_")
@@ -229,6 +232,38 @@ def study_options(nltopo):
     return out
 
 
+# The fuzz table's kind for each type of nltopo's option tables (nltopo -option_tables json).
+KINDS = {"real": {"real"}, "int": {"int"}, "bool": {"bool"}, "enum": {"enum"}, "real list": {"reals"},
+         "string": {"path", "enum", "strings"}, "string list": {"strings", "enum"}}
+
+
+def check_table(nltopo):
+    """T against the options nltopo declares: the same names, kinds that fit the declared types, the
+    declared choices of every enum, and in-range draws inside each declared range. Returns problems."""
+    p = subprocess.run([nltopo, "-option_tables", "json"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=120)
+    if p.returncode != 0:
+        return ["%s -option_tables json failed (exit %d): %s" % (nltopo, p.returncode, p.stdout.decode(errors="replace")[-500:])]
+    import json
+    declared = {r["name"][1:]: r for r in json.loads(p.stdout.decode())}
+    problems = []
+    for name, typ in sorted(T.items()):
+        r = declared.get(name)
+        if r is None and name in RAW:
+            continue
+        if r is None:
+            problems.append("-%s: in the fuzz table, not declared by nltopo" % name)
+            continue
+        if typ[0] not in KINDS[r["type"]]:
+            problems.append("-%s: fuzz kind %s, declared %s" % (name, typ[0], r["type"]))
+        if r["type"] == "enum" and sorted(typ[3]) != sorted(r["choices"]):
+            problems.append("-%s: fuzz choices %s, declared %s" % (name, typ[3], r["choices"]))
+        if typ[0] in ("real", "int", "reals") and r["type"] != "string":
+            lo, hi = r.get("min"), r.get("max")
+            if (lo is not None and typ[1] < lo) or (hi is not None and typ[2] > hi):
+                problems.append("-%s: fuzz draws %g..%g, declared range %s..%s" % (name, typ[1], typ[2], lo, hi))
+    return problems
+
+
 def make_case(seed, i, options):
     rng = random.Random("%d:%d" % (seed, i))
     study = STUDIES[i % len(STUDIES)]
@@ -323,6 +358,10 @@ def main():
     args.nltopo = os.path.abspath(args.nltopo)
     os.makedirs(args.work, exist_ok=True)
     t0 = time.time()
+    problems = check_table(args.nltopo)
+    if problems:
+        print("fuzz: the fuzz table (tests/fuzz/fuzz.py T) disagrees with nltopo's option tables:\n  " + "\n  ".join(problems))
+        return 1
     options = study_options(args.nltopo)
     missing = sorted({n for s in options.values() for n in s} - set(T) - NOT_FUZZED)
     if missing:

@@ -26,4 +26,22 @@ for opt in -nnm_jacobian -nnm_mf_pc -nnm_mf_pc_parametric_weight -nnm_orbit_rtol
            -cont_bif_angle_tol -cont_bif_bulk -cont_bif_passes -cont_bif_resonance_order -cont_switch -cont_switch_step; do
   grep -qE -- "$opt[ :]" help_cont.txt || { echo "missing in -help: $opt"; exit 1; }
 done
+# docs/options.md is the binary's options reference, and the JSON form names the same options
+"$NLTOPO" -option_tables md > options.md
+diff -u "$SRC/docs/options.md" options.md > options.diff || { head -40 options.diff; echo "docs/options.md is stale: build/nltopo -option_tables md > docs/options.md"; exit 1; }
+"$NLTOPO" -option_tables json > options.json
+$PY - <<'PYEOF'
+import json, re
+rows = json.load(open("options.json"))
+md = set(re.findall(r"^\| `(-[a-z0-9_]+)` \|", open("options.md").read(), re.M))
+names = [r["name"] for r in rows]
+assert len(names) == len(set(names)), "an option declared twice"
+assert set(names) == md and len(md) >= 120, (len(md), set(names) ^ md)
+for r in rows:
+    assert r["class"] in ("physics", "extent", "bookkeeping") and r["help"], r["name"]
+    if r["type"] in ("real", "int", "real list"):
+        lo, hi = r["min"], r["max"]
+        assert lo is None or hi is None or lo <= hi, r["name"]
+print("options reference OK:", len(rows), "options")
+PYEOF
 echo "help OK"
