@@ -164,4 +164,25 @@ PetscErrorCode Lattice::AssembleNearestNeighbour(const PetscScalar *kd, const Pe
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SumDisplacements(const Lattice &lat, Vec a, Vec b, DisplacementSums *s)
+{
+  const PetscScalar *x, *y;
+  const PetscInt m = lat.OwnedCount(); // the owned u entries lead each rank's part of the state
+  PetscReal loc[4] = {0, 0, 0, 0}, g[4];
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(a, &x));
+  PetscCall(VecGetArrayRead(b, &y));
+  for (PetscInt k = 0; k < m; k++) {
+    loc[0] += x[k] * y[k];
+    loc[1] += x[k] * x[k];
+    loc[2] += y[k] * y[k];
+    loc[3] += x[k] * x[k] * x[k] * x[k];
+  }
+  PetscCall(VecRestoreArrayRead(b, &y));
+  PetscCall(VecRestoreArrayRead(a, &x));
+  PetscCall(MPIU_Allreduce(loc, g, 4, MPIU_REAL, MPIU_SUM, lat.Comm()));
+  *s = {g[0], g[1], g[2], g[3]};
+  PetscFunctionReturn(0);
+}
+
 } // namespace nltopo

@@ -13,6 +13,7 @@
 // position/momentum split of symplectic TS) with the SiteDM layout.
 #include "core/handle.hpp"
 #include "lattice/params.hpp"
+#include <cmath>
 #include <vector>
 
 namespace nltopo {
@@ -77,5 +78,15 @@ private:
   std::vector<PetscReal> kb_;    // k of bonds xs-1 .. xs+xm-1 (0 outside the chain): kb_[b - xs + 1]
   std::vector<PetscReal> kd_;    // diagonal of K at the owned sites: kd_[i - xs] (k_hat unless perturbed)
 };
+
+// Sums over the displacement parts u, w of two states a, b (collective):
+// u.w, u.u, w.w and sum u^4: the shape correlation |u.w| / (|u| |w|) and the
+// MCR of u (sum u^4 / (u.u)^2, docs/model.md) come from them.
+struct DisplacementSums {
+  PetscReal uw = 0, uu = 0, ww = 0, u4 = 0;
+  PetscReal Correlation() const { return uu > 0 && ww > 0 ? std::abs(uw) / std::sqrt(uu * ww) : 0; }
+  PetscReal Mcr() const { return uu > 0 ? u4 / (uu * uu) : 0; }
+};
+PetscErrorCode SumDisplacements(const Lattice &lat, Vec a, Vec b, DisplacementSums *s);
 
 } // namespace nltopo

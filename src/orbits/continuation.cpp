@@ -37,24 +37,13 @@ PetscErrorCode ContinuationOptionsFromOptions(MPI_Comm comm, ContinuationOptions
 
 namespace {
 
-// Correlation of the displacement parts of two states, and the norm of the first's u.
+// Correlation of the displacement parts of two states.
 PetscErrorCode ShapeCorrelation(const Lattice &lat, Vec a, Vec b, PetscReal *corr)
 {
-  const PetscScalar *x, *y;
-  const PetscInt m = lat.OwnedCount();
-  PetscReal loc[3] = {0, 0, 0}, g[3];
+  DisplacementSums d;
   PetscFunctionBeginUser;
-  PetscCall(VecGetArrayRead(a, &x));
-  PetscCall(VecGetArrayRead(b, &y));
-  for (PetscInt k = 0; k < m; k++) {
-    loc[0] += x[k] * y[k];
-    loc[1] += x[k] * x[k];
-    loc[2] += y[k] * y[k];
-  }
-  PetscCall(VecRestoreArrayRead(b, &y));
-  PetscCall(VecRestoreArrayRead(a, &x));
-  PetscCall(MPIU_Allreduce(loc, g, 3, MPIU_REAL, MPIU_SUM, lat.Comm()));
-  *corr = (g[1] > 0 && g[2] > 0) ? std::abs(g[0]) / std::sqrt(g[1] * g[2]) : 0;
+  PetscCall(SumDisplacements(lat, a, b, &d));
+  *corr = d.Correlation();
   PetscFunctionReturn(0);
 }
 

@@ -33,25 +33,13 @@ public:
   Persistence(const Lattice &lat, Vec z0, PetscInt per_window) : lat_(lat), z0_(z0), per_window_(per_window) {}
   PetscErrorCode Sample(PetscReal t, Vec z, const EnergyParts &e) override
   {
-    const PetscScalar *a, *b;
-    const PetscInt m = lat_.OwnedCount();
-    PetscReal loc[4] = {0, 0, 0, 0}, g[4];
+    DisplacementSums d;
     PetscFunctionBeginUser;
-    PetscCall(VecGetArrayRead(z, &a));
-    PetscCall(VecGetArrayRead(z0_, &b));
-    for (PetscInt k = 0; k < m; k++) {
-      loc[0] += a[k] * b[k];
-      loc[1] += a[k] * a[k];
-      loc[2] += b[k] * b[k];
-      loc[3] += a[k] * a[k] * a[k] * a[k];
-    }
-    PetscCall(VecRestoreArrayRead(z0_, &b));
-    PetscCall(VecRestoreArrayRead(z, &a));
-    PetscCall(MPIU_Allreduce(loc, g, 4, MPIU_REAL, MPIU_SUM, lat_.Comm()));
-    const PetscReal c = g[1] > 0 && g[2] > 0 ? std::abs(g[0]) / std::sqrt(g[1] * g[2]) : 0;
+    PetscCall(SumDisplacements(lat_, z, z0_, &d));
+    const PetscReal c = d.Correlation();
     if (n_ == 0 || c > best_) {
       best_ = c;
-      best_mcr_ = g[1] > 0 ? g[3] / (g[1] * g[1]) : 0;
+      best_mcr_ = d.Mcr();
     }
     if (++n_ == per_window_ || t == 0) { // the initial state is its own window
       t_.push_back(t);
