@@ -8,6 +8,7 @@ rm -rf "$WORK"
 mkdir -p "$WORK"
 cd "$WORK"
 PY=/usr/bin/python3 # Debian's python3 with h5py and numpy
+CHECKS=$SRC/tests/scenes/checks # the scenes' check steps: $PY "$CHECKS/<scene>.py" <step> (scene_check.py)
 MPIEXEC=${MPIEXEC:-mpiexec}
 run1() { "$NLTOPO" "$@" -options_left; }
 run2() { "$MPIEXEC" -n 2 "$NLTOPO" "$@" -options_left; }

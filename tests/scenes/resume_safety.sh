@@ -21,7 +21,7 @@ for np in 1 2; do
     if ls ./*.tmp.* > /dev/null 2>&1; then echo "FAILED (np $np): temporary left: $(ls ./*.tmp.*)"; exit 1; fi
     echo "ok (np $np): $(cat no.err)"
   }
-  study_of() { $PY -c "import h5py; s = h5py.File('$1', 'r').attrs['study']; print(s.decode() if isinstance(s, bytes) else s)"; }
+  study_of() { $PY "$CHECKS/resume_safety.py" study "$1"; }
 
   # -sweep_resume
   SW=(-study sweep -sweep_omega_n 2 -sweep_energy_n 2 -sweep_energy_min 1e-3 -sweep_energy_max 1e-2 -sim_t_final 300)
@@ -43,20 +43,13 @@ for np in 1 2; do
   refused "-cont_resume sw$np.h5 was written by -study sweep (now continuation)" sw$np.h5 "${CO[@]}" -cont_resume sw$np.h5 -output res$np.h5
   # a code default changed since the file was written: its effective -nnm_ts_type rk (the default before symsplit)
   cp co$np.h5 old$np.h5
-  $PY - old$np.h5 <<'PYEOF'
-import sys, h5py
-f = h5py.File(sys.argv[1], "r+")
-e = f.attrs["effective_options"]
-e = e.decode() if isinstance(e, bytes) else e
-assert "-nnm_ts_type symsplit\n" in e and "-lattice_k 1\n" in e, e   # defaults included
-f.attrs["effective_options"] = e.replace("-nnm_ts_type symsplit", "-nnm_ts_type rk")
-PYEOF
+  $PY "$CHECKS/resume_safety.py" code_default_changed old$np.h5
   refused "-cont_resume old$np.h5 was written with -nnm_ts_type rk, the default then (now symsplit)" old$np.h5 "${CO[@]}" -cont_resume old$np.h5 -output res$np.h5
   [ ! -e res$np.h5 ] || { echo "FAILED: a refused resume wrote its -output"; exit 1; }
   # extent (-cont_energy_max, -cont_max_points) and diagnostics may change; into the same file
   ok "${CO[@]}" -lattice_cubic 5e-1 -cont_energy_max 2e-4 -cont_max_points 6 -nnm_snes_converged_reason -cont_resume co$np.h5 -output co$np.h5
   grep -q "stored tangent and step" ok.txt
-  $PY -c "import h5py; f = h5py.File('co$np.h5', 'r'); assert f.attrs['complete'] == 1 and f['continuation/insulated'].attrs['points'] > 3"
+  $PY "$CHECKS/resume_safety.py" resumed co$np.h5
 
   # overwrite: another study's complete output, then the same study with other options
   ok -study linear -output lin$np.h5

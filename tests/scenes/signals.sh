@@ -45,7 +45,7 @@ check_interrupted() {
     exit 1
   fi
   if ls "$out".tmp.* > /dev/null 2>&1; then echo "FAILED: temporary left: $(ls "$out".tmp.*)"; exit 1; fi
-  $PY -c "import h5py, sys; c = h5py.File('$out', 'r').attrs['complete']; sys.exit(0 if c == 0 else 1)" || { echo "FAILED: $out not complete = 0"; exit 1; }
+  $PY "$CHECKS/signals.py" partial "$out" || { echo "FAILED: $out not complete = 0"; exit 1; }
   echo "ok (exit $rc): $(grep '^nltopo:' "$err")"
 }
 
@@ -62,23 +62,13 @@ t0=$(date +%s.%N)
 kill -TERM "$pid"
 wait_limited "$pid"
 rc=$RC
-echo "sweep: mpiexec exited $($PY -c "print(round($(date +%s.%N) - $t0, 2))") s after SIGTERM"
+echo "sweep: mpiexec exited $($PY "$CHECKS/signals.py" elapsed "$t0" "$(date +%s.%N)") s after SIGTERM"
 check_interrupted "$rc" sw_int.err sw_int.h5 "between sweep points"
 if ls sw_int.h5.journal.* > /dev/null 2>&1; then echo "FAILED: journals left (they are merged into the file)"; exit 1; fi
-done_before=$($PY -c "import h5py; print(int(h5py.File('sw_int.h5', 'r')['sweep/done'][:].sum()))")
+done_before=$($PY "$CHECKS/signals.py" done_points sw_int.h5)
 [ "$done_before" -lt 32 ] || { echo "FAILED: the sweep ended before the signal arrived: nothing to test"; exit 1; }
 timeout "$LIMIT" "${M2[@]}" "$NLTOPO" "${SW[@]}" -output sw_int.h5 -sweep_resume -options_left > sw_res.txt
-DONE_BEFORE=$done_before $PY - <<'PYEOF'
-import h5py, numpy as np, os
-a, f = h5py.File("sw_full.h5", "r"), h5py.File("sw_int.h5", "r")
-assert a.attrs["complete"] == 1 and f.attrs["complete"] == 1
-s, r = a["sweep"], f["sweep"]
-for k in ("mcr", "t_off", "kcorr", "nl_ratio", "done", "reached", "amplitude", "energy_final", "rescalings", "rhs_evals", "steps"):
-    assert np.array_equal(s[k][:], r[k][:], equal_nan=True), ("interrupted + resumed vs uninterrupted", k)
-n0 = int(os.environ["DONE_BEFORE"])
-assert r.attrs["points_computed"] == 32 - n0, (r.attrs["points_computed"], n0)
-print("sweep: SIGTERM after %d of 32 points, resume computed %d; mcr, t_off, kcorr, nl_ratio equal bit for bit" % (n0, 32 - n0))
-PYEOF
+$PY "$CHECKS/signals.py" sweep_resumed "$done_before"
 
 # 2. Continuations: SIGTERM between (or inside) the solves of two points; the
 #    resume takes the stored tangent and step, so it goes on exactly as the
@@ -87,15 +77,7 @@ PYEOF
 compare_branches() {
   local a=$1 b=$2
   shift 2
-  $PY - "$a" "$b" "$@" <<'PYEOF'
-import h5py, numpy as np, sys
-a, b = (h5py.File(n, "r") for n in sys.argv[1:3])
-assert b.attrs["complete"] == 1
-x, y = a["continuation/insulated"], b["continuation/insulated"]
-for k in sys.argv[3:]:
-    assert x[k].shape == y[k].shape and np.array_equal(x[k][:], y[k][:], equal_nan=True), ("resumed vs uninterrupted", k, x[k].shape, y[k].shape)
-print("%s: %d points, %s equal bit for bit" % (sys.argv[2], x["energy"].shape[0], ", ".join(sys.argv[3:])))
-PYEOF
+  $PY "$CHECKS/signals.py" branch_resumed "$a" "$b" "$@"
 }
 points_printed() { [ "$(grep -c ' E = ' "$1" || true)" -ge "$2" ]; }
 
@@ -137,7 +119,7 @@ wait_until 120 case_done
 kill -TERM "$pid"
 wait_limited "$pid"
 check_interrupted "$RC" st_int.err st_int.h5 "during stability case 1"
-$PY -c "import h5py; s = h5py.File('st_int.h5', 'r')['stability']; assert list(s.keys()) == ['case0'] and s.attrs['cases_done'] == 1"
+$PY "$CHECKS/signals.py" first_case_kept
 
 # 3. Failures at 2 ranks: one line from nltopo, a non-zero exit, no hang, no temporary.
 expect_fail2() { # expect_fail2 <pattern> <output> nltopo args...

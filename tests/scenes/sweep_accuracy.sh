@@ -12,19 +12,7 @@ run2 "${OPTS[@]}" -output a2.h5 > a2.txt
 grep -q "sweep_mcr_tol 0.001: .* integrations" a1.txt
 
 # single simulate runs at each point with the sweep's S: the reference, and the twins at the sweep's integrator
-$PY - <<'PYEOF' > runs.txt
-import h5py
-g = h5py.File("a1.h5", "r")["sweep"]
-for i, E in enumerate(g["energy"][:]):
-    for j, w in enumerate(g["omega"][:]):
-        S = float(g["amplitude"][i, j])
-        print(f"ref_{i}_{j} {E!r} {w!r} {S!r} ref")
-        if g["predictable"][i, j] == 0:
-            n = 4  # -sweep_mcr_twins (default): the first run and 4 twins
-            for t in range(n + 1):
-                k = 0.0 if t == 0 else (-1.0 if (t - 1) % 2 else 1.0) * ((t - 1) // 2 + 1)
-                print(f"twin_{i}_{j}_{t} {E!r} {w!r} {S * (1 + k * 1e-10)!r} twin")
-PYEOF
+$PY "$CHECKS/sweep_accuracy.py" runs > runs.txt
 SIM=(-options_file "$SRC/options/simulate.opts" -sim_store_u 0 -sim_sample_dt 0 -sim_progress 0)
 while read -r name E W S kind; do
   if [ "$kind" = ref ]; then
@@ -36,38 +24,4 @@ while read -r name E W S kind; do
   fi
 done < runs.txt
 
-$PY - <<'PYEOF'
-import glob
-import h5py, numpy as np
-a1, a2 = (h5py.File(n, "r")["sweep"] for n in ("a1.h5", "a2.h5"))
-for k in ("mcr", "mcr_error", "mcr_spread", "predictable", "mcr_runs", "t_off", "amplitude"):
-    assert np.array_equal(a1[k][:], a2[k][:], equal_nan=True), ("np1 vs np2", k)
-assert a1.attrs["mcr_tol"] == 1e-3
-tol = 1e-3
-pred = a1["predictable"][:]
-# the insulated mode at E* = 1e-2 is regular and converged; omega = 2.1 at E* = 200 is chaotic (README "The 0-1 test")
-assert pred[0, 0] == 1 and a1["mcr_error"][0, 0] <= tol and a1["mcr_spread"][0, 0] == 0, (pred, a1["mcr_error"][:])
-assert pred[1, 1] == 0 and np.isnan(a1["mcr_error"][1, 1]), (pred, a1["mcr_error"][:])
-for i in range(2):
-    for j in range(2):
-        m = a1["mcr"][i, j]
-        ref = h5py.File(f"ref_{i}_{j}.h5", "r")["simulate"].attrs["mcr"]
-        if pred[i, j] == 1 and a1["mcr_error"][i, j] <= tol:
-            print(f"point ({i}, {j}) predictable: MCR {m:.8f}, converged {ref:.8f}, rel. diff {abs(m / ref - 1):.1e}, estimate {a1['mcr_error'][i, j]:.1e}")
-            assert abs(m / ref - 1) <= tol, (i, j, m, ref)
-        elif pred[i, j] == 0:
-            twins = [h5py.File(f, "r")["simulate"].attrs["mcr"] for f in sorted(glob.glob(f"twin_{i}_{j}_*.h5"))]
-            assert len(twins) == 5 and a1["mcr_runs"][i, j] >= 5, (len(twins), a1["mcr_runs"][i, j])
-            spread = max(twins) - min(twins)
-            print(f"point ({i}, {j}) unpredictable: MCR {m:.6f} = mean of {len(twins)} twins {np.mean(twins):.6f}, spread {a1['mcr_spread'][i, j]:.2e} "
-                  f"({spread:.2e}); one run at reference accuracy: {ref:.6f}")
-            assert abs(m - np.mean(twins)) <= 1e-12 * abs(m), (m, np.mean(twins))
-            assert abs(a1["mcr_spread"][i, j] - spread) <= 1e-12 and spread > tol * m, (a1["mcr_spread"][i, j], spread)
-# the cost card: every rank's integrations summed (np2 too), the same work as the per-point counts
-for name, g in (("a1.h5", a1), ("a2.h5", a2)):
-    c = h5py.File(name, "r")["cost"].attrs
-    assert c["sim_force_evaluations"] == g["rhs_evals"][:].sum(), (name, c["sim_force_evaluations"], g["rhs_evals"][:].sum())
-    assert c["sim_integrator"] in (b"symsplit bm4", "symsplit bm4") and c["sim_rejected_steps"] == 0
-    assert 0 < c["error_estimate"] <= tol, c["error_estimate"]
-print("accuracy-aware sweep OK")
-PYEOF
+$PY "$CHECKS/sweep_accuracy.py" accuracy
