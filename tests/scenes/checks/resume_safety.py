@@ -10,11 +10,10 @@ from scene_check import attr_str, complete, group, main, require, study_of
 def code_default_changed(path):
     """Make path a file written when the code default was -nnm_ts_type rk: its effective options (which
     include the defaults) with -nnm_ts_type symsplit replaced."""
-    f = h5py.File(path, "r+")
-    e = attr_str(f, "effective_options")
-    require("-nnm_ts_type symsplit\n" in e and "-lattice_k 1\n" in e, e)   # defaults included
-    f.attrs["effective_options"] = e.replace("-nnm_ts_type symsplit", "-nnm_ts_type rk")
-
+    with h5py.File(path, "r+") as f:
+        e = attr_str(f, "effective_options")
+        require("-nnm_ts_type symsplit\n" in e and "-lattice_k 1\n" in e, e)   # defaults included
+        f.attrs["effective_options"] = e.replace("-nnm_ts_type symsplit", "-nnm_ts_type rk")
 
 
 def resumed(path):
