@@ -72,8 +72,8 @@ std::string OptionReferenceJson()
         for (size_t k = 0; k < r.choices.size(); k++) o += (k ? ", " : "") + JsonString(r.choices[k]);
         o += "]";
       }
-      o += ", \"default\": " + JsonString(r.default_text) + ", \"class\": " + JsonString(OptionClassName(r.cls)) + ", \"only_if_set\": " +
-           (r.only_if_set ? "true" : "false") + ", \"help\": " + JsonString(r.help) + ", \"why\": " + JsonString(r.why) + "}";
+      o += ", \"default\": " + JsonString(r.default_text) + ", \"class\": " + JsonString(OptionClassName(r.cls)) +
+           ", \"only_if_set\": " + (r.only_if_set ? "true" : "false") + ", \"help\": " + JsonString(r.help) + ", \"why\": " + JsonString(r.why) + "}";
     }
   return o + "\n]\n";
 }
@@ -91,7 +91,8 @@ std::string OptionReferenceMarkdown()
   std::vector<const RegisteredOptionTable *> tables;
   for (const RegisteredOptionTable &t : OptionTables())
     if (!t.rows->empty()) tables.push_back(&t);
-  std::stable_sort(tables.begin(), tables.end(), [](const RegisteredOptionTable *a, const RegisteredOptionTable *b) { return a->rows->front().name < b->rows->front().name; });
+  std::stable_sort(tables.begin(), tables.end(),
+                   [](const RegisteredOptionTable *a, const RegisteredOptionTable *b) { return a->rows->front().name < b->rows->front().name; });
   std::stable_sort(tables.begin(), tables.end(), [](const RegisteredOptionTable *a, const RegisteredOptionTable *b) { return a->title < b->title; });
   const std::string *last = nullptr;
   for (const RegisteredOptionTable *tp : tables) {

@@ -186,8 +186,8 @@ public:
       PetscCall(PetscOptionsStringArray(opt, text, NULL, v.data(), &n, set));
       if (*set && n > max_count) {
         for (PetscInt k = 0; k < n; k++) PetscCall(PetscFree(v[k]));
-        SETERRQ(PetscOptionsObject->comm, PETSC_ERR_USER, "-%s%s takes at most %" PetscInt_FMT " values", PetscOptionsObject->prefix ? PetscOptionsObject->prefix : "",
-                opt + 1, max_count);
+        SETERRQ(PetscOptionsObject->comm, PETSC_ERR_USER, "-%s%s takes at most %" PetscInt_FMT " values",
+                PetscOptionsObject->prefix ? PetscOptionsObject->prefix : "", opt + 1, max_count);
       }
       if (*set) {
         (s->*m).clear();
