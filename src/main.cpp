@@ -6,6 +6,7 @@
 #include <slepcsys.h>
 #include <hdf5.h>
 #include <csignal>
+#include <cstdio>
 
 static const char help[] = "nltopo: nonlinear SSH interface lattice (see README.md). Use -study <name> with -options_file options/<scene>.opts.\n";
 
@@ -25,6 +26,13 @@ int main(int argc, char **argv)
 
 static int Run(int argc, char **argv)
 {
+  std::setvbuf(stdout, NULL, _IOLBF, 0); // progress lines reach a pipe or a file as they are printed
+  if (argc == 1) {                       // no argument: usage, nothing written
+    int rank;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    if (!rank) std::fputs(nltopo::UsageText().c_str(), stdout);
+    return 0;
+  }
   if (!nltopo::PreflightArguments(argc, argv)) return 1;
   std::signal(SIGXFSZ, SIG_IGN); // a file-size limit (ulimit -f) is a failed write with one line, not a kill
   if (SlepcInitialize(&argc, &argv, NULL, help)) return 1;

@@ -1,5 +1,7 @@
 #include "studies/registry.hpp"
 #include "core/option_reference.hpp"
+#include <algorithm>
+#include <cstring>
 #include "timeint/ts_rkn.hpp"
 #include "timeint/ts_symsplit.hpp"
 #include "core/option_table.hpp"
@@ -14,6 +16,22 @@ namespace nltopo {
 #define NLTOPO_STUDY_ENTRY(name, Class, help) {name, help, Create##Class##Study},
 static const StudyEntry kStudies[] = {NLTOPO_STUDIES(NLTOPO_STUDY_ENTRY)};
 #undef NLTOPO_STUDY_ENTRY
+
+std::string UsageText()
+{
+  std::string u = "nltopo: strongly nonlinear topological lattices on PETSc/SLEPc (version " NLTOPO_VERSION ")\n\n"
+                  "usage: nltopo -study <name> [options]          one study, options on the command line\n"
+                  "       nltopo -options_file options/<scene>.opts [options]   a scene (the options files set -study)\n"
+                  "       mpiexec -n 2 nltopo ...                  the same on 2 ranks\n\nstudies:\n";
+  for (const auto &s : kStudies) u += std::string("  ") + s.name + std::string(14 - std::min<size_t>(13, std::strlen(s.name)), ' ') + s.help + "\n";
+  u += "\nexamples:\n"
+       "  nltopo -options_file options/linear.opts                  bands, Zak phase, the insulated mode\n"
+       "  nltopo -options_file options/simulate.opts                the paper's forced run at E* = 1\n"
+       "  nltopo -options_file options/fep.opts -cont_bifurcations 0   the frequency-energy plot, fast\n"
+       "  nltopo -study simulate -help                              the options of a study, and stop\n\n"
+       "docs: README.md (quick start, how do I), docs/options.md (every option), docs/outputs.md (every output)\n";
+  return u;
+}
 
 #define NLTOPO_STUDY_CONTRACT(name, Class, help) Class##StudyContract,
 static StudyContract (*const kContracts[])() = {NLTOPO_STUDIES(NLTOPO_STUDY_CONTRACT)};
@@ -110,13 +128,18 @@ PetscErrorCode RunStudyFromOptions(MPI_Comm comm)
   PetscCall(TSSymSplitRegister()); // nltopo's TS types, before any -*ts_type is read
   PetscCall(TSRknRegister());
   for (const auto &s : kStudies) known += std::string(known.empty() ? "" : ", ") + s.name;
-  PetscCall(kStudyTable.Read(comm, &study));
+  std::vector<PetscBool> set;
+  PetscCall(kStudyTable.Read(comm, &study, &set));
+  PetscCall(PetscOptionsHasHelp(NULL, &list_help));
   if (!study.option_tables.empty()) {
     const bool md = study.option_tables == "md";
     PetscCheck(md || study.option_tables == "json", comm, PETSC_ERR_USER, "-option_tables %s: md or json", study.option_tables.c_str());
     PetscCall(PetscPrintf(comm, "%s", (md ? OptionReferenceMarkdown() : OptionReferenceJson()).c_str()));
     PetscFunctionReturn(0);
   }
+  // a run names its study: options without one (a typo in an options file's first line, a forgotten -study) are not a linear run
+  PetscCheck(kStudyTable.Given(set, "study") || list_help, comm, PETSC_ERR_USER, "no -study given (one of: %s); nltopo alone prints usage",
+             known.c_str());
   const char *name = study.name.c_str();
   const StudyEntry *entry = nullptr;
   for (const auto &s : kStudies)
@@ -126,7 +149,6 @@ PetscErrorCode RunStudyFromOptions(MPI_Comm comm)
   PetscCall(ListGivenOptions(&given));
   PetscCall(CheckFiniteOptionValues(comm, given, true));                              // nan/inf in solver options, whose own checks do not name them
   PetscCall(CheckOptionValueShapes(comm, name, StudyOptionFunctions()[name], given)); // a missing value, an integer PETSc would wrap
-  PetscCall(PetscOptionsHasHelp(NULL, &list_help));
   const OptionsFn options = StudyOptionFunctions()[name];
   PetscCall(options(comm));                               // -help: prints them all; otherwise marks them read and checks their ranges
   PetscCall(CheckFiniteOptionValues(comm, given, false)); // nan/inf that no range check of nltopo's caught

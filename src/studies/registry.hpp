@@ -63,13 +63,16 @@ void RegisterStudyContracts();
 std::vector<Field> WithBandEdges(std::vector<Field> fields);
 PetscErrorCode WriteBandEdges(PetscViewer v, const char *group, const BandEdges &be);
 
+// What `nltopo` alone prints: the studies, example commands, where the docs are.
+std::string UsageText();
+
 // Each study's options function (its DeclareOptions), by -study name.
 std::map<std::string, OptionsFn> StudyOptionFunctions();
 
-// Reads -study (default linear), checks the options (finite values, no option
-// the study does not read), and runs it; with -help it lists the study's
-// options and returns without computing. An unknown name is an error listing
-// the known ones.
+// Reads -study, checks the options (finite values, no option the study does
+// not read), and runs it; with -help it lists the study's options (linear's
+// without -study) and returns without computing. No -study, or an unknown
+// one, is an error listing the known ones.
 PetscErrorCode RunStudyFromOptions(MPI_Comm comm);
 
 // The end-of-run check of unused options, on the study's communicator (all

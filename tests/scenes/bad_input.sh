@@ -38,6 +38,8 @@ W="-study sweep -sweep_omega_n 2 -sweep_energy_n 1 -sim_t_final 20"
 # argv preflight (before PETSc starts; one line from the first rank only)
 expect_error "-options_file $WORK/missing.opts" o.h5 -options_file "$WORK/missing.opts"
 expect_error "-lattice_cubic" o.h5 -study linear -lattice_Gamma 0.5
+# a run names its study (nltopo alone prints usage: the help scene)
+expect_error "no -study given (one of: linear, simulate, continuation, sweep, zak, perturb, workprecision, stability)" o.h5 -lattice_cells 5
 # the output file
 expect_error "-output $WORK/no/such/dir/x.h5" "$WORK/no/such/dir/x.h5" -study linear
 mkdir -p adir.h5

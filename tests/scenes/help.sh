@@ -26,6 +26,13 @@ for opt in -nnm_jacobian -nnm_mf_pc -nnm_mf_pc_parametric_weight -nnm_orbit_rtol
            -cont_bif_angle_tol -cont_bif_bulk -cont_bif_passes -cont_bif_resonance_order -cont_switch -cont_switch_step; do
   grep -qE -- "$opt[ :]" help_cont.txt || { echo "missing in -help: $opt"; exit 1; }
 done
+# nltopo alone prints usage (every study, where the docs are), writes nothing and exits 0
+"$NLTOPO" > usage.txt
+for s in linear simulate continuation sweep zak perturb workprecision stability; do
+  grep -qE "^  $s +[A-Za-z]" usage.txt || { cat usage.txt; echo "usage does not list -study $s"; exit 1; }
+done
+grep -q "docs/options.md" usage.txt
+[ -z "$(ls ./*.h5 ./*.tmp.* 2> /dev/null | grep -v '^./h[0-9]*.h5$')" ] || { ls; echo "nltopo alone wrote a file"; exit 1; }
 # docs/options.md is the binary's options reference, and the JSON form names the same options
 "$NLTOPO" -option_tables md > options.md
 diff -u "$SRC/docs/options.md" options.md > options.diff || { head -40 options.diff; echo "docs/options.md is stale: build/nltopo -option_tables md > docs/options.md"; exit 1; }
