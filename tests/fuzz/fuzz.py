@@ -31,6 +31,7 @@ A failure prints its case number and the full command; "--only CASE" (same
 """
 import argparse
 import glob
+import json
 import os
 import random
 import re
@@ -243,7 +244,6 @@ def check_table(nltopo):
     p = subprocess.run([nltopo, "-option_tables", "json"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=120)
     if p.returncode != 0:
         return ["%s -option_tables json failed (exit %d): %s" % (nltopo, p.returncode, p.stdout.decode(errors="replace")[-500:])]
-    import json
     declared = {r["name"][1:]: r for r in json.loads(p.stdout.decode())}
     problems = []
     for name, typ in sorted(T.items()):
