@@ -1,12 +1,15 @@
 // nltopo: strongly nonlinear topological lattices on PETSc/SLEPc.
 // Thin driver: initialise, run the -study from the registry, finalise.
 #include "core/errors.hpp"
+#include "core/option_help.hpp"
 #include "core/signals.hpp"
 #include "studies/registry.hpp"
 #include <slepcsys.h>
 #include <hdf5.h>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
+#include <strings.h>
 
 static const char help[] = "nltopo: nonlinear SSH interface lattice (see README.md). Use -study <name> with -options_file options/<scene>.opts.\n";
 
@@ -33,6 +36,25 @@ static int Run(int argc, char **argv)
     if (!rank) std::fputs(nltopo::UsageText().c_str(), stdout);
     return 0;
   }
+  for (int i = 1; i < argc; i++)
+    if (!std::strcmp(argv[i], "-version") || !std::strcmp(argv[i], "--version")) { // before PETSc, which would print its own banner
+      int rank;
+      MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+      if (!rank) std::fputs(nltopo::VersionText().c_str(), stdout);
+      return 0;
+    }
+  // -help (or -h) is nltopo's listing unless followed by "petsc": taken out
+  // before PETSc starts, which would print its generic block first
+  for (int i = 1; i < argc; i++)
+    if (!strcasecmp(argv[i], "-help") || !strcasecmp(argv[i], "-h")) {
+      const bool petsc = i + 1 < argc && !strcasecmp(argv[i + 1], "petsc"); // PETSc's own listing: drop the word, keep -help
+      if (!petsc) nltopo::SetOwnHelp(true);
+      const int drop = petsc ? i + 1 : i;
+      for (int j = drop; j + 1 < argc; j++) argv[j] = argv[j + 1];
+      argv[--argc] = nullptr;
+      if (petsc) break;
+      i--;
+    }
   if (!nltopo::PreflightArguments(argc, argv)) return 1;
   std::signal(SIGXFSZ, SIG_IGN); // a file-size limit (ulimit -f) is a failed write with one line, not a kill
   if (SlepcInitialize(&argc, &argv, NULL, help)) return 1;

@@ -10,6 +10,7 @@
 // What options must not combine to (a site beyond N, a profile that needs a
 // layout) stays the component's own check after Read: a row knows one option.
 #include "core/effective_options.hpp"
+#include "core/option_help.hpp"
 #include <petscsys.h>
 #include <cmath>
 #include <functional>
@@ -252,6 +253,11 @@ public:
     }
     for (const Row &r : rows_)
       if (r.text) NoteEffectiveOption(r.info.name, r.text(*s)); // the run's provenance (core/effective_options.hpp)
+    if (HelpCollecting()) {                                     // -help: this block, with the values this run would use (core/option_help.hpp)
+      std::vector<HelpRow> help;
+      for (size_t k = 0; k < rows_.size(); k++) help.push_back({&rows_[k].info, rows_[k].text ? rows_[k].text(*s) : std::string(), (bool)given[k]});
+      NoteHelpBlock(prefix_, title_, std::move(help));
+    }
     if (set) *set = given;
     PetscFunctionReturn(0);
   }

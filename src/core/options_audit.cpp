@@ -1,4 +1,5 @@
 #include "core/options_audit.hpp"
+#include "core/option_help.hpp"
 #include "core/effective_options.hpp"
 #include "core/option_table.hpp"
 #include "core/ts_traits.hpp"
@@ -40,14 +41,17 @@ PetscErrorCode DeclareTS(MPI_Comm comm, const char *prefix)
   PetscCall(PetscOptionsGetString(NULL, prefix, "-ts_type", type, sizeof(type), &set));
   if (!set && TSDefaultType(prefix)) PetscCall(PetscStrncpy(type, TSDefaultType(prefix), sizeof(type)));
   if (type[0]) NoteEffectiveOption(std::string("-") + prefix + "ts_type", type);
+  NoteSolverPrefix((std::string(prefix) + "ts_").c_str(), (std::string("TS, type ") + (type[0] ? type : "PETSc's default")).c_str());
   PetscFunctionReturn(0);
 }
 PetscErrorCode DeclareSNES(MPI_Comm comm, const char *prefix)
 {
+  NoteSolverPrefix((std::string(prefix) + "snes_").c_str(), "SNES; its KSP and PC: -" + std::string(prefix) + "ksp_*, -" + std::string(prefix) + "pc_*");
   return Declare<SNES, SNESCreate, SNESSetOptionsPrefix, SNESSetFromOptions, SNESDestroy>(comm, prefix);
 }
 PetscErrorCode DeclareEPS(MPI_Comm comm, const char *prefix)
 {
+  NoteSolverPrefix((std::string(prefix) + "eps_").c_str(), "SLEPc EPS");
   return Declare<EPS, EPSCreate, EPSSetOptionsPrefix, EPSSetFromOptions, EPSDestroy>(comm, prefix);
 }
 

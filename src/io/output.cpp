@@ -6,6 +6,7 @@
 #include "core/option_table.hpp"
 #include "io/run_options.hpp"
 #include "io/schema.hpp"
+#include "io/self_describe.hpp"
 #include <petscviewerhdf5.h>
 #include <cerrno>
 #include <cstdio>
@@ -156,7 +157,10 @@ PetscErrorCode OutputFile::Commit(const char *study, PetscReal wall_seconds, boo
   PetscCall(WriteAttr(viewer_, "/", "effective_options", EffectiveOptionsText().c_str()));
   PetscCall(WriteAttr(viewer_, "/", "wall_seconds", wall_seconds));
   PetscCall(WriteAttr(viewer_, "/", "complete", (PetscInt)complete));
+  PetscCall(WriteAttr(viewer_, "/", "format_version", kFormatVersion));
   PetscCall(PetscFree(opts));
+  PetscCall(WriteGivenOptions(viewer_));
+  PetscCall(DescribeFile(viewer_)); // description, units and codes of every field (io/self_describe.hpp)
   PetscViewer raw = viewer_.release();
   AGREE(comm_, PetscViewerDestroy(&raw), "flush and close"); // the close may fail (disk full)
   PetscCallMPI(MPI_Comm_rank(comm_, &rank));

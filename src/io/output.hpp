@@ -33,7 +33,9 @@ public:
   PetscErrorCode Open(MPI_Comm comm, const std::string &path, const std::string &tag = "", double expected_bytes = 0);
   PetscViewer Viewer() const { return viewer_; }
   // Writes the root attributes (study, version, options, wall_seconds,
-  // complete: 0 for a checkpoint of a run still going), closes, renames.
+  // complete: 0 for a checkpoint of a run still going, format_version), the
+  // structured options and every field's description (io/self_describe.hpp),
+  // closes, renames.
   PetscErrorCode Commit(const char *study, PetscReal wall_seconds, bool complete = true);
 
 private:

@@ -1,4 +1,5 @@
 #include "io/run_options.hpp"
+#include "io/schema.hpp"
 #include "core/effective_options.hpp"
 #include "core/option_table.hpp"
 #include "io/input.hpp"
@@ -229,6 +230,9 @@ PetscErrorCode CheckResumeOptions(MPI_Comm comm, const std::string &file, const 
     if (!ReadRootAttribute(file, "study", &s) || !ReadRootAttribute(file, "options", &o))
       msg = std::string(what) + " " + file + ": not an nltopo output (no root attributes study and options)";
     else if (s != study) msg = std::string(what) + " " + file + " was written by -study " + s + " (now " + study + ")";
+    else if (long v = 0; ReadRootAttribute(file, "format_version", &v), v != kFormatVersion)
+      msg = std::string(what) + " " + file + " has format_version " + std::to_string(v) + " (this nltopo writes " + std::to_string(kFormatVersion) +
+            "): resume it with the nltopo that wrote it, or start afresh";
     else {
       ReadRootAttribute(file, "effective_options", &e); // absent in files of before it existed
       const std::string d = FirstOptionDifference({o, e}, ThisRunRecord(), OptionRule::Resume);

@@ -12,25 +12,27 @@ std::vector<Schema> &Registry()
 {
   static std::vector<Schema> s = {{"/",
                                    "",
-                                   {{"study", A, S, "scalar", "the -study that wrote the file"},
-                                    {"version", A, S, "scalar", "git describe or project version"},
-                                    {"options", A, S, "scalar", "the full options database, to repeat the run"},
-                                    {"effective_options", A, S, "scalar", "each option the run read and its value, defaults included, one per line"},
-                                    {"wall_seconds", A, R, "scalar", "wall time of the run"},
-                                    {"complete", A, I, "scalar", "1; 0 for a checkpoint, a running sweep or an interrupted run"}}},
+                                   {{"study", A, S, "scalar", "1", "the -study that wrote the file"},
+                                    {"version", A, S, "scalar", "1", "git describe or project version"},
+                                    {"options", A, S, "scalar", "1", "the full options database, to repeat the run"},
+                                    {"effective_options", A, S, "scalar", "1", "each option the run read and its value, defaults included, one per line"},
+                                    {"wall_seconds", A, R, "scalar", "s", "wall time of the run"},
+                                    {"complete", A, I, "scalar", "1", "1; 0 for a checkpoint, a running sweep or an interrupted run", codes::kYesNo},
+                                    {"options_table", A, S, "nopt", "1", "the given options as a table of (key without its -, value; empty for a flag)"},
+                                    {"format_version", A, I, "scalar", "1", "the output format's version (docs/outputs.md); a file without it is version 0"}}},
                                   {"/cost",
                                    "",
-                                   {{"wall_seconds", A, R, "scalar", "wall time of the run"},
-                                    {"<prefix>integrator", A, S, "scalar", "sim_ (forced/free runs) or nnm_ (shooting): TS type and scheme"},
-                                    {"<prefix>accuracy", A, S, "scalar", "fixed step, or rtol and atol"},
-                                    {"<prefix>solves", A, I, "scalar", "time integrations"},
-                                    {"<prefix>steps", A, I, "scalar", "accepted steps"},
-                                    {"<prefix>rejected_steps", A, I, "scalar", "rejected steps"},
-                                    {"<prefix>force_evaluations", A, I, "scalar", "force evaluations over every rank"},
-                                    {"<prefix>dt_min", A, R, "scalar", "smallest fixed step"},
-                                    {"<prefix>dt_max", A, R, "scalar", "largest fixed step"},
-                                    {"error_estimate", A, R, "scalar", "the study's own error estimate, NaN if none"},
-                                    {"error_estimate_of", A, S, "scalar", "what error_estimate measures, none if none"}}}};
+                                   {{"wall_seconds", A, R, "scalar", "s", "wall time of the run"},
+                                    {"<prefix>integrator", A, S, "scalar", "1", "sim_ (forced/free runs) or nnm_ (shooting): TS type and scheme"},
+                                    {"<prefix>accuracy", A, S, "scalar", "1", "fixed step, or rtol and atol"},
+                                    {"<prefix>solves", A, I, "scalar", "1", "time integrations"},
+                                    {"<prefix>steps", A, I, "scalar", "1", "accepted steps"},
+                                    {"<prefix>rejected_steps", A, I, "scalar", "1", "rejected steps"},
+                                    {"<prefix>force_evaluations", A, I, "scalar", "1", "force evaluations over every rank"},
+                                    {"<prefix>dt_min", A, R, "scalar", "time", "smallest fixed step"},
+                                    {"<prefix>dt_max", A, R, "scalar", "time", "largest fixed step"},
+                                    {"error_estimate", A, R, "scalar", "1", "the study's own error estimate, NaN if none"},
+                                    {"error_estimate_of", A, S, "scalar", "1", "what error_estimate measures, none if none"}}}};
   return s;
 }
 
@@ -54,10 +56,13 @@ bool CheckOn()
 
 const std::vector<Schema> &Schemas() { return Registry(); }
 
-void RegisterSchemas(const std::vector<Schema> &schemas)
+void RegisterSchemas(const std::vector<Schema> &schemas, const char *writer)
 {
   for (const Schema &s : schemas)
-    if (!FindSchema(s.group, s.variant)) Registry().push_back(s);
+    if (!FindSchema(s.group, s.variant)) {
+      Registry().push_back(s);
+      if (!*Registry().back().writer) Registry().back().writer = writer;
+    }
 }
 
 const Schema *FindSchema(const char *group, const char *variant)
@@ -104,6 +109,8 @@ const char *KindName(FieldKind k) { return k == FieldKind::Dataset ? "dataset" :
 const char *TypeName(FieldType t) { return t == FieldType::Real ? "real" : t == FieldType::Int ? "int" : "string"; }
 
 void SetSchemaCheck(bool on) { g_check = on; }
+
+bool SchemaCheckOn() { return CheckOn(); }
 
 PetscErrorCode SchemaCheckWrite(MPI_Comm comm, const char *group, const char *name, FieldKind kind, FieldType type)
 {

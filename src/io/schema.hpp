@@ -17,19 +17,45 @@ namespace nltopo {
 enum class FieldKind { Dataset, Attribute };
 enum class FieldType { Real, Int, String };
 
+// Units are the model's scaled units (docs/model.md: unit masses, k = 1):
+// "time", "rad/time", "energy", "displacement", "displacement/time", "force",
+// "rad", "1/time", "(rad/time)^2"; "s" is wall-clock seconds; "1" a pure
+// number, count, index or string. A state vector names its parts' units.
 struct Field {
   const char *name; // may hold one placeholder, e.g. "error_<observable>"
   FieldKind kind;
   FieldType type;
   const char *shape; // "scalar", or dimensions as outputs.md names them: "npts", "npts x 2N", "ne x no", ...
+  const char *units;
   const char *meaning;
+  const char *codes = nullptr; // an integer code's values: "v meaning; v meaning; ..." (written as the attribute `codes`)
 };
+
+// The meanings of the integer codes several groups share (written into the file).
+namespace codes {
+constexpr const char *kYesNo = "1 yes; 0 no";
+constexpr const char *kDone = "1 computed; 0 not run (stop signal or not reached yet)";
+constexpr const char *kStable = "1 stable; 0 unstable; -1 not decided";
+constexpr const char *kKrein = "1 positive signature; -1 negative signature; 0 not defined (real multiplier or below -floquet_krein_tol)";
+constexpr const char *kInstability =
+    "0 none; 1 B-B (critical eigenvector in the bulk); 2 B-E (between bulk and edge); 3 E-E (at the interface edge); -1 not computed";
+constexpr const char *kEventKind =
+    "1 energy fold; 2 branch point (+1); 3 period doubling (-1); 4 Krein collision (pass); 5 Hamiltonian-Hopf; 6 internal resonance";
+constexpr const char *kDirection = "1 an instability begins along the branch (fold: E maximum); -1 it ends (fold: E minimum); 0 neither (a Krein pass)";
+constexpr const char *kPredictable = "1 predictable; 0 unpredictable (twin statistics); -1 not checked (no -sweep_mcr_tol)";
+} // namespace codes
 
 struct Schema {
   const char *group;   // a path; a segment "<...>" (or "case<k>") stands for any name
   const char *variant; // "" the group's fields; else added fields, e.g. "floquet" (with -floquet)
   std::vector<Field> fields;
+  const char *writer = ""; // the study that writes it ("" every study); set by RegisterSchemas
 };
+
+// The current output format (root attribute format_version; a file without it
+// is version 0). A rename, a removal or a change of meaning of any name in
+// tests/contract_names.txt bumps it, with a migration note in docs/outputs.md.
+constexpr PetscInt kFormatVersion = 1;
 
 // Short names for schema tables: `using namespace nltopo::schema_names;`.
 namespace schema_names {
@@ -41,7 +67,7 @@ constexpr FieldType R = FieldType::Real, I = FieldType::Int, S = FieldType::Stri
 const std::vector<Schema> &Schemas();
 // Adds schemas (studies/registry.cpp, each study's own); a group and variant
 // already registered is kept as it is.
-void RegisterSchemas(const std::vector<Schema> &schemas);
+void RegisterSchemas(const std::vector<Schema> &schemas, const char *writer = "");
 // The schema of a group pattern and variant, exactly as written in Schemas(); nullptr if none.
 const Schema *FindSchema(const char *group, const char *variant = "");
 // The field of a written group path (e.g. "/continuation/insulated") by its
@@ -57,5 +83,6 @@ const char *TypeName(FieldType t);
 // such a field of that kind and type (no-op unless the check is on).
 PetscErrorCode SchemaCheckWrite(MPI_Comm comm, const char *group, const char *name, FieldKind kind, FieldType type);
 void SetSchemaCheck(bool on); // overrides NLTOPO_SCHEMA_CHECK (tests)
+bool SchemaCheckOn();
 
 } // namespace nltopo

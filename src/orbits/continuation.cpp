@@ -1,4 +1,5 @@
 #include "orbits/continuation.hpp"
+#include "core/progress.hpp"
 #include "core/gather.hpp"
 #include "core/option_table.hpp"
 #include "core/signals.hpp"
@@ -23,7 +24,11 @@ static const auto &kContinuationTable = DeclareOptionTable<ContinuationOptions>(
       .Int("newton_target", &C::newton_target, Closed(1, 100), "Newton iterations per point that the step size aims at")
       .Real("interaction_corr", &C::interaction_corr, Closed(0, 1), "Flag a modal interaction when consecutive shapes correlate less than this")
       .Why("a correlation lies in [0, 1]")
-      .Bool("verbose", &C::verbose, "Print one line per continuation point", OptionClass::Bookkeeping);
+      .Bool("verbose", &C::verbose, "Print one line per continuation point", OptionClass::Bookkeeping)
+      .Real("progress", &C::progress, Closed(0, 1e7),
+            "Print a progress line (energy reached of -cont_energy_max, time to go; bifurcation location: segments done, events found) every this "
+            "many wall seconds (0: never)",
+            OptionClass::Bookkeeping);
 });
 
 PetscErrorCode ContinuationOptionsFromOptions(MPI_Comm comm, ContinuationOptions *o)
@@ -264,6 +269,7 @@ private:
   bool closed_before_ = false; // a resumed branch that had stopped there
   PetscInt its_ = 0, newton_its_ = 0, kry0_ = 0;
   PetscLogDouble t_begin_ = 0; // the verbose lines print the elapsed time
+  ProgressMeter progress_;
 };
 
 PetscErrorCode BranchWalk::Run(Vec u_guess, PetscReal T_guess, const Branch *resume)
@@ -302,6 +308,7 @@ PetscErrorCode BranchWalk::Start(Vec u_guess, PetscReal T_guess, const Branch *r
   *resumed = resume && resume->energy.size() >= 2;
   *b_ = *resumed ? *resume : Branch();
   PetscCall(PetscTime(&t_begin_));
+  progress_.Start(comm_, o_.progress);
   PetscCall(lat_.CreateStateVector(z_.out()));
   for (OwnedVec *v : {&zprev_, &tz_}) PetscCall(VecDuplicate(z_, v->out()));
   PetscCall(shoot_.CreateUnknowns(X_.out()));
@@ -466,6 +473,13 @@ PetscErrorCode BranchWalk::Report(const BranchPoint &p)
     b_->interactions.push_back(k);
     PetscCall(PetscPrintf(comm_, "  [%s] modal interaction at point %" PetscInt_FMT ": shape correlation %.3f, MCR %.3f -> %.3f, omega %.6f, E %.4g\n", name_,
                           k, (double)p.shape_corr, (double)b_->mcr[k - 1], (double)p.mcr, (double)p.omega, (double)p.energy));
+  }
+  if (b_->energy.size() > 1) { // how far towards -cont_energy_max, on a log scale from the first orbit (energies span decades)
+    char what[160];
+    const double e0 = b_->energy.front(), f = std::log(p.energy / e0) / std::log(o_.energy_max / e0);
+    PetscCall(PetscSNPrintf(what, sizeof what, "progress: point %" PetscInt_FMT ", E %.4g of -cont_energy_max %.4g (%.0f%% on a log scale)", k,
+                            (double)p.energy, (double)o_.energy_max, 100 * std::max(0.0, std::min(1.0, f))));
+    PetscCall(progress_.Report(name_, what, f));
   }
   if (o_.verbose) {
     PetscLogDouble now;

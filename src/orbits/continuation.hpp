@@ -22,6 +22,7 @@ struct ContinuationOptions {
   PetscInt newton_target = 4;       // grow ds below, shrink above
   PetscReal interaction_corr = 0.9; // shape correlation below this flags a modal interaction
   PetscBool verbose = PETSC_TRUE;
+  PetscReal progress = 10; // seconds between progress lines (core/progress.hpp; 0: none), also of the bifurcation location
 };
 PetscErrorCode ContinuationOptionsFromOptions(MPI_Comm comm, ContinuationOptions *o);
 

@@ -1,4 +1,5 @@
 #include "stability/bifurcation_locator.hpp"
+#include "core/progress.hpp"
 #include "core/gather.hpp"
 #include "core/log.hpp"
 #include <algorithm>
@@ -495,9 +496,16 @@ PetscErrorCode BifurcationLocator::Locate(const Branch &b, const std::vector<Pet
     for (PetscInt k = 0; k < n2; k++) d2 += std::pow(rows_[i * n2 + k] - rows_[(i - 1) * n2 + k], 2);
     s_[i] = s_[i - 1] + std::sqrt(d2);
   }
+  ProgressMeter progress;
+  progress.Start(comm, progress_every_);
   PetscCall(Folds(b, first_segment, events));
   std::vector<BifurcationEvent> changes;
-  for (PetscInt i = std::max(first_segment, (PetscInt)0); i + 1 < np; i++) {
+  const PetscInt first = std::max(first_segment, (PetscInt)0), nseg = std::max<PetscInt>(np - 1 - first, 1);
+  for (PetscInt i = first; i + 1 < np; i++) {
+    char what[128];
+    PetscCall(PetscSNPrintf(what, sizeof what, "locating: segment %" PetscInt_FMT " of %" PetscInt_FMT ", %zu event(s) found", i - first, nseg,
+                            events->size() + changes.size()));
+    PetscCall(progress.Report(name, what, (double)(i - first) / nseg));
     const PetscReal *r0 = re.data() + i * n2, *i0 = im.data() + i * n2;
     const bool finite = std::all_of(r0, r0 + 2 * n2, [](PetscReal x) { return std::isfinite(x); }); // both points (a resumed branch may lack them)
     if (!finite) continue;

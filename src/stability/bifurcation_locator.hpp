@@ -25,12 +25,14 @@ public:
   // orbit of its parent's event, whose own change of stability it holds).
   PetscErrorCode Locate(const Branch &b, const std::vector<PetscReal> &re, const std::vector<PetscReal> &im, const std::vector<PetscReal> &edge,
                         const char *name, std::vector<BifurcationEvent> *events, const std::vector<PetscInt> &krein = {}, PetscInt first_segment = 0);
-  PetscInt Probes() const { return probes_; } // orbits solved so far
+  PetscInt Probes() const { return probes_; }                    // orbits solved so far
+  void SetProgress(PetscReal every) { progress_every_ = every; } // seconds between progress lines of Locate (-cont_progress)
   // The orbit X = (z0, T, beta) at sigma of a segment of the branch last
   // given to Locate (e.g. an event's point and sigma).
   PetscErrorCode OrbitAt(PetscInt segment, PetscReal sigma, Vec X, bool *converged);
 
 private:
+  PetscReal progress_every_ = 0;
   PetscErrorCode SetSegment(PetscInt i);
   // The orbit at sigma of the current segment; with floquet its multipliers
   // (and, given vec, the eigenvector nearest target), with tangent dE/ds and

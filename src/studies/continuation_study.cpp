@@ -86,6 +86,7 @@ protected:
     hook_ = std::make_unique<FloquetHook>(nnm_.flow, flo_);
     mf_hook_ = std::make_unique<FloquetMfHook>(nnm_.flow, flo_, fmo_);
     if (bo_.enabled) PetscCall(locator_.Setup(nnm_.shoot, flo_, bo_));
+    locator_.SetProgress(nnm_.co.progress);
     n2_ = 2 * nnm_.lat.N();
     PetscFunctionReturn(0);
   }

@@ -340,14 +340,14 @@ StudyContract PerturbStudyContract()
   return {WithPrefixes({ForcedScene::OptionPrefixes(), NnmSetup::OptionPrefixes(), {"-perturb_"}}),
           {{"/perturb/<kind>",
             "",
-            {{"delta", D, R, "nd", "perturbation levels"},
-             {"energy", D, R, "ne", "target energies E*"},
-             {"omega_ext", D, R, "ne", "forcing frequencies"},
-             {"mcr", D, R, "nd x ne x nens", "MCR per level, energy, realisation (NaN: missed or not run)"},
-             {"insulated_omega", D, R, "nd x nens", "linear insulated frequency per realisation"},
-             {"done", D, I, "nd x nens", "0: not run (stop signal)"},
-             {"seed_first", A, I, "scalar", "seed of realisation 0"},
-             {"rule", A, S, "scalar", "the perturbation rule"}}}}};
+            {{"delta", D, R, "nd", "1", "perturbation levels"},
+             {"energy", D, R, "ne", "energy", "target energies E*"},
+             {"omega_ext", D, R, "ne", "rad/time", "forcing frequencies"},
+             {"mcr", D, R, "nd x ne x nens", "1", "MCR per level, energy, realisation (NaN: missed or not run)"},
+             {"insulated_omega", D, R, "nd x nens", "rad/time", "linear insulated frequency per realisation"},
+             {"done", D, I, "nd x nens", "1", "0: not run (stop signal)", codes::kDone},
+             {"seed_first", A, I, "scalar", "1", "seed of realisation 0"},
+             {"rule", A, S, "scalar", "1", "the perturbation rule"}}}}};
 }
 
 std::unique_ptr<Study> CreatePerturbStudy() { return std::make_unique<PerturbStudy>(); }

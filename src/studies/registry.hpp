@@ -18,17 +18,18 @@
 namespace nltopo {
 
 // The studies, one line each: -study name, class (its file defines
-// Create<Class>Study and <Class>StudyContract), and the help line -help shows.
+// Create<Class>Study and <Class>StudyContract), its own option prefixes
+// (-help lists them first), and the help line -help shows.
 #define NLTOPO_STUDIES(X)                                                                                                                                      \
-  X("linear", Linear, "linear modes of K, named modes, Bloch bands and Zak phases")                                                                            \
-  X("simulate", Simulate, "one forced tone-burst run with energy cut-off")                                                                                     \
-  X("continuation", Continuation, "NNM branches by shooting and pseudo-arclength continuation")                                                                \
-  X("sweep", Sweep, "a grid of forced runs (omega_ext x E*) scored by MCR, 0-1 test and energy ratio; parallel, resumable")                                    \
-  X("zak", Zak, "the half-lattice phase experiment: phi_0, phi_pi and the energy where they stop being distinct")                                              \
-  X("perturb", Perturb, "chiral and achiral spring-perturbation ensembles: insulated frequency and MCR along the insulated NNM")                               \
-  X("workprecision", Workprecision,                                                                                                                            \
+  X("linear", Linear, "-linear_", "linear modes of K, named modes, Bloch bands and Zak phases")                                                                \
+  X("simulate", Simulate, "-sim_", "one forced tone-burst run with energy cut-off")                                                                            \
+  X("continuation", Continuation, "-cont_ -floquet", "NNM branches by shooting and pseudo-arclength continuation")                                             \
+  X("sweep", Sweep, "-sweep_ -kcorr_", "a grid of forced runs (omega_ext x E*) scored by MCR, 0-1 test and energy ratio; parallel, resumable")                 \
+  X("zak", Zak, "-zak_", "the half-lattice phase experiment: phi_0, phi_pi and the energy where they stop being distinct")                                     \
+  X("perturb", Perturb, "-perturb_", "chiral and achiral spring-perturbation ensembles: insulated frequency and MCR along the insulated NNM")                  \
+  X("workprecision", Workprecision, "-wp_",                                                                                                                    \
     "what accuracy costs for one forced run: integrator configurations timed and scored against a converged reference, and the predictability floor")          \
-  X("stability", Stability, "perturbed insulated-branch NNMs integrated for many periods: does the standing wave persist")
+  X("stability", Stability, "-stability_", "perturbed insulated-branch NNMs integrated for many periods: does the standing wave persist")
 
 // What a study adds to the output contract, stated in its own file.
 struct StudyContract {
@@ -42,14 +43,14 @@ struct StudyContract {
 // The prefixes of several parts, each once, in order.
 std::vector<std::string> WithPrefixes(std::initializer_list<std::vector<std::string>> parts);
 
-#define NLTOPO_DECLARE_STUDY(name, Class, help)                                                                                                                \
+#define NLTOPO_DECLARE_STUDY(name, Class, own, help)                                                                                                           \
   std::unique_ptr<Study> Create##Class##Study();                                                                                                               \
   StudyContract Class##StudyContract();
 NLTOPO_STUDIES(NLTOPO_DECLARE_STUDY)
 #undef NLTOPO_DECLARE_STUDY
 
 struct StudyEntry {
-  const char *name, *help;
+  const char *name, *own_prefixes, *help; // own_prefixes: space-separated
   StudyFactory create;
 };
 
@@ -62,6 +63,10 @@ void RegisterStudyContracts();
 // figure scripts draw), appended to a group's fields, and their writer.
 std::vector<Field> WithBandEdges(std::vector<Field> fields);
 PetscErrorCode WriteBandEdges(PetscViewer v, const char *group, const BandEdges &be);
+
+// What `nltopo -version` prints: nltopo's version, the libraries it was built
+// with, the output format version, the license and how to cite.
+std::string VersionText();
 
 // What `nltopo` alone prints: the studies, example commands, where the docs are.
 std::string UsageText();

@@ -301,25 +301,25 @@ StudyContract StabilityStudyContract()
 {
   using namespace schema_names;
   return {WithPrefixes({NnmSetup::OptionPrefixes(), {"-floquet", "-sim_", "-stability_"}}),
-          {{"/stability", "", {{"cases_done", A, I, "scalar", "cases written"}}},
+          {{"/stability", "", {{"cases_done", A, I, "scalar", "1", "cases written"}}},
            {"/stability/case<k>",
             "",
-            {{"t", D, R, "nt", "sample times"},
-             {"corr", D, R, "nt", "shape correlation with the NNM"},
-             {"mcr", D, R, "nt", "MCR"},
-             {"energy", D, R, "nt", "energy"},
-             {"multipliers_re", D, R, "2N", "Floquet multipliers, real part"},
-             {"multipliers_im", D, R, "2N", "Floquet multipliers, imaginary part"},
-             {"omega_target", A, R, "scalar", "-stability_omega"},
-             {"omega", A, R, "scalar", "orbit frequency"},
-             {"energy", A, R, "scalar", "orbit energy"},
-             {"period", A, R, "scalar", "orbit period"},
-             {"max_modulus", A, R, "scalar", "largest |mu|"},
-             {"floquet_stable", A, I, "scalar", "1 if Floquet-stable"},
-             {"instability", A, I, "scalar", "0 none, 1 B-B, 2 B-E, 3 E-E"},
-             {"persisted", A, I, "scalar", "1 if the shape persisted"},
-             {"corr_tail_min", A, R, "scalar", "min shape correlation over the last 10 %"},
-             {"energy_drift", A, R, "scalar", "relative energy drift"}}}}};
+            {{"t", D, R, "nt", "time", "sample times"},
+             {"corr", D, R, "nt", "1", "shape correlation with the NNM"},
+             {"mcr", D, R, "nt", "1", "MCR"},
+             {"energy", D, R, "nt", "energy", "energy"},
+             {"multipliers_re", D, R, "2N", "1", "Floquet multipliers, real part"},
+             {"multipliers_im", D, R, "2N", "1", "Floquet multipliers, imaginary part"},
+             {"omega_target", A, R, "scalar", "rad/time", "-stability_omega"},
+             {"omega", A, R, "scalar", "rad/time", "orbit frequency"},
+             {"energy", A, R, "scalar", "energy", "orbit energy"},
+             {"period", A, R, "scalar", "time", "orbit period"},
+             {"max_modulus", A, R, "scalar", "1", "largest |mu|"},
+             {"floquet_stable", A, I, "scalar", "1", "1 if Floquet-stable", codes::kYesNo},
+             {"instability", A, I, "scalar", "1", "0 none, 1 B-B, 2 B-E, 3 E-E", codes::kInstability},
+             {"persisted", A, I, "scalar", "1", "1 if the shape persisted", codes::kYesNo},
+             {"corr_tail_min", A, R, "scalar", "1", "min shape correlation over the last 10 %"},
+             {"energy_drift", A, R, "scalar", "1", "relative energy drift"}}}}};
 }
 
 std::unique_ptr<Study> CreateStabilityStudy() { return std::make_unique<StabilityStudy>(); }

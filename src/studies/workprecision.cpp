@@ -136,8 +136,32 @@ static const auto &kWpTable = DeclareOptionTable<WorkPrecisionOptions>("wp_", kW
       .Real("reference_agreement", &W::reference_agreement, Open(0, 1), "Two successive references agree to this (relative, every observable): converged")
       .Int("repeats", &W::repeats, Closed(1, 100), "Wall time of a configuration: the median of this many runs")
       .Int("twins", &W::twins, Closed(1, 100), "Predictability floor: this many reference runs with S x (1 + k eps), k = 1, -1, 2, -2, ...")
-      .Real("twin_eps", &W::twin_eps, Closed(1e-15, 1e-2), "Relative change of S of the twins");
+      .Real("twin_eps", &W::twin_eps, Closed(1e-15, 1e-2), "Relative change of S of the twins")
+      .Real("target", &W::target, Closed(0, 1),
+            "Print, and write as /workprecision/recommended, the cheapest configuration whose relative error meets this, for each observable (0: off)",
+            OptionClass::Extent);
 });
+
+std::vector<WpRecommendation> CheapestMeeting(const WorkPrecisionResult &res, PetscReal target)
+{
+  std::vector<WpRecommendation> out;
+  for (size_t q = 0; q < res.observables.size(); q++) {
+    WpRecommendation best{res.observables[q], "", NAN, NAN};
+    const WorkPrecisionRow *pick = nullptr;
+    for (const WorkPrecisionRow &r : res.rows) {
+      const PetscReal e = q < r.error.size() ? r.error[q] : NAN;
+      if (!std::isfinite(e)) continue;
+      if (e > target) {
+        if (!pick && !(best.error <= e)) best.error = e; // the smallest error, while none meets the target
+        continue;
+      }
+      if (!pick || r.wall < pick->wall || (r.wall == pick->wall && r.rhs_evals < pick->rhs_evals)) pick = &r;
+    }
+    if (pick) best.config = pick->config, best.error = pick->error[q], best.wall = pick->wall;
+    out.push_back(best);
+  }
+  return out;
+}
 
 // -wp_configs, up to 200 configurations in one value.
 // raw: a String row holds PETSC_MAX_PATH_LEN (4096) characters, -wp_configs up

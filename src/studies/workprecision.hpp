@@ -33,6 +33,7 @@ struct WorkPrecisionOptions {
   PetscReal nnm_energy = 1;
   std::string nnm_reference;          // the reference shooting integrator without its steps per period
   PetscInt nnm_reference_steps = 512; // doubled until two successive references agree (at most 16x)
+  PetscReal target = 0;               // -wp_target: the cheapest configuration meeting it, per observable (0: off)
 };
 PetscErrorCode WorkPrecisionOptionsFromOptions(MPI_Comm comm, WorkPrecisionOptions *o);
 // The default configuration list: the shipped integrators at three accuracies each.
@@ -60,6 +61,15 @@ struct WorkPrecisionResult {
   PetscReal amplitude = 0;            // the S every run used
   std::vector<PetscReal> reference_z; // the reference's final state, gathered on every rank
 };
+
+// The cheapest configuration (median wall time; then fewer RHS evaluations)
+// whose relative error in one observable is at most the target; config ""
+// when none meets it (error: then the smallest error of any configuration).
+struct WpRecommendation {
+  std::string observable, config;
+  PetscReal error = NAN, wall = NAN;
+};
+std::vector<WpRecommendation> CheapestMeeting(const WorkPrecisionResult &res, PetscReal target);
 
 // Runs every configuration of o on the scene (lattice, burst: S from the
 // amplitude rule at the first reference, then fixed; base: the scene's

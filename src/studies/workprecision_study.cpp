@@ -70,6 +70,7 @@ protected:
       PetscCall(PetscPrintf(comm_, "  reference: %s (%s; last change: omega %.1e, max|mu| %.1e), omega = %.12f, max|mu| = %.10f\n", res_.reference.c_str(),
                             res_.reference_converged ? "converged" : "NOT converged", (double)res_.reference_change[0], (double)res_.reference_change[2],
                             (double)res_.reference_value[0], (double)res_.reference_value[2]));
+      PetscCall(PrintRecommended());
       PetscFunctionReturn(0);
     }
     PetscCall(PetscPrintf(comm_,
@@ -85,6 +86,24 @@ protected:
         comm_, "  predictability floor (%" PetscInt_FMT " twins, S x (1 + k %g)): MCR %.1e, t_off %.1e, state %.1e; finite-time Lyapunov %.3g /s%s\n",
         wo_.twins, (double)wo_.twin_eps, (double)res_.spread[0], (double)res_.spread[1], (double)res_.spread[kWpNumObservables - 1], (double)res_.lyapunov,
         res_.spread[0] > 1e-3 ? " (chaotic: single-run MCRs are samples)" : ""));
+    PetscCall(PrintRecommended());
+    PetscFunctionReturn(0);
+  }
+  // -wp_target: the cheapest configuration meeting it, per observable.
+  PetscErrorCode PrintRecommended()
+  {
+    PetscFunctionBeginUser;
+    if (wo_.target <= 0) PetscFunctionReturn(0);
+    const std::vector<WpRecommendation> rec = CheapestMeeting(res_, wo_.target);
+    PetscCall(PetscPrintf(comm_, "  cheapest configuration with relative error <= -wp_target %g:\n", (double)wo_.target));
+    for (size_t q = 0; q < rec.size(); q++) {
+      const char *floor = q < res_.spread.size() && res_.spread[q] > wo_.target ? " (the target is below this observable's predictability floor)" : "";
+      if (rec[q].config.empty())
+        PetscCall(PetscPrintf(comm_, "    %-8s none of the configurations (smallest error %.2e)%s\n", rec[q].observable.c_str(), (double)rec[q].error, floor));
+      else
+        PetscCall(PetscPrintf(comm_, "    %-8s %s  (error %.2e, %.4g s)%s\n", rec[q].observable.c_str(), rec[q].config.c_str(), (double)rec[q].error,
+                              (double)rec[q].wall, floor));
+    }
     PetscFunctionReturn(0);
   }
   PetscErrorCode Write(PetscViewer v) override
@@ -129,6 +148,18 @@ protected:
       PetscCall(WriteAttr(v, g, "omega_ext", sc_.burst.Omega()));
       PetscCall(WriteAttr(v, g, "energy_star", sc_.burst.EnergyStar()));
     }
+    if (wo_.target > 0) {
+      const char *gr = "/workprecision/recommended";
+      std::vector<std::string> obs, cfg;
+      std::vector<PetscReal> err, wall;
+      for (const WpRecommendation &r : CheapestMeeting(res, wo_.target))
+        obs.push_back(r.observable), cfg.push_back(r.config), err.push_back(r.error), wall.push_back(r.wall);
+      PetscCall(WriteStringArray(v, gr, "observable", obs));
+      PetscCall(WriteStringArray(v, gr, "config", cfg));
+      PetscCall(WriteArray(v, gr, "error", err));
+      PetscCall(WriteArray(v, gr, "wall_seconds", wall));
+      PetscCall(WriteAttr(v, gr, "target", wo_.target));
+    }
     PetscFunctionReturn(0);
   }
 
@@ -147,29 +178,36 @@ StudyContract WorkprecisionStudyContract()
   return {WithPrefixes({ForcedScene::OptionPrefixes(), NnmSetup::OptionPrefixes(), {"-floquet", "-wp_"}}),
           {{"/workprecision",
             "",
-            {{"config", D, S, "nc", "the solver configuration as options"},
-             {"method", D, S, "nc", "method name"},
-             {"accuracy", D, S, "nc", "accuracy setting"},
-             {"wall_seconds", D, R, "nc", "median wall time"},
-             {"rhs_evals", D, I, "nc", "RHS evaluations"},
-             {"steps", D, I, "nc", "accepted steps"},
-             {"rejected_steps", D, I, "nc", "rejected steps"},
-             {"error_<observable>", D, R, "nc", "relative error against the reference"},
-             {"spread_<observable>", A, R, "scalar", "predictability floor"},
-             {"reference_change_<observable>", A, R, "scalar", "change between the last two references"},
-             {"reference_<observable>", A, R, "scalar", "the reference's value"},
-             {"scene", A, S, "scalar", "simulate or shooting"},
-             {"reference", A, S, "scalar", "the reference configuration"},
-             {"reference_converged", A, I, "scalar", "1 if the reference converged"},
-             {"reference_wall_seconds", A, R, "scalar", "wall time of the reference"},
-             {"lyapunov", A, R, "scalar", "finite-time Lyapunov estimate (1/s)"},
-             {"twins", A, I, "scalar", "-wp_twins"},
-             {"twin_eps", A, R, "scalar", "-wp_twin_eps"},
-             {"repeats", A, I, "scalar", "-wp_repeats"},
-             {"nnm_energy", A, R, "scalar", "shooting scene: orbit energy"},
-             {"amplitude", A, R, "scalar", "simulate scene: forcing amplitude"},
-             {"omega_ext", A, R, "scalar", "simulate scene: forcing frequency"},
-             {"energy_star", A, R, "scalar", "simulate scene: E*"}}}}};
+            {{"config", D, S, "nc", "1", "the solver configuration as options"},
+             {"method", D, S, "nc", "1", "method name"},
+             {"accuracy", D, S, "nc", "1", "accuracy setting"},
+             {"wall_seconds", D, R, "nc", "s", "median wall time"},
+             {"rhs_evals", D, I, "nc", "1", "RHS evaluations"},
+             {"steps", D, I, "nc", "1", "accepted steps"},
+             {"rejected_steps", D, I, "nc", "1", "rejected steps"},
+             {"error_<observable>", D, R, "nc", "1", "relative error against the reference"},
+             {"spread_<observable>", A, R, "scalar", "1", "predictability floor"},
+             {"reference_change_<observable>", A, R, "scalar", "1", "change between the last two references"},
+             {"reference_<observable>", A, R, "scalar", "as <observable>", "the reference's value"},
+             {"scene", A, S, "scalar", "1", "simulate or shooting"},
+             {"reference", A, S, "scalar", "1", "the reference configuration"},
+             {"reference_converged", A, I, "scalar", "1", "1 if the reference converged", codes::kYesNo},
+             {"reference_wall_seconds", A, R, "scalar", "s", "wall time of the reference"},
+             {"lyapunov", A, R, "scalar", "1/time", "finite-time Lyapunov estimate (1/s)"},
+             {"twins", A, I, "scalar", "1", "-wp_twins"},
+             {"twin_eps", A, R, "scalar", "1", "-wp_twin_eps"},
+             {"repeats", A, I, "scalar", "1", "-wp_repeats"},
+             {"nnm_energy", A, R, "scalar", "energy", "shooting scene: orbit energy"},
+             {"amplitude", A, R, "scalar", "force", "simulate scene: forcing amplitude"},
+             {"omega_ext", A, R, "scalar", "rad/time", "simulate scene: forcing frequency"},
+             {"energy_star", A, R, "scalar", "energy", "simulate scene: E*"}}},
+           {"/workprecision/recommended",
+            "",
+            {{"observable", D, S, "nobs", "1", "each observable"},
+             {"config", D, S, "nobs", "1", "the cheapest configuration (median wall time) whose relative error meets -wp_target; empty: none does"},
+             {"error", D, R, "nobs", "1", "its relative error (none meets the target: the smallest error of any configuration)"},
+             {"wall_seconds", D, R, "nobs", "s", "its median wall time (NaN: none meets the target)"},
+             {"target", A, R, "scalar", "1", "-wp_target"}}}}};
 }
 
 std::unique_ptr<Study> CreateWorkprecisionStudy() { return std::make_unique<WorkprecisionStudy>(); }

@@ -1,13 +1,25 @@
-# -help lists every option of the studies with its help text.
+# -help lists every option of the studies with its help text: nltopo's own
+# listing first (the study's own block first, values, no "(None)"), the
+# solver options of PETSc and SLEPc with -help petsc.
 source "$(dirname "$0")/common.bash"
 "$NLTOPO" -help -study simulate -sim_t_final 1 -output h.h5 > help_sim.txt
 "$NLTOPO" -help -study linear -output h2.h5 > help_lin.txt
 for opt in -study -output -lattice_k -lattice_gamma -lattice_gamma0 -lattice_cubic -lattice_cells -lattice_layout \
            -force_profile -force_omega -force_energy -force_amplitude -force_amplitude_safety -force_amplitude_retries -force_tau_periods \
-           -force_t0_taus -force_site -force_mode_index -sim_t_final -sim_sample_dt -sim_store_u -sim_progress -sim_ts_type; do
+           -force_t0_taus -force_site -force_mode_index -sim_t_final -sim_sample_dt -sim_store_u -sim_progress; do
   grep -qE -- "$opt[ :]" help_sim.txt || { echo "missing in -help: $opt"; exit 1; }
 done
-for opt in -linear_dense_max -linear_nev -linear_target_offset -linear_nq -linear_gamma_list -linear_eps_type; do
+head -1 help_sim.txt | grep -q "^nltopo -study simulate: its options" || { head -3 help_sim.txt; echo "-help does not begin with nltopo's options"; exit 1; }
+! grep -q "(None)" help_sim.txt || { echo "-help prints (None)"; exit 1; }
+sed -n 3p help_sim.txt | grep -q -- "(-sim_\*):" || { sed -n 1,4p help_sim.txt; echo "-help: the study's own block is not first"; exit 1; }
+grep -q -- "-sim_t_final <1>" help_sim.txt || { echo "-help does not show the value this run would use"; exit 1; }
+grep -q -- "-sim_ts_\*" help_sim.txt || { echo "-help does not name the solver prefix -sim_ts_*"; exit 1; }
+"$NLTOPO" -help petsc -study simulate -sim_t_final 1 -output h.h5 > help_petsc.txt
+grep -q -- "-sim_ts_type" help_petsc.txt || { echo "-help petsc does not list -sim_ts_type"; exit 1; }
+"$NLTOPO" -version > version.txt
+grep -qE "^nltopo .+" version.txt && grep -q "format_version" version.txt && grep -q "CITATION.cff" version.txt || { cat version.txt; echo "-version"; exit 1; }
+grep -q -- "-linear_eps_\*" help_lin.txt || { echo "-help does not name -linear_eps_*"; exit 1; }
+for opt in -linear_dense_max -linear_nev -linear_target_offset -linear_nq -linear_gamma_list; do
   grep -qE -- "$opt[ :]" help_lin.txt || { echo "missing in -help: $opt"; exit 1; }
 done
 "$NLTOPO" -help -study sweep -sweep_omega_n 1 -sweep_energy_n 1 -sim_t_final 1 -output h3.h5 > help_sweep.txt
@@ -36,6 +48,8 @@ grep -q "docs/options.md" usage.txt
 # docs/options.md is the binary's options reference, and the JSON form names the same options
 "$NLTOPO" -option_tables md > options.md
 diff -u "$SRC/docs/options.md" options.md > options.diff || { head -40 options.diff; echo "docs/options.md is stale: build/nltopo -option_tables md > docs/options.md"; exit 1; }
+"$NLTOPO" -output_schema md > outputs.md
+diff -u "$SRC/docs/outputs.md" outputs.md > outputs.diff || { head -40 outputs.diff; echo "docs/outputs.md is stale: build/nltopo -output_schema md > docs/outputs.md"; exit 1; }
 "$NLTOPO" -option_tables json > options.json
 $PY - <<'PYEOF'
 import json, re

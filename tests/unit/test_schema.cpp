@@ -1,14 +1,17 @@
-// The output schemas (io/schema.cpp) against the outputs reference
-// docs/outputs.md: every dataset and attribute named there for a
-// group the code writes is in the group's schema, of that kind, shape and
-// type; the continuation record and the sweep's fields bind the schema
+// The output schemas (io/schema.cpp) against the frozen contract names
+// (tests/contract_names.txt): every name users' scripts read is in its
+// group's schema, of that kind, shape and type; the continuation record and the sweep's fields bind the schema
 // exactly; the writers refuse a name the schema lacks.
 #include "helpers.hpp"
+#include "io/input.hpp"
 #include "io/output.hpp"
 #include "io/schema.hpp"
 #include "studies/continuation_record.hpp"
 #include "studies/sweep_store.hpp"
 #include <fstream>
+#include <hdf5.h>
+#include <sys/stat.h>
+#include <cstring>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -17,168 +20,45 @@ using namespace nltopo;
 
 namespace {
 
-struct SpecName {
-  std::string group, name, shape; // shape "" when the spec gives none
-  bool attribute = false;
-  std::string type; // "int", "string" or "" (not said)
+struct ContractName {
+  std::string group, kind, name, type, shape;
 };
 
-std::string Trim(const std::string &s)
+// tests/contract_names.txt: the frozen names and the format version they belong to.
+std::vector<ContractName> ReadContract(const std::string &path, long *version)
 {
-  const size_t a = s.find_first_not_of(" \t\n"), b = s.find_last_not_of(" \t\n");
-  return a == std::string::npos ? "" : s.substr(a, b - a + 1);
-}
-
-// "<anything>" -> "<>", so that /perturb/<chiral|achiral> and /perturb/<kind> compare equal.
-std::string Normal(const std::string &s) { return std::regex_replace(s, std::regex("<[^>]*>"), "<>"); }
-
-// A shape as outputs.md writes one ("npts x 2N", "scalar"), or "".
-std::string ShapeOf(const std::string &piece)
-{
-  static const std::set<std::string> dims = {"scalar", "N", "2N", "nq", "nt", "npts", "no", "ne", "nd", "nens", "nc", "ng"};
-  const std::string p = Trim(std::regex_replace(piece, std::regex("\\s+attribute$"), ""));
-  std::stringstream ss(std::regex_replace(p, std::regex(" x "), "|"));
-  std::string tok;
-  int n = 0;
-  while (std::getline(ss, tok, '|')) {
-    if (!dims.count(Trim(tok))) return "";
-    n++;
-  }
-  return n ? p : "";
-}
-
-// One "datasets (shape)" cell: backticked names, each followed (directly or
-// after a comma-separated run of names) by a parenthesis whose first piece is
-// their shape; "int"/"strings" there give the type; the word "attribute(s)"
-// outside parentheses makes the names after it attributes, inside makes the
-// parenthesis's names attributes; a backticked name inside a parenthesis is
-// another name of the same kind (an alternative or an example).
-void ParseCell(const std::string &group, const std::string &cell, bool attributes, std::vector<SpecName> *out)
-{
-  std::vector<size_t> pending;
-  size_t i = 0;
-  std::string outside;
-  while (i < cell.size()) {
-    if (cell[i] == '`') {
-      const size_t e = cell.find('`', i + 1);
-      if (std::regex_search(outside, std::regex("\\battributes?\\b"))) attributes = true;
-      outside.clear();
-      out->push_back({group, cell.substr(i + 1, e - i - 1), "", attributes, ""});
-      pending.push_back(out->size() - 1);
-      i = e + 1;
-    } else if (cell[i] == '(') {
-      size_t depth = 1, e = i + 1;
-      for (; e < cell.size() && depth; e++) depth += cell[e] == '(' ? 1 : cell[e] == ')' ? -1 : 0;
-      const std::string in = cell.substr(i + 1, e - i - 2);
-      const std::string shape = ShapeOf(in.substr(0, in.find_first_of(",;:")));
-      const bool attr = std::regex_search(in, std::regex("\\battribute\\b"));
-      const std::string type = std::regex_search(in, std::regex("\\bint\\b")) ? "int" : std::regex_search(in, std::regex("\\bstrings?\\b")) ? "string" : "";
-      for (size_t k : pending) {
-        (*out)[k].shape = shape, (*out)[k].type = type;
-        (*out)[k].attribute |= attr;
-      }
-      std::smatch m;
-      for (std::string rest = in; std::regex_search(rest, m, std::regex("`([^`]+)`")); rest = m.suffix())
-        if (!pending.empty()) out->push_back({group, m[1], "", (*out)[pending.back()].attribute, ""});
-      pending.clear();
-      i = e;
-    } else outside += cell[i++];
-  }
-}
-
-// Splits a table row on the | outside backticks.
-std::vector<std::string> Cells(const std::string &line)
-{
-  std::vector<std::string> c(1);
-  bool tick = false;
-  for (char ch : line) {
-    if (ch == '`') tick = !tick;
-    if (ch == '|' && !tick) c.emplace_back();
-    else c.back() += ch;
-  }
-  return c;
-}
-
-std::vector<SpecName> ParseSpec(const std::string &path)
-{
-  std::ifstream f(path);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  const std::string text = ss.str();
-  std::vector<SpecName> names;
-  const size_t root = text.find("as attributes of `/`:");
-  if (root != std::string::npos) ParseCell("/", text.substr(root + 21, text.find("\n\n", root) - root - 21), true, &names);
-  std::istringstream lines(text);
-  for (std::string line; std::getline(lines, line);) {
-    if (line.rfind("| ", 0) || line.find("| study |") == 0) continue;
-    const std::vector<std::string> c = Cells(line);
-    if (c.size() < 4) continue;
-    std::smatch m;
-    if (!std::regex_search(c[2], m, std::regex("`([^`]+)`"))) continue;
-    ParseCell(m[1], c[3], false, &names);
+  std::ifstream in(path);
+  std::vector<ContractName> names;
+  std::string line;
+  *version = -1;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::vector<std::string> cols;
+    std::stringstream ss(line);
+    for (std::string c; std::getline(ss, c, '\t');) cols.push_back(c);
+    if (cols.size() == 2 && cols[0] == "format_version") *version = std::stol(cols[1]);
+    else if (cols.size() == 5) names.push_back({cols[0], cols[1], cols[2], cols[3], cols[4]});
   }
   return names;
 }
 
-// The schemas of a spec group (its "<...>" segments as any name), every variant.
-std::vector<const Schema *> SchemasOf(const std::string &group)
-{
-  std::vector<const Schema *> v;
-  for (const Schema &s : Schemas())
-    if (Normal(s.group) == Normal(group)) v.push_back(&s);
-  return v;
-}
-
-bool Compatible(const SpecName &n, const Field &f)
-{
-  const bool named = n.name.find('<') != std::string::npos ? Normal(n.name) == Normal(f.name) : NameMatches(f.name, n.name);
-  if (!named || (f.kind == FieldKind::Attribute) != n.attribute) return false;
-  const std::string shape = !n.shape.empty() ? n.shape : n.attribute ? "scalar" : "";
-  if (!shape.empty() && shape != f.shape) return false;
-  if (n.type == "int") return f.type == FieldType::Int;
-  if (n.type == "string") return f.type == FieldType::String;
-  return n.attribute || f.type != FieldType::String; // arrays are numbers unless said
-}
-
 } // namespace
 
-TEST_CASE("outputs.md: every name of every written group is in its schema, of that kind, shape and type", "[schema][serial]")
+TEST_CASE("the frozen contract names are written with their kind, type and shape", "[schema][serial]")
 {
-  const std::vector<SpecName> spec = ParseSpec(NLTOPO_OUTPUTS_SPEC);
-  // The parse itself against what outputs.md says.
-  REQUIRE(spec.size() >= 80);
-  auto in_spec = [&](const char *g, const char *n, const char *shape, bool attr) {
-    for (const SpecName &s : spec)
-      if (s.group == g && s.name == n && s.shape == shape && s.attribute == attr) return true;
-    return false;
-  };
-  CHECK(in_spec("/", "wall_seconds", "", true));
-  CHECK(in_spec("/linear", "modes", "N x N", false));
-  CHECK(in_spec("/linear", "optical_top", "", true));
-  CHECK(in_spec("/continuation/<branch>", "z0", "npts x 2N", false));
-  CHECK(in_spec("/sweep", "mcr_spread", "ne x no", false));
-  CHECK(in_spec("/perturb/<chiral|achiral>", "mcr", "nd x ne x nens", false));
-  CHECK(in_spec("/workprecision", "spread_<observable>", "scalar", true));
-  CHECK(in_spec("/workprecision", "reference", "", true));
-
-  std::set<std::string> unwritten;
-  size_t checked = 0;
-  for (const SpecName &n : spec) {
-    const std::vector<const Schema *> ss = SchemasOf(n.group);
-    if (ss.empty()) {
-      unwritten.insert(Normal(n.group));
-      continue;
-    }
-    bool ok = false;
-    for (const Schema *s : ss)
-      for (const Field &f : s->fields) ok |= Compatible(n, f);
-    INFO(n.group << " " << (n.attribute ? "attribute " : "dataset ") << n.name << " (" << n.shape << (n.type.empty() ? "" : ", " + n.type) << ")");
-    CHECK(ok);
-    checked++;
+  long version;
+  const std::vector<ContractName> names = ReadContract(NLTOPO_CONTRACT_NAMES, &version);
+  REQUIRE(names.size() >= 200);
+  // A rename or a removal edits the list and bumps the version together (docs/outputs.md).
+  CHECK(version == kFormatVersion);
+  for (const ContractName &n : names) {
+    bool found = false;
+    for (const Schema &s : Schemas())
+      if (n.group == s.group)
+        for (const Field &f : s.fields) found |= n.name == f.name && n.kind == KindName(f.kind) && n.type == TypeName(f.type) && n.shape == f.shape;
+    INFO(n.group << " " << n.kind << " " << n.name << " (" << n.type << ", " << n.shape << "): renamed or removed? bump kFormatVersion (io/schema.hpp)");
+    CHECK(found);
   }
-  CHECK(checked >= 65);
-  // Groups of outputs.md no study writes yet: a schema for one must come with its writer.
-  CHECK(unwritten.empty()); // every group of outputs.md has its schema and its writer
 }
 
 TEST_CASE("the output schemas are well formed", "[schema][serial]")
@@ -190,7 +70,10 @@ TEST_CASE("the output schemas are well formed", "[schema][serial]")
       CHECK(seen.insert({f.name, (int)f.kind}).second);
       CHECK(*f.meaning);
       CHECK(*f.shape);
-      if (f.kind == FieldKind::Attribute) CHECK(std::string(f.shape) == "scalar");
+      REQUIRE(f.units);
+      CHECK(*f.units); // every field has a description and units (written into the file)
+      if (f.codes) CHECK(f.type == FieldType::Int);
+      if (f.kind == FieldKind::Attribute) CHECK((std::string(f.shape) == "scalar" || std::string(f.name) == "options_table"));
     }
   }
   CHECK(GroupMatches("/continuation/<branch>", "/continuation/mode3"));
@@ -242,4 +125,106 @@ TEST_CASE("the writers refuse a name or type the schema lacks", "[schema]")
     CHECK(WriteIntArray(out.Viewer(), "/zak", "energy", std::vector<PetscInt>{1, 2}) != 0);
   }
   PetscPopErrorHandler();
+}
+
+namespace {
+std::string StringAttr(hid_t obj, const char *name)
+{
+  std::string v;
+  if (H5Aexists(obj, name) <= 0) return "(absent)";
+  const hid_t a = H5Aopen(obj, name, H5P_DEFAULT), t = H5Aget_type(a), m = H5Tget_native_type(t, H5T_DIR_ASCEND);
+  if (H5Tis_variable_str(t) > 0) {
+    char *p = nullptr;
+    H5Aread(a, m, &p);
+    v = p ? p : "";
+    H5free_memory(p);
+  }
+  H5Tclose(m), H5Tclose(t), H5Aclose(a);
+  return v;
+}
+// A table attribute (compound of variable-length strings) as rows of strings.
+std::vector<std::vector<std::string>> TableAttr(hid_t obj, const char *name)
+{
+  std::vector<std::vector<std::string>> rows;
+  if (H5Aexists(obj, name) <= 0) return rows;
+  const hid_t a = H5Aopen(obj, name, H5P_DEFAULT), t = H5Aget_type(a), sp = H5Aget_space(a);
+  const int nc = H5Tget_nmembers(t);
+  hsize_t n = 0;
+  H5Sget_simple_extent_dims(sp, &n, NULL);
+  std::vector<char *> buf(n * nc);
+  H5Aread(a, t, buf.data());
+  for (hsize_t i = 0; i < n; i++) {
+    rows.emplace_back();
+    for (int c = 0; c < nc; c++) rows.back().push_back(buf[i * nc + c] ? buf[i * nc + c] : "");
+  }
+  H5Dvlen_reclaim(t, sp, H5P_DEFAULT, buf.data());
+  H5Sclose(sp), H5Tclose(t), H5Aclose(a);
+  return rows;
+}
+} // namespace
+
+TEST_CASE("a committed file describes every field: description, units, codes, the fields table, options, format_version", "[schema]")
+{
+  SetSchemaCheck(true);
+  PetscMPIInt rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  REQUIRE(PetscOptionsSetValue(NULL, "-describe_test_configs", "-sim_ts_type rk -sim_ts_dt 0.1;bm4") == 0);
+  REQUIRE(PetscOptionsSetValue(NULL, "-describe_test_flag", NULL) == 0);
+  {
+    OutputFile out;
+    REQUIRE(out.Open(PETSC_COMM_WORLD, "describe_test.h5") == 0);
+    REQUIRE(WriteArray(out.Viewer(), "/zak", "energy", std::vector<PetscReal>{1, 2}) == 0);
+    REQUIRE(WriteIntArray(out.Viewer(), "/zak", "done", std::vector<PetscInt>{1, 0, 1, 1}, 2) == 0);
+    REQUIRE(WriteAttr(out.Viewer(), "/zak", "energy_threshold", (PetscReal)1) == 0);
+    REQUIRE(out.Commit("zak", 0.5) == 0);
+  }
+  if (!rank) {
+    const hid_t f = H5Fopen("describe_test.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
+    REQUIRE(f >= 0);
+    const hid_t e = H5Dopen2(f, "/zak/energy", H5P_DEFAULT), d = H5Dopen2(f, "/zak/done", H5P_DEFAULT);
+    CHECK(StringAttr(e, "description") == FindField("/zak", "energy", FieldKind::Dataset)->meaning);
+    CHECK(StringAttr(e, "units") == "energy");
+    CHECK(StringAttr(e, "codes") == "(absent)");
+    CHECK(StringAttr(d, "codes") == codes::kDone);
+    H5Dclose(e), H5Dclose(d);
+    long version = -1;
+    CHECK(ReadRootAttribute("describe_test.h5", "format_version", &version));
+    CHECK(version == kFormatVersion);
+    // /zak's attribute fields: one record per other attribute; / has its own; options_table holds the given options
+    for (const char *group : {"/zak", "/"}) {
+      INFO(group);
+      const hid_t g = H5Gopen2(f, group, H5P_DEFAULT);
+      std::vector<std::vector<std::string>> fields = TableAttr(g, "fields"), options = TableAttr(g, "options_table");
+      if (!std::strcmp(group, "/zak")) {
+        REQUIRE(fields.size() == 1);
+        CHECK(fields[0] == std::vector<std::string>{"energy_threshold", "energy", FindField("/zak", "energy_threshold", FieldKind::Attribute)->meaning, ""});
+      } else {
+        CHECK(fields.size() == 8); // study, version, options, effective_options, wall_seconds, complete, format_version, options_table
+        bool found = false, flag = false;
+        for (const auto &r : options) { // a value that holds options reads back exactly; a flag has an empty value
+          found |= r == std::vector<std::string>{"describe_test_configs", "-sim_ts_type rk -sim_ts_dt 0.1;bm4"};
+          flag |= r == std::vector<std::string>{"describe_test_flag", ""};
+        }
+        CHECK(found);
+        CHECK(flag);
+      }
+      H5Gclose(g);
+    }
+    H5Fclose(f);
+    std::remove("describe_test.h5");
+  }
+  PetscOptionsClearValue(NULL, "-describe_test_configs");
+  PetscOptionsClearValue(NULL, "-describe_test_flag");
+  // a field without units is refused at the commit, naming it; the output is not written
+  RegisterSchemas({{"/describe_selftest", "", {{"bare", FieldKind::Dataset, FieldType::Real, "n", "", "a field without units"}}}});
+  PetscPushErrorHandler(PetscReturnErrorHandler, NULL);
+  {
+    OutputFile out;
+    REQUIRE(out.Open(PETSC_COMM_WORLD, "describe_bad.h5") == 0);
+    REQUIRE(WriteArray(out.Viewer(), "/describe_selftest", "bare", std::vector<PetscReal>{1}) == 0);
+    CHECK(out.Commit("zak", 0.5) != 0);
+  }
+  PetscPopErrorHandler();
+  struct stat st;
+  CHECK(stat("describe_bad.h5", &st) != 0);
 }

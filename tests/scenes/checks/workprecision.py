@@ -52,5 +52,31 @@ def errors():
     print("workprecision scene OK:", nc, "configurations,", len(acc), "methods, floor", g1.attrs["spread_mcr"])
 
 
+def recommended():
+    """-wp_target 1e-6: /workprecision/recommended names, per observable, the configuration of least median wall
+    time among those whose error meets the target (recomputed here from the file), and the run printed it."""
+    W = group("wp2.h5")["workprecision"]
+    R = W["recommended"]
+    require(abs(R.attrs["target"] - 1e-6) < 1e-18)
+    configs = [c.decode() for c in W["config"][:]]
+    wall = W["wall_seconds"][:]
+    out = open("wp2.txt").read()
+    names = [o.decode() for o in R["observable"][:]]
+    require(len(names) >= 3 and "mcr" in names, names)
+    met = 0
+    for k, name in enumerate(names):
+        err = W["error_" + name][:]
+        ok = np.isfinite(err) & (err <= 1e-6)
+        got = R["config"][k].decode()
+        if not ok.any():
+            require(got == "" and abs(R["error"][k] - np.nanmin(err)) <= 1e-12 * np.nanmin(err), name)
+            continue
+        met += 1
+        best = min(np.flatnonzero(ok), key=lambda i: wall[i])
+        require(got == configs[best] and R["error"][k] == err[best] and R["wall_seconds"][k] == wall[best], name, got, configs[best])
+        require(got in out, "the run printed the recommendation", name)
+    require(met >= 2, "some configuration meets 1e-6", met)
+
+
 if __name__ == "__main__":
     main(globals())
