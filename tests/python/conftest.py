@@ -30,6 +30,9 @@ RUNS = {
     "fep": ("fep.opts", ["-cont_branch", "insulated", "-lattice_cells", "5", "-cont_energy_max", "300", "-cont_verbose", "0"]),
     # the five branches without Floquet multipliers, to low energy
     "fep_plain": ("fep.opts", ["-lattice_cells", "5", "-floquet", "0", "-cont_energy_max", "1e-2", "-cont_verbose", "0"]),
+    # the matrix-free leading multipliers: stable "not decided", instability "not computed"
+    "fep_mf": ("fep.opts", ["-cont_branch", "insulated", "-lattice_cells", "5", "-cont_energy_max", "1e-3", "-cont_verbose", "0",
+                            "-floquet_mf", "-floquet_mf_dense_max", "0"]),
     "sweep": ("sweep_quick.opts", ["-lattice_cells", "5", "-sweep_omega_n", "3", "-sweep_energy_n", "2"] + BURST),
     "zak": ("zak.opts", ["-lattice_cells", "11", "-zak_energy_list", "0.01,0.1"] + BURST),
     "perturb": ("perturb.opts", ["-lattice_cells", "5", "-perturb_delta_list", "0,0.05", "-perturb_ensemble", "2",
@@ -41,7 +44,7 @@ RUNS = {
 }
 
 STUDY = {"linear": "linear", "simulate": "simulate", "simulate_stride": "simulate", "fep": "continuation",
-         "fep_plain": "continuation", "sweep": "sweep", "zak": "zak", "perturb": "perturb", "stability": "stability",
+         "fep_plain": "continuation", "fep_mf": "continuation", "sweep": "sweep", "zak": "zak", "perturb": "perturb", "stability": "stability",
          "workprecision": "workprecision"}
 
 

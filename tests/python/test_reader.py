@@ -241,6 +241,20 @@ def test_branches_without_floquet(runs):
         r.branches["no_such_branch"]
 
 
+def test_matrix_free_floquet(runs):
+    r = runs["fep_mf"]
+    b = r.branches["insulated"]
+    nev = int(r.effective_options["floquet_mf_nev"])
+    assert b.floquet and not b.located and b.floquet_route == "matrix-free"
+    assert b.multipliers.shape == (b.points, nev)
+    ok = np.isfinite(b.max_modulus)  # NaN: not converged
+    np.testing.assert_allclose(np.abs(b.multipliers[ok]).max(axis=1), b.max_modulus[ok], rtol=1e-12)
+    # matrix-free never decides "stable": -1 "not decided" (or 0 unstable); the class is not computed
+    assert set(b.stable) <= {-1, 0} and set(b.stable_name) <= {"not decided", "unstable"}
+    assert set(b.instability_name) == {"not computed"}
+    assert b.floquet_undecided == np.count_nonzero(b.stable == -1)
+
+
 # ---------------------------------------------------------------------------
 # linear
 
