@@ -160,6 +160,27 @@ def test_describe(runs, name):
     for p in attr_paths:
         desc, units = r.describe(p)
         assert desc and units, p
+    # every group's attributes are in its fields table
+    for path in ["/"] + ["/" + n for n, _ in _groups(h5py.File(r.path))]:
+        g = r.group(path)
+        assert set(g.fields) == set(g.attrs), path
+
+
+@pytest.mark.parametrize("name", list(RUNS))
+def test_codes_in_file_equal_built_in_table(runs, name):
+    """Format 1: the codes a file carries are the built-in table's (which decodes format 0), field for field."""
+    r = runs[name]
+    if r.format_version < 1:
+        pytest.skip("format 0 carries no codes")
+    with h5py.File(r.path) as f:
+        groups = [("/", f)] + [("/" + n, o) for n, o in _groups(f)]
+        for path, g in groups:
+            names = [k for k, o in g.items() if isinstance(o, h5py.Dataset) and "codes" in o.attrs]
+            names += [k for k, (_, _, c) in r.group(path).fields.items() if c]
+            for k in names:
+                built_in = ncodes.format0(path, k)
+                assert built_in is not None, f"{path}/{k} carries codes the reader's table lacks"
+                assert r.codes(f"{path.rstrip('/')}/{k}") == ncodes.parse(built_in), f"{path}/{k}"
 
 
 def _groups(f):
