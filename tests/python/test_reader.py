@@ -161,7 +161,9 @@ def test_describe(runs, name):
         desc, units = r.describe(p)
         assert desc and units, p
     # every group's attributes are in its fields table
-    for path in ["/"] + ["/" + n for n, _ in _groups(h5py.File(r.path))]:
+    with h5py.File(r.path) as f:
+        group_paths = ["/"] + ["/" + n for n, _ in _groups(f)]
+    for path in group_paths:
         g = r.group(path)
         assert set(g.fields) == set(g.attrs), path
 
