@@ -1,0 +1,93 @@
+"""Integer codes: parsing the `codes` attribute (format >= 1) and the built-in
+table of their meanings for format-0 files, which carry none.
+
+A `codes` string is "v meaning; v meaning; ...": parts separated by "; ", the
+first token of each part the integer value. A meaning's short name is the
+meaning without its parenthesised remark ("branch point (+1)" -> "branch point").
+"""
+import re
+
+# The meanings the writer gives them (src/io/schema.hpp, namespace codes);
+# format 0 files are decoded with these.
+YES_NO = "1 yes; 0 no"
+DONE = "1 computed; 0 not run (stop signal or not reached yet)"
+STABLE = "1 stable; 0 unstable; -1 not decided"
+KREIN = "1 positive signature; -1 negative signature; 0 not defined (real multiplier or below -floquet_krein_tol)"
+INSTABILITY = ("0 none; 1 B-B (critical eigenvector in the bulk); 2 B-E (between bulk and edge); "
+               "3 E-E (at the interface edge); -1 not computed")
+EVENT_KIND = ("1 energy fold; 2 branch point (+1); 3 period doubling (-1); 4 Krein collision (pass); "
+              "5 Hamiltonian-Hopf; 6 internal resonance")
+DIRECTION = "1 an instability begins along the branch (fold: E maximum); -1 it ends (fold: E minimum)"
+PREDICTABLE = "1 predictable; 0 unpredictable (twin statistics); -1 not checked (no -sweep_mcr_tol)"
+
+# (group pattern, name) -> codes, for format 0. A pattern segment "<...>" or
+# "case<k>" stands for any name (the schema's convention).
+FORMAT0 = {
+    ("/", "complete"): YES_NO,
+    ("/continuation/<branch>", "stable"): STABLE,
+    ("/continuation/<branch>", "instability"): INSTABILITY,
+    ("/continuation/<branch>", "krein"): KREIN,
+    ("/continuation/<branch>", "reached_energy_max"): YES_NO,
+    ("/continuation/<branch>/bifurcations", "kind"): EVENT_KIND,
+    ("/continuation/<branch>/bifurcations", "direction"): DIRECTION,
+    ("/continuation/<branch>/bifurcations", "instability"): INSTABILITY,
+    ("/continuation/<branch>/bifurcations", "krein"): KREIN,
+    ("/stability/case<k>", "floquet_stable"): YES_NO,
+    ("/stability/case<k>", "instability"): INSTABILITY,
+    ("/stability/case<k>", "persisted"): YES_NO,
+    ("/sweep", "reached"): YES_NO,
+    ("/sweep", "failed"): YES_NO,
+    ("/sweep", "predictable"): PREDICTABLE,
+    ("/sweep", "done"): DONE,
+    ("/sweep", "kcorr_computed"): YES_NO,
+    ("/zak", "reached"): YES_NO,
+    ("/zak", "done"): DONE,
+    ("/perturb/<kind>", "done"): DONE,
+    ("/simulate", "energy_reached"): YES_NO,
+    ("/workprecision", "reference_converged"): YES_NO,
+}
+
+_PART = re.compile(r";\s*(?=-?\d+\s)")
+
+
+def parse(text):
+    """{int: meaning} of a codes string "v meaning; v meaning; ..."."""
+    out = {}
+    for part in _PART.split(text.strip()):
+        part = part.strip()
+        if not part:
+            continue
+        value, _, meaning = part.partition(" ")
+        try:
+            out[int(value)] = meaning.strip()
+        except ValueError:
+            raise ValueError(f"codes {text!r}: part {part!r} does not begin with an integer") from None
+    return out
+
+
+def short(meaning):
+    """A meaning without its parenthesised remark: "B-B (critical ...)" -> "B-B"."""
+    return meaning.split(" (")[0].strip()
+
+
+def _segment_matches(pattern, name):
+    lt, gt = pattern.find("<"), pattern.find(">")
+    if lt < 0 or gt < lt:
+        return pattern == name
+    pre, post = pattern[:lt], pattern[gt + 1:]
+    return len(name) > len(pre) + len(post) and name.startswith(pre) and name.endswith(post)
+
+
+def group_matches(pattern, path):
+    """Whether a written group path matches a schema group pattern."""
+    p = [s for s in pattern.split("/") if s]
+    q = [s for s in path.split("/") if s]
+    return len(p) == len(q) and all(_segment_matches(a, b) for a, b in zip(p, q))
+
+
+def format0(group, name):
+    """The built-in codes string of a field of a format-0 file, or None."""
+    for (pattern, n), text in FORMAT0.items():
+        if n == name and group_matches(pattern, group):
+            return text
+    return None
