@@ -17,7 +17,7 @@ INSTABILITY = ("0 none; 1 B-B (critical eigenvector in the bulk); 2 B-E (between
                "3 E-E (at the interface edge); -1 not computed")
 EVENT_KIND = ("1 energy fold; 2 branch point (+1); 3 period doubling (-1); 4 Krein collision (pass); "
               "5 Hamiltonian-Hopf; 6 internal resonance")
-DIRECTION = "1 an instability begins along the branch (fold: E maximum); -1 it ends (fold: E minimum)"
+DIRECTION = "1 an instability begins along the branch (fold: E maximum); -1 it ends (fold: E minimum); 0 neither (a Krein pass)"
 PREDICTABLE = "1 predictable; 0 unpredictable (twin statistics); -1 not checked (no -sweep_mcr_tol)"
 
 # (group pattern, name) -> codes, for format 0. A pattern segment "<...>" or

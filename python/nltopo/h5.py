@@ -38,10 +38,11 @@ def _decode_strings(a):
 
 
 def array(ds):
-    """A dataset as a numpy array; strings decoded to str, and a compound of
-    strings (the `fields` and `options` tables) as a structured array of str."""
-    raw = ds[()]
-    dt = ds.dtype
+    """A dataset (or an attribute's array) as a numpy array; strings decoded to
+    str, and a compound of strings (the `fields` and `options_table` table
+    attributes) as a structured array of str."""
+    raw = ds[()] if not isinstance(ds, np.ndarray) else ds
+    dt = raw.dtype if isinstance(raw, np.ndarray) else ds.dtype
     if dt.names:
         cols = {n: _decode_strings(np.asarray(raw[n])) for n in dt.names}
         out = np.empty(raw.shape, dtype=[(n, cols[n].dtype) for n in dt.names])
@@ -54,6 +55,6 @@ def array(ds):
 
 
 def table(ds):
-    """A compound dataset as a list of dicts (column name -> str or number)."""
+    """A compound dataset or attribute array as a list of dicts (column name -> str or number)."""
     a = array(ds)
     return [{n: value(row[n]) for n in a.dtype.names} for row in a.reshape(-1)]

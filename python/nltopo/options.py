@@ -1,4 +1,4 @@
-"""The run's options: the structured root dataset `options` (format >= 1) and,
+"""The run's options: the structured root attribute `options_table` (format >= 1) and,
 for format-0 files, the root attribute `options` (PETSc's PetscOptionsGetAll
 text) parsed back into (key, value) pairs.
 

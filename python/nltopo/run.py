@@ -2,6 +2,7 @@
 import os
 
 import h5py
+import numpy as np
 
 from . import codes as _codes
 from . import h5 as _h5
@@ -51,8 +52,8 @@ class Run:
         self.options_text = _h5.text(a["options"]) if "options" in a else ""
         self.effective_options = _options.parse_effective(_h5.text(a["effective_options"])) \
             if "effective_options" in a else {}
-        if self.format_version >= 1 and isinstance(self.file.get("options"), h5py.Dataset):
-            self.options = {r["key"]: r["value"] for r in _h5.table(self.file["options"])}
+        if self.format_version >= 1 and "options_table" in a:
+            self.options = {r["key"]: r["value"] for r in _h5.table(np.asarray(a["options_table"]))}
         else:
             self.options = _options.parse_text(self.options_text)
         self.cost = {k: _h5.value(v) for k, v in self.file["cost"].attrs.items()} if "cost" in self.file else {}
@@ -103,8 +104,8 @@ class Run:
 
     def _fields_row(self, group, name):
         g = self.file[group]
-        if "fields" in g and isinstance(g["fields"], h5py.Dataset):
-            for r in _h5.table(g["fields"]):
+        if "fields" in g.attrs:
+            for r in _h5.table(np.asarray(g.attrs["fields"])):
                 if r.get("name") == name:
                     return r
         return None

@@ -95,7 +95,9 @@ class Group:
         g = run.file[self._path]
         self._datasets = [k for k in g.keys() if not hasattr(g[k], "keys")]
         self._subgroups = [k for k in g.keys() if hasattr(g[k], "keys")]
-        self.attrs = {k: _h5.value(v) for k, v in g.attrs.items()}
+        # the `fields` table describes the others (docs/outputs.md): it is not one of the group's values
+        self.attrs = {k: _h5.value(v) for k, v in g.attrs.items() if k != "fields"}
+        self._fields_table = np.asarray(g.attrs["fields"]) if "fields" in g.attrs else None
 
     # names -------------------------------------------------------------
     @property
@@ -108,7 +110,7 @@ class Group:
 
     @property
     def datasets(self):
-        """Names of the group's datasets (its `fields` table included)."""
+        """Names of the group's datasets."""
         return list(self._datasets)
 
     @property
@@ -181,10 +183,10 @@ class Group:
     def fields(self):
         """{attribute name: (units, description, codes)} from the group's
         `fields` table (format >= 1; {} in a format-0 file)."""
-        if "fields" not in self._datasets or self._run.format_version < 1:
+        if self._fields_table is None or self._run.format_version < 1:
             return {}
         return {r["name"]: (r.get("units", ""), r.get("description", ""), r.get("codes", ""))
-                for r in _h5.table(self._run.file[self._join("fields")])}
+                for r in _h5.table(self._fields_table)}
 
 
 # ---------------------------------------------------------------------------
@@ -348,7 +350,7 @@ class Sweep(Group):
     def maps(self):
         """{name: ne x no array} of every per-point map."""
         return {n: self[n] for n in self._datasets
-                if n not in ("energy", "omega", "fields") and np.shape(self[n]) == self.shape}
+                if n not in ("energy", "omega") and np.shape(self[n]) == self.shape}
 
 
 class Linear(Group):
