@@ -45,6 +45,10 @@ for np in 1 2; do
   cp co$np.h5 old$np.h5
   $PY "$CHECKS/resume_safety.py" code_default_changed old$np.h5
   refused "-cont_resume old$np.h5 was written with -nnm_ts_type rk, the default then (now symsplit)" old$np.h5 "${CO[@]}" -cont_resume old$np.h5 -output res$np.h5
+  # a file of another output format (version 0: written before format_version existed)
+  cp co$np.h5 v0$np.h5
+  $PY "$CHECKS/resume_safety.py" format_version_0 v0$np.h5
+  refused "-cont_resume v0$np.h5 has format_version 0 (this nltopo writes 1)" v0$np.h5 "${CO[@]}" -cont_resume v0$np.h5 -output res$np.h5
   [ ! -e res$np.h5 ] || { echo "FAILED: a refused resume wrote its -output"; exit 1; }
   # extent (-cont_energy_max, -cont_max_points) and diagnostics may change; into the same file
   ok "${CO[@]}" -lattice_cubic 5e-1 -cont_energy_max 2e-4 -cont_max_points 6 -nnm_snes_converged_reason -cont_resume co$np.h5 -output co$np.h5

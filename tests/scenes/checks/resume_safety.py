@@ -26,5 +26,12 @@ def study(path):
     print(study_of(path))
 
 
+def format_version_0(path):
+    """Makes path a format-0 file: no format_version attribute (as files written before it existed)."""
+    with h5py.File(path, "a") as f:
+        require("format_version" in f.attrs)
+        del f.attrs["format_version"]
+
+
 if __name__ == "__main__":
     main(globals())
