@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Seeded option fuzzer for nltopo (README.md "Tests", the error contract).
+"""Seeded option fuzzer for nltopo (docs/testing.md, docs/errors.md).
 
 Every case runs one study on a small base scene (about a second of work) with
 1-3 of nltopo's own options set to a random value drawn from the option's type
