@@ -12,7 +12,7 @@ nontrivial |mu|, the leading pair's, their difference, the three verdicts
 and the two classes) and a summary: largest difference, orbits with the same
 verdict and class, verdicts per route, wall time per route.
 Default: cells 25, E 20, 1 rank (the scene test long_nnm checks the same at
-N = 102 on 2 ranks). README.md "Long lattices" quotes cells 25 to E = 100."""
+N = 102 on 2 ranks). docs/long-lattices.md quotes cells 25 to E = 100."""
 import os
 import subprocess
 import sys

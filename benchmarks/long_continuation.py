@@ -29,9 +29,9 @@ for c in cells:
         out = os.path.join(tmp, f"c{c}{pc}.h5")
         cmd = launch + [os.path.join(build, "nltopo"), "-options_file", os.path.join(root, "options", "fep_long.opts"), "-lattice_cells", str(c),
                "-nnm_mf_pc", pc, "-cont_energy_max", emax, "-cont_verbose", "0", "-floquet", "0", "-output", out]
-        if pc == "none":  # unpreconditioned GMRES: a short branch only (it stalls, README.md)
+        if pc == "none":  # unpreconditioned GMRES: a short branch only (it stalls, docs/long-lattices.md)
             cmd += ["-cont_max_points", "8"]
-        if pc == "linear":  # crawls inside the optical band (README.md, Long lattices)
+        if pc == "linear":  # crawls inside the optical band (docs/long-lattices.md)
             cmd += ["-cont_max_points", "40"]
         p = subprocess.run(cmd, capture_output=True, text=True, env=env)
         if p.returncode != 0 or not os.path.exists(out):

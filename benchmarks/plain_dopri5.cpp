@@ -1,6 +1,6 @@
 // plain_dopri5.cpp -- plain C++17 baseline (standard library only) for the
 // nltopo PETSc TS benchmark. This integrates the strongly nonlinear SSH interface
-// lattice of README.md "Model conventions" with a hand-written Dormand-Prince 5(4)
+// lattice of docs/model.md with a hand-written Dormand-Prince 5(4)
 // (Hairer's classic dopri5) and reports step statistics, energy and the MCR.
 //
 // Build:  g++ -O3 -std=c++17 -o plain_dopri5 plain_dopri5.cpp

@@ -1,10 +1,9 @@
 #!/usr/bin/env bash
 # Every figure of the paper (Tempelman, Matlack & Vakakis) from
-# one command, on the options files, with the built nltopo (README.md
-# "Figures of the paper"):
+# one command, on the options files, with the built nltopo (docs/figures.md):
 #
-#   bash figures/make_all.sh                    # small runs (default): 2.4 min on 2 shared cores
-#   FIG_SIZE=paper bash figures/make_all.sh     # the paper's sizes: 5.4 min (same machine)
+#   bash figures/make_all.sh                    # small runs (default): minutes on 2 cores
+#   FIG_SIZE=paper bash figures/make_all.sh     # the paper's sizes (times: benchmarks/README.md)
 #
 # Environment:
 #   FIG_SIZE   small (default) | paper | test (the ctest scene's tiny runs)
@@ -33,7 +32,7 @@ PY=/usr/bin/python3
 OPT=$ROOT/options
 PLOTS=$ROOT/src/plots
 case "$SIZE" in small | paper | test) ;; *) echo "make_all.sh: FIG_SIZE must be small, paper or test, got '$SIZE'" >&2; exit 2 ;; esac
-[ -x "$NLTOPO" ] || { echo "make_all.sh: no nltopo binary at $NLTOPO (build it: README.md \"Set-up\", or set NLTOPO)" >&2; exit 2; }
+[ -x "$NLTOPO" ] || { echo "make_all.sh: no nltopo binary at $NLTOPO (build it: README.md \"Set-up in two commands\", or set NLTOPO)" >&2; exit 2; }
 if [ "$(id -u)" = 0 ]; then # Open MPI refuses root without these
   export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 fi

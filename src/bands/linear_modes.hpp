@@ -1,6 +1,6 @@
 #pragma once
 // Linear normal modes of K with SLEPc (EPS behind this small interface), and
-// the rule that names the modes the paper uses (README.md "Mode identification").
+// the rule that names the modes the paper uses (docs/studies/linear.md, "Mode identification").
 #include "bands/bloch.hpp"
 #include "lattice/lattice.hpp"
 #include <vector>

@@ -84,7 +84,7 @@ std::string OptionReferenceMarkdown()
                   "Generated from the option tables in the code (`nltopo -option_tables md > docs/options.md`; a test\n"
                   "checks that this file is what the binary writes). Every option of nltopo's own, by component:\n"
                   "its type, default, range and class. The class says what a resume or an overwrite compares\n"
-                  "(README.md, \"Signals and resume rules\"): *physics* (physics and numerics: must agree), *extent*\n"
+                  "(docs/errors.md, \"Resume rules\"): *physics* (physics and numerics: must agree), *extent*\n"
                   "(how far a run goes: may grow on resume), *bookkeeping* (never compared). Solver options\n"
                   "(`-sim_ts_*`, `-nnm_snes_*`, `-floquet_eps_*`, ...) are PETSc's and SLEPc's: `-help` lists them.\n";
   // by title, then by first option (registration order follows the link order)

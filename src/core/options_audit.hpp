@@ -1,5 +1,5 @@
 #pragma once
-// The options contract (README.md "Error contract"):
+// The options contract (docs/errors.md "The error contract"):
 // - every value that parses as a number must be finite (no nan, inf);
 // - an option that no component of the running study reads is an error, with
 //   the closest known option as a suggestion ("did you mean -force_omega?");

@@ -1,6 +1,6 @@
 #pragma once
-// SIGINT and SIGTERM stop a run at its next safe point (README.md "Signals and
-// resume rules"). The handler only records the signal (a volatile
+// SIGINT and SIGTERM stop a run at its next safe point (docs/errors.md
+// "Signals"). The handler only records the signal (a volatile
 // sig_atomic_t); the studies poll it where they can stop without losing what
 // is done, write that (root attribute complete = 0) and exit non-zero with
 //   nltopo: interrupted by SIGTERM at <safe point>; partial output <file> (complete = 0)

@@ -1,5 +1,5 @@
 #pragma once
-// The averaging window of a forced run (README.md "MCR"): from the cut-off
+// The averaging window of a forced run (docs/model.md "RMS window, MCR and nl_ratio"): from the cut-off
 // (or the documented fallback) to the end, the time integrals of u_i^2 (the
 // RMS displacement per site, hence the MCR) and of the quartic and linear
 // potential energies (the nonlinear/linear ratio).

@@ -8,7 +8,7 @@
 //   K_c  = corr(m, D(m));   K = median of K_c over c drawn uniformly in (pi/5, 4 pi/5).
 // K ~ 0 for regular (periodic, quasi-periodic) series, K ~ 1 for chaotic ones.
 // Continuous-time data must not be oversampled: the caller samples the
-// signal at about a quarter of its dominant period (README.md "0-1 test"), so
+// signal at about a quarter of its dominant period (docs/model.md "The 0-1 test for chaos"), so
 // that its spectrum sits inside the c range rather than near c = 0.
 #include <petscsys.h>
 #include <vector>

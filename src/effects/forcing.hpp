@@ -11,7 +11,7 @@ class LinearModes;
 
 // exponential: eta_n = a e^{b |n - m|} (-1)^{n/2} on the even sites n (1-based)
 // around the interface site m, a and b fitted to the linear insulated mode
-// (paper, "exponential forcing"; README.md).
+// (paper, "exponential forcing"; docs/model.md).
 enum class ForceProfile { Site = 0, Mode = 1, None = 2, Exponential = 3 };
 
 struct ToneBurstOptions {
@@ -78,7 +78,7 @@ private:
   ToneBurst *b_;
 };
 
-// Amplitude rule (README.md "Amplitude rule"): the energy a unit-amplitude
+// Amplitude rule (docs/model.md "The amplitude rule"): the energy a unit-amplitude
 // burst leaves in the LINEAR lattice, e1 = sum_j (phi_j . eta)^2 pi tau^2 / 8 *
 // |exp(-tau^2 (omega - omega_j)^2 / 4) + exp(-tau^2 (omega + omega_j)^2 / 4) e^{-2 i omega t0}|^2,
 // plus the peak energy of the quasi-static off-resonant response; S = sqrt(safety E* / e1).

@@ -137,7 +137,7 @@ std::unique_ptr<Effect> CreateLinearCoupling(const Lattice &lat) { return std::m
 
 // model.md's cubic coefficient Gamma. Its option is -lattice_cubic, not
 // "-lattice_Gamma": PETSc option names are case-insensitive, so that name IS
-// -lattice_gamma (README.md, "Option names").
+// -lattice_gamma (docs/errors.md, "Option names").
 static const auto &kCubicTable = DeclareOptionTable<LatticeParams>("lattice_", "Cubic bonds", [](OptionTable<LatticeParams> &t) {
   t.Real("cubic", &LatticeParams::Gamma, Closed(-1e6, 1e6), "Cubic coefficient Gamma on every stiff bond (0 = linear lattice)");
 });

@@ -29,7 +29,7 @@ static const auto &kOutputTable = DeclareOptionTable<OutputOptions>(NULL, "Outpu
   t.String("output", &OutputOptions::path, "HDF5 file to write (default <study>.h5)", OptionClass::Bookkeeping)
       .Default("<study>.h5")
       .Bool("output_overwrite", &OutputOptions::overwrite,
-            "Replace -output even if it holds the output of another study or of other physics/numerics options (README.md, Signals and resume rules)",
+            "Replace -output even if it holds the output of another study or of other physics/numerics options (docs/errors.md, overwrite rule)",
             OptionClass::Bookkeeping);
 });
 

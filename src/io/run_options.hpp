@@ -1,8 +1,8 @@
 #pragma once
 // What makes two runs "the same computation": the options of the writing run
 // are stored in every output (root attribute `options`, PetscOptionsGetAll);
-// a resume and an overwrite compare them with this run's (README.md "Signals
-// and resume rules").
+// a resume and an overwrite compare them with this run's (docs/errors.md
+// "Resume rules").
 //
 // The rule: only options with a prefix that sets the physics or the numerics
 // are compared: the prefixes every study registers with its contract

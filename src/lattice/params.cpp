@@ -48,7 +48,7 @@ static const auto &kLatticeTable = DeclareOptionTable<LatticeParams>("lattice_",
       .Int("cells", &LatticeParams::cells, Closed(1, kMaxCells), "Unit cells per side Nc, at most 2.5e6 (interface: N = 4 Nc + 2; left/right: N = 2 Nc)")
       .Enum("layout", &LatticeParams::layout, kLayoutNames, 3, "Lattice layout")
       .Enum("perturbation", &LatticeParams::perturbation, kPerturbationNames, 3,
-            "Random spring perturbation (README.md): chiral keeps diag(K) = k_hat, achiral varies every spring")
+            "Random spring perturbation (docs/model.md): chiral keeps diag(K) = k_hat, achiral varies every spring")
       .Real("delta", &LatticeParams::delta, RightOpen(0, 0.5),
             "Perturbation level: springs change by k delta_b, delta_b uniform in (-2 delta, 2 delta) (mean |delta_b| = delta)")
       .Int("seed", &LatticeParams::seed, Closed(PETSC_MIN_INT, PETSC_MAX_INT), "Seed of the perturbation's realisation");

@@ -544,7 +544,7 @@ PetscErrorCode BranchWalk::Step(bool *accepted)
   // No growth right after a rejection: the larger step has just failed, and
   // growing again would alternate failing and accepted steps (inside a dense
   // band the failures are Newton stalling near a resonance, 6-12 wasted
-  // iterations each; README "Long lattices").
+  // iterations each; docs/long-lattices.md).
   if (its_ <= o_.newton_target - 1 && !rejected) ds_ *= 1.6;
   else if (its_ > o_.newton_target + 1) ds_ *= 0.6;
   PetscCall(shoot_.Unpack(X_, z_, &T, &beta));

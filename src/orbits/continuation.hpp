@@ -42,7 +42,7 @@ struct Branch {
   // Where the continuation stands after the last point: the family tangent
   // there (rank 0, natural order [du_1..du_N, dv_1..dv_N, dT, dbeta]) and the
   // next step length. A resume from them takes the steps an uninterrupted run
-  // takes, bit for bit (README.md "Signals and resume rules").
+  // takes, bit for bit (docs/errors.md "Resume rules").
   std::vector<PetscReal> next_tangent;
   PetscReal next_ds = 0;
 

@@ -47,7 +47,7 @@ PetscErrorCode ShootingSolver::SetupMatrixFree(KSP ksp, PC pc)
   // Inexact Newton (Eisenstat-Walker forcing terms): GMRES is converged only as
   // far as the Newton step needs. Inside the bands, where resonant modes make
   // the preconditioned operator far from the identity, this saves most GMRES
-  // iterations per point (README.md, Long lattices).
+  // iterations per point (docs/long-lattices.md).
   PetscCall(SNESKSPSetUseEW(snes_, PETSC_TRUE));
   PetscFunctionReturn(0);
 }

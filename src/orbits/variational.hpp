@@ -12,7 +12,7 @@
 // tridiagonal K_T acts on contiguous rows of W with one ghost exchange: the
 // structured product costs O(N ncol), against a general sparse-times-dense
 // product and ~30 dense AXPYs per step in PETSc 3.18's TSForward for RK
-// (README.md, NNM performance).
+// (docs/continuation.md, "The monodromy").
 #include "effects/effect.hpp"
 #include <vector>
 

@@ -20,7 +20,7 @@ def draw(f, out):
     layout = layout.decode() if isinstance(layout, bytes) else str(layout)
     fig, ax = plt.subplots(1, 2, figsize=(12, 4.5))
     # Spectrum: the infinite bands as shaded regions; every finite eigenfrequency a dot,
-    # coloured by where it lies (README.md "The topological transition").
+    # coloured by where it lies (docs/studies/linear.md).
     ax[0].fill_between(g, b[:, 0], b[:, 1], color="C2", alpha=0.15, lw=0, label="acoustic band (infinite lattice)")
     ax[0].fill_between(g, b[:, 2], b[:, 3], color="C1", alpha=0.15, lw=0, label="optical band (infinite lattice)")
     G = np.repeat(g[:, None], N, axis=1)

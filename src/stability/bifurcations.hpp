@@ -1,6 +1,6 @@
 #pragma once
 // Bifurcations along a family of periodic orbits of a Hamiltonian system
-// (README.md "Bifurcations"): the events -cont_bifurcations reports, the
+// (docs/continuation.md "Bifurcations along a branch"): the events -cont_bifurcations reports, the
 // multiplier bookkeeping they rest on, and the search that locates them.
 //
 // The multipliers of a Hamiltonian orbit come as mu, 1/mu, conj(mu),

@@ -1,6 +1,6 @@
 #pragma once
 // -cont_switch: the family born at a located branch point or period doubling
-// (README.md "Branch switching"). At the event's orbit X* = (z*, T*, beta*)
+// (docs/continuation.md "Branch switching"). At the event's orbit X* = (z*, T*, beta*)
 // the new family leaves along the critical eigenvector phi of M:
 //   branch point (kind 2, a pair through +1): the new pair's direction at +1;
 //     the new orbits have period ~ T*;

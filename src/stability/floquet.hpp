@@ -2,7 +2,7 @@
 // Floquet multipliers of a periodic orbit: the eigenvalues of the monodromy
 // M = dz(T)/dz0 (SLEPc EPS, non-Hermitian, options -floquet_eps_*), their
 // Krein signatures K = sign(-i v^H J v), J = [[0, I], [-I, 0]] (model.md), and
-// the kind of instability (README.md "Floquet").
+// the kind of instability (docs/model.md, docs/continuation.md "Floquet multipliers and Krein signatures").
 #include "lattice/lattice.hpp"
 #include <cmath>
 #include <complex>

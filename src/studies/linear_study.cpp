@@ -1,4 +1,4 @@
-// -study linear: eigenpairs of K, the named modes (README.md "Mode
+// -study linear: eigenpairs of K, the named modes (docs/studies/linear.md "Mode
 // identification"), infinite-lattice Bloch bands and Zak phases; /linear of outputs.md.
 // With -linear_gamma_list, also the topological transition over gamma
 // (paper Fig. 2a, bands/transition.hpp): /linear/transition.

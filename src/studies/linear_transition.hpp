@@ -1,6 +1,6 @@
 #pragma once
-// -linear_gamma_list of the linear study (README.md "The topological
-// transition"): the option's value and the run's summary on stdout. The
+// -linear_gamma_list of the linear study (docs/studies/linear.md
+// "The transition over gamma"): the option's value and the run's summary on stdout. The
 // computation itself is bands/transition.hpp.
 #include "bands/transition.hpp"
 #include <string>

@@ -313,7 +313,7 @@ protected:
                               ns)); // nd x ns; 0: not run (stop signal)
       PetscCall(WriteAttr(v, g.c_str(), "seed_first", po_.seed0));
       PetscCall(WriteAttr(v, g.c_str(), "rule",
-                          "springs change by k delta_b, delta_b uniform in (-2 delta, 2 delta) (README.md); realisation r uses seed seed_first + r"));
+                          "springs change by k delta_b, delta_b uniform in (-2 delta, 2 delta) (docs/model.md); realisation r uses seed seed_first + r"));
     }
     PetscFunctionReturn(0);
   }

@@ -174,7 +174,7 @@ protected:
         v, g, "amplitude_rule",
         !sc_.burst.Present() ? "none (no forcing)"
         : sc_.burst.AmplitudeFromRule()
-            ? "linear Gaussian-burst energy = amplitude_safety * E*; a run whose burst ends before E* is repeated with a larger S (x (1.2 E*/E_peak)^(1/p), p the log-log slope of the misses) (README.md, Amplitude rule)"
+            ? "linear Gaussian-burst energy = amplitude_safety * E*; a run whose burst ends before E* is repeated with a larger S (x (1.2 E*/E_peak)^(1/p), p the log-log slope of the misses) (docs/model.md, the amplitude rule)"
             : "user (-force_amplitude)"));
     PetscCall(WriteAttr(v, g, "amplitude_safety", sc_.fo.safety));
     PetscCall(WriteAttr(v, g, "amplitude_rescalings", rescalings_)); // -1: E* missed after -force_amplitude_retries

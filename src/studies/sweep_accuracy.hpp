@@ -1,5 +1,5 @@
 #pragma once
-// The accuracy-aware sweep (-sweep_mcr_tol; README.md "Accuracy-aware sweep"):
+// The accuracy-aware sweep (-sweep_mcr_tol; docs/studies/sweep.md):
 // each point's MCR is checked a posteriori against the same run at twice the
 // step, refined by halving the step until two successive runs agree to the
 // tolerance; points that do not converge, or that the 0-1 test calls chaotic,

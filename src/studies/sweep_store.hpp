@@ -17,7 +17,7 @@ namespace nltopo {
 // What a sweep stores per grid point (outputs.md /sweep, plus additions).
 struct SweepPoint {
   PetscReal mcr = 0, t_off = -1, kcorr = 0, nl_ratio = 0, amplitude = 0, energy_final = 0, seconds = 0;
-  // -sweep_mcr_tol (README.md "Accuracy-aware sweep"): the MCR's estimated relative
+  // -sweep_mcr_tol (docs/studies/sweep.md): the MCR's estimated relative
   // error (NaN without the mode or where unpredictable), the spread (max - min) of
   // the twins' MCRs where the point is unpredictable (0 where it is predictable),
   // whether it is (1, 0; -1 without the mode), and the integrations spent on it.

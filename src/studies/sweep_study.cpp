@@ -46,7 +46,7 @@ struct SweepOptions {
   PetscBool resume = PETSC_FALSE, kcorr = PETSC_FALSE;
   PetscReal checkpoint = 5, progress = 10;
   // 0-1 test (-kcorr_*)
-  PetscInt kcorr_nc = 32, kcorr_site_stride = 1; // 32 c values: the median is stable to ~0.02 on the test series (README.md)
+  PetscInt kcorr_nc = 32, kcorr_site_stride = 1; // 32 c values: the median is stable to ~0.02 on the test series (tests/unit)
   PetscReal kcorr_rms_fraction = 0.1;
   PetscReal kcorr_record = 1500; // free motion analysed after t_off (s)
   PetscInt kcorr_lags = 20;
@@ -84,7 +84,7 @@ const auto &kZeroOneTable = DeclareOptionTable<SweepOptions>("kcorr_", "0-1 test
             "Sampling interval of u after t_off (0: pi / (2 sqrt(k_hat)), a quarter of the insulated period)")
       .Default("pi / (2 sqrt(k_hat))")
       .Real("rms_fraction", &SweepOptions::kcorr_rms_fraction, Closed(0, 1),
-            "Test only sites whose RMS after t_off is at least this fraction of the largest (README.md)")
+            "Test only sites whose RMS after t_off is at least this fraction of the largest (docs/model.md, the 0-1 test)")
       .Real("record", &SweepOptions::kcorr_record, LeftOpen(0, 1e6),
             "Length of the free motion after t_off that the test analyses; the run continues past -sim_t_final when needed")
       .Int("lags", &SweepOptions::kcorr_lags, Closed(0, 100000), "Lags m at which D(m) is evaluated, evenly spread over 1..n/10 (0: all)")
@@ -160,7 +160,7 @@ PetscErrorCode WriteSweep(const std::string &path, const SweepGrid &g, const Swe
   PetscCall(WriteAttr(
       w, grp, "amplitude_rule",
       "linear Gaussian-burst energy = -force_amplitude_safety * E*; a run whose burst ends before E* is repeated with a larger S (x "
-      "(1.2 E*/E_peak)^(1/p), p the log-log slope of the misses) up to -force_amplitude_retries times (README.md, Amplitude rule); reached = 0 marks points that never reached E*"));
+      "(1.2 E*/E_peak)^(1/p), p the log-log slope of the misses) up to -force_amplitude_retries times (docs/model.md, the amplitude rule); reached = 0 marks points that never reached E*"));
   PetscCall(out.Commit("sweep", wall, complete));
   PetscCall(PetscLogEventEnd(Log().output, 0, 0, 0, 0));
   PetscFunctionReturn(0);
@@ -187,7 +187,7 @@ PetscErrorCode ComputePoint(const Lattice &lat, const LinearModes &modes, const 
   if (so.kcorr && r.reached && r.t_off + so.kcorr_record > ps.t_final) {
     // The test needs a longer free record than the run has after t_off: the
     // linear lattice's ~N modes read as chaos in records much shorter than
-    // 2 pi / (their spacing) (README.md "0-1 test"). Continue the free motion.
+    // 2 pi / (their spacing) (docs/model.md "The 0-1 test for chaos"). Continue the free motion.
     SimulationOptions cont = ps;
     SimulationResult rc;
     cont.t_start = ps.t_final;
@@ -204,7 +204,7 @@ PetscErrorCode ComputePoint(const Lattice &lat, const LinearModes &modes, const 
     const PetscInt ns = sink.Samples(), N = lat.N();
     if (ns >= 100) {
       // Sites too quiet to matter carry only the radiated bulk spectrum,
-      // which the test reads as chaos even in linear runs (README.md).
+      // which the test reads as chaos even in linear runs (docs/model.md).
       std::vector<PetscReal> ms(N, 0.0);
       for (PetscInt j = 0; j < ns; j++)
         for (PetscInt s = 0; s < N; s++) ms[s] += sink.Data()[j * N + s] * sink.Data()[j * N + s];

@@ -16,14 +16,14 @@ const char *const kWpObservables[5] = {"mcr", "t_off", "nl_ratio", "energy", "st
 std::vector<std::string> DefaultWorkPrecisionConfigs(bool shooting)
 {
   if (shooting) {
-    // the shooting integrators (README.md "Integrators by study") at three steps per period each
+    // the shooting integrators (docs/integrators.md) at three steps per period each
     std::vector<std::string> c;
     for (const char *n : {"32", "64", "128"}) c.push_back(std::string("-nnm_ts_type symsplit -nnm_ts_symsplit_scheme bm4 -nnm_steps_per_period ") + n);
     for (const char *n : {"32", "64", "128"}) c.push_back(std::string("-nnm_ts_type symsplit -nnm_ts_symsplit_scheme bm6 -nnm_steps_per_period ") + n);
     for (const char *n : {"64", "128", "256"}) c.push_back(std::string("-nnm_ts_type rk -nnm_ts_rk_type 5dp -nnm_steps_per_period ") + n);
     return c;
   }
-  // The shipped integrators (README.md "Integrators by study") at three
+  // The shipped integrators (docs/integrators.md) at three
   // accuracies each: the splitting at three fixed steps, the adaptive pairs
   // (and the paper's ode45 analogue, rk 5dp) at three tolerances.
   std::vector<std::string> c;

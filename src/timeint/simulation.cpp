@@ -677,7 +677,7 @@ PetscErrorCode Simulate(const EffectList &fx, const SimulationOptions &o, Vec z0
     else if (forcing->T0() <= o.t_final) run.burst_end = o.t_final * (1 - 1e-12);
   }
   // RMS window when E* is never reached: after the burst (t0 + 3 tau), or the
-  // whole run if the burst does not end before t_final (README.md).
+  // whole run if the burst does not end before t_final (docs/model.md).
   if (run.rhs.Forcing()) {
     const PetscReal tb = forcing->T0() + 3 * forcing->Tau();
     r->window_start = tb < o.t_final ? tb : 0;

@@ -62,7 +62,7 @@ private:
 
 struct SimulationResult {
   PetscReal t_off = -1;       // time the forcing stopped (-1: never)
-  PetscReal window_start = 0; // start of the RMS window (t_off, else README.md's rule)
+  PetscReal window_start = 0; // start of the RMS window (t_off, else docs/model.md's rule)
   PetscReal energy_final = 0;
   PetscReal mcr = 0, nl_ratio = 0;
   PetscInt steps = 0, rejected = 0;
@@ -75,7 +75,7 @@ struct SimulationResult {
   OwnedVec z_final;              // final state
 };
 
-// A forced run under the amplitude rule (README.md "Amplitude rule"): with S
+// A forced run under the amplitude rule (docs/model.md "The amplitude rule"): with S
 // from the rule, a run whose burst ends (t0 + 3 tau) before E* is reached is
 // stopped there and repeated with S scaled by (1.2 E* / E_peak)^(1/p), at least
 // 2 and at most 100, with p = 1 after the first miss and then the log-log slope

@@ -1,6 +1,6 @@
 #pragma once
 // TS type "rkn": adaptive embedded Runge-Kutta-Nystrom pairs for second-order
-// systems u'' = a(t, u) written as z = [u, v] (README.md, "Integrators"), next
+// systems u'' = a(t, u) written as z = [u, v] (docs/integrators.md), next
 // to the fixed-step "symsplit" (timeint/ts_symsplit.hpp). Registered with
 // TSRegister, so -<prefix>ts_type rkn, -ts_dt (the first step), -ts_rtol,
 // -ts_atol, -ts_adapt_type (default basic; dsp, none, ...),

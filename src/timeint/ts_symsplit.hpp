@@ -1,7 +1,6 @@
 #pragma once
 // TS type "symsplit": fixed-step symmetric symplectic splitting methods for
-// second-order systems u'' = a(t, u) written as z = [u, v] (README.md,
-// "Integrators"). Registered with TSRegister, so -<prefix>ts_type symsplit,
+// second-order systems u'' = a(t, u) written as z = [u, v] (docs/integrators.md). Registered with TSRegister, so -<prefix>ts_type symsplit,
 // -ts_dt, -ts_monitor, TSEvent (rollback) and TSInterpolate work as for the
 // built-in types; the method is chosen with -<prefix>ts_symsplit_scheme.
 //

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Seeded option fuzzer for nltopo (README.md "Tests", the error contract).
+"""Seeded option fuzzer for nltopo (docs/testing.md, docs/errors.md).
 
 Every case runs one study on a small base scene (about a second of work) with
 1-3 of nltopo's own options set to a random value drawn from the option's type
@@ -104,7 +104,7 @@ T = {
     "cont_energy_min": ("real", 1e-6, 1e-4), "cont_energy_max": ("real", 1e-4, 1e-2), "cont_max_points": ("int", 1, 5),
     "cont_omega_max": ("real", 0.0, 2.5), "cont_mcr_min": ("real", 0.0, 0.5), "cont_max_change": ("real", 0.01, 0.5),
     "cont_ds_min": ("real", 1e-12, 1e-6), "cont_newton_target": ("int", 1, 8), "cont_interaction_corr": ("real", 0.0, 1.0),
-    "cont_verbose": ("bool",), "cont_checkpoint_seconds": ("real", 0.0, 5.0), "cont_resume": ("path",),
+    "cont_verbose": ("bool",), "cont_progress": ("real", 0.0, 5.0), "cont_checkpoint_seconds": ("real", 0.0, 5.0), "cont_resume": ("path",),
     "cont_bifurcations": ("bool",), "cont_bif_tol": ("real", 1e-9, 1e-4), "cont_bif_max_probes": ("int", 1, 20),
     "cont_bif_angle_tol": ("real", 0.01, 0.5), "cont_bif_bulk": ("bool",),
     "cont_bif_passes": ("bool",), "cont_bif_resonance_order": ("int", 0, 5),
@@ -126,7 +126,7 @@ T = {
     "wp_reference": ("strings", 0, 0, [" -sim_ts_type rkn -sim_ts_rkn_scheme dep1210", " -sim_ts_type rkn -sim_ts_rkn_scheme dep86"]),
     "wp_scene": ("enum", 0, 0, ["simulate", "shooting"]),
     "wp_reference_tol": ("real", 1e-9, 1e-7), "wp_reference_tol_min": ("real", 1e-10, 1e-9), "wp_reference_dt_max": ("real", 0.05, 1.0),
-    "wp_reference_agreement": ("real", 1e-9, 1e-3), "wp_repeats": ("int", 1, 2), "wp_twins": ("int", 1, 2), "wp_twin_eps": ("real", 1e-12, 1e-6),
+    "wp_reference_agreement": ("real", 1e-9, 1e-3), "wp_repeats": ("int", 1, 2), "wp_twins": ("int", 1, 2), "wp_twin_eps": ("real", 1e-12, 1e-6), "wp_target": ("real", 0.0, 1e-3),
 }
 NOT_FUZZED = {"study", "output"}  # the scene itself
 RAW = {"wp_configs"}  # read outside the option tables (longer than a string row holds: src/studies/workprecision.cpp)

@@ -1,4 +1,4 @@
-# Bad input (README.md "Error contract"): every case at 1 and 2 ranks, under a
+# Bad input (docs/errors.md "The error contract"): every case at 1 and 2 ranks, under a
 # timeout, must end with exactly one line on stderr (both ranks together)
 # naming the option, value or file, a non-zero exit, and neither the output
 # file nor a temporary left behind. The cases here need a process: argv

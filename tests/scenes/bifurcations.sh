@@ -22,7 +22,7 @@ run1 -options_file "$SRC/options/fep.opts" $small -cont_switch insulated:$bp -ou
 $PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_fep.py" sw.h5 sw.png
 $PY "$CHECKS/bifurcations.py" switching "$bp"
 # -cont_switch at a period doubling. The lattice's own NNM families have none (x(t + T/2) = -x(t):
-# M is the square of the half-period map, README "Branch switching"); the switched family above
+# M is the square of the half-period map, docs/continuation.md "Branch switching"); the switched family above
 # breaks that symmetry and has period-doubling windows. Switching at the first onset on its _plus
 # side (in the same run: insulated:<bp>,insulated_bp<bp>_plus:<pd>) starts the doubled-period family
 # insulated_bp<bp>_plus_pd<pd>: at the located point, at half its frequency, with period_multiple 2.

@@ -1,4 +1,4 @@
-# figures/make_all.sh, every figure of the paper (README.md "Figures of the
+# figures/make_all.sh, every figure of the paper (docs/figures.md "Every figure of the
 # paper"), at its tiny test size: each figure's runs finish, every PNG is
 # written and drawn through plot_check.py (data in every panel, limits that
 # cover it, axis labels, legends that name the series), and the timing table

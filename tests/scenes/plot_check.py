@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Content check of an nltopo plot script's figure (README.md "Tests"): runs
+"""Content check of an nltopo plot script's figure (docs/testing.md): runs
 the script as its user would, catches every figure at savefig, and checks
 every panel (every axes but colorbars) against four rules:
 

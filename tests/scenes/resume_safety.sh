@@ -1,4 +1,4 @@
-# Resume and overwrite rules (README.md "Signals and resume rules"), at 1 and 2
+# Resume and overwrite rules (docs/errors.md "Resume rules"), at 1 and 2
 # ranks: -sweep_resume / -cont_resume refuse a file written with other physics
 # or numerics with one line naming the first differing option, and accept
 # bookkeeping and extent changes; a fresh run refuses to replace the output of

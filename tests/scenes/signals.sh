@@ -1,4 +1,4 @@
-# Stop signals (README.md "Signals and resume rules"). SIGTERM to mpiexec (by
+# Stop signals (docs/errors.md "Signals"). SIGTERM to mpiexec (by
 # its process id) of a 2-rank sweep and of a 2-rank continuation, and to a
 # serial continuation and stability study: each stops at its next safe point with one line
 # "nltopo: interrupted by SIGTERM ...", a non-zero exit, its output marked
@@ -9,7 +9,7 @@ source "$(dirname "$0")/common.bash"
 LIMIT=180 # seconds for any one run
 # OpenMPI's mpiexec (4.1) forwards SIGTERM/SIGINT as SIGCONT at once, SIGTERM
 # after odls_base_sigkill_timeout (1 s) and SIGKILL after as long again: the
-# runs below stop within that second (README.md). -q: no mpiexec banner.
+# runs below stop within that second (docs/errors.md). -q: no mpiexec banner.
 M2=("$MPIEXEC" -q -n 2)
 
 # wait_limited <pid>: RC = its exit status; kills it (and fails) if it outlives LIMIT

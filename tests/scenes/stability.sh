@@ -1,6 +1,6 @@
 # The stability study on three insulated-branch orbits for 3000 periods (one
 # invocation, about 20 s): the linear limit sqrt(3) and omega = 2.2 (E ~ 100,
-# inside the stable window 1.941..2.331 of README "Floquet multipliers") must be
+# inside the stable window 1.941..2.331 of docs/studies/continuation.md) must be
 # Floquet-stable AND persist; omega = 2.5 (E ~ 270, past the E-E instability
 # that starts at omega 2.43) must be Floquet-unstable through a real multiplier,
 # its perturbation must grow at the Floquet rate, and the standing wave must

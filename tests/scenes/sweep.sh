@@ -47,7 +47,7 @@ run1 -study simulate -options_file "$SRC/options/simulate.opts" -sim_t_final 100
      -sim_sample_dt 0 -sim_progress 0 -sim_ts_type symsplit -sim_ts_dt 0.1 -sim_dt_quartic_energy 100 -output point.h5 > point.txt  # the sweep's integrator
 # The 0-1 test at two points of known character (sweep_quick.opts settings, -kcorr_record 1500):
 # the insulated mode forced at its linear frequency at E* = 1e-2 (a periodic, localised response)
-# and omega = 2.1 inside the optical band at E* = 200 (chaotic, README "The 0-1 test").
+# and omega = 2.1 inside the optical band at E* = 200 (chaotic, docs/model.md "The 0-1 test for chaos").
 run1 -options_file "$SRC/options/sweep_quick.opts" -sweep_omega_list 1.7320508075688772,2.1 -sweep_energy_list 1e-2,200 -output kc.h5 > kc.txt
 
 $PY "$CHECKS/sweep.py" grid

@@ -7,6 +7,6 @@ run2 -options_file "$SRC/options/zak.opts" -zak_energy_list 0.01,0.1 -output z2.
 $PY "$CHECKS/zak.py" low_energy
 $PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_zak.py" z1.h5 z.png
 # The threshold: 7 energies log-spaced over E* = 5..40 (about 4 s); found between 10 and 30 (the
-# readings of README and the paper, the measured values: checks/zak.py threshold).
+# readings of docs/studies/zak.md and the paper, the measured values: checks/zak.py threshold).
 run1 -options_file "$SRC/options/zak.opts" -zak_energy_min 5 -zak_energy_max 40 -zak_energy_n 7 -output zt.h5 | tee zt.txt
 $PY "$CHECKS/zak.py" threshold

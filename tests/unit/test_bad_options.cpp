@@ -1,4 +1,4 @@
-// Bad options, in-process (README.md "Error contract"): each command line below
+// Bad options, in-process (docs/errors.md "The error contract"): each command line below
 // runs the driver's code path (RunStudyFromOptions on PETSC_COMM_WORLD, the
 // one-line error handler) and must fail with exactly one line on stderr (all
 // ranks together) that names the option or value, no source path in it, and

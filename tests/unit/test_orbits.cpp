@@ -75,7 +75,7 @@ TEST_CASE("monodromy (variational TS and TSForward routes) equals central differ
 // z0 -> z_n (n steps of T/n), not the exact flow's f(z(T)): on a coarse grid
 // (16 steps per period, discretization error ~1e-3) it equals the central
 // difference of the discrete map in T, which f(z(T)) does not. Newton on the
-// shooting residual needs the former (README "Long lattices").
+// shooting residual needs the former (docs/long-lattices.md).
 TEST_CASE("tangent T column is the derivative of the discrete flow", "[orbits][mf]")
 {
   LatticeParams p;

@@ -22,7 +22,7 @@ def three_orbits():
     d = [1 - c["corr"][:] for c in cases]
 
     # Free runs at rtol = atol = 1e-10 over 3000 periods. The absolute atol dominates at E = 1e-5
-    # (README "Known limitations"; measured -3.0e-3), and sets the scale 1e-6 at E ~ 100..270 (measured 1.2e-6, 5.9e-7).
+    # (docs/integrators.md; measured -3.0e-3), and sets the scale 1e-6 at E ~ 100..270 (measured 1.2e-6, 5.9e-7).
     require(abs(a["energy_drift"]) < 1e-2, a["energy_drift"])
     require(abs(b["energy_drift"]) < 1e-5 and abs(u["energy_drift"]) < 1e-5, b["energy_drift"], u["energy_drift"])
 

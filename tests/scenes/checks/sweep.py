@@ -49,7 +49,7 @@ def grid():
     # column (below the acoustic band: a quasi-static, linear response) 0.11 at E* = 1e-2 and 0.13 at 0.22;
     # omega = 2.02 (optical band) at E* = 100: 0.97; kc.h5: sqrt(3) at 1e-2 0.08, 2.1 at E* = 200 0.99.
     # The bars leave >= 0.17 to every measured value: a nearly linear run's score depends on the record
-    # (README: 0.39 over 1500 s, 0.06 over 3000 s at E* = 1e-3), a chaotic run's does not (0.93-0.99).
+    # (benchmarks/README.md: 0.39 over 1500 s, 0.06 over 3000 s at E* = 1e-3), a chaotic run's does not (0.93-0.99).
     k = f1["kcorr"][:]
     require((k[0] < 0.7).all(), k[0])                        # the nearly linear row: nowhere chaotic
     require((k[:2, 0] < 0.3).all(), k[:2, 0])                # regular: below the acoustic band, E* <= 0.2

@@ -32,7 +32,7 @@ def accuracy():
     require(a1.attrs["mcr_tol"] == 1e-3)
     tol = 1e-3
     pred = a1["predictable"][:]
-    # the insulated mode at E* = 1e-2 is regular and converged; omega = 2.1 at E* = 200 is chaotic (README "The 0-1 test")
+    # the insulated mode at E* = 1e-2 is regular and converged; omega = 2.1 at E* = 200 is chaotic (docs/model.md "The 0-1 test for chaos")
     require(pred[0, 0] == 1 and a1["mcr_error"][0, 0] <= tol and a1["mcr_spread"][0, 0] == 0, pred, a1["mcr_error"][:])
     require(pred[1, 1] == 0 and np.isnan(a1["mcr_error"][1, 1]), pred, a1["mcr_error"][:])
     for i in range(2):

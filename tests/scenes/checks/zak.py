@@ -25,7 +25,7 @@ def low_energy():
 def threshold():
     """E* = 5..40, 7 energies log-spaced: the threshold where theta leaves pi lies between 10 and 30.
 
-    README (options/zak.opts, 31 energies): theta stays within pi/4 of pi up to E* = 14.7 and leaves at 21.5;
+    docs/studies/zak.md (options/zak.opts, 31 energies): the pi/4 rule puts the threshold between 31.6 and 46.4, the means drift from 10-15;
     the paper reads E ~ 12. Measured on this grid (5, 7.07, 10, 14.1, 20, 28.3, 40): theta of the means
     2.96 2.93 2.80 2.68 2.50 1.98 2.04, threshold 28.3 (last distinct 20). The bracket 10 < E_th < 30 allows
     one grid step (a factor 1.41) either way of both readings and excludes "never" (-1) and "at once" (5)."""
