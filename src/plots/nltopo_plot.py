@@ -15,6 +15,15 @@ def site_colour(n):
     return EVEN if int(n) % 2 == 0 else ODD
 
 
+# the colours of branches (and of other series that sit beside the instability
+# classes' orange, purple and red)
+BRANCH_COLOURS = ["tab:blue", "tab:green", "tab:brown", "tab:olive", "tab:cyan", "navy", "tab:gray", "tab:pink", "darkgoldenrod", "teal"]
+
+
+def branch_colour(k):
+    return BRANCH_COLOURS[k % len(BRANCH_COLOURS)]
+
+
 # colours of the Floquet instability classes (the paper's Fig. 4b: orange B-B,
 # purple B-E, red E-E), indexed by /continuation/<branch>/instability
 INSTABILITY = {0: ("stable", "tab:blue"), 1: ("B-B", "tab:orange"), 2: ("B-E", "tab:purple"), 3: ("E-E", "tab:red")}
