@@ -77,7 +77,8 @@ def codes(text):
 
 class Group:
     """A group of an nltopo HDF5 file: its datasets (numpy arrays) and
-    attributes by name, g.name or g["name"]; subgroups as Groups. A missing
+    attributes by name, g.name or g["name"] (a dataset before an attribute of
+    the same name: g.attr(name)); subgroups as Groups. A missing
     name raises AttributeError (KeyError for g["name"]) naming the group, the
     file and the study that writes it."""
 
@@ -121,6 +122,12 @@ class Group:
     def attrs(self):
         """{name: value} of the group's attributes."""
         return {k: _value(v) for k, v in self._h5.attrs.items()}
+
+    def attr(self, name):
+        """The attribute name (where a dataset has the same name: /stability/case<k> energy)."""
+        if name not in self._h5.attrs:
+            raise KeyError(self._missing(name))
+        return _value(self._h5.attrs[name])
 
     def describe(self, name):
         """(description, units) of a dataset (format_version >= 1; "" otherwise)."""

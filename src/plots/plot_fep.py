@@ -147,6 +147,8 @@ def draw_branches(ax, branches, colour, ylim):
             if (cls == c).any():
                 x, y, at = stretches(E, w, cls == c)
                 keep = (y >= lo) & (y <= hi)
+                if not keep.any():
+                    continue
                 seen = {l.get_label() for l in ax.get_lines()}
                 thin = lw < 3  # B-B (and unclassed): thin, the orbits ringed
                 at = [i for i in at if keep[i]]
