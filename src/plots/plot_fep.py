@@ -38,9 +38,6 @@ import nltopo_plot
 TYPES = {"LP": ("energy fold (LP)", "tab:brown"), "BP": ("branch point, +1 (BP)", "gold"), "PD": ("period doubling, -1 (PD)", "tab:pink"),
          "HH+": ("Hamiltonian-Hopf onset (HH+)", "#ff9896"), "HH-": ("Hamiltonian-Hopf end (HH-)", "#aec7e8"),
          "KC": ("Krein collision, passes (KC)", "white"), "R": ("internal resonance p/q (R)", "#98df8a")}
-# the unstable stretches by class: (label, colour, width); -1: unstable, class not computed
-STRETCH = {1: ("B-B unstable: effectively stable (bulk-bulk)", "tab:orange", 2.0), 2: ("B-E unstable (bulk-edge)", "tab:purple", 4.5),
-           3: ("E-E unstable (edge-edge)", "tab:red", 4.5), -1: ("unstable (class not computed)", "tab:red", 2.0)}
 MARKER_PT = 13.0  # event circle diameter (points)
 DPI = 120
 
@@ -73,38 +70,6 @@ def numbered_events(branches):
         for ev in g.events:
             out.append((len(out) + 1, name, ev))
     return out
-
-
-def stretches(E, w, mask):
-    """The polyline (in log E) covering the points where mask holds: each run
-    of such points from half-way to its left neighbour to half-way to its
-    right one, NaN between runs. Returns x, y and the indices of the orbits in them."""
-    lE, n = np.log(E), len(E)
-    x, y, at = [], [], []
-    idx = np.flatnonzero(mask)
-    for run in np.split(idx, np.flatnonzero(np.diff(idx) > 1) + 1):
-        i0, i1 = run[0], run[-1]
-        xs, ys = list(lE[i0:i1 + 1]), list(w[i0:i1 + 1])
-        first = len(x) + (i0 > 0)
-        at += list(range(first, first + i1 - i0 + 1))
-        if i0 > 0:
-            xs.insert(0, 0.5 * (lE[i0 - 1] + lE[i0]))
-            ys.insert(0, 0.5 * (w[i0 - 1] + w[i0]))
-        if i1 + 1 < n:
-            xs.append(0.5 * (lE[i1] + lE[i1 + 1]))
-            ys.append(0.5 * (w[i1] + w[i1 + 1]))
-        x += xs + [np.nan]
-        y += ys + [np.nan]
-    return np.exp(np.array(x, float)), np.array(y, float), at
-
-
-def stability_class(g):
-    """Per orbit: 0 stable, 1-3 the unstable class, -1 unstable without a class, -2 not decided or not computed."""
-    if "stable" not in g:
-        return np.full(len(g.energy), -2)
-    st = np.asarray(g.stable).astype(int)
-    cls = np.asarray(g.instability).astype(int) if "instability" in g else np.full(len(st), -1)
-    return np.where(st == 1, 0, np.where(st == 0, np.where(cls > 0, cls, -1), -2))
 
 
 def panel_top(branches, bands, ref):
@@ -142,10 +107,10 @@ def draw_branches(ax, branches, colour, ylim):
         inside = (w >= lo) & (w <= hi)
         ax.plot(*clip_y(E, w, lo, hi), "-", lw=1.1, color=colour[name], label=lab if inside.any() else "_" + lab, zorder=3)
         ax.plot(E[inside], w[inside], ".", ms=2.5, color=colour[name], zorder=3, label="_points")
-        cls = stability_class(g)
-        for c, (label, col, lw) in STRETCH.items():
+        cls = nltopo_plot.stability_class(g)
+        for c, (label, col, lw) in nltopo_plot.STRETCH.items():
             if (cls == c).any():
-                x, y, at = stretches(E, w, cls == c)
+                x, y, at = nltopo_plot.stretches(E, w, cls == c)
                 keep = (y >= lo) & (y <= hi)
                 if not keep.any():
                     continue
