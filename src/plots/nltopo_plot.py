@@ -249,16 +249,6 @@ def open_run(path):
     return Run(path)
 
 
-def pop_option(argv, name, default, kind=float):
-    """The value of "name value" in argv (removed from it), or default."""
-    if name not in argv:
-        return default
-    k = argv.index(name)
-    value = kind(argv[k + 1])
-    del argv[k:k + 2]
-    return value
-
-
 def space_time(fig, ax, t, u, sel=None, label="u (displacement)"):
     """The space-time map of u (time x site) over the samples sel, colours
     symmetric about 0 (clipped at the 99.5th percentile of |u|), with its

@@ -202,6 +202,22 @@ def seg_dist(px, py, ax_, ay_, cx, cy):
     return np.hypot(ax_ + t * vx - px, ay_ + t * vy - py)
 
 
+def near_lines(pts, r, frame):
+    """A pixel grid over frame: True within r of a point of pts (display)."""
+    x0, y0, x1, y1 = frame
+    grid = np.zeros((int(y1 - y0) + 1, int(x1 - x0) + 1), bool)
+    if not len(pts):
+        return grid
+    p = np.round(pts - (x0, y0)).astype(int)
+    k = np.arange(-int(np.ceil(r)), int(np.ceil(r)) + 1)
+    for dx in k:
+        for dy in k[np.hypot(dx, k) <= r]:
+            gx, gy = p[:, 0] + dx, p[:, 1] + dy
+            ok = (gx >= 0) & (gx < grid.shape[1]) & (gy >= 0) & (gy < grid.shape[0])
+            grid[gy[ok], gx[ok]] = True
+    return grid
+
+
 def place(anchors, d, frame, pts, boxes):
     """Centres (display) for circles of diameter d, one per anchor, in order:
     the cheapest free place on a grid around its anchor (half a step of
@@ -218,6 +234,7 @@ def place(anchors, d, frame, pts, boxes):
     dx, dy = dx[keep], dy[keep]
     base = np.hypot(dx, 1.2 * dy)
     x0, y0, x1, y1 = frame
+    blocked = near_lines(pts, d / 2 + 1.5, frame)
     placed, segs = [], []
     for ax_, ay_ in anchors:
         cx, cy = ax_ + dx, ay_ + dy
@@ -230,12 +247,8 @@ def place(anchors, d, frame, pts, boxes):
             ok &= np.hypot(cx - qx, cy - qy) >= d / 2 + 2
         for b in boxes:
             ok &= ~((cx > b.x0 - d / 2) & (cx < b.x1 + d / 2) & (cy > b.y0 - d / 2) & (cy < b.y1 + d / 2))
-        near = pts[(np.abs(pts[:, 0] - ax_) < 40 * s) & (np.abs(pts[:, 1] - ay_) < 22 * s)] if len(pts) else pts
-        clear = np.ones_like(ok)
-        for k in range(0, len(near), 400):
-            chunk = near[k:k + 400]
-            dist = np.hypot(cx[:, None] - chunk[None, :, 0], cy[:, None] - chunk[None, :, 1]).min(axis=1)
-            clear &= dist >= d / 2 + 1.5
+        ix, iy = np.round(cx - x0).astype(int), np.round(cy - y0).astype(int)
+        clear = ~blocked[np.clip(iy, 0, blocked.shape[0] - 1), np.clip(ix, 0, blocked.shape[1] - 1)]
         best = np.flatnonzero(ok & clear)
         if not len(best):
             best = np.flatnonzero(ok)
