@@ -148,8 +148,7 @@ def lettered(ax, g, bands):
 def legend_headroom(ax, lo, top):
     """The top of a panel whose upper-left legend clears the lines beneath it."""
     fig = ax.figure
-    fig.canvas.draw()
-    box = ax.get_legend().get_window_extent().transformed(ax.transAxes.inverted())  # in axes fractions
+    box = ax.get_legend().get_window_extent(fig.canvas.get_renderer()).transformed(ax.transAxes.inverted())  # in axes fractions
     x0, x1 = (ax.transAxes + ax.transData.inverted()).transform([[box.x0, 0], [box.x1, 0]])[:, 0]
     under = [np.asarray(l.get_ydata(), float)[(np.asarray(l.get_xdata(), float) >= x0) & (np.asarray(l.get_xdata(), float) <= x1)]
              for l in ax.get_lines() if l.get_transform() == ax.transData and len(np.atleast_1d(l.get_xdata())) > 1]
@@ -282,8 +281,7 @@ def draw_events(ax, numbered, branches, ylim):
         return
     Wc = W[inside]
     fig = ax.figure
-    fig.canvas.draw()
-    pts, boxes = obstacles(ax)
+    pts, boxes = obstacles(ax)  # the layout is fixed (no tight_layout): the transforms hold without a draw
     E = np.array([ev.energy for _, _, ev in numbered])
     anchors = ax.transData.transform(np.column_stack([E, Wc]))
     order = np.lexsort((anchors[:, 1], anchors[:, 0]))
@@ -369,7 +367,7 @@ def figure(run, branches=None, bands=None):
     wmax = max(float((int(g.get("period_multiple", 1)) * g.omega).max()) for g in branches.values())
     if wmax > top:  # the branches above the reference one: a compressed panel above, the axis broken
         a_gs = top_gs[0].subgridspec(2, 1, height_ratios=[2.1, 4.6], hspace=0.05)
-        ax_u = fig.add_subplot(a_gs[0])
+        ax_u = fig.add_subplot(a_gs[0], gid="broken_axis_upper")
         ax_a = fig.add_subplot(a_gs[1], sharex=ax_u)
     else:
         ax_u, ax_a = None, fig.add_subplot(top_gs[0])

@@ -62,7 +62,7 @@ def histories(ax, t, u, sites, sel):
         x = u[sel, n - 1]
         big = float(np.abs(x).max()) or 1.0
         y0 = -2.4 * k
-        ax.plot(t[sel], y0 + x / big, "-", lw=0.6, color=nltopo_plot.site_colour(n), label=f"site {n}", gid=f"site {n}")
+        ax.plot(t[sel], y0 + x / big, "-", lw=0.6, color=nltopo_plot.site_colour(n), label=f"_site {n}", gid=f"site {n}")  # named by the y ticks
         yt.append(y0)
         ytl.append(f"{n}\n|u| ≤ {big:.2g}")
     ax.set_yticks(yt)

@@ -12,12 +12,15 @@
   (B-B, the paper's effectively stable, apart from B-E and E-E: its own
   colour, legend entry and rings on exactly the B-B orbits); none of a class
   the file does not hold;
+- every rule of plot_check.py (data, limits, labels, legends, numbered
+  markers apart);
 - titles: panel (a)'s title names the branches drawn (or their number), and
   the nonlinear optical band only when it is shaded; panel (d)'s names only
   band-edge branches of the file.
-Then it shows that it fails: the same figure with the B-B stretch in the B-E
-colour, with a resonance's circle removed, with two circles moved onto each
-other, and with a title naming a band that is not drawn, is each rejected.
+Then it shows that it fails: the checked figures with a resonance's circle
+removed, with two circles moved onto each other, with a title naming a band
+that is not drawn, and with the B-B stretch in the B-E colour, are each
+rejected.
 
 usage: fep_figure_check.py <source dir> <fep.h5> [<fep.h5> ...]"""
 import os
@@ -117,7 +120,8 @@ def check_stability(fig, run):
         for l in lines[1]:
             xy = l.get_xydata()
             rings += [tuple(xy[i]) for i in (l.get_markevery() or [])]
-        require(sorted(rings) == sorted(bb), "B-B rings", len(rings), "B-B orbits", len(bb))
+        rings, bb = np.array(sorted(rings), float).reshape(-1, 2), np.array(sorted(bb), float).reshape(-1, 2)
+        require(rings.shape == bb.shape and np.allclose(rings, bb, rtol=1e-12, atol=0), "B-B rings", rings, "B-B orbits", bb)
     return sorted(held), len(bb)
 
 
@@ -139,23 +143,23 @@ def check_titles(fig, run):
 
 
 def check(run):
+    """Checks the FEP figure of run; returns (figure, events, passes and resonances, classes, B-B orbits)."""
     fig = plot_fep.figure(run)
+    for line in plot_check.check_figure(fig, "plot_fep.py"):  # the rules of every figure (data, limits, labels, legends, ...)
+        print("  " + line)
     n, kinds = check_events(fig, run)
     held, bb = check_stability(fig, run)
     check_titles(fig, run)
-    plt.close(fig)
-    return n, kinds, held, bb
+    return fig, n, kinds, held, bb
 
 
-def must_fail(what, run, spoil, step):
-    """The check of a figure spoiled by spoil(fig) raises in step."""
-    fig = plot_fep.figure(run)
+def must_fail(what, fig, run, spoil, step):
+    """The check step of the (checked) figure spoiled by spoil(fig) raises."""
     spoil(fig)
     try:
         step(fig, run)
     except (Bad, plot_check.PlotCheckError) as e:
         print(f"  spoiled ({what}): rejected: {str(e)[:110]}")
-        plt.close(fig)
         return
     raise SystemExit(f"fep_figure_check: a figure with {what} passes")
 
@@ -200,18 +204,21 @@ def title_band(fig):
 
 
 def main():
-    runs = [nltopo_plot.open_run(p) for p in sys.argv[2:]]
-    for path, run in zip(sys.argv[2:], runs):
-        n, kinds, held, bb = check(run)
+    checked = []
+    for path in sys.argv[2:]:
+        run = nltopo_plot.open_run(path)
+        fig, n, kinds, held, bb = check(run)
+        checked.append((fig, run, n, bb))
         print(f"FEP figure of {path}: {n} events numbered apart, each with its leader and table row "
               f"({kinds[4]} passes, {kinds[6]} resonances); unstable classes drawn {held}, {bb} B-B orbits ringed; titles match")
-    events = next(r for r in runs if plot_fep.numbered_events(r.branches))
-    has_bb = next((r for r in runs if any((nltopo_plot.stability_class(g) == 1).any() for g in r.branches.values())), None)
-    must_fail("a resonance not drawn", events, drop_resonance, lambda f, r: check_events(f, r))
-    must_fail("two event circles on each other", events, stack_two, lambda f, r: plot_check.check_numbered_markers(f))
-    must_fail("a title naming a band that is not drawn", events, title_band, lambda f, r: check_titles(f, r))
-    if has_bb is not None:
-        must_fail("B-B drawn like B-E", has_bb, recolour_bb, lambda f, r: check_stability(f, r))
+    # the checks fail: the checked figures spoiled, one rule after another
+    fig, run = next((f, r) for f, r, n, _ in checked if n >= 2)
+    must_fail("a resonance not drawn", fig, run, drop_resonance, check_events)
+    must_fail("two event circles on each other", fig, run, stack_two, lambda f, r: plot_check.check_numbered_markers(f))
+    must_fail("a title naming a band that is not drawn", fig, run, title_band, check_titles)
+    bb = [(f, r) for f, r, _, b in checked if b]
+    if bb:
+        must_fail("B-B drawn like B-E", bb[0][0], bb[0][1], recolour_bb, check_stability)
     print("fep_figure_check OK")
 
 

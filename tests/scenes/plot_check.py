@@ -12,8 +12,9 @@ every panel (every axes but colorbars) against four rules:
    coordinates (axhline, axvline, axhspan, axvspan) are not data. A log axis
    that autoscaled past its mesh (the empty 1e3..1e4 axis of a mesh whose
    linear cell edges go negative) fails here.
-3. axis labels: non-empty x and y labels (an x axis shared with a panel
-   that has its label counts: an axis broken into two panels).
+3. axis labels: non-empty x and y labels (the upper part of an axis broken
+   into two panels, gid "broken_axis_upper", has the x label of the panel it
+   shares its x axis with).
 4. legend: the panel's *labelled artists* are its lines, collections
    (scatters, fills, meshes) and patches whose label is set and does not
    start with '_' and that hold finite data. A panel with two or more
@@ -44,6 +45,7 @@ holding text. Options before the script name what a figure must show:
 Writes the figure as the script would.
 
 usage: plot_check.py [--grid RxC] [--sites a,b] [--point-labels] <script.py> [script arguments...]
+       plot_check.py --help <script.py> [...]: each script's -h exits 0 and prints its usage
 Prints one line per panel; exits non-zero naming the script, the first failing
 panel and the rule it breaks. run_and_check(script, args) and
 check_figure(fig, script, expect) are importable (plot_check_selftest.py)."""
@@ -175,7 +177,8 @@ def check_panel(ax, name):
     ok, axis, data, lim = covered(ax, p)
     if not ok:
         raise PlotCheckError(f"panel '{name}': {axis} data {data} outside the limits {lim} (rule 2, limits)")
-    shared_x = [o for o in ax.figure.axes if o is not ax and ax.get_shared_x_axes().joined(ax, o) and o.get_xlabel().strip()]
+    shared_x = [o for o in ax.figure.axes if ax.get_gid() == "broken_axis_upper" and o is not ax and ax.get_shared_x_axes().joined(ax, o)
+                and o.get_xlabel().strip()]
     for axis, text in (("x", ax.get_xlabel() or (shared_x[0].get_xlabel() if shared_x else "")), ("y", ax.get_ylabel())):
         if not text.strip():
             raise PlotCheckError(f"panel '{name}' has no {axis} label (rule 3, axis labels)")
@@ -233,7 +236,8 @@ def _gid_number(artist, prefix):
 
 def check_numbered_markers(fig):
     """Rule 6 over the whole figure; returns the event numbers (empty: no numbered markers)."""
-    fig.canvas.draw()
+    if fig.get_constrained_layout():  # laid out when drawn; otherwise the transforms hold already
+        fig.canvas.draw()
     boxes, numbers = [], []
     for ax in fig.axes:
         texts = {}
@@ -353,17 +357,17 @@ def check_figure(fig, script="figure", expect=None):
     return lines
 
 
-def run_and_check(script, args, expect=None):
+def run_and_check(script, args, expect=None, write=True):
     """Runs a plot script with its arguments as its user would (the figures
-    caught at savefig and written) and checks every figure it saves (expect:
-    check_figure); returns one line per panel, raises PlotCheckError naming
-    the first failure."""
+    caught at savefig and written, unless write is False) and checks every
+    figure it saves (expect: check_figure); returns one line per panel,
+    raises PlotCheckError naming the first failure."""
     caught = []
     save = matplotlib.figure.Figure.savefig
 
     def savefig(self, *a, **k):
         caught.append(self)
-        return save(self, *a, **k)
+        return save(self, *a, **k) if write else None
 
     argv, path = sys.argv, list(sys.path)
     matplotlib.figure.Figure.savefig = savefig
@@ -382,8 +386,43 @@ def run_and_check(script, args, expect=None):
     return lines
 
 
+def check_help(scripts):
+    """--help: each script run with -h as its user would (in this process)
+    exits 0 and prints its usage; returns one line per script."""
+    import contextlib
+    import io
+    lines = []
+    for script in scripts:
+        name = os.path.basename(script)
+        out = io.StringIO()
+        argv, path = sys.argv, list(sys.path)
+        sys.argv = [script, "-h"]
+        sys.path.insert(0, os.path.dirname(os.path.abspath(script)))
+        code = "no exit"
+        try:
+            with contextlib.redirect_stdout(out):
+                runpy.run_path(script, run_name="__main__")
+        except SystemExit as e:
+            code = e.code
+        finally:
+            sys.argv, sys.path[:] = argv, path
+        if code not in (0, None):
+            raise PlotCheckError(f"{name} -h: exit {code}, not 0 (--help)")
+        if not out.getvalue().startswith(f"usage: {name}"):
+            raise PlotCheckError(f"{name} -h printed no usage: {out.getvalue()[:200]!r} (--help)")
+        lines.append(f"{name} -h: exit 0, usage and {len(out.getvalue().splitlines())} lines")
+    return lines
+
+
 def main():
     argv, expect = sys.argv[1:], {}
+    if argv and argv[0] == "--help":
+        try:
+            for line in check_help(argv[1:]):
+                print(line)
+        except PlotCheckError as e:
+            sys.exit(f"plot_check: FAILED: {e}")
+        return
     while argv and argv[0].startswith("--"):
         opt = argv.pop(0)
         if opt == "--grid":
