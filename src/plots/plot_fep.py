@@ -145,6 +145,23 @@ def lettered(ax, g, bands):
     return picks, letters
 
 
+def place_legend(ax, handles, ncol):
+    """The legend in the corner of the panel over the fewest points of its
+    lines; returns (the corner, whether it still covers some)."""
+    pts, _ = obstacles(ax)
+    renderer = ax.figure.canvas.get_renderer()
+    best = None
+    for loc in ("upper left", "lower left", "upper right", "lower right"):
+        b = ax.legend(handles=handles, fontsize=6.5, loc=loc, ncol=ncol, framealpha=0.85).get_window_extent(renderer)
+        n = int(((pts[:, 0] > b.x0 - 3) & (pts[:, 0] < b.x1 + 3) & (pts[:, 1] > b.y0 - 3) & (pts[:, 1] < b.y1 + 3)).sum()) if len(pts) else 0
+        if best is None or n < best[0]:
+            best = (n, loc)
+        if n == 0:
+            break
+    ax.legend(handles=handles, fontsize=6.5, loc=best[1], ncol=ncol, framealpha=0.85)
+    return best[1], best[0] > 0
+
+
 def legend_headroom(ax, lo, top):
     """The top of a panel whose upper-left legend clears the lines beneath it."""
     fig = ax.figure
@@ -365,12 +382,13 @@ def figure(run, branches=None, bands=None):
     top_gs = gs[0].subgridspec(1, 2, width_ratios=[11, side], wspace=0.12 if numbered else 0.22)
     top = panel_top(branches, bands, ref)
     wmax = max(float((int(g.get("period_multiple", 1)) * g.omega).max()) for g in branches.values())
-    if wmax > top:  # the branches above the reference one: a compressed panel above, the axis broken
+    if wmax > 1.8 * top:  # branches far above the reference one: a compressed panel above, the axis broken
         a_gs = top_gs[0].subgridspec(2, 1, height_ratios=[2.1, 4.6], hspace=0.05)
         ax_u = fig.add_subplot(a_gs[0], gid="broken_axis_upper")
         ax_a = fig.add_subplot(a_gs[1], sharex=ax_u)
     else:
         ax_u, ax_a = None, fig.add_subplot(top_gs[0])
+        top = max(top, wmax * 1.04)
     panels = {}
     if numbered:
         ax_t = fig.add_subplot(top_gs[1])
@@ -418,18 +436,21 @@ def figure(run, branches=None, bands=None):
         ax_a.spines["top"].set_linestyle((0, (4, 3)))
         title += " (the axis broken at the dashed line)"
     (ax_u or ax_a).set_title(title, fontsize=10)
+    locs = {}
     for ax, ylim in parts:  # the legends as they will be, with the event types (their place is kept clear)
-        ax.legend(handles=ax.get_legend_handles_labels()[0] + type_proxies(numbered, branches, ylim), fontsize=6.5, loc="upper left",
-                  ncol=2 if ax is ax_a else 4, framealpha=0.85)
-    if ax_u is None:  # nothing above: room for the legend
-        top = legend_headroom(ax_a, low, top)
-        parts = [(ax_a, (low, top))]
-        ax_a.set_ylim(low, top)
+        handles = ax.get_legend_handles_labels()[0] + type_proxies(numbered, branches, ylim)
+        locs[ax], covered = place_legend(ax, handles, ncol=2 if ax is ax_a else 4)
+        if covered and ax is ax_a and ax_u is None:  # no free corner, nothing above: room above the lines
+            locs[ax] = "upper left"
+            ax.legend(handles=handles, fontsize=6.5, loc="upper left", ncol=2, framealpha=0.85)
+            top = legend_headroom(ax_a, low, top)
+            parts = [(ax_a, (low, top))]
+            ax_a.set_ylim(low, top)
     for ax, ylim in parts:
         draw_events(ax, numbered, branches, ylim)
     if numbered:
         for ax, _ in parts:  # again: with the event types
-            ax.legend(fontsize=6.5, loc="upper left", ncol=2 if ax is ax_a else 4, framealpha=0.85)
+            ax.legend(fontsize=6.5, loc=locs[ax], ncol=2 if ax is ax_a else 4, framealpha=0.85)
         draw_table(ax_t, numbered, branches, colour)
 
     # (b) the MCR along the branches
