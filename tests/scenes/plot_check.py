@@ -200,7 +200,7 @@ def check_panel(ax, name):
 
 
 def panel_name(ax, i):
-    return ax.get_title() or ax.get_title(loc="left") or ax.get_ylabel() or f"panel {i}"
+    return (ax.get_title() or ax.get_title(loc="left") or ax.get_ylabel() or f"panel {i}").replace("\n", " ")
 
 
 def check_colourbars(ax, name):
