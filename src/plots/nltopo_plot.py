@@ -73,6 +73,18 @@ def parser(doc):
     return argparse.ArgumentParser(description=text, formatter_class=argparse.RawDescriptionHelpFormatter)
 
 
+def main_one_file(doc, study, suffix, load, figure, argv=None, dpi=120):
+    """The command line of a script drawing one file: h5 [out.png] (default
+    <h5 without .h5>_<suffix>.png), -h printing doc; figure(load(h5)) saved."""
+    p = parser(doc)
+    p.add_argument("h5", help=f"a -study {study} output")
+    p.add_argument("out", nargs="?", help=f"the PNG (default: <h5 without .h5>_{suffix}.png)")
+    a = p.parse_args(argv)
+    out = a.out or a.h5.replace(".h5", "") + f"_{suffix}.png"
+    figure(load(a.h5)).savefig(out, dpi=dpi)
+    print("wrote", out)
+
+
 # ---- loaders -------------------------------------------------------------------
 # The study that writes each top-level group (for the message of a missing one).
 WRITER = {"linear": "linear", "simulate": "simulate", "sweep": "sweep", "zak": "zak", "perturb": "perturb", "stability": "stability",

@@ -57,12 +57,6 @@ def event_type(ev):
     return "R", f"R {ev.resonance[0]}/{ev.resonance[1]}"
 
 
-def load(path):
-    """The continuation file: (run, {name: Branch}, bands)."""
-    run = nltopo_plot.open_run(path)
-    return run, run.branches, nltopo_plot.bands(run.continuation)
-
-
 def numbered_events(branches):
     """[(number, branch name, event)], numbered 1, 2, ... over the branches in order."""
     out = []
@@ -505,16 +499,5 @@ def figure(run, branches=None, bands=None):
     return fig
 
 
-def main(argv=None):
-    p = nltopo_plot.parser(__doc__)
-    p.add_argument("h5", help="a -study continuation output")
-    p.add_argument("out", nargs="?", help="the PNG (default: <h5 without .h5>_fep.png)")
-    a = p.parse_args(argv)
-    out = a.out or a.h5.replace(".h5", "") + "_fep.png"
-    run, branches, bands = load(a.h5)
-    figure(run, branches, bands).savefig(out, dpi=DPI)
-    print("wrote", out)
-
-
 if __name__ == "__main__":
-    main()
+    nltopo_plot.main_one_file(__doc__, "continuation", "fep", nltopo_plot.open_run, figure, dpi=DPI)

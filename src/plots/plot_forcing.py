@@ -25,14 +25,6 @@ def load(path):
     return s
 
 
-def main(argv=None):
-    p = nltopo_plot.parser(__doc__)
-    p.add_argument("h5", help="a -study sweep output")
-    p.add_argument("out", nargs="?", help="the PNG (default: <h5 without .h5>_forcing.png)")
-    a = p.parse_args(argv)
-    out = a.out or a.h5.replace(".h5", "") + "_forcing.png"
-    figure(load(a.h5)).savefig(out, dpi=110)
-    print("wrote", out)
 
 
 def figure(s):
@@ -78,4 +70,4 @@ def draw(s, eta, phi):
 
 
 if __name__ == "__main__":
-    main()
+    nltopo_plot.main_one_file(__doc__, "sweep", "forcing", load, figure, dpi=110)

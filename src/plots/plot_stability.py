@@ -39,15 +39,5 @@ def figure(loaded):
     return fig
 
 
-def main(argv=None):
-    p = nltopo_plot.parser(__doc__)
-    p.add_argument("h5", help="a -study stability output")
-    p.add_argument("out", nargs="?", help="the PNG (default: <h5 without .h5>_stability.png)")
-    a = p.parse_args(argv)
-    out = a.out or a.h5.replace(".h5", "") + "_stability.png"
-    figure(load(a.h5)).savefig(out, dpi=120)
-    print("wrote", out)
-
-
 if __name__ == "__main__":
-    main()
+    nltopo_plot.main_one_file(__doc__, "stability", "stability", load, figure, dpi=120)

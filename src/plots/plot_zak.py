@@ -40,15 +40,5 @@ def figure(z):
     return fig
 
 
-def main(argv=None):
-    p = nltopo_plot.parser(__doc__)
-    p.add_argument("h5", help="a -study zak output")
-    p.add_argument("out", nargs="?", help="the PNG (default: <h5 without .h5>_phase.png)")
-    a = p.parse_args(argv)
-    out = a.out or a.h5.replace(".h5", "") + "_phase.png"
-    figure(load(a.h5)).savefig(out, dpi=120)
-    print("wrote", out)
-
-
 if __name__ == "__main__":
-    main()
+    nltopo_plot.main_one_file(__doc__, "zak", "phase", load, figure, dpi=120)
