@@ -358,43 +358,55 @@ def draw_table(ax, numbered, branches, colour):
     ax.set_title("(T) located events\n(idx: -cont_switch <branch>:<idx>)", fontsize=9, loc="left")
 
 
-def figure(run, branches=None, bands=None):
-    """The FEP figure of an open continuation run."""
-    if branches is None:
-        branches, bands = run.branches, nltopo_plot.bands(run.continuation)
-    names = list(branches)
-    colour = {name: nltopo_plot.branch_colour(k) for k, name in enumerate(names)}
+def layout(branches, numbered, colour, top, wmax):
+    """The figure and its panels: (a) (with the part above a broken axis,
+    "a_up", when branches rise far above top), the events table "T" beside
+    it (or (b) when there are no events), (b)-(e) below."""
     edges = [n for n in ("acoustic_top", "optical_bottom", "optical_top") if n in branches]
-    switched = [n for n in names if branches[n].get("parent", "")]
-    numbered = numbered_events(branches)
-    ref = "insulated" if "insulated" in branches else names[0]
-    lower = ["b", "c"] + (["d"] if edges else []) + (["e"] if switched else [])
+    lower = ["b", "c"] + (["d"] if edges else []) + (["e"] if any(g.get("parent", "") for g in branches.values()) else [])
     _, nblocks, _, block_in = table_layout(len(table_lines(numbered, branches, colour)))
     side = max(3.2, block_in * nblocks + 0.2) if numbered else 5.4
     fig = plt.figure(figsize=(12 + 1.1 * side, 11.5), dpi=DPI)
     gs = fig.add_gridspec(2, 1, height_ratios=[6.3, 4.4], hspace=0.28)
     top_gs = gs[0].subgridspec(1, 2, width_ratios=[11, side], wspace=0.12 if numbered else 0.22)
-    top = panel_top(branches, bands, ref)
-    wmax = max(float((int(g.get("period_multiple", 1)) * g.omega).max()) for g in branches.values())
+    panels = {}
     if wmax > 1.8 * top:  # branches far above the reference one: a compressed panel above, the axis broken
         a_gs = top_gs[0].subgridspec(2, 1, height_ratios=[2.1, 4.6], hspace=0.05)
-        ax_u = fig.add_subplot(a_gs[0], gid="broken_axis_upper")
-        ax_a = fig.add_subplot(a_gs[1], sharex=ax_u)
+        panels["a_up"] = fig.add_subplot(a_gs[0], gid="broken_axis_upper")
+        panels["a"] = fig.add_subplot(a_gs[1], sharex=panels["a_up"])
     else:
-        ax_u, ax_a = None, fig.add_subplot(top_gs[0])
-        top = max(top, wmax * 1.04)
-    panels = {}
-    if numbered:
-        ax_t = fig.add_subplot(top_gs[1])
-    else:
-        panels["b"] = fig.add_subplot(top_gs[1])
+        panels["a"] = fig.add_subplot(top_gs[0])
+    if not numbered:
         lower.remove("b")
+    panels["T" if numbered else "b"] = fig.add_subplot(top_gs[1])
     low_gs = gs[1].subgridspec(1, len(lower), wspace=0.28)
-    for k, p in enumerate(lower):
-        panels[p] = fig.add_subplot(low_gs[k])
+    for k, name in enumerate(lower):
+        panels[name] = fig.add_subplot(low_gs[k])
     fig.subplots_adjust(left=0.05, right=0.985, top=0.965, bottom=0.1)
+    return fig, panels, edges
 
-    # (a) the FEP, in two parts when branches rise above the reference one
+
+def optical_band(ax, branches, lo, hi):
+    """The nonlinear optical band between its edge NNMs, within lo..hi; True if drawn."""
+    if "optical_bottom" not in branches or "optical_top" not in branches:
+        return False
+    b, t = branches["optical_bottom"], branches["optical_top"]
+    lo_e, hi_e = max(b.energy.min(), t.energy.min()), min(b.energy.max(), t.energy.max())
+    if hi_e <= lo_e:
+        return False
+    e = np.geomspace(lo_e, hi_e, 300)
+    y1, y2 = np.clip(nltopo_plot.branch_omega(b, e), lo, hi), np.clip(nltopo_plot.branch_omega(t, e), lo, hi)
+    if not (y2 > y1).any():
+        return False
+    ax.fill_between(e, y1, y2, where=y2 > y1, color="paleturquoise", alpha=0.6, lw=0, label="nonlinear optical band (edge NNMs)", zorder=1)
+    return True
+
+
+def draw_a(panels, branches, bands, colour, numbered, ref, top, wmax):
+    """Panel (a): the FEP, in two parts when branches rise far above the
+    reference one; returns the lettered orbits (picks, letters)."""
+    ax_a, ax_u = panels["a"], panels.get("a_up")
+    names = list(branches)
     low = min(bands[0][0], min(float(g.omega.min()) for g in branches.values())) * 0.95
     parts = [(ax_a, (low, top))] + ([(ax_u, (top, wmax * 1.04))] if ax_u is not None else [])
     band_drawn = False
@@ -402,15 +414,7 @@ def figure(run, branches=None, bands=None):
         for k, (blo, bhi) in enumerate(bands):
             if blo < hi and bhi > lo:
                 ax.axhspan(max(blo, lo), min(bhi, hi), color="0.9", label="linear bands (infinite lattice)" if k == 0 or ax is ax_u else "_nolegend_", zorder=0)
-        if "optical_bottom" in branches and "optical_top" in branches:  # the nonlinear optical band between its edge NNMs
-            b, t = branches["optical_bottom"], branches["optical_top"]
-            lo_e, hi_e = max(b.energy.min(), t.energy.min()), min(b.energy.max(), t.energy.max())
-            if hi_e > lo_e:
-                e = np.geomspace(lo_e, hi_e, 300)
-                y1, y2 = np.clip(nltopo_plot.branch_omega(b, e), lo, hi), np.clip(nltopo_plot.branch_omega(t, e), lo, hi)
-                if (y2 > y1).any():
-                    ax.fill_between(e, y1, y2, where=y2 > y1, color="paleturquoise", alpha=0.6, lw=0, label="nonlinear optical band (edge NNMs)", zorder=1)
-                    band_drawn = True
+        band_drawn |= optical_band(ax, branches, lo, hi)
         draw_branches(ax, branches, colour, (lo, hi))
         ax.set(xscale="log", ylim=(lo, hi), ylabel=r"$\omega$ (rad/time)")
     picks, letters = lettered(ax_a, branches[ref], bands)
@@ -445,21 +449,14 @@ def figure(run, branches=None, bands=None):
     if numbered:
         for ax, _ in parts:  # again: with the event types
             ax.legend(fontsize=6.5, loc=locs[ax], ncol=2 if ax is ax_a else 4, framealpha=0.85)
-        draw_table(ax_t, numbered, branches, colour)
+    return picks, letters
 
-    # (b) the MCR along the branches
-    pb = panels["b"]
-    for name, g in branches.items():
-        pb.plot(g.energy, g.mcr, ".-", ms=3, color=colour[name], label=name)
-    pb.set(xscale="log", xlabel="energy E", ylabel="MCR of u0", title="(b) localisation along the branches")
-    pb.legend(fontsize=7)
 
-    # (c) the shapes at the lettered orbits
-    g = branches[ref]
+def draw_shapes(pc, g, ref, picks, letters):
+    """Panel (c): the reference branch's shapes at the lettered orbits."""
     E, w = g.energy, g.omega
     N = g.z0.shape[1] // 2
     sites = np.arange(1, N + 1)
-    pc = panels["c"]
     for k, (L, i) in enumerate(zip(letters, picks)):
         u = g.z0[i, :N]
         u = u / np.abs(u).max()
@@ -467,35 +464,65 @@ def figure(run, branches=None, bands=None):
     pc.set(xlabel="site", ylabel=r"$u_0 / \max|u_0|$ (offset by 2.2)", title=f"(c) {ref} NNM shapes at the lettered orbits")
     pc.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2)
 
-    # (d) the band-edge NNMs at the two ends of their branches
+
+def draw_edges(pd, branches, edges, colour):
+    """Panel (d): the band-edge NNMs at the two ends of their branches."""
+    for k, name in enumerate(edges):
+        ge = branches[name]
+        N = ge.z0.shape[1] // 2
+        for j, style in ((0, "--"), (len(ge.energy) - 1, "-")):
+            u = ge.z0[j, :N]
+            u = u / np.abs(u).max()
+            pd.plot(np.arange(1, N + 1), u - 2.5 * k, style, lw=0.8, color=colour[name], label=f"{name}, E = {ge.energy[j]:.3g}")
+    pd.set(xlabel="site", ylabel=r"$u_0 / \max|u_0|$ (offset by 2.5)", title="(d) " + ", ".join(edges) + ": lowest (dashed), highest E")
+    pd.title.set_fontsize(9)
+    pd.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2)
+
+
+def draw_switched(pe, branches, colour):
+    """Panel (e): the switched families, the order parameter of the broken symmetry."""
+    switched = [n for n in branches if branches[n].get("parent", "")]
+    for name in switched:
+        g = branches[name]
+        z = g.z0
+        n2 = z.shape[1] // 2
+        r = np.linalg.norm(z[:, n2:], axis=1) / np.linalg.norm(z[:, :n2], axis=1)
+        pe.plot(g.energy[1:], r[1:], ".-", ms=4, color=colour[name], label=f"{name} (from {g.parent})")
+        # point 0 is the parent's orbit at the located event: at rest (|v0| = 0, drawn below the
+        # family) on a linear mode's family, not on a switched one
+        r0 = r[0] if r[0] > 1e-9 else max(r[1:].min() * 0.1, 1e-12)
+        pe.plot(g.energy[0], r0, "*", ms=13, mfc="gold", mec="k", ls="none",
+                label="_located event" if name != switched[0] else "located event (the parent's orbit; |v0| = 0 drawn below)")
+    pe.set(xscale="log", yscale="log", xlabel="energy E", ylabel=r"$|v_0| / |u_0|$ at the section", title="(e) families born at branch points and period doublings")
+    pe.title.set_fontsize(9)
+    pe.legend(fontsize=7)
+
+
+def figure(run, branches=None, bands=None):
+    """The FEP figure of an open continuation run."""
+    if branches is None:
+        branches, bands = run.branches, nltopo_plot.bands(run.continuation)
+    colour = {name: nltopo_plot.branch_colour(k) for k, name in enumerate(branches)}
+    numbered = numbered_events(branches)
+    ref = "insulated" if "insulated" in branches else list(branches)[0]
+    top = panel_top(branches, bands, ref)
+    wmax = max(float((int(g.get("period_multiple", 1)) * g.omega).max()) for g in branches.values())
+    fig, panels, edges = layout(branches, numbered, colour, top, wmax)
+    if "a_up" not in panels:
+        top = max(top, wmax * 1.04)
+    picks, letters = draw_a(panels, branches, bands, colour, numbered, ref, top, wmax)
+    if numbered:
+        draw_table(panels["T"], numbered, branches, colour)
+    pb = panels["b"]
+    for name, g in branches.items():
+        pb.plot(g.energy, g.mcr, ".-", ms=3, color=colour[name], label=name)
+    pb.set(xscale="log", xlabel="energy E", ylabel="MCR of u0", title="(b) localisation along the branches")
+    pb.legend(fontsize=7)
+    draw_shapes(panels["c"], branches[ref], ref, picks, letters)
     if edges:
-        pd = panels["d"]
-        for k, name in enumerate(edges):
-            ge = branches[name]
-            for j, style in ((0, "--"), (len(ge.energy) - 1, "-")):
-                u = ge.z0[j, :N]
-                u = u / np.abs(u).max()
-                pd.plot(sites, u - 2.5 * k, style, lw=0.8, color=colour[name], label=f"{name}, E = {ge.energy[j]:.3g}")
-        pd.set(xlabel="site", ylabel=r"$u_0 / \max|u_0|$ (offset by 2.5)", title="(d) " + ", ".join(edges) + ": lowest (dashed), highest E")
-        pd.title.set_fontsize(9)
-        pd.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2)
-    # (e) the switched families: the order parameter of the broken symmetry
-    if switched:
-        pe = panels["e"]
-        for name in switched:
-            g = branches[name]
-            z = g.z0
-            n2 = z.shape[1] // 2
-            r = np.linalg.norm(z[:, n2:], axis=1) / np.linalg.norm(z[:, :n2], axis=1)
-            pe.plot(g.energy[1:], r[1:], ".-", ms=4, color=colour[name], label=f"{name} (from {g.parent})")
-            # point 0 is the parent's orbit at the located event: at rest (|v0| = 0, drawn below the
-            # family) on a linear mode's family, not on a switched one
-            r0 = r[0] if r[0] > 1e-9 else max(r[1:].min() * 0.1, 1e-12)
-            pe.plot(g.energy[0], r0, "*", ms=13, mfc="gold", mec="k", ls="none",
-                    label="_located event" if name != switched[0] else "located event (the parent's orbit; |v0| = 0 drawn below)")
-        pe.set(xscale="log", yscale="log", xlabel="energy E", ylabel=r"$|v_0| / |u_0|$ at the section", title="(e) families born at branch points and period doublings")
-        pe.title.set_fontsize(9)
-        pe.legend(fontsize=7)
+        draw_edges(panels["d"], branches, edges, colour)
+    if "e" in panels:
+        draw_switched(panels["e"], branches, colour)
     return fig
 
 
