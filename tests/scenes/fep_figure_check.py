@@ -29,6 +29,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.colors
 import matplotlib.pyplot as plt
+import h5py
 import numpy as np
 
 src = sys.argv[1]
@@ -46,6 +47,31 @@ class Bad(AssertionError):
 def require(cond, *what):
     if not cond:
         raise Bad(" ".join(str(w) for w in what))
+
+
+# the type of each event kind (and direction) in the figure's legend, from the file's codes
+KIND_TYPE = {1: "LP", 2: "BP", 3: "PD", 4: "KC", 6: "R"}
+
+
+def truth(path):
+    """What the figure must show, read with h5py (not through the plots' loader):
+    [(branch, {energy, omega (x period_multiple), cls per orbit, events})]."""
+    out = []
+    with h5py.File(path, "r") as f:
+        for name, g in f["continuation"].items():
+            m = int(g.attrs.get("period_multiple", 1))
+            st = g["stable"][:] if "stable" in g else None
+            ins = g["instability"][:] if "instability" in g else None
+            cls = None if st is None else np.where(st == 1, 0, np.where(st == 0, np.where(ins > 0, ins, -1) if ins is not None else -1, -2))
+            events = []
+            if "bifurcations" in g:
+                b = g["bifurcations"]
+                for k in range(b["kind"].shape[0]):
+                    kind, d = int(b["kind"][k]), int(b["direction"][k])
+                    events.append(dict(index=k, kind=kind, energy=float(b["energy"][k]), omega=m * float(b["omega"][k]),
+                                       type=KIND_TYPE.get(kind) or ("HH+" if d > 0 else "HH-")))
+            out.append((name, dict(energy=g["energy"][:], omega=m * g["omega"][:], cls=cls, events=events)))
+    return out
 
 
 def markers(fig):
@@ -67,34 +93,32 @@ def markers(fig):
     return out
 
 
-def check_events(fig, run):
-    branches = run.branches
-    numbered = plot_fep.numbered_events(branches)
+def check_events(fig, file):
+    numbered = [(b, ev) for b, g in file for ev in g["events"]]
     m = markers(fig)
     require(sorted(m) == list(range(1, len(numbered) + 1)), "event numbers", sorted(m)[:10], "for", len(numbered), "events")
     rows = {int(t.get_gid().split()[1]): t.get_text() for ax in fig.axes for t in ax.texts if (t.get_gid() or "").startswith("event_row ")}
     require(sorted(rows) == sorted(m), "table rows", sorted(rows)[:10])
     kinds = {4: 0, 6: 0}
-    for n, b, ev in numbered:
+    for n, (b, ev) in enumerate(numbered, 1):
         ax, (x, y), label = m[n]
-        key, typ = plot_fep.event_type(ev)
-        require(label == plot_fep.TYPES[key][0], f"event {n} ({b}:{ev.index}, kind {ev.kind}) drawn as '{label}'")
-        w = int(branches[b].get("period_multiple", 1)) * ev.omega
+        require(label == plot_fep.TYPES[ev["type"]][0], f"event {n} ({b}:{ev['index']}, kind {ev['kind']}) drawn as '{label}'")
+        e, w = ev["energy"], ev["omega"]
         leaders = [l for l in ax.get_lines() if l.get_gid() == "event_leader" and np.allclose(l.get_xydata()[1], (x, y), rtol=1e-12)]
-        require(len(leaders) == 1 and np.allclose(leaders[0].get_xydata()[0], (ev.energy, w), rtol=1e-12), f"event {n}: leader", leaders)
+        require(len(leaders) == 1 and np.allclose(leaders[0].get_xydata()[0], (e, w), rtol=1e-12), f"event {n}: leader", leaders)
         lo, hi = ax.get_ylim()
-        require(lo <= w <= hi and ax.get_xlim()[0] <= ev.energy <= ax.get_xlim()[1], f"event {n} at ({ev.energy}, {w}) outside its panel")
+        require(lo <= w <= hi and ax.get_xlim()[0] <= e <= ax.get_xlim()[1], f"event {n} at ({e}, {w}) outside its panel")
         words = rows[n].split()
-        require(words[0] == str(n) and words[1] == str(ev.index) and typ.split()[0] in words and f"{w:.6f}" in words, f"row {n}: '{rows[n]}'", typ, w)
-        if ev.kind in kinds:
-            kinds[ev.kind] += 1
+        require(words[0] == str(n) and words[1] == str(ev["index"]) and words[2] == ev["type"] and f"{w:.6f}" in words, f"row {n}: '{rows[n]}'", ev)
+        if ev["kind"] in kinds:
+            kinds[ev["kind"]] += 1
     drawn = {k: sum(1 for v in m.values() if v[2] == plot_fep.TYPES[t][0]) for k, t in ((4, "KC"), (6, "R"))}
     require(drawn == kinds, "passes and resonances drawn", drawn, "in the file", kinds)
     plot_check.check_numbered_markers(fig)  # rule 6: numbered, apart, each in the table
     return len(numbered), kinds
 
 
-def check_stability(fig, run):
+def check_stability(fig, file):
     lines = {}
     for a in fig.axes:
         for l in a.get_lines():
@@ -103,11 +127,11 @@ def check_stability(fig, run):
                 lines.setdefault(int(gid.split()[1]), []).append(l)
     held = set()
     bb = []
-    for name, g in run.branches.items():
-        cls = nltopo_plot.stability_class(g)
-        held |= {int(c) for c in set(cls.tolist()) if c in nltopo_plot.STRETCH}
-        mult = int(g.get("period_multiple", 1))
-        bb += [(e, mult * w) for e, w in zip(g.energy[cls == 1], g.omega[cls == 1])]
+    for name, g in file:
+        if g["cls"] is None:
+            continue
+        held |= {int(c) for c in set(g["cls"].tolist()) if c in (1, 2, 3, -1)}
+        bb += [(e, w) for e, w in zip(g["energy"][g["cls"] == 1], g["omega"][g["cls"] == 1])]
     require(set(lines) == held, "stretches drawn for classes", sorted(lines), "the file holds", sorted(held))
     colour = {c: {matplotlib.colors.to_hex(l.get_color()) for l in ls} for c, ls in lines.items()}
     if 1 in lines:
@@ -125,9 +149,8 @@ def check_stability(fig, run):
     return sorted(held), len(bb)
 
 
-def check_titles(fig, run):
-    branches = run.branches
-    names = list(branches)
+def check_titles(fig, file):
+    names = [b for b, _ in file]
     title = next(a.get_title() for a in fig.axes if a.get_title().startswith("(a)"))
     listed = title.split(":", 1)[1].split(";")[0].split("(")[0].strip()
     if len(names) <= 3:
@@ -139,25 +162,27 @@ def check_titles(fig, run):
     for a in fig.axes:
         if a.get_title().startswith("(d)"):
             named = a.get_title()[4:].split(":")[0].split(", ")
-            require(all(n in branches for n in named), "title (d) names", named)
+            require(all(n in names and n in ("acoustic_top", "optical_bottom", "optical_top") for n in named), "title (d) names", named)
 
 
-def check(run):
-    """Checks the FEP figure of run; returns (figure, events, passes and resonances, classes, B-B orbits)."""
-    fig = plot_fep.figure(run)
+def check(path):
+    """Checks the FEP figure of the file at path (drawn as plot_fep.py draws
+    it); returns (figure, truth, events, passes and resonances, classes, B-B orbits)."""
+    file = truth(path)
+    fig = plot_fep.figure(nltopo_plot.open_run(path))
     for line in plot_check.check_figure(fig, "plot_fep.py"):  # the rules of every figure (data, limits, labels, legends, ...)
         print("  " + line)
-    n, kinds = check_events(fig, run)
-    held, bb = check_stability(fig, run)
-    check_titles(fig, run)
-    return fig, n, kinds, held, bb
+    n, kinds = check_events(fig, file)
+    held, bb = check_stability(fig, file)
+    check_titles(fig, file)
+    return fig, file, n, kinds, held, bb
 
 
-def must_fail(what, fig, run, spoil, step):
+def must_fail(what, fig, file, spoil, step):
     """The check step of the (checked) figure spoiled by spoil(fig) raises."""
     spoil(fig)
     try:
-        step(fig, run)
+        step(fig, file)
     except (Bad, plot_check.PlotCheckError) as e:
         print(f"  spoiled ({what}): rejected: {str(e)[:110]}")
         return
@@ -206,16 +231,15 @@ def title_band(fig):
 def main():
     checked = []
     for path in sys.argv[2:]:
-        run = nltopo_plot.open_run(path)
-        fig, n, kinds, held, bb = check(run)
-        checked.append((fig, run, n, bb))
+        fig, file, n, kinds, held, bb = check(path)
+        checked.append((fig, file, n, bb))
         print(f"FEP figure of {path}: {n} events numbered apart, each with its leader and table row "
               f"({kinds[4]} passes, {kinds[6]} resonances); unstable classes drawn {held}, {bb} B-B orbits ringed; titles match")
     # the checks fail: the checked figures spoiled, one rule after another
-    fig, run = next((f, r) for f, r, n, _ in checked if n >= 2)
-    must_fail("a resonance not drawn", fig, run, drop_resonance, check_events)
-    must_fail("two event circles on each other", fig, run, stack_two, lambda f, r: plot_check.check_numbered_markers(f))
-    must_fail("a title naming a band that is not drawn", fig, run, title_band, check_titles)
+    fig, file = next((f, t) for f, t, n, _ in checked if n >= 2)
+    must_fail("a resonance not drawn", fig, file, drop_resonance, check_events)
+    must_fail("two event circles on each other", fig, file, stack_two, lambda f, r: plot_check.check_numbered_markers(f))
+    must_fail("a title naming a band that is not drawn", fig, file, title_band, check_titles)
     bb = [(f, r) for f, r, _, b in checked if b]
     if bb:
         must_fail("B-B drawn like B-E", bb[0][0], bb[0][1], recolour_bb, check_stability)
