@@ -168,6 +168,12 @@ class Group:
         """The names of the group's datasets and subgroups."""
         return list(self._h5.keys())
 
+    def groups(self):
+        """The names of the group's subgroups (branches, cases, kinds; not the
+        datasets beside them, such as format version 1's `fields`)."""
+        import h5py
+        return [k for k, v in self._h5.items() if isinstance(v, h5py.Group)]
+
     def attrs(self):
         """{name: value} of the group's attributes."""
         return {k: _value(v) for k, v in self._h5.attrs.items()}
@@ -227,7 +233,7 @@ class Run(Group):
     def branches(self):
         """{name: Branch} of /continuation, in the file's order."""
         C = self["continuation"]
-        return {name: Branch(C._h5[name], f"/continuation/{name}", self._file) for name in C.keys()}
+        return {name: Branch(C._h5[name], f"/continuation/{name}", self._file) for name in C.groups()}
 
 
 class Branch(Group):
@@ -243,7 +249,7 @@ class Branch(Group):
         n = b["kind"].shape[0]
         kinds = codes(b["kind"].attrs["codes"]) if "codes" in b["kind"].attrs else KIND_NAMES
         classes = codes(b["instability"].attrs["codes"]) if "codes" in b["instability"].attrs else CLASS_NAMES
-        cols = {k: b[k][()] for k in b.keys()}
+        cols = {k: b[k][()] for k in ("kind", "energy", "omega", "direction", "point", "instability", "resonance") if k in b}
         out = []
         for i in range(n):
             kind = int(cols["kind"][i])

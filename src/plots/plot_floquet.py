@@ -31,7 +31,7 @@ def load(fep_path, stability_path=None):
     cases = None
     if stability_path:
         st = nltopo_plot.open_run(stability_path).stability
-        names = sorted(st.keys(), key=lambda c: int(c[4:]))
+        names = sorted(st.groups(), key=lambda c: int(c[4:]))
         cases = [(float(st[c].attr("energy")), float(st[c].attr("omega"))) for c in names]
     return run, cases
 

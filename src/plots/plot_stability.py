@@ -18,7 +18,7 @@ def load(path):
 
 def figure(loaded):
     S, options = loaded
-    cases = sorted(S.keys(), key=lambda c: int(c[4:]))
+    cases = sorted(S.groups(), key=lambda c: int(c[4:]))
     fig, ax = plt.subplots(2, 1, figsize=(9, 6), sharex=True)
     for c in cases:
         g = S[c]
