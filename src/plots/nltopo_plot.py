@@ -1,26 +1,297 @@
-"""Shared helpers of the figure scripts."""
+"""Shared helpers of the figure scripts: the colours, the command line, and
+the loaders, through which every script reads its HDF5 files (open_run: one
+place to switch to the Python reader)."""
+import argparse
+import types
 import numpy as np
+
+# the paper's site colours (its Figs. 5 and 7): even sites orange, odd sites
+# purple; sites are 1-based as in the model (site 2j-1, 2j: unit cell j)
+EVEN, ODD = "tab:orange", "tab:purple"
+
+
+def site_colour(n):
+    """The colour of 1-based site n."""
+    return EVEN if int(n) % 2 == 0 else ODD
+
+
+# the colours of branches (and of other series that sit beside the instability
+# classes' orange, purple and red)
+BRANCH_COLOURS = ["tab:blue", "tab:green", "tab:brown", "tab:olive", "tab:cyan", "navy", "tab:gray", "tab:pink", "darkgoldenrod", "teal"]
+
+
+def branch_colour(k):
+    return BRANCH_COLOURS[k % len(BRANCH_COLOURS)]
+
 
 # colours of the Floquet instability classes (the paper's Fig. 4b: orange B-B,
 # purple B-E, red E-E), indexed by /continuation/<branch>/instability
 INSTABILITY = {0: ("stable", "tab:blue"), 1: ("B-B", "tab:orange"), 2: ("B-E", "tab:purple"), 3: ("E-E", "tab:red")}
 
 
-def pop_option(argv, name, default, kind=float):
-    """The value of "name value" in argv (removed from it), or default."""
-    if name not in argv:
-        return default
-    k = argv.index(name)
-    value = kind(argv[k + 1])
-    del argv[k:k + 2]
-    return value
+# the unstable stretches by class: (label, colour, width); -1: unstable, class not computed
+STRETCH = {1: ("B-B unstable: effectively stable (bulk-bulk)", "tab:orange", 2.0), 2: ("B-E unstable (bulk-edge)", "tab:purple", 4.5),
+           3: ("E-E unstable (edge-edge)", "tab:red", 4.5), -1: ("unstable (class not computed)", "tab:red", 2.0)}
+
+
+def stretches(E, w, mask):
+    """The polyline (in log E) covering the points where mask holds: each run
+    of such points from half-way to its left neighbour to half-way to its
+    right one, NaN between runs. Returns x, y and the indices of the orbits in them."""
+    lE, n = np.log(E), len(E)
+    x, y, at = [], [], []
+    idx = np.flatnonzero(mask)
+    for run in np.split(idx, np.flatnonzero(np.diff(idx) > 1) + 1):
+        i0, i1 = run[0], run[-1]
+        xs, ys = list(lE[i0:i1 + 1]), list(w[i0:i1 + 1])
+        first = len(x) + (i0 > 0)
+        at += list(range(first, first + i1 - i0 + 1))
+        if i0 > 0:
+            xs.insert(0, 0.5 * (lE[i0 - 1] + lE[i0]))
+            ys.insert(0, 0.5 * (w[i0 - 1] + w[i0]))
+        if i1 + 1 < n:
+            xs.append(0.5 * (lE[i1] + lE[i1 + 1]))
+            ys.append(0.5 * (w[i1] + w[i1 + 1]))
+        x += xs + [np.nan]
+        y += ys + [np.nan]
+    return np.exp(np.array(x, float)), np.array(y, float), at
+
+
+def stability_class(g):
+    """Per orbit: 0 stable, 1-3 the unstable class, -1 unstable without a class, -2 not decided or not computed."""
+    if "stable" not in g:
+        return np.full(len(g.energy), -2)
+    st = np.asarray(g.stable).astype(int)
+    cls = np.asarray(g.instability).astype(int) if "instability" in g else np.full(len(st), -1)
+    return np.where(st == 1, 0, np.where(st == 0, np.where(cls > 0, cls, -1), -2))
+
+
+def parser(doc):
+    """An argparse parser whose -h prints the script's docstring (without its
+    own usage line: argparse writes one)."""
+    text = "\n".join(l for l in doc.strip().splitlines() if not l.startswith("usage:"))
+    return argparse.ArgumentParser(description=text, formatter_class=argparse.RawDescriptionHelpFormatter)
+
+
+def main_one_file(doc, study, suffix, load, figure, argv=None, dpi=120):
+    """The command line of a script drawing one file: h5 [out.png] (default
+    <h5 without .h5>_<suffix>.png), -h printing doc; figure(load(h5)) saved."""
+    p = parser(doc)
+    p.add_argument("h5", help=f"a -study {study} output")
+    p.add_argument("out", nargs="?", help=f"the PNG (default: <h5 without .h5>_{suffix}.png)")
+    a = p.parse_args(argv)
+    out = a.out or a.h5.replace(".h5", "") + f"_{suffix}.png"
+    figure(load(a.h5)).savefig(out, dpi=dpi)
+    print("wrote", out)
+
+
+# ---- loaders -------------------------------------------------------------------
+# The study that writes each top-level group (for the message of a missing one).
+WRITER = {"linear": "linear", "simulate": "simulate", "sweep": "sweep", "zak": "zak", "perturb": "perturb", "stability": "stability",
+          "workprecision": "workprecision", "continuation": "continuation"}
+# /continuation/<branch>/bifurcations kind and instability codes (the file's `codes`
+# attribute when it has one, format_version >= 1; these for version-0 files)
+KIND_NAMES = {1: "energy fold", 2: "branch point (+1)", 3: "period doubling (-1)", 4: "Krein collision", 5: "Hamiltonian-Hopf",
+              6: "internal resonance"}
+CLASS_NAMES = {0: "none", 1: "B-B", 2: "B-E", 3: "E-E"}
+
+
+def _text(x):
+    return x.decode() if isinstance(x, bytes) else str(x)
+
+
+def _value(x):
+    """An attribute or dataset value: strings decoded, one-element arrays as scalars."""
+    if isinstance(x, bytes):
+        return x.decode()
+    if isinstance(x, np.ndarray):
+        if x.dtype.kind in "SO":
+            return np.array([_text(v) for v in x.ravel()], dtype=object).reshape(x.shape)
+        if x.shape == (1,):
+            return x[0]
+    return x
+
+
+def codes(text):
+    """{int: meaning} of a `codes` string "v meaning; v meaning; ..."."""
+    out = {}
+    for part in _text(text).split("; "):
+        v, _, meaning = part.strip().partition(" ")
+        try:
+            out[int(v)] = meaning
+        except ValueError:
+            pass
+    return out
+
+
+class Group:
+    """A group of an nltopo HDF5 file: its datasets (numpy arrays) and
+    attributes by name, g.name or g["name"] (a dataset before an attribute of
+    the same name: g.attr(name)); subgroups as Groups. A missing
+    name raises AttributeError (KeyError for g["name"]) naming the group, the
+    file and the study that writes it."""
+
+    def __init__(self, h5, path, filename):
+        self._h5, self._path, self._file = h5, path, filename
+
+    def _missing(self, name):
+        top = self._path.strip("/").split("/")[0]
+        who = WRITER.get(top)
+        return f"{self._file} has no {self._path.rstrip('/')}/{name}" + (f" (written by -study {who})" if who else "")
+
+    def __getitem__(self, name):
+        import h5py
+        if name in self._h5:
+            obj = self._h5[name]
+            if isinstance(obj, h5py.Group):
+                return Group(obj, f"{self._path.rstrip('/')}/{name}", self._file)
+            return _value(obj[()])
+        if name in self._h5.attrs:
+            return _value(self._h5.attrs[name])
+        raise KeyError(self._missing(name))
+
+    def __getattr__(self, name):
+        if name.startswith("_"):
+            raise AttributeError(name)
+        try:
+            return self[name]
+        except KeyError as e:
+            raise AttributeError(e.args[0]) from None
+
+    def __contains__(self, name):
+        return name in self._h5 or name in self._h5.attrs
+
+    def get(self, name, default=None):
+        return self[name] if name in self else default
+
+    def keys(self):
+        """The names of the group's datasets and subgroups."""
+        return list(self._h5.keys())
+
+    def groups(self):
+        """The names of the group's subgroups (branches, cases, kinds; not the
+        datasets beside them, such as format version 1's `fields`)."""
+        import h5py
+        return [k for k, v in self._h5.items() if isinstance(v, h5py.Group)]
+
+    def attrs(self):
+        """{name: value} of the group's attributes."""
+        return {k: _value(v) for k, v in self._h5.attrs.items()}
+
+    def attr(self, name):
+        """The attribute name (where a dataset has the same name: /stability/case<k> energy)."""
+        if name not in self._h5.attrs:
+            raise KeyError(self._missing(name))
+        return _value(self._h5.attrs[name])
+
+    def describe(self, name):
+        """(description, units) of a dataset (format_version >= 1; "" otherwise)."""
+        a = self._h5[name].attrs
+        return _text(a.get("description", b"")), _text(a.get("units", b""))
+
+
+class Run(Group):
+    """An nltopo output file: run.study, run.options ({key: value}, keys without
+    the leading '-', "" for a flag), run.complete, run.format_version, its
+    groups by name (run.simulate, run.sweep, ...) and run.branches."""
+
+    def __init__(self, path):
+        import h5py
+        self._f = h5py.File(path, "r")
+        super().__init__(self._f, "/", path)
+        self.path = path
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def close(self):
+        self._f.close()
+
+    @property
+    def study(self):
+        return _text(self._f.attrs.get("study", b""))
+
+    @property
+    def format_version(self):
+        return int(self._f.attrs.get("format_version", 0))
+
+    @property
+    def complete(self):
+        return bool(self._f.attrs.get("complete", 1))
+
+    @property
+    def options(self):
+        if "options" in self._f and self.format_version >= 1:  # the structured options (format version 1)
+            d = self._f["options"][()]
+            return {_text(r["key"]).lstrip("-"): _text(r["value"]) for r in d}
+        return {k.lstrip("-"): ("" if v is None else v) for k, v in run_options(self._f)}
+
+    @property
+    def branches(self):
+        """{name: Branch} of /continuation, in the file's order."""
+        C = self["continuation"]
+        return {name: Branch(C._h5[name], f"/continuation/{name}", self._file) for name in C.groups()}
+
+
+class Branch(Group):
+    """/continuation/<branch>: its datasets and attributes, and .events, the
+    located bifurcations as records (index, kind, kind_name, omega, energy,
+    direction, point, instability, instability_name, resonance (p, q))."""
+
+    @property
+    def events(self):
+        if "bifurcations" not in self._h5:
+            return []
+        b = self._h5["bifurcations"]
+        n = b["kind"].shape[0]
+        kinds = codes(b["kind"].attrs["codes"]) if "codes" in b["kind"].attrs else KIND_NAMES
+        classes = codes(b["instability"].attrs["codes"]) if "codes" in b["instability"].attrs else CLASS_NAMES
+        cols = {k: b[k][()] for k in ("kind", "energy", "omega", "direction", "point", "instability", "resonance") if k in b}
+        out = []
+        for i in range(n):
+            kind = int(cols["kind"][i])
+            inst = int(cols["instability"][i]) if "instability" in cols else 0
+            res = tuple(int(x) for x in cols["resonance"][i]) if "resonance" in cols else (0, 0)
+            out.append(types.SimpleNamespace(index=i, kind=kind, kind_name=kinds.get(kind, f"kind {kind}"), omega=float(cols["omega"][i]),
+                                             energy=float(cols["energy"][i]), direction=int(cols["direction"][i]),
+                                             point=int(cols["point"][i]) if "point" in cols else -1, instability=inst,
+                                             instability_name=classes.get(inst, ""), resonance=res))
+        return out
+
+
+def open_run(path):
+    """The output file at path as a Run (the scripts' only HDF5 access)."""
+    return Run(path)
+
+
+def space_time(fig, ax, t, u, sel=None, label="u (displacement)"):
+    """The space-time map of u (time x site) over the samples sel, colours
+    symmetric about 0 (clipped at the 99.5th percentile of |u|), with its
+    colour bar; returns the colour limit."""
+    sel = np.ones(len(t), bool) if sel is None else sel
+    lim = float(np.percentile(np.abs(u[sel]), 99.5)) or 1.0
+    N = u.shape[1]
+    im = ax.imshow(u[sel].T, aspect="auto", origin="lower", extent=[t[sel][0], t[sel][-1], 0.5, N + 0.5], cmap="RdBu_r", vmin=-lim, vmax=lim,
+                   interpolation="nearest")
+    fig.colorbar(im, ax=ax, label=label, pad=0.01)
+    return lim
+
+
+def rms_by_parity(ax, rms, ms=3):
+    """RMS amplitude per site on a log scale, even and odd sites in the paper's colours."""
+    sites = np.arange(1, len(rms) + 1)
+    ax.semilogy(sites[1::2], rms[1::2], "o", color=EVEN, ms=ms, label="even sites")
+    ax.semilogy(sites[0::2], rms[0::2], "o", color=ODD, ms=ms, label="odd sites")
 
 
 def bands(group):
     """The infinite lattice's bands [(acoustic bottom, top), (optical bottom, top)]
-    in rad/s, from the *_inf attributes of a group (/linear/bloch, /continuation,
-    /sweep; outputs.md schema: src/io/schema.cpp)."""
-    a = group.attrs
+    in rad/s, from the *_inf attributes of a Group (/linear/bloch, /continuation,
+    /sweep)."""
+    a = group
     return [(float(a["acoustic_bottom_inf"]), float(a["acoustic_top_inf"])), (float(a["optical_bottom_inf"]), float(a["optical_top_inf"]))]
 
 
@@ -97,21 +368,20 @@ def zak_reruns(zak_path, targets):
     (mode0, modepi) at its frequency and its exact E*, and u(t) stored at the
     zak's samples per period (the same samples after the cut-off: zak_windows).
     Returns [(name, [options])]."""
-    import h5py
-    f = h5py.File(zak_path, "r")
-    z = f["zak"]
+    run = open_run(zak_path)
+    z = run.zak
     carried = []
-    for name, value in run_options(f):
-        if name.startswith(("-lattice_", "-sim_", "-force_", "-linear_")):
-            carried += [name] + ([value] if value is not None else [])
+    for name, value in run.options.items():
+        if name.startswith(("lattice_", "sim_", "force_", "linear_")):
+            carried += ["-" + name] + ([value] if value != "" else [])
     E = z["energy"][:]
-    spp = int(z.attrs["samples_per_period"])
+    spp = int(z.samples_per_period)
     picks = sorted({int(np.argmin(np.abs(np.log(E / t)))) for t in targets})
     runs = []
     for k in picks:
         for edge in ("0", "pi"):
-            w = float(z.attrs["omega" + edge])
-            runs.append((f"zak_run_{edge}_{k}", carried + ["-force_profile", "mode", "-force_mode_index", str(int(z.attrs["mode" + edge])),
+            w = float(z["omega" + edge])
+            runs.append((f"zak_run_{edge}_{k}", carried + ["-force_profile", "mode", "-force_mode_index", str(int(z["mode" + edge])),
                                                        "-force_omega", repr(w), "-force_energy", repr(float(E[k])),
                                                        "-sim_sample_dt", repr(2 * np.pi / w / spp), "-sim_store_u", "1",
                                                        "-sim_progress", "0"]))

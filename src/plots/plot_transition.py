@@ -5,19 +5,25 @@ lattice's bands, with the localised (edge and interface) modes in the gap
 marked; and the Zak phases of both bands for the left and right unit cells.
 usage: plot_transition.py transition.h5 [out.png]"""
 import sys
-import h5py
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
+import nltopo_plot
 
 
-def draw(f, out):
-    """Draws /linear/transition of the open file f into out."""
-    T = f["linear/transition"]
-    g, w, b = T["gamma"][:], T["omega"][:], T["bands_inf"][:]
-    N, layout = int(T.attrs["N"]), T.attrs["layout"]
-    layout = layout.decode() if isinstance(layout, bytes) else str(layout)
+def load(path):
+    """/linear/transition of a -study linear file run with -linear_gamma_list."""
+    L = nltopo_plot.open_run(path).linear
+    if "transition" not in L:
+        sys.exit(f"{path} has no /linear/transition (run -study linear with -linear_gamma_list, e.g. options/transition.opts)")
+    return L.transition
+
+
+def draw(T, out):
+    """Draws /linear/transition (a Group) into out."""
+    g, w, b = T.gamma, T.omega, T.bands_inf
+    N, layout = int(T.N), str(T.layout)
     fig, ax = plt.subplots(1, 2, figsize=(12, 4.5))
     # Spectrum: the infinite bands as shaded regions; every finite eigenfrequency a dot,
     # coloured by where it lies (docs/studies/linear.md).
@@ -31,10 +37,10 @@ def draw(f, out):
     ax[0].scatter(G[bulk], w[bulk], s=1, color="0.45", label="finite lattice: band modes")
     ax[0].scatter(G[in_gap], w[in_gap], s=5, color="C3", label="in the gap: edge / interface modes")
     ax[0].scatter(G[outside], w[outside], s=5, color="C0", label="outside the bands: interface modes")
-    ax[0].set(xlabel=r"$\gamma$", ylabel=r"$\omega$ (rad/s)", title=f"spectrum against gamma (N = {N}, {layout})")
+    ax[0].set(xlabel=r"$\gamma$", ylabel=r"$\omega$ (rad/time)", title=f"spectrum against gamma (N = {N}, {layout})")
     ax[0].legend(fontsize=7, loc="upper left")
     # Zak phases: both bands of each cell (they coincide; the markers tell them apart). NaN (gamma = 0: gap closed) is a gap in the line.
-    zl, zr = T["zak_left"][:], T["zak_right"][:]
+    zl, zr = T.zak_left, T.zak_right
     every = max(1, len(g) // 20)
     for z, cell, c in ((zl, "left cell (intra $k_2$, inter $k_1$)", "C3"), (zr, "right cell (intra $k_1$, inter $k_2$)", "C0")):
         ax[1].plot(g, z[:, 1], "-", color=c, lw=1.5, marker="o", ms=5, markevery=every, mfc="none", label=f"{cell}, optical")
@@ -53,9 +59,13 @@ def draw(f, out):
     print("wrote", out)
 
 
+def main(argv=None):
+    p = nltopo_plot.parser(__doc__)
+    p.add_argument("h5", help="a -study linear output with /linear/transition")
+    p.add_argument("out", nargs="?", help="the PNG (default: <h5 without .h5>_transition.png)")
+    a = p.parse_args(argv)
+    draw(load(a.h5), a.out or a.h5.replace(".h5", "") + "_transition.png")
+
+
 if __name__ == "__main__":
-    f = h5py.File(sys.argv[1], "r")
-    out = sys.argv[2] if len(sys.argv) > 2 else sys.argv[1].replace(".h5", "") + "_transition.png"
-    if "linear/transition" not in f:
-        sys.exit(f"{sys.argv[1]} has no /linear/transition (run -study linear with -linear_gamma_list, e.g. options/transition.opts)")
-    draw(f, out)
+    main()

@@ -16,6 +16,7 @@ run2 -options_file "$SRC/options/fep.opts" $small -output s2.h5 > s2.txt
 run1 -options_file "$SRC/options/fep.opts" $small -cont_bif_passes 0 -cont_bif_resonance_order 0 -output s0.h5 > s0.txt
 grep -q "event .*: branch point (+1) E-E, instability begins at omega 2.41824" paper.txt
 $PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_fep.py" paper.h5 fep.png
+$PY "$SRC/tests/scenes/fep_figure_check.py" "$SRC" paper.h5   # its 22 events numbered apart, the B-B orbits apart from B-E and E-E
 $PY "$CHECKS/bifurcations.py" events
 bp=$(cat bp_index.txt)
 run1 -options_file "$SRC/options/fep.opts" $small -cont_switch insulated:$bp -output sw.h5 > sw.txt

@@ -6,7 +6,7 @@ run1 -options_file "$SRC/options/linear.opts" -output lin.h5 > /dev/null
 run1 -options_file "$SRC/options/fep.opts" $short -output fep1.h5 | tee out1.txt
 run2 -options_file "$SRC/options/fep.opts" $short -output fep2.h5 > out2.txt
 $PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_fep.py" fep1.h5 fep.png
-$PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_floquet.py" fep1.h5 floquet.png
+$PY "$SRC/tests/scenes/plot_check.py" --grid 2x2 "$SRC/src/plots/plot_floquet.py" fep1.h5 floquet.png
 $PY "$CHECKS/continuation.py" branches
 # -cont_mcr_min stops the insulated branch where it delocalizes (near the
 # optical band bottom, the paper's E ~ 12 threshold: checks/continuation.py mcr_min).

@@ -16,7 +16,7 @@ run1 "${SIM[@]}" -sim_ts_type rkn -sim_ts_rkn_scheme dep1210 -sim_ts_rtol 1e-13 
 run1 "${SIM[@]}" -sim_ts_type symsplit -sim_ts_symsplit_scheme bm4 -sim_ts_dt 0.4 -output c_bm4.h5 > /dev/null
 run1 "${SIM[@]}" -sim_ts_type rk -sim_ts_rk_type 5dp -sim_ts_rtol 1e-6 -sim_ts_atol 1e-6 -output c_rk.h5 > /dev/null
 run1 "${SIM[@]}" -sim_ts_type rkn -sim_ts_rkn_scheme dep86 -sim_ts_rtol 1e-8 -sim_ts_atol 1e-8 -output c_dep86.h5 > /dev/null
-$PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_workprecision.py" wp1.h5 wp.png > /dev/null
+$PY "$SRC/tests/scenes/plot_check.py" --point-labels "$SRC/src/plots/plot_workprecision.py" wp1.h5 wp.png > /dev/null
 
 $PY "$CHECKS/workprecision.py" errors
 $PY "$CHECKS/workprecision.py" recommended

@@ -12,4 +12,4 @@ run1 -options_file "$SRC/options/workprecision_nnm.opts" "${L[@]}" -wp_repeats 1
 run2 -options_file "$SRC/options/workprecision_nnm.opts" "${L[@]}" -wp_repeats 1 -output s2.h5 > s2.txt
 $PY "$CHECKS/workprecision_nnm.py" shooting
 $PY "$SRC/tests/scenes/wp_figure_check.py" "$SRC" s1.h5
-$PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_workprecision.py" s1.h5 s1.png > /dev/null
+$PY "$SRC/tests/scenes/plot_check.py" --point-labels "$SRC/src/plots/plot_workprecision.py" s1.h5 s1.png > /dev/null
