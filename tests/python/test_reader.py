@@ -465,3 +465,20 @@ def test_example_script(outputs):
     for study in set(STUDY.values()):
         assert f"-study {study}" in p.stdout
     assert "branch point" in p.stdout and "wp_configs" in p.stdout
+
+
+def test_docs_first_example(outputs, tmp_path, capsys):
+    """docs/python.md's first example, as printed there, runs on a real fep.h5 and prints its events."""
+    text = (REPO / "docs" / "python.md").read_text()
+    code = text.split("```python\n", 1)[1].split("```", 1)[0]
+    os.symlink(outputs["fep"], tmp_path / "fep.h5")
+    cwd = os.getcwd()
+    os.chdir(tmp_path)
+    try:
+        exec(compile(code, "docs/python.md", "exec"), {})
+    finally:
+        os.chdir(cwd)
+    out = capsys.readouterr().out.splitlines()
+    with nltopo.open(outputs["fep"]) as r:
+        n_events = len(r.branches["insulated"].events)
+    assert out[0].startswith("continuation 300 True") and n_events > 0 and len(out) == 2 + n_events, out[:3]
