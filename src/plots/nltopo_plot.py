@@ -1,9 +1,17 @@
 """Shared helpers of the figure scripts: the colours, the command line, and
-the loaders, through which every script reads its HDF5 files (open_run: one
-place to switch to the Python reader)."""
+open_run, through which every script reads its HDF5 files with the
+repository's Python reader (python/nltopo, docs/python.md)."""
 import argparse
-import types
+import os
+import sys
 import numpy as np
+
+# The reader of this checkout (<repo>/python, beside src/plots), whatever the
+# working directory: the scripts and the reader follow the same output format.
+_READER = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "python")
+if os.path.isdir(os.path.join(_READER, "nltopo")) and _READER not in sys.path:
+    sys.path.insert(0, _READER)
+import nltopo  # noqa: E402
 
 # the paper's site colours (its Figs. 5 and 7): even sites orange, odd sites
 # purple; sites are 1-based as in the model (site 2j-1, 2j: unit cell j)
@@ -85,186 +93,20 @@ def main_one_file(doc, study, suffix, load, figure, argv=None, dpi=120):
     print("wrote", out)
 
 
-# ---- loaders -------------------------------------------------------------------
-# The study that writes each top-level group (for the message of a missing one).
-WRITER = {"linear": "linear", "simulate": "simulate", "sweep": "sweep", "zak": "zak", "perturb": "perturb", "stability": "stability",
-          "workprecision": "workprecision", "continuation": "continuation"}
-# /continuation/<branch>/bifurcations kind and instability codes (the file's `codes`
-# attribute when it has one, format_version >= 1; these for version-0 files)
-KIND_NAMES = {1: "energy fold", 2: "branch point (+1)", 3: "period doubling (-1)", 4: "Krein collision", 5: "Hamiltonian-Hopf",
-              6: "internal resonance"}
-CLASS_NAMES = {0: "none", 1: "B-B", 2: "B-E", 3: "E-E"}
-
-
-def _text(x):
-    return x.decode() if isinstance(x, bytes) else str(x)
-
-
-def _value(x):
-    """An attribute or dataset value: strings decoded, one-element arrays as scalars."""
-    if isinstance(x, bytes):
-        return x.decode()
-    if isinstance(x, np.ndarray):
-        if x.dtype.kind in "SO":
-            return np.array([_text(v) for v in x.ravel()], dtype=object).reshape(x.shape)
-        if x.shape == (1,):
-            return x[0]
-    return x
-
-
-def codes(text):
-    """{int: meaning} of a `codes` string "v meaning; v meaning; ..."."""
-    out = {}
-    for part in _text(text).split("; "):
-        v, _, meaning = part.strip().partition(" ")
-        try:
-            out[int(v)] = meaning
-        except ValueError:
-            pass
-    return out
-
-
-class Group:
-    """A group of an nltopo HDF5 file: its datasets (numpy arrays) and
-    attributes by name, g.name or g["name"] (a dataset before an attribute of
-    the same name: g.attr(name)); subgroups as Groups. A missing
-    name raises AttributeError (KeyError for g["name"]) naming the group, the
-    file and the study that writes it."""
-
-    def __init__(self, h5, path, filename):
-        self._h5, self._path, self._file = h5, path, filename
-
-    def _missing(self, name):
-        top = self._path.strip("/").split("/")[0]
-        who = WRITER.get(top)
-        return f"{self._file} has no {self._path.rstrip('/')}/{name}" + (f" (written by -study {who})" if who else "")
-
-    def __getitem__(self, name):
-        import h5py
-        if name in self._h5:
-            obj = self._h5[name]
-            if isinstance(obj, h5py.Group):
-                return Group(obj, f"{self._path.rstrip('/')}/{name}", self._file)
-            return _value(obj[()])
-        if name in self._h5.attrs:
-            return _value(self._h5.attrs[name])
-        raise KeyError(self._missing(name))
-
-    def __getattr__(self, name):
-        if name.startswith("_"):
-            raise AttributeError(name)
-        try:
-            return self[name]
-        except KeyError as e:
-            raise AttributeError(e.args[0]) from None
-
-    def __contains__(self, name):
-        return name in self._h5 or name in self._h5.attrs
-
-    def get(self, name, default=None):
-        return self[name] if name in self else default
-
-    def keys(self):
-        """The names of the group's datasets and subgroups."""
-        return list(self._h5.keys())
-
-    def groups(self):
-        """The names of the group's subgroups (branches, cases, kinds; not the
-        datasets beside them, such as format version 1's `fields`)."""
-        import h5py
-        return [k for k, v in self._h5.items() if isinstance(v, h5py.Group)]
-
-    def attrs(self):
-        """{name: value} of the group's attributes."""
-        return {k: _value(v) for k, v in self._h5.attrs.items()}
-
-    def attr(self, name):
-        """The attribute name (where a dataset has the same name: /stability/case<k> energy)."""
-        if name not in self._h5.attrs:
-            raise KeyError(self._missing(name))
-        return _value(self._h5.attrs[name])
-
-    def describe(self, name):
-        """(description, units) of a dataset (format_version >= 1; "" otherwise)."""
-        a = self._h5[name].attrs
-        return _text(a.get("description", b"")), _text(a.get("units", b""))
-
-
-class Run(Group):
-    """An nltopo output file: run.study, run.options ({key: value}, keys without
-    the leading '-', "" for a flag), run.complete, run.format_version, its
-    groups by name (run.simulate, run.sweep, ...) and run.branches."""
-
-    def __init__(self, path):
-        import h5py
-        self._f = h5py.File(path, "r")
-        super().__init__(self._f, "/", path)
-        self.path = path
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
-
-    def close(self):
-        self._f.close()
-
-    @property
-    def study(self):
-        return _text(self._f.attrs.get("study", b""))
-
-    @property
-    def format_version(self):
-        return int(self._f.attrs.get("format_version", 0))
-
-    @property
-    def complete(self):
-        return bool(self._f.attrs.get("complete", 1))
-
-    @property
-    def options(self):
-        if "options" in self._f and self.format_version >= 1:  # the structured options (format version 1)
-            d = self._f["options"][()]
-            return {_text(r["key"]).lstrip("-"): _text(r["value"]) for r in d}
-        return {k.lstrip("-"): ("" if v is None else v) for k, v in run_options(self._f)}
-
-    @property
-    def branches(self):
-        """{name: Branch} of /continuation, in the file's order."""
-        C = self["continuation"]
-        return {name: Branch(C._h5[name], f"/continuation/{name}", self._file) for name in C.groups()}
-
-
-class Branch(Group):
-    """/continuation/<branch>: its datasets and attributes, and .events, the
-    located bifurcations as records (index, kind, kind_name, omega, energy,
-    direction, point, instability, instability_name, resonance (p, q))."""
-
-    @property
-    def events(self):
-        if "bifurcations" not in self._h5:
-            return []
-        b = self._h5["bifurcations"]
-        n = b["kind"].shape[0]
-        kinds = codes(b["kind"].attrs["codes"]) if "codes" in b["kind"].attrs else KIND_NAMES
-        classes = codes(b["instability"].attrs["codes"]) if "codes" in b["instability"].attrs else CLASS_NAMES
-        cols = {k: b[k][()] for k in ("kind", "energy", "omega", "direction", "point", "instability", "resonance") if k in b}
-        out = []
-        for i in range(n):
-            kind = int(cols["kind"][i])
-            inst = int(cols["instability"][i]) if "instability" in cols else 0
-            res = tuple(int(x) for x in cols["resonance"][i]) if "resonance" in cols else (0, 0)
-            out.append(types.SimpleNamespace(index=i, kind=kind, kind_name=kinds.get(kind, f"kind {kind}"), omega=float(cols["omega"][i]),
-                                             energy=float(cols["energy"][i]), direction=int(cols["direction"][i]),
-                                             point=int(cols["point"][i]) if "point" in cols else -1, instability=inst,
-                                             instability_name=classes.get(inst, ""), resonance=res))
-        return out
-
-
+# ---- loading -------------------------------------------------------------------
 def open_run(path):
-    """The output file at path as a Run (the scripts' only HDF5 access)."""
-    return Run(path)
+    """The output file at path as an nltopo.Run of the repository's Python
+    reader (python/nltopo, docs/python.md): the scripts' only access to HDF5.
+    Its views give datasets and attributes by name (g.energy, g["mcr"],
+    "stable" in g, g.get(name, default), g.attrs, g.groups), run.options,
+    run.branches and each branch's decoded events."""
+    return nltopo.open(path)
+
+
+def events(branch):
+    """The located events of a branch (nltopo Event records), [] when its
+    bifurcations were not located (no -floquet, or -cont_bifurcations 0)."""
+    return branch.events if branch.located else []
 
 
 def space_time(fig, ax, t, u, sel=None, label="u (displacement)"):
@@ -289,7 +131,7 @@ def rms_by_parity(ax, rms, ms=3):
 
 def bands(group):
     """The infinite lattice's bands [(acoustic bottom, top), (optical bottom, top)]
-    in rad/s, from the *_inf attributes of a Group (/linear/bloch, /continuation,
+    in rad/s, from the *_inf attributes of a view (/linear/bloch, /continuation,
     /sweep)."""
     a = group
     return [(float(a["acoustic_bottom_inf"]), float(a["acoustic_top_inf"])), (float(a["optical_bottom_inf"]), float(a["optical_top_inf"]))]
@@ -335,29 +177,6 @@ def branch_omega(group, energies):
     E, w = group["energy"][:], group["omega"][:]
     order = np.argsort(E)
     return np.interp(np.log(energies), np.log(E[order]), w[order])
-
-
-def run_options(h5file):
-    """The options a study ran with (the root attribute `options`, outputs.md)
-    as [(name, value)], value None for a flag. A value may be negative: a word
-    after a name is its value unless it is itself an option name."""
-    text = h5file.attrs.get("options", b"")
-    words = (text.decode() if isinstance(text, bytes) else str(text)).split()
-    out, k = [], 0
-    while k < len(words):
-        name, value = words[k], None
-        if k + 1 < len(words):
-            nxt = words[k + 1]
-            try:
-                float(nxt)
-                is_value = True
-            except ValueError:
-                is_value = not nxt.startswith("-")
-            if is_value:
-                value, k = nxt, k + 1
-        out.append((name, value))
-        k += 1
-    return out
 
 
 def zak_reruns(zak_path, targets):

@@ -61,7 +61,7 @@ def numbered_events(branches):
     """[(number, branch name, event)], numbered 1, 2, ... over the branches in order."""
     out = []
     for name, g in branches.items():
-        for ev in g.events:
+        for ev in nltopo_plot.events(g):
             out.append((len(out) + 1, name, ev))
     return out
 

@@ -30,9 +30,7 @@ def load(fep_path, stability_path=None):
     run = nltopo_plot.open_run(fep_path)
     cases = None
     if stability_path:
-        st = nltopo_plot.open_run(stability_path).stability
-        names = sorted(st.groups(), key=lambda c: int(c[4:]))
-        cases = [(float(st[c].attr("energy")), float(st[c].attr("omega"))) for c in names]
+        cases = [(float(c.orbit_energy), float(c.attrs["omega"])) for c in nltopo_plot.open_run(stability_path).stability.cases]
     return run, cases
 
 

@@ -17,7 +17,7 @@ def load(path):
 
 
 def figure(P):
-    kinds = sorted(P.groups(), key=lambda k: (k != "chiral", k))  # chiral left, as in the paper
+    kinds = sorted(P.kinds, key=lambda k: (k != "chiral", k))  # chiral left, as in the paper
     fig, ax = plt.subplots(2, len(kinds), figsize=(6 * len(kinds), 8.5), squeeze=False)
     for c, kind in enumerate(kinds):
         g = P[kind]

@@ -18,11 +18,9 @@ def load(path):
 
 def figure(loaded):
     S, options = loaded
-    cases = sorted(S.groups(), key=lambda c: int(c[4:]))
     fig, ax = plt.subplots(2, 1, figsize=(9, 6), sharex=True)
-    for c in cases:
-        g = S[c]
-        a = g.attrs()
+    for g in S.cases:  # case0, case1, ... in order
+        a = g.attrs  # the case's attributes (its `energy` the orbit's; the dataset energy is E(t))
         periods = g.t / a["period"]
         lab = (rf"$\omega$ = {a['omega']:.4f}, E = {a['energy']:.3g}: max|$\mu$| = {a['max_modulus']:.5f}"
                f" ({'stable' if a['floquet_stable'] else 'unstable'}), {'persisted' if a['persisted'] else 'lost'}")

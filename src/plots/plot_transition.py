@@ -21,7 +21,7 @@ def load(path):
 
 
 def draw(T, out):
-    """Draws /linear/transition (a Group) into out."""
+    """Draws /linear/transition (a view of the reader) into out."""
     g, w, b = T.gamma, T.omega, T.bands_inf
     N, layout = int(T.N), str(T.layout)
     fig, ax = plt.subplots(1, 2, figsize=(12, 4.5))

@@ -7,7 +7,9 @@
   type (passes, kind 4: KC; internal resonances, kind 6: R), a leader line
   runs from the circle to the event's (E, omega), no two circles' boxes
   overlap in display coordinates (plot_check.py rule 6), and the events
-  table has its row: number, index on its branch, type, omega;
+  table has its row: number, index on its branch, type, the class's short
+  name from the file's codes ("B-B", not its whole meaning; none for a fold),
+  omega, within the table's width;
 - stability: the unstable stretches of each class the file holds are drawn
   (B-B, the paper's effectively stable, apart from B-E and E-E: its own
   colour, legend entry and rings on exactly the B-B orbits); none of a class
@@ -18,9 +20,9 @@
   the nonlinear optical band only when it is shaded; panel (d)'s names only
   band-edge branches of the file.
 Then it shows that it fails: the checked figures with a resonance's circle
-removed, with two circles moved onto each other, with a title naming a band
-that is not drawn, and with the B-B stretch in the B-E colour, are each
-rejected.
+removed, with a row giving a class's whole meaning, with two circles moved
+onto each other, with a title naming a band that is not drawn, and with the
+B-B stretch in the B-E colour, are each rejected.
 
 usage: fep_figure_check.py <source dir> <fep.h5> [<fep.h5> ...]"""
 import os
@@ -53,6 +55,18 @@ def require(cond, *what):
 KIND_TYPE = {1: "LP", 2: "BP", 3: "PD", 4: "KC", 6: "R"}
 
 
+def class_names(ds):
+    """{int: short name} of an instability dataset: its `codes` "v meaning; ..."
+    (format >= 1), each meaning without its parenthesised remark."""
+    text = ds.attrs["codes"]
+    text = text.decode() if isinstance(text, bytes) else str(text)
+    out = {}
+    for part in text.split("; "):
+        v, _, meaning = part.partition(" ")
+        out[int(v)] = meaning.split(" (")[0]
+    return out
+
+
 def truth(path):
     """What the figure must show, read with h5py (not through the plots' loader):
     [(branch, {energy, omega (x period_multiple), cls per orbit, events})]."""
@@ -66,10 +80,12 @@ def truth(path):
             events = []
             if "bifurcations" in g:
                 b = g["bifurcations"]
+                names = class_names(b["instability"])
                 for k in range(b["kind"].shape[0]):
                     kind, d = int(b["kind"][k]), int(b["direction"][k])
                     events.append(dict(index=k, kind=kind, energy=float(b["energy"][k]), omega=m * float(b["omega"][k]),
-                                       type=KIND_TYPE.get(kind) or ("HH+" if d > 0 else "HH-")))
+                                       type=KIND_TYPE.get(kind) or ("HH+" if d > 0 else "HH-"),
+                                       cls="" if kind == 1 else names[int(b["instability"][k])]))
             out.append((name, dict(energy=g["energy"][:], omega=m * g["omega"][:], cls=cls, events=events)))
     return out
 
@@ -110,6 +126,9 @@ def check_events(fig, file):
         require(lo <= w <= hi and ax.get_xlim()[0] <= e <= ax.get_xlim()[1], f"event {n} at ({e}, {w}) outside its panel")
         words = rows[n].split()
         require(words[0] == str(n) and words[1] == str(ev["index"]) and words[2] == ev["type"] and f"{w:.6f}" in words, f"row {n}: '{rows[n]}'", ev)
+        # the class column (after number, index and type: 3 + 1 + 4 + 1 + 7 + 1 characters), and the row within the table's width
+        require(rows[n][17:].split(f"{w:.6f}")[0].strip() == ev["cls"] and len(rows[n]) <= plot_fep.TABLE_CHARS,
+                f"row {n}: '{rows[n]}': class '{ev['cls']}' in {plot_fep.TABLE_CHARS} characters")
         if ev["kind"] in kinds:
             kinds[ev["kind"]] += 1
     drawn = {k: sum(1 for v in m.values() if v[2] == plot_fep.TYPES[t][0]) for k, t in ((4, "KC"), (6, "R"))}
@@ -189,6 +208,22 @@ def must_fail(what, fig, file, spoil, step):
     raise SystemExit(f"fep_figure_check: a figure with {what} passes")
 
 
+RESTORE = []  # (text artist, its text) of a spoiled row
+
+
+def long_class(fig):
+    """The first row with a class: that class's whole meaning, as the file's codes give it."""
+    meaning = {"B-B": "B-B (critical eigenvector in the bulk)", "B-E": "B-E (between bulk and edge)", "E-E": "E-E (at the interface edge)"}
+    for a in fig.axes:
+        for t in a.texts:
+            text = t.get_text()
+            for short, whole in meaning.items():
+                if (t.get_gid() or "").startswith("event_row ") and f" {short}  " in text:
+                    RESTORE.append((t, text))
+                    t.set_text(text.replace(f" {short}  ", f" {whole}", 1))
+                    return
+
+
 def recolour_bb(fig):
     be = [l for a in fig.axes for l in a.get_lines() if l.get_gid() in ("stretch 2", "stretch 3")]
     for a in fig.axes:
@@ -237,6 +272,9 @@ def main():
               f"({kinds[4]} passes, {kinds[6]} resonances); unstable classes drawn {held}, {bb} B-B orbits ringed; titles match")
     # the checks fail: the checked figures spoiled, one rule after another
     fig, file = next((f, t) for f, t, n, _ in checked if n >= 2)
+    must_fail("a class's whole meaning in the table", fig, file, long_class, check_events)
+    for t, text in RESTORE:  # the row as drawn again, for the next spoil
+        t.set_text(text)
     must_fail("a resonance not drawn", fig, file, drop_resonance, check_events)
     must_fail("two event circles on each other", fig, file, stack_two, lambda f, r: plot_check.check_numbered_markers(f))
     must_fail("a title naming a band that is not drawn", fig, file, title_band, check_titles)

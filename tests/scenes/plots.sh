@@ -10,7 +10,12 @@
 # histories of the sites asked for; the FEP of two small continuations (one
 # with located events: numbers, table, passes and resonances; one with B-B
 # orbits) against their files (fep_figure_check.py); the Floquet figure 2 x 2.
+# The scripts read through the Python reader of their checkout (python/nltopo),
+# found from this working directory without PYTHONPATH, and never through h5py.
 source "$(dirname "$0")/common.bash"
+if grep -n "h5py" "$SRC"/src/plots/*.py; then echo "src/plots reads HDF5 itself: read through nltopo_plot.open_run (python/nltopo)"; exit 1; fi
+env -u PYTHONPATH $PY -c "import os, sys; sys.path.insert(0, sys.argv[1] + '/src/plots'); import nltopo_plot, nltopo
+assert os.path.samefile(os.path.dirname(nltopo.__file__), sys.argv[1] + '/python/nltopo'), nltopo.__file__" "$SRC"
 $PY "$SRC/tests/scenes/plot_check_selftest.py" selftest
 $PY "$SRC/tests/scenes/plot_check.py" --help "$SRC"/src/plots/plot_*.py | tee help.txt   # every script's -h: exit 0 and its usage
 [ "$(grep -c ": exit 0, usage" help.txt)" -eq "$(ls "$SRC"/src/plots/plot_*.py | wc -l)" ]
