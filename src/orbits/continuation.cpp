@@ -492,11 +492,15 @@ PetscErrorCode BranchWalk::Report(const BranchPoint &p)
 }
 
 // The stop rules after point p, in order (*why: the stop reason, or null to go
-// on); the seventh, the step collapse, is Step's.
+// on); the last, the step collapse, is Step's.
 PetscErrorCode BranchWalk::StopReason(const BranchPoint &p, const char **why)
 {
   PetscFunctionBeginUser;
   *why = nullptr;
+  if (!std::isfinite(p.energy) || !std::isfinite(p.period) || !std::isfinite(p.mcr)) { // no solve gives one: a resume state that is not finite
+    *why = "the orbit is not finite (E, T or its MCR): the branch cannot go on from it";
+    PetscFunctionReturn(0);
+  }
   if (p.energy >= o_.energy_max) {
     *why = "reached -cont_energy_max";
     b_->reached_max = true;
@@ -531,7 +535,10 @@ PetscErrorCode BranchWalk::Step(bool *accepted)
   PetscCall(VecNorm(z_, NORM_2, &znorm_));
   bool rejected = false;
   *accepted = false;
-  while (!*accepted && !(ds_ < o_.ds_min * znorm_)) {
+  // The collapse test holds for a step that is not a positive finite number
+  // too (a NaN orbit has a NaN norm): halving it would never end.
+  auto collapsed = [&]() { return !(std::isfinite(ds_) && std::isfinite(znorm_) && ds_ > 0 && ds_ >= o_.ds_min * znorm_); };
+  while (!*accepted && !collapsed()) {
     PetscCall(Correct(accepted));
     if (*accepted) break;
     ds_ *= 0.5;

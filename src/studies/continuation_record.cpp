@@ -1,10 +1,12 @@
 #include "studies/continuation_record.hpp"
+#include "core/errors.hpp"
 #include "core/gather.hpp"
 #include "io/input.hpp"
 #include "io/output.hpp"
 #include "io/schema.hpp"
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 namespace nltopo {
@@ -186,6 +188,71 @@ PetscErrorCode WriteEvents(PetscViewer v, const BranchRecord &r, PetscInt n2)
   PetscFunctionReturn(0);
 }
 
+// The first value of x that a stored resume state may not hold (x.size() if
+// none): anything not finite, except NaN in a Floquet column (nan_ok), where it
+// means "not computed" (outputs.md). Counts (ints) must also fit an int.
+size_t FirstInvalid(const std::vector<PetscReal> &x, bool nan_ok, bool count)
+{
+  for (size_t i = 0; i < x.size(); i++) {
+    if (nan_ok && std::isnan(x[i])) continue;
+    if (!std::isfinite(x[i]) || (count && std::abs(x[i]) > (PetscReal)PETSC_MAX_INT)) return i;
+  }
+  return x.size();
+}
+
+// -cont_resume, rank 0: every dataset of /continuation/<label>/ (g) that the
+// schema's fields bind, into rec. The branch's columns must be there; the step
+// state and Floquet columns may not (files of older versions, or written
+// without -floquet). A stored value that no run writes is refused in one
+// line: a non-finite orbit, energy, period or step would send the
+// continuation round without end (docs/errors.md "Resume rules").
+PetscErrorCode ReadBranchColumns(const std::string &file, const std::string &g, const std::vector<Bound> &fields, PetscInt n2, BranchRecord *rec)
+{
+  Branch &rb = rec->b;
+  bool has_tangent = false, has_ds = false;
+  PetscFunctionBeginUser;
+  for (const auto &[fd, c, floquet] : fields) {
+    if (fd->kind != FieldKind::Dataset) continue;
+    const std::string path = g + fd->name;
+    if ((floquet || (c->flags & kStepState)) && !HasDataset(file, path.c_str())) continue;
+    const Cells d = DataOf(*c, *rec);
+    if (d.ints && fd->type == FieldType::Int) {
+      PetscCall(ReadInts(file, path.c_str(), d.ints));
+      continue;
+    }
+    std::vector<PetscReal> x;
+    PetscCall(ReadDoubles(file, path.c_str(), &x));
+    const size_t bad = FirstInvalid(x, floquet, d.ints != nullptr);
+    char v[32];
+    if (bad < x.size()) std::snprintf(v, sizeof v, "%g", (double)x[bad]); // (PETSc's %g would print "nan.")
+    PetscCheck(bad == x.size(), PETSC_COMM_SELF, PETSC_ERR_USER,
+               "-cont_resume %s: %s holds %s (value %zu of %zu), which no run writes: %s (a damaged file?)", file.c_str(), path.c_str(), v, bad + 1,
+               x.size(), floquet ? "Floquet values are finite, or NaN where not computed" : "a resume state must be finite");
+    has_tangent |= d.reals == &rb.next_tangent, has_ds |= d.scalar == &rb.next_ds;
+    if (d.reals) *d.reals = std::move(x);
+    else if (d.ints) d.ints->assign(x.begin(), x.end());
+    else {
+      PetscCheck(x.size() == 1 && x[0] > 0, PETSC_COMM_SELF, PETSC_ERR_USER,
+                 "-cont_resume %s: %s must be one positive step length (a damaged file?)", file.c_str(), path.c_str());
+      *d.scalar = x[0];
+    }
+  }
+  for (size_t i = 0; i < rb.period.size(); i++) {
+    char v[32];
+    std::snprintf(v, sizeof v, "%g", (double)rb.period[i]);
+    PetscCheck(rb.period[i] > 0, PETSC_COMM_SELF, PETSC_ERR_USER, "-cont_resume %s: %speriod holds %s at point %zu, not a period (a damaged file?)", file.c_str(),
+               g.c_str(), v, i);
+  }
+  // The step state: both (the exact resume) or neither (files written before them: the re-solving resume).
+  PetscCheck(has_tangent == has_ds, PETSC_COMM_SELF, PETSC_ERR_USER, "-cont_resume %s: %s has %s but not %s (a damaged file?)", file.c_str(),
+             g.c_str(), has_tangent ? "next_tangent" : "next_ds", has_tangent ? "next_ds" : "next_tangent");
+  // (orbits of another length: ReadResume names them)
+  PetscCheck(!has_tangent || rb.next_tangent.size() == (size_t)n2 + 2 || rb.z0.size() != rb.energy.size() * n2, PETSC_COMM_SELF, PETSC_ERR_USER,
+             "-cont_resume %s: %snext_tangent has %zu values, not 2N + 2 = %" PetscInt_FMT " (same -lattice_cells?)", file.c_str(), g.c_str(),
+             rb.next_tangent.size(), n2 + 2);
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
 std::vector<const char *> ContinuationVariants(FloquetKind fk)
@@ -262,29 +329,12 @@ PetscErrorCode ReadResume(MPI_Comm comm, const std::string &file, const std::str
   int route_change = 0; // -floquet_mf: 1 the file's route was matrix-free and this run's is dense, 2 the reverse
   Branch &rb = rec.b;
   FloquetColumns &rf = rec.f;
+  // Rank 0 reads and checks; its error (a dataset missing or not finite) fails every rank with its line.
+  PetscErrorCode rerr = 0;
+  char rmsg[1024] = "";
+  if (rank == 0) PetscCall(CaptureError([&]() { return ReadBranchColumns(file, g, fields, n2, &rec); }, &rerr, rmsg, sizeof(rmsg)));
+  PetscCall(FailTogether(comm, rerr, rmsg));
   if (rank == 0) {
-    // The branch's columns must be there; the step state and Floquet columns
-    // may not (files of older versions, or written without -floquet).
-    rb.next_ds = NAN;
-    for (const auto &[fd, c, floquet] : fields) {
-      if (fd->kind != FieldKind::Dataset) continue;
-      if ((floquet || (c->flags & kStepState)) && !has(fd->name)) continue;
-      const Cells d = DataOf(*c, rec);
-      const std::string path = g + fd->name;
-      if (d.ints && fd->type == FieldType::Int) {
-        PetscCall(ReadInts(file, path.c_str(), d.ints));
-        continue;
-      }
-      std::vector<PetscReal> x;
-      PetscCall(ReadDoubles(file, path.c_str(), &x));
-      if (d.reals) *d.reals = std::move(x);
-      else if (d.ints) d.ints->assign(x.begin(), x.end());
-      else *d.scalar = x.size() == 1 ? x[0] : NAN;
-    }
-    if (rb.next_tangent.size() != (size_t)n2 + 2 || !std::isfinite(rb.next_ds)) { // absent or not of this lattice: the re-solving resume
-      rb.next_tangent.clear();
-      rb.next_ds = 0;
-    }
     const size_t np = rb.energy.size();
     rowlen = rb.z0.size() == np * (size_t)n2 ? n2 : np == 0 ? -1 : (PetscInt)(rb.z0.size() / np);
     // Floquet columns of another -floquet_mf_nev or route (or none) are not comparable: NaN / 0 for every stored orbit.

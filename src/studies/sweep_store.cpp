@@ -1,6 +1,9 @@
 #include "studies/sweep_store.hpp"
 #include "io/input.hpp"
 #include "io/schema.hpp"
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <dirent.h>
@@ -9,9 +12,17 @@ namespace nltopo {
 
 namespace {
 
-const SweepRealField kRealMembers[] = {{"mcr", &SweepPoint::mcr},           {"t_off", &SweepPoint::t_off},         {"kcorr", &SweepPoint::kcorr},
-                                       {"nl_ratio", &SweepPoint::nl_ratio}, {"amplitude", &SweepPoint::amplitude}, {"energy_final", &SweepPoint::energy_final},
-                                       {"seconds", &SweepPoint::seconds},   {"mcr_error", &SweepPoint::mcr_error}, {"mcr_spread", &SweepPoint::mcr_spread}};
+// (NaN: a failed point's numbers are NaN, sweep_study.cpp; kcorr without
+// -sweep_kcorr or too short a record; mcr_error without the mode or where unpredictable)
+const SweepRealField kRealMembers[] = {{"mcr", &SweepPoint::mcr, NanAllowed::IfFailed},
+                                       {"t_off", &SweepPoint::t_off, NanAllowed::IfFailed},
+                                       {"kcorr", &SweepPoint::kcorr, NanAllowed::Always},
+                                       {"nl_ratio", &SweepPoint::nl_ratio, NanAllowed::IfFailed},
+                                       {"amplitude", &SweepPoint::amplitude, NanAllowed::IfFailed},
+                                       {"energy_final", &SweepPoint::energy_final, NanAllowed::IfFailed},
+                                       {"seconds", &SweepPoint::seconds, NanAllowed::Never},
+                                       {"mcr_error", &SweepPoint::mcr_error, NanAllowed::Always},
+                                       {"mcr_spread", &SweepPoint::mcr_spread, NanAllowed::Never}};
 const SweepIntField kIntMembers[] = {{"reached", &SweepPoint::reached}, {"rescalings", &SweepPoint::rescalings}, {"rhs_evals", &SweepPoint::rhs},
                                      {"steps", &SweepPoint::steps},     {"failed", &SweepPoint::failed},         {"predictable", &SweepPoint::predictable},
                                      {"mcr_runs", &SweepPoint::runs}};
@@ -64,6 +75,24 @@ std::vector<std::string> SweepFieldsUnbound()
   return bad;
 }
 
+bool SweepPointValid(const SweepPoint &p, std::string *what)
+{
+  char buf[96];
+  if (p.failed != 0 && p.failed != 1) {
+    std::snprintf(buf, sizeof buf, "failed = %ld", (long)p.failed);
+    *what = buf;
+    return false;
+  }
+  for (const SweepRealField &f : SweepRealFields()) {
+    const PetscReal x = p.*f.field;
+    if (std::isfinite(x) || (std::isnan(x) && (f.nan == NanAllowed::Always || (f.nan == NanAllowed::IfFailed && p.failed)))) continue;
+    std::snprintf(buf, sizeof buf, "%s = %g%s", f.name, (double)x, std::isnan(x) && !p.failed ? " at a point not failed" : "");
+    *what = buf;
+    return false;
+  }
+  return true;
+}
+
 PetscInt SweepGrid::Done() const
 {
   PetscInt n = 0;
@@ -86,6 +115,9 @@ PetscErrorCode SweepGrid::Load(const std::string &path)
   PetscFunctionBeginUser;
   PetscCall(ReadDoubles(path, "/sweep/omega", &w));
   PetscCall(ReadDoubles(path, "/sweep/energy", &e));
+  for (const auto &[axis, x] : {std::make_pair("omega", &w), std::make_pair("energy", &e)})
+    PetscCheck(std::all_of(x->begin(), x->end(), [](PetscReal a) { return std::isfinite(a); }), PETSC_COMM_SELF, PETSC_ERR_USER,
+               "-sweep_resume: /sweep/%s in %s holds a value that is not finite, which no sweep writes (a damaged file?)", axis, path.c_str());
   PetscCheck(w == omega && e == energy, PETSC_COMM_SELF, PETSC_ERR_USER,
              "-sweep_resume: the grid stored in %s (%zu x %zu) differs from the -sweep_* axes (%zu x %zu)", path.c_str(), e.size(), w.size(), energy.size(),
              omega.size());
@@ -107,6 +139,17 @@ PetscErrorCode SweepGrid::Load(const std::string &path)
   for (const auto &f : SweepIntFields()) PetscCall(ints(f.name, f.field));
   PetscCall(ReadInts(path, "/sweep/done", &done));
   PetscCheck(done.size() == Size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-sweep_resume: /sweep/done in %s has the wrong size", path.c_str());
+  // A point done holds what a sweep writes; one not done is computed again.
+  const size_t no = omega.size();
+  for (size_t i = 0; i < Size(); i++) {
+    std::string what;
+    char at[96]; // (PETSc's %g would print 1 as "1.")
+    std::snprintf(at, sizeof at, "E* = %g, omega = %g", (double)energy[i / no], (double)omega[i % no]);
+    PetscCheck(done[i] == 0 || done[i] == 1, PETSC_COMM_SELF, PETSC_ERR_USER,
+               "-sweep_resume: /sweep/done in %s holds %" PetscInt_FMT " at %s, not 0 or 1 (a damaged file?)", path.c_str(), done[i], at);
+    PetscCheck(!done[i] || SweepPointValid(pts[i], &what), PETSC_COMM_SELF, PETSC_ERR_USER,
+               "-sweep_resume: %s holds %s at %s, which no sweep writes (a damaged file?)", path.c_str(), what.c_str(), at);
+  }
   PetscFunctionReturn(0);
 }
 
@@ -134,7 +177,7 @@ PetscErrorCode SweepGrid::MergeJournals(const std::string &path, PetscInt *lines
     FILE *f = std::fopen(name.c_str(), "r");
     if (!f) continue;
     char buf[2048];
-    while (std::fgets(buf, sizeof(buf), f)) {
+    for (long line = 1; std::fgets(buf, sizeof(buf), f); line++) {
       if (!std::strchr(buf, '\n')) break; // a line cut by a kill: ignored, the point is recomputed
       char *p = buf, *end;
       const long idx = std::strtol(p, &end, 10);
@@ -153,6 +196,13 @@ PetscErrorCode SweepGrid::MergeJournals(const std::string &path, PetscInt *lines
         ok = end != p;
       }
       if (!ok) continue;
+      std::string what;
+      if (!SweepPointValid(pt, &what)) {
+        std::fclose(f);
+        SETERRQ(PETSC_COMM_SELF, PETSC_ERR_USER,
+                "sweep journal %s, line %ld: %s, which no sweep writes (a damaged journal?): remove it to compute its points again", name.c_str(), line,
+                what.c_str());
+      }
       pts[idx] = pt;
       done[idx] = 1;
       (*lines)++;

@@ -30,9 +30,13 @@ struct SweepPoint {
 // The per-point (ne x no) datasets of the /sweep schema (sweep_study.cpp) but
 // done, in its order, and the SweepPoint fields behind them: what the sweep
 // study writes, SweepGrid::Load reads back and a journal line holds.
+// Where a finished point may hold NaN (a sweep never writes inf): never, only
+// as a failed point's value (failed = 1), or always (no 0-1 test, no estimate).
+enum class NanAllowed { Never, IfFailed, Always };
 struct SweepRealField {
   const char *name;
   PetscReal SweepPoint::*field;
+  NanAllowed nan = NanAllowed::Never;
 };
 struct SweepIntField {
   const char *name;
@@ -56,6 +60,11 @@ struct SweepGrid {
   // Merges every <path>.journal.* into the grid; *lines = points read.
   PetscErrorCode MergeJournals(const std::string &path, PetscInt *lines);
 };
+
+// Whether p, a finished point, holds only values a sweep writes (NaN where
+// SweepRealField allows it; 0 or 1 in failed); else false and *what names the
+// first other value ("mcr = nan"). A resume refuses the file or journal.
+bool SweepPointValid(const SweepPoint &p, std::string *what);
 
 // Names of the journal files of an output path.
 std::vector<std::string> JournalFiles(const std::string &path);

@@ -269,7 +269,7 @@ PetscErrorCode RunWorkPrecision(const Lattice &lat, ToneBurst *burst, const Work
     if (have_prev) {
       PetscCall(Errors(prev, ref, &res->reference_change));
       PetscReal worst = 0;
-      for (PetscReal c : res->reference_change) worst = std::max(worst, c);
+      for (PetscReal c : res->reference_change) worst = std::isnan(c) || c > worst ? c : worst; // a NaN change never agrees (std::max would drop it)
       PetscCall(PetscInfo(NULL, "work-precision reference at %s: largest change %g\n", tol_s, (double)worst));
       if (worst <= o.reference_agreement) {
         res->reference_converged = true;

@@ -144,7 +144,7 @@ PetscErrorCode RunWorkPrecisionShooting(MPI_Comm comm, const WorkPrecisionOption
       res->reference_change[0] = Rel(prev.omega, ref.omega);
       res->reference_change[2] = Rel(prev.max_modulus, ref.max_modulus);
       res->reference_change[3] = std::abs(prev.det - ref.det);
-      if (std::max(res->reference_change[0], res->reference_change[2]) <= o.reference_agreement) {
+      if (res->reference_change[0] <= o.reference_agreement && res->reference_change[2] <= o.reference_agreement) { // (false for NaN)
         res->reference_converged = true;
         break;
       }

@@ -25,7 +25,11 @@ study reads), so an option added to nltopo without an entry here fails the
 test (add it with its type and range).
 
 Usage: fuzz.py NLTOPO WORKDIR [--cases N] [--seed S] [--jobs J] [--only CASE]
-                               [--timeout SEC] [--mpiexec MPIEXEC]
+                               [--timeout SEC] [--mpiexec MPIEXEC] [--resume-cases N]
+
+Then --resume-cases cases (default 16) of corrupted resume states
+(corrupted_resume_cases: NaN and inf in the stored arrays of a continuation
+checkpoint, a sweep and a sweep journal).
 A failure prints its case number and the full command; "--only CASE" (same
 --seed) reruns just that case.
 """
@@ -343,6 +347,125 @@ def run_case(case, args, workroot):
                 first=lines[0] if lines else "")
 
 
+# Issue 34, class 7: corrupted resume states. A continuation checkpoint and a
+# sweep (complete, from the base scenes) get one stored value set to NaN, inf
+# or -inf (a random array and position: every dataset of the branch, the
+# sweep's per-point datasets and axes, or a line of a sweep journal left by a
+# killed run), and the run resumes from it. It must end (no hang), refuse in
+# one line without an output and leave the resumed file as it was, or
+# complete; inf and -inf, which no run writes, must be refused.
+RESUME_BASE = {
+    "continuation": BASE["continuation"] + ["-floquet"],
+    "sweep": BASE["sweep"],
+}
+
+
+def sweep_point_fields(nltopo):
+    """The per-point (ne x no) fields of /sweep in the journal's order (reals, then ints; not done), from
+    the binary's output schema (-output_schema md)."""
+    md = subprocess.run([nltopo, "-output_schema", "md"], stdout=subprocess.PIPE, check=True).stdout.decode()
+    part = md.split("### `/sweep`", 1)[1].split("###", 1)[0]
+    rows = re.findall(r"^\| `([a-z_]+)` \| dataset \| (real|int) \| ne x no \|", part, re.M)
+    return [n for n, t in rows if t == "real"], [n for n, t in rows if t == "int" and n != "done"]
+
+
+def corrupted_resume_cases(args, n):
+    """n cases of the family above (seeded by --seed), run on the thread pool; returns the results."""
+    import h5py
+    import numpy as np
+    root = os.path.join(args.work, "resume")
+    shutil.rmtree(root, ignore_errors=True)
+    os.makedirs(root)
+    for study, opts in RESUME_BASE.items():
+        subprocess.run([args.nltopo, "-study", study] + opts + ["-output", study + ".h5"], cwd=root, stdout=subprocess.DEVNULL, check=True)
+    reals, ints = sweep_point_fields(args.nltopo)
+    with h5py.File(os.path.join(root, "continuation.h5"), "r") as f:
+        branch = sorted(k for k, d in f["continuation/insulated"].items() if isinstance(d, h5py.Dataset) and d.size > 0)
+    cases = []
+    for i in range(n):
+        rng = random.Random("%d:resume:%d" % (args.seed, i))
+        kind = rng.choice(["continuation", "sweep", "journal"])
+        name = rng.choice(branch if kind == "continuation" else reals + (["omega", "energy"] if kind == "sweep" else []))
+        cases.append(dict(i=i, kind=kind, name=name, value=rng.choice(["nan", "inf", "-inf"]), ranks=1 + i % 2, pick=rng.random()))
+
+    def one(c):
+        d = os.path.join(root, "r%03d" % c["i"])
+        shutil.rmtree(d, ignore_errors=True)
+        os.makedirs(d)
+        study = "continuation" if c["kind"] == "continuation" else "sweep"
+        target = os.path.join(d, "in.h5")
+        shutil.copyfile(os.path.join(root, study + ".h5"), target)
+        v = float(c["value"])
+        with h5py.File(target, "r+") as f:
+            if c["kind"] == "journal":  # point k taken out of the file (done = 0) and journaled with the value
+                g = f["sweep"]
+                k = int(c["pick"] * g["done"].size)
+                cell = np.unravel_index(k, g["done"].shape)
+                text = lambda x: x.hex() if np.isfinite(x) else str(x)  # noqa: E731
+                line = [str(k)] + [text(v if r == c["name"] else float(g[r][cell])) for r in reals] + [str(int(g[x][cell])) for x in ints]
+                done = g["done"][...]
+                done[cell] = 0
+                g["done"][...] = done
+                with open(target + ".journal.0", "w") as j:
+                    j.write(" ".join(line) + "\n")
+            else:
+                ds = f[("continuation/insulated/" if study == "continuation" else "sweep/") + c["name"]]
+                a = ds[...]
+                a.flat[int(c["pick"] * a.size)] = v
+                ds[...] = a
+        before = open(target, "rb").read()
+        cmd = ["-study", study] + RESUME_BASE[study] + (["-cont_max_points", "5", "-cont_resume", "in.h5", "-output", "out.h5"]
+                                                         if study == "continuation" else ["-sweep_resume", "-output", "in.h5"])
+        full = ([args.mpiexec, "-q", "-n", "2"] if c["ranks"] == 2 else []) + [args.nltopo] + cmd
+        p = subprocess.Popen(full, cwd=d, stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True)
+        try:
+            so, se = p.communicate(timeout=args.timeout)
+            rc = p.returncode
+        except subprocess.TimeoutExpired:
+            os.killpg(p.pid, signal.SIGKILL)
+            so, se = p.communicate()
+            rc = None
+        se = se.decode(errors="replace")
+        lines = [l for l in se.splitlines() if l.strip()]
+        out = os.path.join(d, "out.h5" if study == "continuation" else "in.h5")
+        problems = []
+        if rc is None:
+            problems.append("hang: no exit within %g s" % args.timeout)
+        elif rc < 0 or rc >= 128 or CRASH.search(se):
+            problems.append("crash (exit %s)" % rc)
+        elif rc == 0:
+            if c["value"] != "nan":
+                problems.append("accepted %s, which no run writes" % c["value"])
+            with h5py.File(out, "r") as f:
+                if int(f.attrs.get("complete", -1)) != 1:
+                    problems.append("exit 0 without a complete output")
+        else:
+            if len(lines) != 1 or not lines[0].startswith("nltopo: error: "):
+                problems.append("not a one-line 'nltopo: error:' message (%d lines)" % len(lines))
+            if study == "continuation" and os.path.exists(out):
+                problems.append("refused, but out.h5 was written")
+            if open(target, "rb").read() != before:
+                problems.append("refused, but the resumed file was changed")
+        if any(x.startswith("out.h5.tmp") or x.startswith("in.h5.tmp") for x in os.listdir(d)):
+            problems.append("temporary left")
+        if not problems:
+            shutil.rmtree(d, ignore_errors=True)
+        return dict(case=c, problems=problems, rc=rc, first=lines[0] if lines else "", cmd=full, dir=d)
+
+    with ThreadPoolExecutor(max_workers=max(1, args.jobs)) as ex:
+        results = list(ex.map(one, cases))
+    for r in results:
+        c = r["case"]
+        if args.verbose or r["problems"]:
+            print("resume case %d np%d %s %s = %s: exit %s | %s" % (c["i"], c["ranks"], c["kind"], c["name"], c["value"], r["rc"], r["first"]))
+        if r["problems"]:
+            print("FAIL resume case %d (--seed %d): %s\n  in %s: %s" % (c["i"], args.seed, "; ".join(r["problems"]), r["dir"],
+                                                                      " ".join(shlex.quote(x) for x in r["cmd"])))
+    n_bad = sum(1 for r in results if r["problems"])
+    print("fuzz: %d corrupted resume states (%d refused with one line), %d failed" % (len(results), sum(1 for r in results if r["rc"] not in (0, None)), n_bad))
+    return n_bad
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("nltopo")
@@ -354,6 +477,7 @@ def main():
     ap.add_argument("--timeout", type=float, default=60)
     ap.add_argument("--mpiexec", default=os.environ.get("MPIEXEC", "mpiexec"))
     ap.add_argument("--verbose", action="store_true")
+    ap.add_argument("--resume-cases", type=int, default=16, help="cases of the corrupted-resume-state family (0: none)")
     args = ap.parse_args()
     args.nltopo = os.path.abspath(args.nltopo)
     os.makedirs(args.work, exist_ok=True)
@@ -398,7 +522,8 @@ def main():
     n_err = sum(1 for r in results if r["verdict"] == "error")
     print("fuzz: %d cases (%d completed, %d refused with one line), seed %d, %.0f s" % (len(results), n_ok, n_err, args.seed, time.time() - t0))
     print("fuzz: %d passed, %d failed" % (len(results) - len(failed), len(failed)))
-    return 1 if failed else 0
+    resume_failed = corrupted_resume_cases(args, args.resume_cases) if args.only is None and args.resume_cases > 0 else 0
+    return 1 if failed or resume_failed else 0
 
 
 if __name__ == "__main__":

@@ -69,4 +69,61 @@ for np in 1 2; do
   ok -study linear -output plain$np.h5
   [ "$(study_of plain$np.h5)" = linear ]
 done
+# Issue 34, class 7: a resume state that is not finite (NaN or inf in any
+# stored array of a continuation checkpoint, a sweep file or a sweep journal)
+# is refused in one line, before any work, and the file is left as it was;
+# NaN where a run writes it (a Floquet multiplier not computed, a sweep's kcorr
+# or mcr_error) is accepted. Every array at 1 rank, a few at 2 ranks (the
+# refusal is rank 0's read, made collective).
+CO=(-study continuation -lattice_layout interface -lattice_cells 5 -lattice_cubic 0.5 -cont_energy_max 1e-4 -cont_max_points 3 -cont_verbose 0)
+SW=(-study sweep -sweep_omega_n 2 -sweep_energy_n 2 -sweep_energy_min 1e-3 -sweep_energy_max 1e-2 -sim_t_final 300)
+timeout "$LIMIT" "$NLTOPO" "${CO[@]}" -floquet -output cf.h5 > /dev/null
+timeout "$LIMIT" "$NLTOPO" "${SW[@]}" -output sf.h5 > /dev/null
+ARRAYS="z0 energy omega period mcr shape_corr beta newton_its krylov_its next_tangent next_ds multipliers_re multipliers_im max_modulus det_error"
+FIELDS="mcr t_off nl_ratio amplitude energy_final seconds mcr_spread kcorr mcr_error"
+# every corrupted copy at once (one Python start): cf_<array>_<value>.h5, sf_<field>_<value>.h5, jbad_<field>_<value>.h5 (+ .journal.0)
+$PY "$CHECKS/resume_safety.py" corrupt cf.h5 continuation/insulated $(for a in $ARRAYS; do echo "$a=nan $a=inf $a=-inf"; done) period=-1
+$PY "$CHECKS/resume_safety.py" corrupt sf.h5 sweep $(for f in $FIELDS; do echo "$f=nan $f=inf $f=-inf"; done)
+$PY "$CHECKS/resume_safety.py" journal sf.h5 $(for f in $FIELDS; do echo "$f=nan $f=inf $f=-inf"; done)
+for np in 1 2; do
+  if [ "$np" -eq 1 ]; then RUN=(timeout "$LIMIT" "$NLTOPO"); else RUN=(timeout "$LIMIT" "$MPIEXEC" -q -n 2 "$NLTOPO"); fi
+  refused_corrupt() { # refused_corrupt <pattern> <file> nltopo args...: one line, nothing written, the file unchanged
+    local pattern=$1 keep=$2 rc=0
+    shift 2
+    cp "$keep" keep.copy
+    rm -f out.h5
+    "${RUN[@]}" "$@" > no.txt 2> no.err || rc=$?
+    [ "$rc" -ne 0 ] && [ "$rc" -ne 124 ] || { cat no.err; echo "FAILED (np $np, exit $rc): $*"; exit 1; }
+    [ "$(grep -c . no.err)" -eq 1 ] && grep -q -- "$pattern" no.err || { cat no.err; echo "FAILED (np $np): not one line naming '$pattern'"; exit 1; }
+    cmp -s "$keep" keep.copy || { echo "FAILED (np $np): $keep was changed"; exit 1; }
+    [ ! -e out.h5 ] && ! ls ./*.tmp.* > /dev/null 2>&1 || { echo "FAILED (np $np): output or temporary left"; exit 1; }
+  }
+  if [ "$np" -eq 1 ]; then VALUES="nan inf"; else ARRAYS="z0 next_tangent" VALUES="nan -inf" FIELDS="kcorr"; fi
+  for a in $ARRAYS; do
+    for v in $VALUES; do
+      case $a in multipliers_* | max_modulus | det_error) [ "$v" != nan ] || continue ;; esac # NaN: not computed, accepted (below)
+      refused_corrupt "-cont_resume cf_${a}_$v.h5: /continuation/insulated/$a holds $v" cf_${a}_$v.h5 \
+        "${CO[@]}" -floquet -cont_max_points 5 -cont_resume cf_${a}_$v.h5 -output out.h5
+    done
+  done
+  ok "${CO[@]}" -floquet -cont_max_points 5 -cont_resume cf_multipliers_re_nan.h5 -output out.h5
+  refused_corrupt "period holds -1 at point 2, not a period" cf_period_-1.h5 "${CO[@]}" -floquet -cont_max_points 5 -cont_resume cf_period_-1.h5 -output out.h5
+  for f in $FIELDS; do
+    for v in $VALUES; do
+      case $f in kcorr | mcr_error) [ "$v" != nan ] && what="$f = $v" || what= ;; *) what="$f = $v" ;; esac
+      if [ -n "$what" ]; then
+        refused_corrupt "-sweep_resume: sf_${f}_$v.h5 holds $what" sf_${f}_$v.h5 "${SW[@]}" -sweep_resume -output sf_${f}_$v.h5
+        refused_corrupt "sweep journal jbad_${f}_$v.h5.journal.0, line 1: $what" jbad_${f}_$v.h5 "${SW[@]}" -sweep_resume -output jbad_${f}_$v.h5
+      else # NaN where a sweep writes it
+        cp sf_${f}_$v.h5 b.h5
+        ok "${SW[@]}" -sweep_resume -output b.h5
+        cp jbad_${f}_$v.h5 b.h5
+        cp jbad_${f}_$v.h5.journal.0 b.h5.journal.0
+        ok "${SW[@]}" -sweep_resume -output b.h5
+        grep -q "4 of 4 points done (1 from journals)" ok.txt
+      fi
+    done
+  done
+  echo "ok (np $np): corrupted resume states refused in one line"
+done
 echo "resume safety scene OK"

@@ -6,6 +6,7 @@
 #include "nnm_fixture.hpp"
 #include "orbits/continuation.hpp"
 #include <cmath>
+#include <limits>
 
 using namespace nltopo;
 using namespace nltopo::test;
@@ -148,4 +149,34 @@ TEST_CASE("a branch with energy folds is followed through them, and every orbit 
   REQUIRE(worst < 1e-9);
   REQUIRE(worst0 < 1e-4); // bounded by the integration error (-nnm_steps_per_period 128)
   REQUIRE(worst_e < 1e-12);
+}
+
+TEST_CASE("a resume state that is not finite stops the branch, never loops (issue 34, class 7)", "[continuation]")
+{
+  // The step-collapse test must fire on a NaN or inf norm or step: before, a
+  // NaN orbit halved "ds 0 -> 0" without end. (A -cont_resume file holding
+  // one is refused before this: studies/continuation_record.cpp.)
+  LatticeParams p;
+  p.cells = 1;
+  Fixture f;
+  PCHK(f.Setup(p));
+  ContinuationOptions o = Quiet();
+  o.max_points = 3;
+  Branch b;
+  PCHK(f.Continue(0, o, &b));
+  REQUIRE(b.energy.size() == 3);
+  o.max_points = 6;
+  const PetscReal nan = std::numeric_limits<PetscReal>::quiet_NaN(), inf = std::numeric_limits<PetscReal>::infinity();
+  for (int which = 0; which < 5; which++) {
+    Branch r = b, out;
+    if (which == 0 && Rank() == 0) r.z0.back() = nan; // the last orbit (rank 0 holds the rows)
+    if (which == 1 && Rank() == 0) r.z0.back() = inf;
+    if (which == 2) r.next_ds = nan;
+    if (which == 3) r.next_ds = 0; // (a zero orbit would also have given 0 >= ds_min * 0)
+    if (which == 4 && Rank() == 0) r.next_tangent.back() = nan;
+    INFO("case " << which);
+    PCHK(ContinueBranch(f.shoot, nullptr, 0, o, "corrupt", &out, nullptr, &r));
+    REQUIRE(out.energy.size() == 3); // no new point
+    REQUIRE((out.stop_reason.find("step collapse") == 0 || out.stop_reason.find("the orbit is not finite") == 0));
+  }
 }
