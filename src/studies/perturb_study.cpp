@@ -195,13 +195,19 @@ PetscErrorCode Realisation(const PerturbOptions &po, const LatticeParams &base, 
 }
 
 // Kind k's datasets from the items' rows, mcr (nd x ne x ns) and insulated
-// omega (nd x ns), and its table: MCR mean +- std per level and energy.
-PetscErrorCode Tabulate(MPI_Comm comm, const PerturbOptions &po, PetscReal khat, const std::vector<PetscReal> &res, PetscInt k, std::vector<PetscReal> *mcr,
-                        std::vector<PetscReal> *win)
+// omega (nd x ns), and its table: MCR mean +- std per level and energy over
+// the realisations done (ran: per item, 0 not run; an interrupted study's
+// table says how many a row has, and a row with none has no numbers).
+PetscErrorCode Tabulate(MPI_Comm comm, const PerturbOptions &po, PetscReal khat, const std::vector<PetscReal> &res, const std::vector<PetscInt> &ran, PetscInt k,
+                        std::vector<PetscReal> *mcr, std::vector<PetscReal> *win)
 {
   const PetscInt nd = (PetscInt)po.delta.size(), ne = (PetscInt)po.energy.size(), ns = po.ensemble;
+  const PetscInt missing = (PetscInt)std::count(ran.begin() + k * nd * ns, ran.begin() + (k + 1) * nd * ns, 0);
   PetscFunctionBeginUser;
   mcr->assign((size_t)nd * ne * ns, 0), win->assign((size_t)nd * ns, 0);
+  if (missing)
+    PetscCall(PetscPrintf(comm, "  %s: partial result: %" PetscInt_FMT " of %" PetscInt_FMT " realisations not done (interrupted); each row covers those it has\n",
+                          PerturbationName(po.kinds[k]), missing, nd * ns));
   PetscCall(PetscPrintf(comm, "  %s: MCR mean +- std over %" PetscInt_FMT " realisations (rows delta, columns E*), and the linear insulated omega\n",
                         PerturbationName(po.kinds[k]), ns));
   PetscCall(PetscPrintf(comm, "    delta \\ E*"));
@@ -209,12 +215,15 @@ PetscErrorCode Tabulate(MPI_Comm comm, const PerturbOptions &po, PetscReal khat,
   PetscCall(PetscPrintf(comm, "   omega_ins mean (max |dev from sqrt 3|)\n"));
   for (PetscInt d = 0; d < nd; d++) {
     PetscReal wsum = 0, wdev = 0;
+    PetscInt nrun = 0;
     for (PetscInt r = 0; r < ns; r++) {
       const PetscReal *row = &res[(size_t)((k * nd + d) * ns + r) * (1 + ne)];
       (*win)[d * ns + r] = row[0];
+      for (PetscInt e = 0; e < ne; e++) (*mcr)[((size_t)d * ne + e) * ns + r] = row[1 + e];
+      if (!ran[(k * nd + d) * ns + r]) continue; // not run: NaN, in no statistic
+      nrun++;
       wsum += row[0];
       wdev = std::max(wdev, (PetscReal)std::abs(row[0] - std::sqrt(khat)));
-      for (PetscInt e = 0; e < ne; e++) (*mcr)[((size_t)d * ne + e) * ns + r] = row[1 + e];
     }
     PetscCall(PetscPrintf(comm, "    %9.4g ", (double)po.delta[d]));
     for (PetscInt e = 0; e < ne; e++) {
@@ -225,9 +234,12 @@ PetscErrorCode Tabulate(MPI_Comm comm, const PerturbOptions &po, PetscReal khat,
         if (std::isfinite(x)) s += x, s2 += x * x, c++;
       }
       const PetscReal mean = c ? s / c : NAN, sd = c > 1 ? std::sqrt(std::max<PetscReal>(0, (s2 - c * mean * mean) / (c - 1))) : 0;
-      PetscCall(PetscPrintf(comm, " %6.3f+-%5.3f", (double)mean, (double)sd));
+      if (c) PetscCall(PetscPrintf(comm, " %6.3f+-%5.3f", (double)mean, (double)sd));
+      else PetscCall(PetscPrintf(comm, " %13s", nrun ? "not reached" : "not run")); // no number from runs that gave none
     }
-    PetscCall(PetscPrintf(comm, "   %.10f (%.2e)\n", (double)(wsum / ns), (double)wdev));
+    PetscCall(PetscPrintf(comm, "   %.10f (%.2e)", (double)(nrun ? wsum / nrun : NAN), (double)(nrun ? wdev : NAN)));
+    if (nrun < ns) PetscCall(PetscPrintf(comm, "   (%" PetscInt_FMT " of %" PetscInt_FMT " realisations done)", nrun, ns));
+    PetscCall(PetscPrintf(comm, "\n"));
   }
   PetscFunctionReturn(0);
 }
@@ -288,7 +300,7 @@ protected:
     for (PetscInt it = 0; it < items; it++)
       if (!ran_[it]) std::fill(res.begin() + it * (1 + ne), res.begin() + (it + 1) * (1 + ne), NAN); // not run
     mcr_.resize(Kinds()), win_.resize(Kinds());
-    for (PetscInt k = 0; k < Kinds(); k++) PetscCall(Tabulate(comm_, po_, nnm_.lp.KHat(), res, k, &mcr_[k], &win_[k]));
+    for (PetscInt k = 0; k < Kinds(); k++) PetscCall(Tabulate(comm_, po_, nnm_.lp.KHat(), res, ran_, k, &mcr_[k], &win_[k]));
     PetscFunctionReturn(irun);
   }
   bool Interrupted(Interruption *it) const override

@@ -47,6 +47,9 @@ PetscErrorCode Study::EndInterrupted(const Interruption &it)
   const char *sig = SignalName(StopSignalSeen());
   PetscFunctionBeginUser;
   PetscCheck(it.partial, comm_, PETSC_ERR_SIG, "interrupted by %s %s; no output written%s", sig, it.where.c_str(), it.tail.c_str());
+  // stdout says it too (issue 34, class 9): the summaries above covered only what was done
+  PetscCall(PetscPrintf(comm_, "  partial result: interrupted by %s %s; what was done is written with complete = 0, and nothing is concluded about the rest\n", sig,
+                        it.where.c_str()));
   PetscCall(CommitPartial());
   SETERRQ(comm_, PETSC_ERR_SIG, "interrupted by %s %s; partial output %s (complete = 0)%s", sig, it.where.c_str(), path_.c_str(), it.tail.c_str());
 }

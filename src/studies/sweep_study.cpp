@@ -494,9 +494,13 @@ private:
     }
     PetscCall(PetscPrintf(PETSC_COMM_SELF,
                           "  computed %" PetscInt_FMT " points in %.2f s (%.2f points/s on %d ranks); %" PetscInt_FMT
-                          " point(s) never reached E* (reached = 0), %" PetscInt_FMT " failed (failed = 1)\n  wrote %s\n",
-                          total_computed, (double)(now - t_loop_), total_computed / std::max(1e-9, (double)(now - t_loop_)), size_, missed, nfailed,
-                          path_.c_str()));
+                          " point(s) never reached E* (reached = 0), %" PetscInt_FMT " failed (failed = 1)\n",
+                          total_computed, (double)(now - t_loop_), total_computed / std::max(1e-9, (double)(now - t_loop_)), size_, missed, nfailed));
+    // an interrupted sweep: the counts above are of the points done; the others are not computed (done = 0), not "missed"
+    if (grid_.Done() < (PetscInt)grid_.Size())
+      PetscCall(PetscPrintf(PETSC_COMM_SELF, "  partial result: %" PetscInt_FMT " of %zu points done (interrupted: done = 0 marks the others, complete = 0)\n",
+                            grid_.Done(), grid_.Size()));
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "  wrote %s\n", path_.c_str()));
     PetscFunctionReturn(0);
   }
 

@@ -150,7 +150,10 @@ std::vector<WpRecommendation> CheapestMeeting(const WorkPrecisionResult &res, Pe
     const WorkPrecisionRow *pick = nullptr;
     for (const WorkPrecisionRow &r : res.rows) {
       const PetscReal e = q < r.error.size() ? r.error[q] : NAN;
-      if (!std::isfinite(e)) continue;
+      if (!std::isfinite(e)) {
+        best.unscored++;
+        continue;
+      }
       if (e > target) {
         if (!pick && !(best.error <= e)) best.error = e; // the smallest error, while none meets the target
         continue;

@@ -68,6 +68,7 @@ struct WorkPrecisionResult {
 struct WpRecommendation {
   std::string observable, config;
   PetscReal error = NAN, wall = NAN;
+  PetscInt unscored = 0; // configurations without a finite error for it: not compared (they decide nothing)
 };
 std::vector<WpRecommendation> CheapestMeeting(const WorkPrecisionResult &res, PetscReal target);
 

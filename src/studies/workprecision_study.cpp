@@ -12,6 +12,7 @@
 #include "studies/simulate_store.hpp"
 #include "studies/study.hpp"
 #include "studies/workprecision.hpp"
+#include <cstdio>
 
 namespace nltopo {
 
@@ -98,11 +99,16 @@ protected:
     PetscCall(PetscPrintf(comm_, "  cheapest configuration with relative error <= -wp_target %g:\n", (double)wo_.target));
     for (size_t q = 0; q < rec.size(); q++) {
       const char *floor = q < res_.spread.size() && res_.spread[q] > wo_.target ? " (the target is below this observable's predictability floor)" : "";
+      char unscored[160] = ""; // configurations without an error for it: neither "none" nor "the cheapest" covers them
+      if (rec[q].unscored)
+        std::snprintf(unscored, sizeof unscored, " [%" PetscInt_FMT " of %zu configurations have no finite error for it and are not compared]", rec[q].unscored,
+                      res_.rows.size());
       if (rec[q].config.empty())
-        PetscCall(PetscPrintf(comm_, "    %-8s none of the configurations (smallest error %.2e)%s\n", rec[q].observable.c_str(), (double)rec[q].error, floor));
+        PetscCall(PetscPrintf(comm_, "    %-8s none of the configurations%s (smallest error %.2e)%s%s\n", rec[q].observable.c_str(),
+                              rec[q].unscored ? " compared" : "", (double)rec[q].error, floor, unscored));
       else
-        PetscCall(PetscPrintf(comm_, "    %-8s %s  (error %.2e, %.4g s)%s\n", rec[q].observable.c_str(), rec[q].config.c_str(), (double)rec[q].error,
-                              (double)rec[q].wall, floor));
+        PetscCall(PetscPrintf(comm_, "    %-8s %s  (error %.2e, %.4g s)%s%s\n", rec[q].observable.c_str(), rec[q].config.c_str(), (double)rec[q].error,
+                              (double)rec[q].wall, floor, unscored));
     }
     PetscFunctionReturn(0);
   }
@@ -152,12 +158,14 @@ protected:
       const char *gr = "/workprecision/recommended";
       std::vector<std::string> obs, cfg;
       std::vector<PetscReal> err, wall;
+      std::vector<PetscInt> unscored;
       for (const WpRecommendation &r : CheapestMeeting(res, wo_.target))
-        obs.push_back(r.observable), cfg.push_back(r.config), err.push_back(r.error), wall.push_back(r.wall);
+        obs.push_back(r.observable), cfg.push_back(r.config), err.push_back(r.error), wall.push_back(r.wall), unscored.push_back(r.unscored);
       PetscCall(WriteStringArray(v, gr, "observable", obs));
       PetscCall(WriteStringArray(v, gr, "config", cfg));
       PetscCall(WriteArray(v, gr, "error", err));
       PetscCall(WriteArray(v, gr, "wall_seconds", wall));
+      PetscCall(WriteIntArray(v, gr, "unscored", unscored));
       PetscCall(WriteAttr(v, gr, "target", wo_.target));
     }
     PetscFunctionReturn(0);
@@ -207,6 +215,7 @@ StudyContract WorkprecisionStudyContract()
              {"config", D, S, "nobs", "1", "the cheapest configuration (median wall time) whose relative error meets -wp_target; empty: none does"},
              {"error", D, R, "nobs", "1", "its relative error (none meets the target: the smallest error of any configuration)"},
              {"wall_seconds", D, R, "nobs", "s", "its median wall time (NaN: none meets the target)"},
+             {"unscored", D, I, "nobs", "1", "configurations without a finite error for the observable: not compared, so neither config nor \"none\" covers them (0: all compared)"},
              {"target", A, R, "scalar", "1", "-wp_target"}}}}};
 }
 

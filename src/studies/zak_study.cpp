@@ -21,11 +21,13 @@
 #include "io/output.hpp"
 #include "studies/forced_scene.hpp"
 #include "studies/grid_axis.hpp"
+#include "studies/partial_summary.hpp"
 #include "studies/registry.hpp"
 #include "studies/study.hpp"
 #include "timeint/simulation.hpp"
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 namespace nltopo {
@@ -144,13 +146,32 @@ PetscErrorCode ZakOptionsFromOptions(MPI_Comm comm, LatticeParams *lp, ZakOption
 struct ZakTable {
   std::vector<PetscReal> p0m, p0d, ppm, ppd, thm, thd, w0, wp, mcr0, mcrp;
   std::vector<PetscInt> reached;
-  PetscReal threshold = -1, last_distinct = -1;
+  PetscReal threshold = -1, last_distinct = -1; // threshold NaN: not determined (runs below it not done)
 };
 
-// Fills the table from the rows and prints it with the threshold.
-PetscErrorCode Tabulate(MPI_Comm comm, const ZakOptions &zo, const std::vector<PetscReal> &res, ZakTable *t)
+// The threshold's line: determined, or what the runs done show (an
+// interrupted study concludes nothing from the runs it never did).
+PetscErrorCode PrintThreshold(MPI_Comm comm, const ThresholdScan &s, PetscInt runs_missing, PetscInt runs)
+{
+  PetscFunctionBeginUser;
+  if (s.determined && s.threshold > 0)
+    PetscCall(PetscPrintf(comm, "  threshold: phi_0 and phi_pi stop being distinct at E = %g (last distinct: %g)\n", (double)s.threshold, (double)s.last_distinct));
+  else if (s.determined) PetscCall(PetscPrintf(comm, "  threshold: phi_0 and phi_pi stay distinct over the whole energy range\n"));
+  else {
+    char upto[96] = "", above[96] = "";
+    if (s.last_distinct > 0) std::snprintf(upto, sizeof upto, "distinct up to E = %g, ", (double)s.last_distinct);
+    if (s.not_distinct_above > 0) std::snprintf(above, sizeof above, "; not distinct at E = %g, so the threshold lies at or below it", (double)s.not_distinct_above);
+    PetscCall(PetscPrintf(comm, "  threshold: not determined (partial result: %" PetscInt_FMT " of %" PetscInt_FMT " runs not done): %snot run from E = %g%s\n",
+                          runs_missing, runs, upto, (double)s.first_missing, above));
+  }
+  PetscFunctionReturn(0);
+}
+
+// Fills the table from the rows (done: per run, 0 not run) and prints it with the threshold.
+PetscErrorCode Tabulate(MPI_Comm comm, const ZakOptions &zo, const std::vector<PetscReal> &res, const std::vector<PetscInt> &done, ZakTable *t)
 {
   const PetscInt ne = (PetscInt)zo.energy.size(), width = RowWidth(zo);
+  std::vector<ScanPoint> state(ne);
   PetscFunctionBeginUser;
   for (auto *c : {&t->p0m, &t->p0d, &t->ppm, &t->ppd, &t->thm, &t->thd, &t->mcr0, &t->mcrp}) c->assign(ne, 0);
   t->w0.assign(ne * zo.windows, 0), t->wp.assign(ne * zo.windows, 0);
@@ -162,18 +183,16 @@ PetscErrorCode Tabulate(MPI_Comm comm, const ZakOptions &zo, const std::vector<P
     t->p0m[e] = a[3], t->p0d[e] = a[4], t->ppm[e] = b[3], t->ppd[e] = b[4], t->mcr0[e] = a[2], t->mcrp[e] = b[2];
     t->thm[e] = t->ppm[e] - t->p0m[e], t->thd[e] = t->ppd[e] - t->p0d[e];
     for (PetscInt k = 0; k < zo.windows; k++) t->w0[e * zo.windows + k] = a[5 + k], t->wp[e * zo.windows + k] = b[5 + k];
-    const bool ok = a[0] > 0 && b[0] > 0;
+    const bool ran = done[2 * e] && done[2 * e + 1], ok = ran && a[0] > 0 && b[0] > 0;
     const bool distinct = ok && std::abs(t->thm[e] - PETSC_PI) <= zo.theta_tol && std::abs(t->thd[e] - PETSC_PI) <= zo.theta_tol;
-    if (ok && !distinct && t->threshold < 0) t->threshold = zo.energy[e];
-    if (distinct && t->threshold < 0) t->last_distinct = zo.energy[e];
+    state[e] = !ran ? ScanPoint::NotRun : !ok ? ScanPoint::NotReached : distinct ? ScanPoint::Distinct : ScanPoint::NotDistinct;
     PetscCall(PetscPrintf(comm, "  %9.4g   %8.4f  %8.4f    %8.4f  %8.4f    %8.4f %8.4f %s\n", (double)zo.energy[e], (double)t->p0m[e], (double)t->p0d[e],
                           (double)t->ppm[e], (double)t->ppd[e], (double)t->thm[e], (double)t->thd[e],
-                          ok ? (distinct ? "" : " (not distinct)") : " (E* not reached)"));
+                          !ran ? " (not run: interrupted)" : ok ? (distinct ? "" : " (not distinct)") : " (E* not reached)"));
   }
-  if (t->threshold > 0)
-    PetscCall(
-        PetscPrintf(comm, "  threshold: phi_0 and phi_pi stop being distinct at E = %g (last distinct: %g)\n", (double)t->threshold, (double)t->last_distinct));
-  else PetscCall(PetscPrintf(comm, "  threshold: phi_0 and phi_pi stay distinct over the whole energy range\n"));
+  const ThresholdScan s = ScanThreshold(zo.energy, state);
+  t->threshold = s.threshold, t->last_distinct = s.last_distinct;
+  PetscCall(PrintThreshold(comm, s, (PetscInt)std::count(done.begin(), done.end(), 0), (PetscInt)done.size()));
   PetscFunctionReturn(0);
 }
 
@@ -219,7 +238,7 @@ protected:
         res[r * width] = 0;
         for (PetscInt k = 1; k < width; k++) res[r * width + k] = std::numeric_limits<PetscReal>::quiet_NaN();
       }
-    PetscCall(Tabulate(comm_, zo_, res, &t_));
+    PetscCall(Tabulate(comm_, zo_, res, ran_, &t_));
     PetscFunctionReturn(irun);
   }
   bool Interrupted(Interruption *it) const override
@@ -256,7 +275,8 @@ protected:
     PetscCall(WriteAttr(v, g, "theta_tol", zo_.theta_tol));
     PetscCall(WriteAttr(
         v, g, "threshold_rule",
-        "lowest E at which theta = phi_pi - phi_0 of the means or of the medians over cells and windows is more than theta_tol from pi (-1: never in range)"));
+        "lowest E at which theta = phi_pi - phi_0 of the means or of the medians over cells and windows is more than theta_tol from pi (-1: never in range; "
+        "NaN: not determined, a run below it was not done)"));
     PetscFunctionReturn(0);
   }
 
@@ -289,8 +309,9 @@ StudyContract ZakStudyContract()
              {"mcrpi", D, R, "ne", "1", "MCR of the mu = pi run"},
              {"reached", D, I, "ne x 2", "1", "1 if E* was reached (mu = 0, pi)", codes::kYesNo},
              {"done", D, I, "ne x 2", "1", "0: not run (stop signal)", codes::kDone},
-             {"energy_threshold", A, R, "scalar", "energy", "lowest E where phi_0, phi_pi stop being distinct (-1: never)"},
-             {"energy_last_distinct", A, R, "scalar", "energy", "highest E below it still distinct"},
+             {"energy_threshold", A, R, "scalar", "energy",
+              "lowest E where phi_0, phi_pi stop being distinct (-1: never; NaN: not determined, runs below it were not done: complete = 0)"},
+             {"energy_last_distinct", A, R, "scalar", "energy", "highest E below it still distinct (threshold NaN: below the first energy not run)"},
              {"omega0", A, R, "scalar", "rad/time", "frequency of the mu = 0 edge mode"},
              {"omegapi", A, R, "scalar", "rad/time", "frequency of the mu = pi edge mode"},
              {"mode0", A, I, "scalar", "1", "linear mode index (0-based, ascending omega) of the mu = 0 edge: the runs' -force_mode_index"},

@@ -13,4 +13,17 @@ $PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_perturb.py" p1.h5 p.p
 set +e; "$NLTOPO" "${OPTS[@]}" -lattice_perturbation chiral -output bad.h5 > so.txt 2> se.txt; rc=$?; set -e
 [ $rc -ne 0 ] && [ "$(grep -c . se.txt)" -eq 1 ] && grep -q -- "-lattice_perturbation is set by -study perturb" se.txt || { cat se.txt; exit 1; }
 [ ! -e bad.h5 ]
+# Issue 34, class 9: an interrupted ensemble says it is partial; each row's statistics
+# cover the realisations it has, and a cell without any shows no number.
+"$NLTOPO" "${OPTS[@]}" -perturb_fep fep.h5 -perturb_ensemble 400 -output pi.h5 > pi.txt 2> pi.err &
+pid=$!
+sleep 1.5
+kill -TERM "$pid"
+rc=0
+wait "$pid" || rc=$?
+cat pi.err
+[ "$rc" -eq 143 ] || { echo "FAILED: the interrupted perturb study exited $rc"; exit 1; }
+grep -q "realisations not done (interrupted); each row covers those it has" pi.txt && grep -q "realisations done)" pi.txt
+grep -q "^  partial result: interrupted by SIGTERM between realisations" pi.txt
+! grep -q "nan+-" pi.txt || { cat pi.txt; echo "FAILED: statistics of realisations not run"; exit 1; }
 echo "perturb scene OK"

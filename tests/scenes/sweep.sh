@@ -75,4 +75,14 @@ $PY "$CHECKS/sweep.py" failed_points
 run2 -study sweep -sweep_omega_list 1.6,1.9 -sweep_energy_list 0.1,1 -sweep_kcorr 0 -lattice_damping 0.01 -output damped.h5 > damped.txt
 $PY "$CHECKS/sweep.py" damped
 $PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_sweep.py" full1.h5 map.png
+# Issue 34, class 9: an interrupted sweep says on stdout that its counts cover the points done.
+"$NLTOPO" -options_file "$SRC/options/sweep_quick.opts" -sweep_omega_n 40 -sweep_energy_n 10 -sweep_progress 0 -output si.h5 > si.txt 2> si.err &
+pid=$!
+sleep 1.5
+kill -TERM "$pid"
+rc=0
+wait "$pid" || rc=$?
+cat si.err
+[ "$rc" -eq 143 ] || { echo "FAILED: the interrupted sweep exited $rc"; exit 1; }
+grep -q "^  partial result: [0-9]* of 400 points done (interrupted" si.txt || { cat si.txt; echo "FAILED: no partial-result line"; exit 1; }
 echo "sweep scene OK"

@@ -10,3 +10,17 @@ $PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_zak.py" z1.h5 z.png
 # readings of docs/studies/zak.md and the paper, the measured values: checks/zak.py threshold).
 run1 -options_file "$SRC/options/zak.opts" -zak_energy_min 5 -zak_energy_max 40 -zak_energy_n 7 -output zt.h5 | tee zt.txt
 $PY "$CHECKS/zak.py" threshold
+# Issue 34, class 9: an interrupted scan says it is partial and concludes
+# nothing from the runs it never did: no "E* not reached" for them, no "stay
+# distinct over the whole energy range", energy_threshold NaN (not determined).
+"$NLTOPO" -options_file "$SRC/options/zak.opts" -zak_energy_n 400 -output zi.h5 > zi.txt 2> zi.err &
+pid=$!
+sleep 1.5
+kill -TERM "$pid"
+rc=0
+wait "$pid" || rc=$?
+cat zi.err
+[ "$rc" -eq 143 ] || { echo "FAILED: the interrupted zak study exited $rc (the scan ended before the signal, or no run was done?)"; exit 1; }
+grep -q "(not run: interrupted)" zi.txt && grep -q "threshold: not determined (partial result: " zi.txt && grep -q "^  partial result: interrupted by SIGTERM" zi.txt
+! grep -q "stay distinct over the whole energy range\|E\* not reached" zi.txt || { echo "FAILED: a conclusion from runs not done"; exit 1; }
+$PY "$CHECKS/zak.py" interrupted

@@ -41,5 +41,19 @@ def threshold():
     print("zak threshold: E* = %.4g (last distinct %.4g); theta of the means" % (th, z.attrs["energy_last_distinct"]), np.round(z["theta_mean"][:], 3))
 
 
+def interrupted():
+    """Issue 34, class 9: the interrupted scan's file (zi.h5): complete = 0, some runs not done, the
+    threshold not determined (NaN) and energy_last_distinct below the first energy not run."""
+    from scene_check import complete
+    require(complete("zi.h5") == 0)
+    z = group("zi.h5", "zak")
+    done, e = z["done"][:], z["energy"][:]
+    require(done.shape == (400, 2) and 0 < done.sum() < done.size, done.sum())
+    require(np.isnan(z.attrs["energy_threshold"]), z.attrs["energy_threshold"])
+    first_missing = e[(done == 0).any(axis=1)].min()
+    require(z.attrs["energy_last_distinct"] < first_missing, z.attrs["energy_last_distinct"], first_missing)
+    print("zak interrupted: %d of %d runs done, threshold not determined above E = %.4g" % (done.sum(), done.size, first_missing))
+
+
 if __name__ == "__main__":
     main(globals())
