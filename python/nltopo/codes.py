@@ -35,6 +35,7 @@ FORMAT0 = {
     ("/stability/case<k>", "floquet_stable"): YES_NO,
     ("/stability/case<k>", "instability"): INSTABILITY,
     ("/stability/case<k>", "persisted"): YES_NO,
+    ("/stability/case<k>", "omega_replaced"): YES_NO,
     ("/sweep", "reached"): YES_NO,
     ("/sweep", "failed"): YES_NO,
     ("/sweep", "predictable"): PREDICTABLE,

@@ -431,7 +431,8 @@ class Perturb(Kinds):
 
 class StabilityCase(Group):
     """/stability/case<k>: t, corr, mcr, energy (per sample); multipliers (complex);
-    omega, orbit_energy, period, max_modulus, floquet_stable, instability, persisted."""
+    omega, orbit_energy, period, max_modulus, floquet_stable, instability, persisted,
+    omega_replaced (1: the branch's first orbit stands for omega_target)."""
 
     @property
     def multipliers(self):

@@ -4,6 +4,7 @@
 #include "core/option_table.hpp"
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 
 namespace nltopo {
@@ -317,6 +318,30 @@ PetscErrorCode LinearModes::Projections(Vec eta, std::vector<PetscReal> *proj2) 
     (*proj2)[j] = d * d;
   }
   PetscFunctionReturn(0);
+}
+
+std::string NoInsulatedModeReason(const LatticeParams &p)
+{
+  char why[400];
+  const PetscReal g = std::abs(p.gamma);
+  // The mode decays by (1 - |gamma|)/(1 + |gamma|) per cell away from the
+  // interface: over xi cells. Measured (k = 1, gamma0 = 1): it exists from
+  // about 0.8 xi cells (at least 3; 2 at gamma -0.4).
+  const PetscReal xi = g > 0 && g < 1 ? 1 / std::log((1 + g) / (1 - g)) : INFINITY;
+  if (p.layout != Layout::Interface)
+    std::snprintf(why, sizeof why, "-lattice_layout %s has no interface, where the insulated mode lives (-lattice_layout interface)", LayoutName(p.layout));
+  else if (p.gamma == 0)
+    std::snprintf(why, sizeof why, "-lattice_gamma 0 closes the gap (k1 = k2): without a gap there is no insulated mode");
+  else if ((PetscReal)p.cells < std::max<PetscReal>(4, 3 * xi))
+    std::snprintf(why, sizeof why,
+                  "-lattice_cells %d is too few cells for the insulated mode to form at -lattice_gamma %g: it decays over about %.3g cells "
+                  "(1/ln((1+|gamma|)/(1-|gamma|))) and needs about that many or more on each side (at least 3)",
+                  (int)p.cells, (double)p.gamma, (double)xi);
+  else if (p.perturbation != Perturbation::None && p.delta > 0)
+    std::snprintf(why, sizeof why, "-lattice_perturbation %s -lattice_delta %g moved the insulated mode away from omega^2 = k_hat", PerturbationName(p.perturbation),
+                  (double)p.delta);
+  else std::snprintf(why, sizeof why, "no eigenpair within 5 %% of omega^2 = k_hat inside the gap (docs/studies/linear.md, Mode identification)");
+  return why;
 }
 
 } // namespace nltopo

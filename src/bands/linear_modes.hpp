@@ -3,6 +3,7 @@
 // the rule that names the modes the paper uses (docs/studies/linear.md, "Mode identification").
 #include "bands/bloch.hpp"
 #include "lattice/lattice.hpp"
+#include <string>
 #include <vector>
 
 namespace nltopo {
@@ -51,5 +52,11 @@ private:
   OwnedVec insulated_;
   NamedModes named_;
 };
+
+// Why a lattice of these parameters has no insulated mode (Insulated() NULL),
+// naming the option that decides it: a layout without an interface, gamma = 0
+// (no gap), too few cells for the mode's decay length, or a perturbation that
+// moved it; one sentence for an error message (issue 34, 13c).
+std::string NoInsulatedModeReason(const LatticeParams &p);
 
 } // namespace nltopo

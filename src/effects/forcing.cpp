@@ -115,7 +115,9 @@ PetscErrorCode ToneBurst::Setup(const Lattice &lat, const ToneBurstOptions &o, c
     PetscCall(modes->CopyMode(o.mode, eta));
     break;
   case ForceProfile::Exponential: {
-    PetscCheck(modes && modes->Insulated(), comm, PETSC_ERR_USER, "-force_profile exponential needs the linear insulated mode of the lattice");
+    PetscCheck(modes, comm, PETSC_ERR_USER, "-force_profile exponential needs the linear insulated mode of the lattice");
+    PetscCheck(modes->Insulated(), comm, PETSC_ERR_USER, "-force_profile exponential fits the insulated mode, and this lattice has none: %s",
+               NoInsulatedModeReason(lat.Params()).c_str());
     PetscCall(FitExponentialProfile(lat, modes->Insulated(), &exp_a_, &exp_b_));
     const PetscInt m = lat.Params().InterfaceSite();
     for (PetscInt i = xs; i < xe; i++)

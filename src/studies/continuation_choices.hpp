@@ -25,6 +25,11 @@ struct StudyChoices {
     for (char *n : names) PetscFree(n);
   }
 };
+// (refuses a -cont_branch entry listed twice: "3" and "mode3" are one branch)
 PetscErrorCode ReadStudyChoices(MPI_Comm comm, StudyChoices *c);
+// Refuses two -cont_branch entries that are the same linear mode, which would
+// be computed twice: a named mode (interface, ...) that is also a mode<k>,
+// found once the modes are known.
+PetscErrorCode CheckDistinctBranches(const Lattice &lat, const LinearModes &modes, const StudyChoices &c);
 
 } // namespace nltopo

@@ -82,6 +82,7 @@ protected:
   {
     PetscFunctionBeginUser;
     PetscCall(nnm_.Build(comm_, "-study continuation"));
+    PetscCall(CheckDistinctBranches(nnm_.lat, nnm_.modes, ch_)); // a branch listed twice is refused before any is continued
     PetscCall(DMCreateGlobalVector(nnm_.lat.SiteDM(), u_.out()));
     hook_ = std::make_unique<FloquetHook>(nnm_.flow, flo_);
     mf_hook_ = std::make_unique<FloquetMfHook>(nnm_.flow, flo_, fmo_);

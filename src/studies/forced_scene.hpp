@@ -74,6 +74,12 @@ struct ForcedScene {
     PetscFunctionBeginUser;
     PetscCall(lat.Setup(comm, lp));
     if (ModesComputed()) PetscCall(modes.Compute(lat, mo));
+    // -force_mode_index counts all N modes: the shift-invert path (N above
+    // -linear_dense_max) holds only those near the band edges, whose k-th is another mode
+    PetscCheck(fo.profile != ForceProfile::Mode || modes.Complete(), comm, PETSC_ERR_USER,
+               "-force_mode_index %" PetscInt_FMT ": linear mode indices count all N = %" PetscInt_FMT
+               " modes, but N > -linear_dense_max %" PetscInt_FMT " computes only those near the band edges; raise -linear_dense_max to at least N",
+               fo.mode, lat.N(), mo.dense_max);
     if (upto != Upto::Lattice) PetscCall(burst.Setup(lat, fo, ModesOrNull()));
     if (upto == Upto::Effects) PetscCall(BuildEffects(lat, &burst, &fx));
     PetscFunctionReturn(0);

@@ -152,10 +152,12 @@ PetscErrorCode ContinueInsulatedBranch(MPI_Comm comm, NnmSetup *nnm, PetscReal E
 {
   PetscFunctionBeginUser;
   PetscCall(nnm->Build(comm, "-study perturb"));
-  PetscCheck(nnm->modes.Insulated(), comm, PETSC_ERR_USER,
-             "-study perturb follows the insulated mode, and this lattice has none (-lattice_gamma %g: no isolated mode in the gap)", (double)nnm->lp.gamma);
-  nnm->co.verbose = PETSC_FALSE;
-  nnm->co.energy_max = 1.2 * Emax;
+  PetscCheck(nnm->modes.Insulated(), comm, PETSC_ERR_USER, "-study perturb follows the insulated mode, and this lattice has none: %s",
+             NoInsulatedModeReason(nnm->lp).c_str());
+  PetscBool verbose_given; // the branch is quiet unless -cont_verbose asks otherwise
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-cont_verbose", &verbose_given));
+  if (!verbose_given) nnm->co.verbose = PETSC_FALSE;
+  nnm->co.energy_max = 1.2 * Emax; // (-cont_energy_max is refused: ReadOptions)
   Branch b;
   const PetscErrorCode ib = ContinueBranch(nnm->shoot, nnm->modes.Insulated(), 2 * PETSC_PI / nnm->modes.Named().insulated_omega, nnm->co, "insulated", &b);
   PetscCheck(!IsInterrupt(ib), comm, PETSC_ERR_SIG, "interrupted by %s while continuing the insulated branch, before the first forced run; no output written",
@@ -251,9 +253,11 @@ protected:
     PetscFunctionBeginUser;
     // What the options must not combine to is the run's check: declaring_ (-help,
     // the options audit) reads every block whatever they say.
-    if (!declaring_)
+    if (!declaring_) {
       PetscCall(RejectGivenOptions(comm_, {"-lattice_perturbation", "-lattice_delta", "-lattice_seed", "-force_omega", "-force_energy"},
                                    "-study perturb (-perturb_kinds, -perturb_delta_list, -perturb_ensemble, -perturb_energy_*)"));
+      PetscCall(RejectGivenOptions(comm_, {"-cont_energy_max"}, "-study perturb (the insulated branch is continued to 1.2 x the largest -perturb_energy_*)"));
+    }
     PetscCall(nnm_.ReadOptions(comm_));
     PetscCheck(declaring_ || nnm_.lp.layout == Layout::Interface, comm_, PETSC_ERR_USER,
                "-study perturb follows the insulated mode: -lattice_layout must be interface");
@@ -276,11 +280,19 @@ protected:
   {
     std::vector<PetscReal> bE, bw;
     PetscFunctionBeginUser;
-    const PetscReal Emax = *std::max_element(po_.energy.begin(), po_.energy.end());
+    const PetscReal Emax = *std::max_element(po_.energy.begin(), po_.energy.end()), Emin = *std::min_element(po_.energy.begin(), po_.energy.end());
+    // (computed here: the branch starts at -cont_energy_min, known before it is continued)
+    PetscCheck(!po_.fep.empty() || Emin >= nnm_.co.energy_min * (1 - 1e-6), comm_, PETSC_ERR_USER,
+               "-study perturb: E* = %g lies below the insulated branch's first orbit (E = %g, -cont_energy_min): its omega(E) is not known there", (double)Emin,
+               (double)nnm_.co.energy_min);
     if (!po_.fep.empty()) PetscCall(ReadInsulatedBranch(comm_, po_.fep.c_str(), &bE, &bw));
     else PetscCall(ContinueInsulatedBranch(comm_, &nnm_, Emax, &bE, &bw));
     PetscCheck(bE.size() >= 2 && bE.back() >= Emax * (1 - 1e-9), comm_, PETSC_ERR_USER,
                "-study perturb: the insulated branch reaches E = %g only, below -perturb_energy_max %g", bE.empty() ? 0.0 : (double)bE.back(), (double)Emax);
+    // omega(E) below the branch's first orbit is not known: refused, not read as that orbit's
+    PetscCheck(Emin >= bE.front() * (1 - 1e-6), comm_, PETSC_ERR_USER,
+               "-study perturb: E* = %g lies below the insulated branch's first orbit (E = %g%s): its omega(E) is not known there", (double)Emin,
+               (double)bE.front(), po_.fep.empty() ? ", -cont_energy_min" : ", in -perturb_fep");
     for (PetscReal e : po_.energy) wext_.push_back(BranchOmega(bE, bw, e));
     PetscCall(PetscPrintf(comm_,
                           "nltopo perturb: %" PetscInt_FMT " kind(s) x %" PetscInt_FMT " levels x %" PetscInt_FMT " realisations x %" PetscInt_FMT

@@ -99,6 +99,10 @@ PetscErrorCode PerturbState(const Lattice &lat, Vec z, PetscReal eps, PetscInt s
   PetscFunctionReturn(0);
 }
 
+// The first orbit stands for a frequency within this (relative) of its own:
+// the digits a frequency is given to, and the linear limit sqrt(k_hat).
+constexpr PetscReal kOmegaTol = 1e-6;
+
 struct StabilityOptions {
   std::vector<PetscReal> omegas{std::sqrt(3.0), 1.8245, 2.1876, 2.2654};
   PetscReal eps = 0.01, corr_min = 0.9;
@@ -136,6 +140,7 @@ struct StabilityCase {
   FloquetResult fr;
   PetscReal omega_target = 0, period = 0, orbit_energy = 0, tail_min = 1, energy_drift = 0;
   bool persisted = false;
+  PetscInt omega_replaced = 0; // 1: no orbit solved at omega_target; the branch's first orbit stands for it (RunCase)
 };
 
 class StabilityStudy : public Study {
@@ -144,6 +149,7 @@ protected:
   {
     PetscFunctionBeginUser;
     PetscCall(nnm_.ReadOptions(comm_));
+    if (!declaring_) PetscCall(RejectGivenOptions(comm_, {"-cont_omega_max"}, "-study stability (the branch is continued to the largest -stability_omega)"));
     PetscCall(FloquetOptionsFromOptions(comm_, &flo_));
     PetscCall(SimulationOptionsFromOptions(comm_, &sim_));
     PetscCall(StabilityOptionsFromOptions(comm_, &st_));
@@ -161,8 +167,20 @@ protected:
   {
     PetscFunctionBeginUser;
     PetscCall(nnm_.Build(comm_, "-study stability"));
-    PetscCheck(nnm_.modes.Insulated(), comm_, PETSC_ERR_USER, "-study stability follows the insulated branch: use -lattice_layout interface");
-    nnm_.co.verbose = PETSC_FALSE;
+    PetscCheck(nnm_.modes.Insulated(), comm_, PETSC_ERR_USER, "-study stability follows the insulated branch, and this lattice has no insulated mode: %s",
+               NoInsulatedModeReason(nnm_.lat.Params()).c_str());
+    // A hardening branch (-lattice_cubic > 0) starts at the linear frequency
+    // sqrt(k_hat) and rises with energy: a frequency below it has no orbit,
+    // refused before the branch is continued.
+    const PetscReal w_lin = nnm_.modes.Named().insulated_omega;
+    for (PetscReal wt : st_.omegas)
+      PetscCheck(nnm_.lp.Gamma <= 0 || wt >= w_lin * (1 - kOmegaTol), comm_, PETSC_ERR_USER,
+                 "-stability_omega %g: below the insulated branch, which starts at its linear frequency %.9g (sqrt(k_hat)) and rises with energy "
+                 "(-lattice_cubic %g > 0): no orbit of the branch has this frequency",
+                 (double)wt, (double)w_lin, (double)nnm_.lp.Gamma);
+    PetscBool verbose_given; // the branch is quiet unless -cont_verbose asks otherwise
+    PetscCall(PetscOptionsHasName(NULL, NULL, "-cont_verbose", &verbose_given));
+    if (!verbose_given) nnm_.co.verbose = PETSC_FALSE;
     // One continuation of the insulated branch up to the highest frequency asked for.
     nnm_.co.omega_max = *std::max_element(st_.omegas.begin(), st_.omegas.end());
     PetscCall(nnm_.lat.CreateStateVector(z_.out()));
@@ -203,6 +221,7 @@ protected:
       PetscCall(WriteArray(v, g.c_str(), "multipliers_re", k.fr.re));
       PetscCall(WriteArray(v, g.c_str(), "multipliers_im", k.fr.im));
       PetscCall(WriteAttr(v, g.c_str(), "omega_target", k.omega_target));
+      PetscCall(WriteAttr(v, g.c_str(), "omega_replaced", k.omega_replaced));
       PetscCall(WriteAttr(v, g.c_str(), "omega", (PetscReal)(2 * PETSC_PI / k.period)));
       PetscCall(WriteAttr(v, g.c_str(), "energy", k.orbit_energy));
       PetscCall(WriteAttr(v, g.c_str(), "period", k.period));
@@ -238,10 +257,28 @@ private:
     PetscFunctionBeginUser;
     PetscCheck(b_.omega.back() >= wt, comm_, PETSC_ERR_USER, "-stability_omega %g: the insulated branch ends at omega %g (%s)", (double)wt,
                (double)b_.omega.back(), b_.stop_reason.c_str());
-    // The orbit at omega = wt: Newton at fixed period from the first stored orbit
-    // at or above wt (the low-energy orbit itself when wt is at or below its frequency).
-    size_t j = 0;
-    while (b_.omega[j] < wt) j++;
+    // The orbit at omega = wt: Newton at fixed period from the first stored
+    // orbit past wt along the branch; the low-energy orbit itself when wt is
+    // its frequency (to kOmegaTol) or lies between the linear frequency and it
+    // (then said: stderr and omega_replaced); any other wt is refused.
+    const size_t n = b_.omega.size();
+    size_t j = 1;
+    if (std::abs(b_.omega[0] - wt) <= kOmegaTol * wt) j = 0;
+    else
+      while (j < n && !((b_.omega[j - 1] - wt) * (b_.omega[j] - wt) <= 0)) j++;
+    if (j == n) {
+      const PetscReal w_lin = nnm_.modes.Named().insulated_omega;
+      PetscCheck(wt >= w_lin * (1 - kOmegaTol) && wt < b_.omega[0], comm_, PETSC_ERR_USER,
+                 "-stability_omega %g: no orbit of the insulated branch has this frequency (its %zu orbits span omega %.9g .. %.9g from the linear %.9g)",
+                 (double)wt, n, (double)*std::min_element(b_.omega.begin(), b_.omega.end()), (double)*std::max_element(b_.omega.begin(), b_.omega.end()),
+                 (double)w_lin);
+      j = 0;
+      k->omega_replaced = 1;
+      PetscCall(PetscFPrintf(comm_, PETSC_STDERR,
+                             "nltopo: warning: -stability_omega %.9g lies between the linear frequency %.9g and the branch's first orbit (omega %.9g, "
+                             "E = %g at -cont_energy_min): case %" PetscInt_FMT " is that orbit (/stability/case%" PetscInt_FMT " omega_replaced = 1)\n",
+                             (double)wt, (double)w_lin, (double)b_.omega[0], (double)b_.energy[0], c, c));
+    }
     PetscCall(RowToState(nnm_.lat, b_.z0, j, z_));
     PetscReal T = b_.period[j], beta = 0;
     if (j > 0) {
@@ -311,6 +348,10 @@ StudyContract StabilityStudyContract()
              {"multipliers_re", D, R, "2N", "1", "Floquet multipliers, real part"},
              {"multipliers_im", D, R, "2N", "1", "Floquet multipliers, imaginary part"},
              {"omega_target", A, R, "scalar", "rad/time", "-stability_omega"},
+             {"omega_replaced", A, I, "scalar", "1",
+              "1: omega_target lies between the linear frequency and the branch's first orbit, and the case is that orbit (omega its frequency; said on "
+              "stderr); 0: the orbit at omega_target",
+              codes::kYesNo},
              {"omega", A, R, "scalar", "rad/time", "orbit frequency"},
              {"energy", A, R, "scalar", "energy", "orbit energy"},
              {"period", A, R, "scalar", "time", "orbit period"},

@@ -119,9 +119,12 @@ PetscErrorCode RunWorkPrecisionShooting(MPI_Comm comm, const WorkPrecisionOption
   // The guess: the insulated branch of the scene continued to the energy.
   PetscCall(nnm.ReadOptions(comm));
   PetscCall(nnm.Build(comm, "-study workprecision -wp_scene shooting"));
-  PetscCheck(nnm.modes.Insulated(), comm, PETSC_ERR_USER, "-wp_scene shooting follows the insulated branch: this lattice has no insulated mode");
-  nnm.co.verbose = PETSC_FALSE;
-  nnm.co.energy_max = o.nnm_energy;
+  PetscCheck(nnm.modes.Insulated(), comm, PETSC_ERR_USER, "-wp_scene shooting follows the insulated branch, and this lattice has no insulated mode: %s",
+             NoInsulatedModeReason(nnm.lat.Params()).c_str());
+  PetscBool verbose_given; // the branch is quiet unless -cont_verbose asks otherwise
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-cont_verbose", &verbose_given));
+  if (!verbose_given) nnm.co.verbose = PETSC_FALSE;
+  nnm.co.energy_max = o.nnm_energy; // (-cont_energy_max is refused: workprecision_study.cpp)
   PetscCall(ContinueBranch(nnm.shoot, nnm.modes.Insulated(), 2 * PETSC_PI / nnm.modes.Named().insulated_omega, nnm.co, "insulated", &b, &last));
   PetscCheck(last.z, comm, PETSC_ERR_NOT_CONVERGED, "-wp_scene shooting: the insulated branch has no orbit (%s)", b.stop_reason.c_str());
 

@@ -29,6 +29,7 @@ protected:
     PetscCall(WorkPrecisionOptionsFromOptions(comm_, &wo_));
     if (wo_.shooting) {                   // the insulated NNM: lattice, modes, flow, shooting, continuation, Floquet
       PetscCall(nnm_.ReadOptions(comm_)); // bad options fail before the output file exists
+      if (!declaring_) PetscCall(RejectGivenOptions(comm_, {"-cont_energy_max"}, "-study workprecision -wp_scene shooting (-wp_nnm_energy)"));
       if (declaring_) {
         FloquetOptions flo; // read by RunWorkPrecisionShooting
         PetscCall(FloquetOptionsFromOptions(comm_, &flo));

@@ -63,5 +63,14 @@ def three_orbits():
           % (a["max_modulus"], b["max_modulus"], u["max_modulus"], g, mu**2, a["corr_tail_min"], b["corr_tail_min"], u["corr_tail_min"]))
 
 
+def replaced():
+    """Issue 34, class 8: sl.h5's case 0 (omega_target sqrt(3), below the first orbit of the 5-cell branch) is that
+    orbit, flagged omega_replaced = 1 with its own omega; case 1 (1.75) is solved at its frequency (omega_replaced 0)."""
+    c0, c1 = group("sl.h5", "stability/case0"), group("sl.h5", "stability/case1")
+    require(c0.attrs["omega_replaced"] == 1 and c0.attrs["omega"] > c0.attrs["omega_target"] + 1e-3, dict(c0.attrs))
+    require(c1.attrs["omega_replaced"] == 0 and abs(c1.attrs["omega"] - 1.75) < 1e-9, dict(c1.attrs))
+    print("stability replaced: case 0 omega %.6f for omega_target %.6f (omega_replaced 1)" % (c0.attrs["omega"], c0.attrs["omega_target"]))
+
+
 if __name__ == "__main__":
     main(globals())
