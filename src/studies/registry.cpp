@@ -182,7 +182,12 @@ PetscErrorCode RunStudyFromOptions(MPI_Comm comm)
   PetscCall(CheckOptionValueShapes(comm, name, StudyOptionFunctions()[name], given)); // a missing value, an integer PETSc would wrap
   const OptionsFn options = StudyOptionFunctions()[name];
   if (OwnHelp()) StartHelpCollection();
-  PetscCall(options(comm));                               // -help: prints them all; otherwise marks them read and checks their ranges
+  std::vector<std::string> solver_prefixes; // what the study's solver objects may read during the run
+  {
+    SolverPrefixCapture capture;
+    PetscCall(options(comm)); // -help: prints them all; otherwise marks them read and checks their ranges
+    solver_prefixes = capture.Prefixes();
+  }
   PetscCall(CheckFiniteOptionValues(comm, given, false)); // nan/inf that no range check of nltopo's caught
   if (OwnHelp()) {
     std::vector<std::string> own;
@@ -196,7 +201,8 @@ PetscErrorCode RunStudyFromOptions(MPI_Comm comm)
     PetscFunctionReturn(0);
   }
   g_running = entry;
-  PetscCall(AuditUnusedOptions(comm, name, StudyOptionFunctions(), true)); // misspelt or foreign options fail before any work
+  // misspelt, foreign and unknown options fail before any work (only the solver objects' wait for the end-of-run audit)
+  PetscCall(AuditUnusedOptions(comm, name, StudyOptionFunctions(), true, solver_prefixes));
   PetscCall(SetCommitGuard(AuditOptionsBeforeCommit));
   PetscCall(entry->create()->Run(comm, entry->name));
   PetscFunctionReturn(0);

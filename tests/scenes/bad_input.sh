@@ -102,3 +102,14 @@ cases=$((cases + 1))
 echo "ok: $(cat stderr.txt)"
 [ "$cases" -ge 20 ] || fail "only $cases bad-input cases"
 echo "bad input OK: $cases cases, each at 1 and 2 ranks (the write faults also at 3)"
+
+# Unknown options and the resource guards the options decide: refused before
+# any set-up, at 1 and 2 ranks; -log_view shows no stage but the Main Stage.
+for args in "-study simulate -lattice_cells 25000 -forc_energy 0.5" "-study continuation -lattice_cells 100000"; do
+  for np in 1 2; do
+    check_one "$np" "unknown option -forc_energy\|dense shooting Jacobian" o.h5 $args -log_view
+    grep -q "Main Stage" stdout.txt || fail "no -log_view at $np rank(s) for: $args"
+    ! grep -qE "^ +[0-9]+: +(Setup|Solve|Write):" stdout.txt || fail "a stage beyond the Main Stage entered at $np rank(s) for: $args"
+  done
+  echo "ok (Main Stage only): $(cat stderr.txt)"
+done

@@ -144,34 +144,98 @@ const std::vector<BadCase> &OptionCases()
 
 } // namespace
 
+// The contract for one refused run (all ranks together): it failed, with
+// exactly one line matching pattern and no source path, and left no file.
+static void CheckRefusal(const Refusal &r, const BadCase &c, const std::string &dir)
+{
+  const std::regex source_path("\\.c:[0-9]", std::regex::basic);
+  // rank 0 prints the line of a collective error: its text, and the line count of all ranks
+  int lines = 0, all_lines = 0, failed = r.code ? 1 : 0, all_failed = 0, files = (int)r.files.size(), max_files = 0, output = 0, any_output = 0;
+  for (const std::string &f : r.files) output += f == "o.h5";
+  MPI_Allreduce(&output, &any_output, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
+  for (char ch : r.err) lines += ch == '\n';
+  MPI_Allreduce(&lines, &all_lines, 1, MPI_INT, MPI_SUM, PETSC_COMM_WORLD);
+  MPI_Allreduce(&failed, &all_failed, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD);
+  MPI_Allreduce(&files, &max_files, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
+  char text[2048] = "";
+  if (!Rank()) PCHK(PetscStrncpy(text, r.err.c_str(), sizeof(text)));
+  MPI_Bcast(text, sizeof(text), MPI_CHAR, 0, PETSC_COMM_WORLD);
+  std::string left;
+  for (const std::string &f : r.files) left += f + " ";
+  INFO("nltopo " << c.args << "\nprinted: " << text << "left: " << left);
+  CHECK(all_failed == 1);
+  CHECK(all_lines == 1);
+  CHECK(std::regex_search(text, std::regex(c.pattern, std::regex::basic)));
+  CHECK(!std::regex_search(text, source_path));
+  CHECK(any_output == 0);
+  CHECK(max_files == 0); // nor a temporary or journal
+  for (const std::string &f : r.files) std::remove((dir + "/" + f).c_str());
+}
+
 TEST_CASE("bad options: each refused in-process with one line naming it, no output and no temporary left", "[options]")
 {
   const std::string dir = SharedTempDir();
   REQUIRE(!dir.empty());
-  const std::regex source_path("\\.c:[0-9]", std::regex::basic);
-  for (const BadCase &c : OptionCases()) {
+  for (const BadCase &c : OptionCases()) CheckRefusal(RunRefused(SplitArgs(c.args), dir), c, dir);
+  MPI_Barrier(PETSC_COMM_WORLD);
+  if (!Rank()) rmdir(dir.c_str());
+}
+
+// Options that nothing in the run reads (neither nltopo's tables, nor the
+// study's solver objects, nor PETSc itself) and the resource guards the
+// options decide are refused before any set-up: no study enters its Setup
+// stage, and a large scene is refused as fast as a 5-cell one.
+TEST_CASE("bad options: unknown options and resource guards are refused before any set-up, as fast as on a 5-cell scene", "[options]")
+{
+  const std::string dir = SharedTempDir();
+  REQUIRE(!dir.empty());
+  const std::vector<BadCase> cases = {
+      {"unknown option -forc_energy 0.5 (did you mean -force_energy?)", "-study simulate -lattice_cells 25000 -forc_energy 0.5"},
+      {"unknown option -forc_energy 0.5 (did you mean -force_energy?)", "-study sweep -lattice_cells 25000 -sweep_omega_n 8 -sweep_energy_n 8 -forc_energy 0.5"},
+      {"unknown option -forc_energy 0.5 (did you mean -force_energy?)", "-study zak -lattice_cells 25000 -forc_energy 0.5"},
+      {"unknown option -ts_type rk", "-study simulate -lattice_cells 25000 -ts_type rk"},
+      {"unknown option -sim_tss_type rk (did you mean -sim_ts_type?)", "-study simulate -lattice_cells 25000 -sim_tss_type rk"},
+      {"unknown option -linear_epss_nev 4 (did you mean -linear_eps_nev?)", "-study linear -lattice_cells 25000 -linear_epss_nev 4"},
+      {"-nnm_snes_rtol 1e-3: not an option of -study simulate (it belongs to -study continuation)", "-study simulate -lattice_cells 25000 -nnm_snes_rtol 1e-3"},
+      {"-floquet_eps_nev 3: not an option of -study simulate", "-study simulate -lattice_cells 25000 -floquet_eps_nev 3"},
+      {"dense shooting Jacobian .* more than this machine's", "-study continuation -lattice_cells 100000"},
+      {"dense shooting Jacobian .* more than this machine's", "-study perturb -lattice_cells 100000"},
+      {"dense shooting Jacobian .* more than this machine's", "-study stability -lattice_cells 100000"},
+      {"dense shooting Jacobian .* more than this machine's", "-study workprecision -wp_scene shooting -lattice_cells 100000"},
+  };
+  // The same mistake on a 5-cell scene: the time a refusal of the options takes.
+  double small = 0;
+  for (const char *study : {"simulate", "sweep", "continuation"}) {
+    const Refusal r = RunRefused(SplitArgs(std::string("-study ") + study + " -lattice_cells 5 -forc_energy 0.5"), dir);
+    CheckRefusal(r, {"unknown option -forc_energy", study}, dir);
+    small = std::max(small, r.seconds);
+  }
+  for (const BadCase &c : cases) {
     const Refusal r = RunRefused(SplitArgs(c.args), dir);
-    // rank 0 prints the line of a collective error: its text, and the line count of all ranks
-    int lines = 0, all_lines = 0, failed = r.code ? 1 : 0, all_failed = 0, files = (int)r.files.size(), max_files = 0, output = 0, any_output = 0;
-    for (const std::string &f : r.files) output += f == "o.h5";
-    MPI_Allreduce(&output, &any_output, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
-    for (char ch : r.err) lines += ch == '\n';
-    MPI_Allreduce(&lines, &all_lines, 1, MPI_INT, MPI_SUM, PETSC_COMM_WORLD);
-    MPI_Allreduce(&failed, &all_failed, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD);
-    MPI_Allreduce(&files, &max_files, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
-    char text[2048] = "";
-    if (!Rank()) PCHK(PetscStrncpy(text, r.err.c_str(), sizeof(text)));
-    MPI_Bcast(text, sizeof(text), MPI_CHAR, 0, PETSC_COMM_WORLD);
-    std::string left;
-    for (const std::string &f : r.files) left += f + " ";
-    INFO("nltopo " << c.args << "\nprinted: " << text << "left: " << left);
-    CHECK(all_failed == 1);
-    CHECK(all_lines == 1);
-    CHECK(std::regex_search(text, std::regex(c.pattern, std::regex::basic)));
-    CHECK(!std::regex_search(text, source_path));
-    CHECK(any_output == 0);
-    CHECK(max_files == 0); // nor a temporary or journal
-    for (const std::string &f : r.files) std::remove((dir + "/" + f).c_str());
+    CheckRefusal(r, c, dir);
+    INFO("nltopo " << c.args << ": " << r.seconds << " s, a 5-cell scene's refusal " << small << " s");
+    CHECK(r.setups == 0);
+    CHECK(r.seconds < 3 * small + 0.5); // margin for a loaded machine; the run itself takes 30 s and more
+  }
+  MPI_Barrier(PETSC_COMM_WORLD);
+  if (!Rank()) rmdir(dir.c_str());
+}
+
+// -options_left after a refusal lists the refused option as unused: the audit
+// reads the options' values without marking them used ("There are no unused
+// options" next to "unknown option -bogus" was the bug).
+TEST_CASE("bad options: a refused option stays unused in the database (-options_left lists it)", "[options]")
+{
+  const std::string dir = SharedTempDir();
+  REQUIRE(!dir.empty());
+  for (const std::string &args : {std::string("-study linear -lattice_cells 5 -bogus 1"), std::string("-study simulate -sim_t_final 5 -sweep_omega_n 3"),
+                                   std::string("-study simulate -sim_t_final 5 -force_omgea 2")}) {
+    const Refusal r = RunRefused(SplitArgs(args), dir);
+    INFO("nltopo " << args);
+    CHECK(r.code != 0);
+    const std::string refused = SplitArgs(args)[SplitArgs(args).size() - 2].substr(1);
+    CHECK(std::count(r.unused.begin(), r.unused.end(), refused) == 1);
+    CHECK(r.unused.size() == 1); // the study's own options were read
   }
   MPI_Barrier(PETSC_COMM_WORLD);
   if (!Rank()) rmdir(dir.c_str());
