@@ -240,3 +240,32 @@ TEST_CASE("bad options: a refused option stays unused in the database (-options_
   MPI_Barrier(PETSC_COMM_WORLD);
   if (!Rank()) rmdir(dir.c_str());
 }
+
+// PETSc compares option names case-insensitively (-Force_Energy is
+// -force_energy), and so does every check of nltopo's: the missing value, the
+// 32-bit integer, the audit of unused options and its did-you-mean, the
+// type-mismatched solver option, the workprecision configurations.
+TEST_CASE("bad options: every check compares option names as PETSc does, case-insensitively", "[options]")
+{
+  const std::string dir = SharedTempDir();
+  REQUIRE(!dir.empty());
+  const std::vector<BadCase> cases = {
+      {"-Force_Energy: no value given", S + "-Force_Energy"},
+      {"-LATTICE_K: no value given", L + "-LATTICE_K ''"},
+      {"unknown option -Force_Omgea 2 (did you mean -force_omega?)", S + "-Force_Omgea 2"},
+      {"unknown option -FORC_ENERGY 0.5 (did you mean -force_energy?)", S + "-FORC_ENERGY 0.5"},
+      {"-LATTICE_CELLS 4294967301: out of the integer range", "-study linear -LATTICE_CELLS 4294967301"},
+      {"-Sim_TS_Max_Steps 99999999999: out of the integer range", S + "-Sim_TS_Max_Steps 99999999999"},
+      {"-Sweep_Omega_N 3: not an option of -study simulate (it belongs to -study sweep)", S + "-Sweep_Omega_N 3"},
+      {"-Sim_TS_RK_Type 5dp: not used by this run (-sim_ts_type is symsplit", W + "-sim_ts_type symsplit -sim_ts_dt 0.1 -Sim_TS_RK_Type 5dp"},
+      {"-Lattice_K is not an integrator option", P + "-wp_configs ' -Sim_TS_Type rk -Lattice_K 2'"},
+      {"-wp_reference .*: leave out -SIM_TS_RTOL", P + "-wp_reference ' -sim_ts_type rkn -SIM_TS_RTOL 1e-9'"},
+  };
+  for (const BadCase &c : cases) {
+    const Refusal r = RunRefused(SplitArgs(c.args), dir);
+    CheckRefusal(r, c, dir);
+    CHECK(r.setups == 0);
+  }
+  MPI_Barrier(PETSC_COMM_WORLD);
+  if (!Rank()) rmdir(dir.c_str());
+}
