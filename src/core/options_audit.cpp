@@ -83,6 +83,7 @@ namespace {
 
 struct Unused {
   std::vector<std::string> names, values; // names without the leading '-'
+  std::vector<bool> has_value;            // a flag has none ("" is a value)
 };
 
 PetscErrorCode UnusedOptions(Unused *u)
@@ -94,6 +95,7 @@ PetscErrorCode UnusedOptions(Unused *u)
   for (PetscInt i = 0; i < n; i++) {
     u->names.emplace_back(names[i]);
     u->values.emplace_back(values[i] ? values[i] : "");
+    u->has_value.push_back(values[i] != NULL);
   }
   PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
   PetscFunctionReturn(0);
@@ -155,10 +157,6 @@ void TypeMismatch(const std::string &n, std::string *line)
 }
 
 std::string *g_capture = nullptr;
-
-// The options as given, before anything read them (ListGivenOptions): the
-// copy CollectKnownOptions reads in.
-OptionList g_given;
 
 PetscErrorCode CapturePrintf(MPI_Comm, const char format[], ...)
 {
@@ -329,7 +327,6 @@ PetscErrorCode ListGivenOptions(OptionList *given)
   PetscFunctionBeginUser;
   PetscCall(UnusedOptions(&u));
   for (size_t i = 0; i < u.names.size(); i++) given->emplace_back(u.names[i], u.values[i]);
-  g_given = *given;
   PetscFunctionReturn(0);
 }
 
@@ -360,15 +357,16 @@ PetscErrorCode CheckOptionValueShapes(MPI_Comm comm, const char *study, OptionsF
 PetscErrorCode CollectKnownOptions(MPI_Comm comm, const std::map<std::string, OptionsFn> &studies, std::map<std::string, std::set<std::string>> *known,
                                    std::map<std::string, OptionKind> *kinds)
 {
-  PetscOptions copy;
+  PetscBool had_help;
+  Unused before;
   PetscFunctionBeginUser;
-  // The options functions run in a copy of the given options with -help: the
-  // run's own database keeps its marks of what was used (the audit's verdicts,
-  // and -options_left's listing at the end, stay true).
-  PetscCall(PetscOptionsCreate(&copy));
-  for (const auto &o : g_given) PetscCall(PetscOptionsSetValue(copy, ("-" + o.first).c_str(), o.second.empty() ? NULL : o.second.c_str()));
-  PetscCall(PetscOptionsSetValue(copy, "-help", NULL));
-  PetscCall(PetscOptionsPush(copy));
+  // The options functions read the run's own database (its values choose the
+  // solver types whose options they list); what they mark used is unmarked
+  // after, so that the audit's verdicts, and -options_left's listing at the
+  // end, stay true.
+  PetscCall(UnusedOptions(&before));
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-help", &had_help));
+  if (!had_help) PetscCall(PetscOptionsSetValue(NULL, "-help", NULL));
   auto saved = PetscHelpPrintf;
   g_saved_vfprintf = PetscVFPrintf;
   PetscHelpPrintf = CapturePrintf;
@@ -391,8 +389,15 @@ PetscErrorCode CollectKnownOptions(MPI_Comm comm, const std::map<std::string, Op
   PetscCall(PetscPopErrorHandler());
   PetscHelpPrintf = saved;
   PetscVFPrintf = g_saved_vfprintf;
-  PetscCall(PetscOptionsPop());
-  PetscCall(PetscOptionsDestroy(&copy));
+  if (!had_help) PetscCall(PetscOptionsClearValue(NULL, "-help"));
+  for (size_t i = 0; i < before.names.size(); i++) {
+    PetscBool used;
+    const std::string name = "-" + before.names[i];
+    PetscCall(PetscOptionsUsed(NULL, before.names[i].c_str(), &used));
+    if (!used) continue;
+    PetscCall(PetscOptionsClearValue(NULL, name.c_str())); // set again: unused
+    PetscCall(PetscOptionsSetValue(NULL, name.c_str(), before.has_value[i] ? before.values[i].c_str() : NULL));
+  }
   PetscFunctionReturn(0);
 }
 

@@ -20,8 +20,7 @@ namespace nltopo {
 
 using OptionsFn = std::function<PetscErrorCode(MPI_Comm)>;
 
-// Options as given (name without the dash, value or ""), listed before anything
-// reads them; also kept as the copy CollectKnownOptions reads in.
+// Options as given (name without the dash, value or ""), listed before anything reads them.
 using OptionList = std::vector<std::pair<std::string, std::string>>;
 PetscErrorCode ListGivenOptions(OptionList *given);
 
@@ -51,8 +50,8 @@ PetscErrorCode CheckFiniteOptionValues(MPI_Comm comm, const OptionList &given, b
 
 // The option names each options function would print under -help, without
 // printing anything (known[name] = the option names of that study, lower
-// case). They run in a copy of the given options: the run's database keeps
-// its marks of what was used.
+// case). What they mark used in the database is unmarked after: the run's
+// database keeps its marks of what the run itself read.
 // kinds (optional): what kind each listed option is.
 PetscErrorCode CollectKnownOptions(MPI_Comm comm, const std::map<std::string, OptionsFn> &studies, std::map<std::string, std::set<std::string>> *known,
                                    std::map<std::string, OptionKind> *kinds = nullptr);

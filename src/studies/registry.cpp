@@ -1,6 +1,7 @@
 #include "studies/registry.hpp"
 #include "core/option_help.hpp"
 #include "core/option_reference.hpp"
+#include "core/options_input.hpp"
 #include <algorithm>
 #include <cstring>
 #include <cstdio>
@@ -150,7 +151,8 @@ PetscErrorCode RunStudyFromOptions(MPI_Comm comm)
   std::string known;
   PetscBool list_help;
   PetscFunctionBeginUser;
-  RegisterStudyContracts();        // its schemas and compared option prefixes
+  PetscCall(CheckOptionsAgree(comm)); // ranks started with different options fail together (core/options_input.hpp)
+  RegisterStudyContracts();           // its schemas and compared option prefixes
   PetscCall(TSSymSplitRegister()); // nltopo's TS types, before any -*ts_type is read
   PetscCall(TSRknRegister());
   for (const auto &s : kStudies) known += std::string(known.empty() ? "" : ", ") + s.name;

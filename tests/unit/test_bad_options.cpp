@@ -20,7 +20,9 @@
 // after work (the end-of-run audit, -cont_switch events, a diverging run) and
 // the write faults.
 #include "bad_options.hpp"
+#include "core/options_input.hpp"
 #include <regex>
+#include <sys/stat.h>
 
 using namespace nltopo;
 using namespace nltopo::test;
@@ -266,6 +268,183 @@ TEST_CASE("bad options: every check compares option names as PETSc does, case-in
     CheckRefusal(r, c, dir);
     CHECK(r.setups == 0);
   }
+  MPI_Barrier(PETSC_COMM_WORLD);
+  if (!Rank()) rmdir(dir.c_str());
+}
+
+// A word that is neither an option nor an option's value is an error (PETSc
+// skips it silently: -sweep_energy_list 0.1, 1 would run one energy); the
+// rule is PETSc's own (PetscOptionsValidKey, PetscOptionsInsertArgs and
+// PetscOptionsInsertString), so the legitimate look-alikes stay legal.
+TEST_CASE("bad options: stray words on the command line and in PETSC_OPTIONS, and their legitimate look-alikes", "[options][serial]")
+{
+  struct Words {
+    std::string pattern, line; // pattern "": accepted
+  };
+  const std::vector<Words> argv = {
+      {"command line: '1' is neither an option nor an option's value (after -sweep_energy_list 0.1,)", "-study sweep -sweep_energy_list 0.1, 1"},
+      {"'extra' is neither an option nor an option's value (after -study linear)", "-study linear extra"},
+      {"'scene.opts' .* (before any option); did you mean -options_file scene.opts?", "scene.opts -study linear"},
+      {"'b.opts' is neither .* (after -options_file a.opts)", "-options_file a.opts b.opts"},
+      {"'-2' is neither .* (after -force_energy 1)", "-study simulate -force_energy 1 -2"},
+      {"'' is neither .* (after -lattice_k 2)", "-study linear -lattice_k 2 ''"},
+      {"", "-study workprecision -wp_configs ' -sim_ts_type symsplit -sim_ts_dt 0.2' -wp_repeats 1"},
+      {"", "-study linear -lattice_cubic -50 -lattice_gamma -0.5 -force_energy -.5 -lattice_k -1e-3 -x -inf"},
+      {"", "-study sweep -sweep_energy_list 0.1,1 -sim_store_u -sim_progress 0"},
+      {"", "-prefix_push lattice_ -cells 5 -prefix_pop -study linear -lattice_k ''"},
+      {"", "-study linear -output 'my file.h5' -log_view :log.txt"},
+  };
+  for (const Words &w : argv) {
+    const std::string line = StrayArgument(SplitArgs(w.line));
+    INFO("nltopo " << w.line << "\n-> " << line);
+    if (w.pattern.empty()) CHECK(line.empty());
+    else CHECK(std::regex_search(line, std::regex(w.pattern, std::regex::basic)));
+  }
+  const std::vector<Words> env = {
+      {"PETSC_OPTIONS: 'file.h5' is neither .* (after -output my\\\\); PETSc splits it at spaces (a backslash does not escape one)", "-output my\\ file.h5"},
+      {"PETSC_OPTIONS: '1' is neither", "-sweep_energy_list 0.1, 1"},
+      {"", "-output \"my file.h5\" -lattice_cubic -1"},
+      {"", " -log_view   -lattice_k 2 "},
+  };
+  for (const Words &w : env) {
+    const std::string line = StrayInOptionsString(w.line, "PETSC_OPTIONS");
+    INFO("PETSC_OPTIONS='" << w.line << "'\n-> " << line);
+    if (w.pattern.empty()) CHECK(line.empty());
+    else CHECK(std::regex_search(line, std::regex(w.pattern, std::regex::basic)));
+  }
+}
+
+namespace {
+// Writes the files (name, content) into dir on rank 0.
+void WriteFiles(const std::string &dir, const std::vector<std::pair<std::string, std::string>> &files)
+{
+  if (!Rank())
+    for (const auto &f : files) {
+      std::FILE *o = std::fopen((dir + "/" + f.first).c_str(), "wb");
+      REQUIRE(o);
+      std::fwrite(f.second.data(), 1, f.second.size(), o);
+      std::fclose(o);
+    }
+  MPI_Barrier(PETSC_COMM_WORLD);
+}
+
+// CheckOptionsSources on the command line (words, after the program name), run in dir.
+std::string SourcesLine(const std::string &dir, const std::vector<std::string> &words)
+{
+  char cwd[4096];
+  REQUIRE(getcwd(cwd, sizeof cwd));
+  REQUIRE(chdir(dir.c_str()) == 0);
+  std::vector<std::string> all = {"nltopo"};
+  all.insert(all.end(), words.begin(), words.end());
+  std::vector<char *> argv;
+  for (std::string &w : all) argv.push_back(&w[0]);
+  const std::string line = CheckOptionsSources(PETSC_COMM_WORLD, (int)argv.size(), argv.data());
+  REQUIRE(chdir(cwd) == 0);
+  return line;
+}
+} // namespace
+
+// Options files as PETSc reads them: each problem is one line naming the file
+// and the line, the same on every rank (rank 0 reads), never a traceback,
+// never an endless recursion; -lattice_Gamma is refused however it reaches
+// the database (a nested file, -prefix_push).
+TEST_CASE("bad options: options files, read by PETSc's reader before the run, each problem in one line naming file and line", "[options]")
+{
+  const std::string dir = SharedTempDir();
+  REQUIRE(!dir.empty());
+  WriteFiles(dir, {{"ok.opts", "# a scene\n\n   -study linear   # comment\n-lattice_cells\t6\r\n-lattice_cubic -1.5\n-wp_configs \" -sim_ts_type symsplit\"\n"},
+                   {"bom.opts", "\xEF\xBB\xBF-study linear\n"},
+                   {"bang.opts", "-study linear\n-lattice_cells 5 !\n"},
+                   {"two.opts", "-study linear -lattice_cells 5\n"},
+                   {"space.opts", "-study linear\n-output my file.h5\n"},
+                   {"garbage.opts", std::string("-study linear\n\x01\x9c\xfe\x7f binary\n", 26)},
+                   {"nested.opts", "-study linear\n-options_file gone.opts\n"},
+                   {"a.opts", "-lattice_k 1\n-options_file b.opts\n"},
+                   {"b.opts", "-lattice_k 2\n-options_file a.opts\n"},
+                   {"self.opts", "-options_file self.opts\n"},
+                   {"bare.opts", "-options_file\n"},
+                   {"push.opts", "-prefix_push lattice_\n-Gamma 0.5\n-prefix_pop\n"},
+                   {"outer.opts", "-study linear\n-OPTIONS_FILE push.opts\n"},
+                   {"gamma.opts", "-options_file ok.opts\n-LATTICE_gamma 0.2\n"}});
+  if (!Rank()) REQUIRE(mkdir((dir + "/adir").c_str(), 0700) == 0);
+  MPI_Barrier(PETSC_COMM_WORLD);
+  struct FileCase {
+    std::string pattern; // "" : accepted
+    std::vector<std::string> words;
+  };
+  const std::vector<FileCase> cases = {
+      {"", {"-options_file", "ok.opts"}},
+      {"", {"-study", "linear", "-lattice_cubic", "-2", "-options_file", "ok.opts", "-lattice_k", "0.5"}},
+      {"^options file bom.opts line 1: the file starts with a UTF-8 byte-order mark; save it without one$", {"-options_file", "bom.opts"}},
+      {"^options file bang.opts line 2: '!' after the value (comments start with #)$", {"-options_file", "bang.opts"}},
+      {"^options file two.opts line 1: two options on one line", {"-options_file", "two.opts"}},
+      {"^options file space.opts line 2: 'file.h5' after the value (a value with spaces is quoted", {"-options_file", "space.opts"}},
+      {"^options file garbage.opts line 2: '\\\\x01\\\\x9C\\\\xFE\\\\x7F' is not an option", {"-options_file", "garbage.opts"}},
+      {"^options file nested.opts line 2: cannot read options file gone.opts: No such file or directory$", {"-options_file", "nested.opts"}},
+      {"^cannot read -options_file gone.opts: No such file or directory$", {"-study", "linear", "-options_file", "gone.opts"}},
+      {"^-options_file adir is a directory$", {"-options_file", "adir"}},
+      {"options files include each other (a.opts -> b.opts -> a.opts)", {"-options_file", "a.opts"}},
+      {"options files include each other (self.opts -> self.opts)", {"-Options_File", "self.opts"}},
+      {"^options file bare.opts line 1: -options_file needs a file name$", {"-options_file", "bare.opts"}},
+      {"^-options_file needs a file name$", {"-study", "linear", "-options_file", "-lattice_k", "2"}},
+      {"^-lattice_Gamma is the same option as -lattice_gamma .*-lattice_cubic$", {"-options_file", "outer.opts"}},
+      {"^-lattice_Gamma is the same option", {"-study", "linear", "-prefix_push", "lattice_", "-Gamma", "0.5", "-prefix_pop"}},
+      {"^-LATTICE_gamma is the same option", {"-options_file", "gamma.opts"}},
+      {"^command line: '1' is neither an option nor an option's value", {"-study", "sweep", "-sweep_energy_list", "0.1,", "1"}},
+  };
+  for (const FileCase &c : cases) {
+    const std::string line = SourcesLine(dir, c.words);
+    std::string cmd;
+    for (const std::string &w : c.words) cmd += " " + w;
+    INFO("nltopo" << cmd << "\n-> " << line);
+    if (c.pattern.empty()) CHECK(line.empty());
+    else CHECK(std::regex_search(line, std::regex(c.pattern, std::regex::basic)));
+    CHECK(line.find('\n') == std::string::npos);
+  }
+  // PETSC_OPTIONS (rank 0's, as PETSc reads it): a missing file and a stray word
+  const char *saved = std::getenv("PETSC_OPTIONS");
+  const std::string keep = saved ? saved : "";
+  setenv("PETSC_OPTIONS", "-options_file gone.opts", 1);
+  CHECK(SourcesLine(dir, {"-study", "linear"}) == "PETSC_OPTIONS: cannot read options file gone.opts: No such file or directory");
+  setenv("PETSC_OPTIONS", "-output my\\ file.h5", 1);
+  CHECK(std::regex_search(SourcesLine(dir, {"-study", "linear"}), std::regex("^PETSC_OPTIONS: 'file.h5' is neither", std::regex::basic)));
+  setenv("PETSC_OPTIONS", "-options_file ok.opts -output \"my file.h5\"", 1);
+  CHECK(SourcesLine(dir, {"-study", "linear"}).empty());
+  if (saved) setenv("PETSC_OPTIONS", keep.c_str(), 1);
+  else unsetenv("PETSC_OPTIONS");
+  MPI_Barrier(PETSC_COMM_WORLD);
+  if (!Rank()) {
+    for (const std::string &f : DirEntries(dir)) {
+      if (f == "adir") rmdir((dir + "/" + f).c_str());
+      else std::remove((dir + "/" + f).c_str());
+    }
+    rmdir(dir.c_str());
+  }
+}
+
+// Ranks started with different options (an MPMD launch, a per-rank file that
+// differs) fail together with one line, before anything else: the command
+// lines are compared before PETSc starts (ArgumentsDifferAcrossRanks), the
+// databases when the study starts (CheckOptionsAgree).
+TEST_CASE("bad options: options that differ between ranks fail together in one line", "[options]")
+{
+  int size;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  std::vector<std::string> words = {"nltopo", "-study", "simulate", "-sim_t_final", "5"};
+  if (Rank() == size - 1 && size > 1) words.insert(words.end(), {"-force_omega", "abc"});
+  std::vector<char *> argv;
+  for (std::string &w : words) argv.push_back(&w[0]);
+  const std::string line = ArgumentsDifferAcrossRanks(PETSC_COMM_WORLD, (int)argv.size(), argv.data());
+  INFO(line);
+  if (size == 1) CHECK(line.empty());
+  else CHECK(line == "rank " + std::to_string(size - 1) + " was started with other options than rank 0 (after argument 4, rank " + std::to_string(size - 1) +
+                         " has '-force_omega abc', rank 0 nothing); every rank must be given the same command line");
+  if (size == 1) return; // the database check below needs a second rank
+  const std::string dir = SharedTempDir();
+  REQUIRE(!dir.empty());
+  const Refusal r = RunRefused(SplitArgs(S + (Rank() == 1 ? "-force_omega abc" : "-force_omega 2")), dir);
+  CheckRefusal(r, {"the options differ between ranks: rank 1 has '-force_omega abc', rank 0 '-force_omega 2'", S}, dir);
+  CHECK(r.setups == 0);
   MPI_Barrier(PETSC_COMM_WORLD);
   if (!Rank()) rmdir(dir.c_str());
 }
