@@ -269,9 +269,10 @@ bool PetscGlobalOption(const std::string &name)
 
 OptionOwner ClassifyOption(const std::string &name, const std::vector<std::string> &solver_prefixes)
 {
-  // View options of the objects nltopo creates without a prefix (vectors,
-  // matrices, the lattice's DMDA): PETSc reads them when the objects are assembled.
-  static const char *unprefixed_views[] = {"vec_view", "mat_view", "dm_view"};
+  // Options of the objects nltopo creates without a prefix (vectors, matrices,
+  // the lattice's DMDA, their scatters: -vec_view, -mat_view, -dm_view,
+  // -sf_type, ...): PETSc reads them when the objects are assembled or used.
+  static const char *unprefixed_views[] = {"vec_", "mat_", "dm_", "sf_", "vecscatter_", "is_"};
   const std::string n = Lower(name);
   if (PetscGlobalOption(n)) return OptionOwner::Petsc;
   if (OwnComponent(n) || FindOption("-" + n)) return OptionOwner::Nltopo;

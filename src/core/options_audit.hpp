@@ -62,9 +62,9 @@ PetscErrorCode CollectKnownOptions(MPI_Comm comm, const std::map<std::string, Op
 // - Nltopo: an option table's row, or a name under one of nltopo's component
 //   prefixes (a misspelt -force_omgea is nltopo's, and unknown to it);
 // - Solver: under a solver prefix the running study declared (solver_prefixes:
-//   "sim_ts_", "nnm_ksp_", ...), or a view option of the objects nltopo creates
-//   without a prefix (-vec_view, -mat_view, -dm_view): PETSc objects may read
-//   them during the run, so they are checked after it;
+//   "sim_ts_", "nnm_ksp_", ...), or an option of the objects nltopo creates
+//   without a prefix (-vec_*, -mat_*, -dm_*, -sf_*, -vecscatter_*, -is_*):
+//   PETSc objects may read them during the run, so they are checked after it;
 // - Unknown: anything else (-forc_energy, -ts_type): nothing in the run reads it.
 enum class OptionOwner { Petsc, Nltopo, Solver, Unknown };
 OptionOwner ClassifyOption(const std::string &name, const std::vector<std::string> &solver_prefixes);

@@ -448,3 +448,26 @@ TEST_CASE("bad options: options that differ between ranks fail together in one l
   MPI_Barrier(PETSC_COMM_WORLD);
   if (!Rank()) rmdir(dir.c_str());
 }
+
+// Who reads an option, as the audit decides before any work: PETSc's own
+// global options (an inventory, not prefixes: -hello is not -h), nltopo's,
+// the declared solver objects', or nobody.
+TEST_CASE("bad options: every option is nltopo's, a declared solver's, PETSc's own, or unknown", "[options][serial]")
+{
+  RegisterStudyContracts(); // the component prefixes
+  const std::vector<std::string> solvers = {"sim_ts_", "sim_snes_", "sim_ksp_", "sim_pc_", "sim_mat_", "linear_eps_", "linear_st_"};
+  const std::vector<std::pair<std::string, OptionOwner>> cases = {
+      {"log_view", OptionOwner::Petsc},         {"Log_View", OptionOwner::Petsc},          {"malloc_debug", OptionOwner::Petsc},
+      {"options_left", OptionOwner::Petsc},     {"viewer_binary_skip_info", OptionOwner::Petsc}, {"info", OptionOwner::Petsc},
+      {"no_signal_handler", OptionOwner::Petsc}, {"lattice_k", OptionOwner::Nltopo},        {"LATTICE_K", OptionOwner::Nltopo},
+      {"force_omgea", OptionOwner::Nltopo},     {"study", OptionOwner::Nltopo},            {"option_tables", OptionOwner::Nltopo},
+      {"sim_ts_rtol", OptionOwner::Solver},     {"Sim_TS_Adapt_Type", OptionOwner::Solver}, {"linear_st_ksp_type", OptionOwner::Solver},
+      {"mat_view", OptionOwner::Solver},        {"sf_type", OptionOwner::Solver},          {"forc_energy", OptionOwner::Unknown},
+      {"ts_type", OptionOwner::Unknown},        {"nnm_snes_rtol", OptionOwner::Unknown},   {"hello", OptionOwner::Unknown},
+      {"mpi_foo", OptionOwner::Unknown},        {"petsc_foo", OptionOwner::Unknown},       {"test_x", OptionOwner::Unknown},
+      {"logview", OptionOwner::Unknown},        {"sim_tss_type", OptionOwner::Nltopo}}; // under -sim_, not a solver class: a misspelt nltopo option
+  for (const auto &c : cases) {
+    INFO("-" << c.first);
+    CHECK(ClassifyOption(c.first, solvers) == c.second);
+  }
+}
