@@ -2,6 +2,7 @@
 // Thin driver: initialise, run the -study from the registry, finalise.
 #include "core/errors.hpp"
 #include "core/option_help.hpp"
+#include "core/options_input.hpp"
 #include "core/signals.hpp"
 #include "studies/registry.hpp"
 #include <slepcsys.h>
@@ -57,7 +58,9 @@ static int Run(int argc, char **argv)
     }
   if (!nltopo::PreflightArguments(argc, argv)) return 1;
   std::signal(SIGXFSZ, SIG_IGN); // a file-size limit (ulimit -f) is a failed write with one line, not a kill
-  if (SlepcInitialize(&argc, &argv, NULL, help)) return 1;
+  const PetscErrorCode started = SlepcInitialize(&argc, &argv, NULL, help);
+  nltopo::RemoveSpooledOptionsFiles(); // PETSc has read its copies of the pipes (core/options_input.hpp)
+  if (started) return 1;
   PetscPushErrorHandler(nltopo::OneLineErrorHandler, NULL);
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL); // HDF5's stack dumps off: every failure gets nltopo's one line
   nltopo::InstallStopSignalHandlers();   // SIGINT, SIGTERM: stop at the next safe point

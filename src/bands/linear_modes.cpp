@@ -282,15 +282,22 @@ PetscErrorCode LinearModes::Identify(const Lattice &lat)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode CheckLinearModesMemory(MPI_Comm comm, PetscInt N, const LinearModesOptions &o)
+{
+  PetscFunctionBeginUser;
+  // LAPACK on the dense N x N matrix: the matrix, its eigenvectors and workspace on every rank.
+  if (N <= o.dense_max) PetscCall(CheckMemory(comm, 4.0 * 8.0 * (double)N * (double)N, "all linear eigenpairs (N <= -linear_dense_max)"));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode LinearModes::Compute(const Lattice &lat, const LinearModesOptions &o)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(Log().eigen, 0, 0, 0, 0));
   omega_.clear();
   modes_.clear();
+  PetscCall(CheckLinearModesMemory(lat.Comm(), lat.N(), o));
   if (lat.N() <= o.dense_max) {
-    // LAPACK on the dense N x N matrix: the matrix, its eigenvectors and workspace on every rank.
-    PetscCall(CheckMemory(lat.Comm(), 4.0 * 8.0 * (double)lat.N() * (double)lat.N(), "all linear eigenpairs (N <= -linear_dense_max)"));
     PetscCall(SolveAll(lat));
   } else PetscCall(SolveNear(lat, o));
   PetscCall(SortAndNormalise());

@@ -14,6 +14,9 @@ struct LinearModesOptions {
   PetscReal offset = 1e-6;   // shift-invert: targets sit this far (relative) outside each band edge
 };
 PetscErrorCode LinearModesOptionsFromOptions(MPI_Comm comm, LinearModesOptions *o);
+// Refuses the dense path (N <= o.dense_max: all N eigenpairs on every rank)
+// where it would not fit in memory; Compute checks it, a study before any set-up.
+PetscErrorCode CheckLinearModesMemory(MPI_Comm comm, PetscInt N, const LinearModesOptions &o);
 
 // Indices (into Omega()) of the named modes; -1 when the layout has none.
 struct NamedModes {

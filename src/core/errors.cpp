@@ -122,15 +122,6 @@ PetscErrorCode RejectGivenOptions(MPI_Comm comm, std::initializer_list<const cha
   PetscFunctionReturn(0);
 }
 
-// Before PETSc starts (MPI has: main.cpp): only rank 0 prints; every rank exits.
-static bool FirstRank()
-{
-  int up = 0, rank = 0;
-  MPI_Initialized(&up);
-  if (up) MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  return rank == 0;
-}
-#define PREFLIGHT_ERROR(...) (FirstRank() ? (void)std::fprintf(stderr, __VA_ARGS__) : (void)0)
 PetscErrorCode FailTogether(MPI_Comm comm, PetscErrorCode code, const char *msg)
 {
   PetscMPIInt rank, size, first, who;
@@ -146,46 +137,6 @@ PetscErrorCode FailTogether(MPI_Comm comm, PetscErrorCode code, const char *msg)
   PetscCallMPI(MPI_Bcast(&c, 1, MPI_INT, who, comm));
   PetscCallMPI(MPI_Bcast(buf, sizeof(buf), MPI_CHAR, who, comm));
   SETERRQ(comm, (PetscErrorCode)c, "%s", buf);
-}
-
-static bool CaseTrap(const char *token, const char *where)
-{
-  // Any spelling of -lattice_gamma with an upper-case letter (-lattice_Gamma, -LATTICE_GAMMA, ...)
-  if (strcasecmp(token, "-lattice_gamma") || !std::strcmp(token, "-lattice_gamma")) return false;
-  PREFLIGHT_ERROR(
-      "nltopo: error: %s: %s is the same option as -lattice_gamma (PETSc option names are case-insensitive); set the cubic coefficient with -lattice_cubic\n",
-      where, token);
-  return true;
-}
-
-bool PreflightArguments(int argc, char **argv)
-{
-  for (int i = 1; i < argc; i++) {
-    if (CaseTrap(argv[i], "command line")) return false;
-    if (std::strcmp(argv[i], "-options_file")) continue;
-    if (i + 1 >= argc) {
-      PREFLIGHT_ERROR("nltopo: error: -options_file needs a file name\n");
-      return false;
-    }
-    std::FILE *f = std::fopen(argv[i + 1], "r");
-    if (!f) {
-      PREFLIGHT_ERROR("nltopo: error: cannot read -options_file %s: %s\n", argv[i + 1], std::strerror(errno));
-      return false;
-    }
-    char line[4096], tok[4096];
-    bool bad = false;
-    while (!bad && std::fgets(line, sizeof(line), f))
-      if (std::sscanf(line, " %4095s", tok) == 1) bad = CaseTrap(tok, argv[i + 1]);
-    std::fclose(f);
-    if (bad) return false;
-  }
-  if (const char *env = std::getenv("PETSC_OPTIONS")) {
-    char tok[4096];
-    int n = 0;
-    for (const char *p = env; std::sscanf(p, " %4095s%n", tok, &n) == 1; p += n)
-      if (CaseTrap(tok, "PETSC_OPTIONS")) return false;
-  }
-  return true;
 }
 
 } // namespace nltopo

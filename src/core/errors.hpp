@@ -11,13 +11,6 @@ namespace nltopo {
 
 PetscErrorCode OneLineErrorHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx);
 
-// Checks the command line before PETSc reads it: every "-options_file F" must
-// be readable (one line naming it otherwise), and neither the command line,
-// those files nor PETSC_OPTIONS may use "-lattice_Gamma", which PETSc's
-// case-insensitive options database would silently read as -lattice_gamma.
-// Returns false (and prints) on the first problem.
-bool PreflightArguments(int argc, char **argv);
-
 // Whether OneLineErrorHandler has printed a stop signal's message (main
 // prints a generic one for a study that stopped without saying where).
 bool InterruptReported();

@@ -1,6 +1,7 @@
 #include "core/option_table.hpp"
 #include <algorithm>
 #include <cstdio>
+#include <strings.h>
 
 namespace nltopo {
 
@@ -75,7 +76,7 @@ const OptionInfo *FindOption(const std::string &name)
 {
   for (const auto &t : Tables())
     for (const OptionInfo &r : *t.rows)
-      if (r.name == name) return &r;
+      if (!strcasecmp(r.name.c_str(), name.c_str())) return &r; // PETSc's names are case-insensitive
   return nullptr;
 }
 

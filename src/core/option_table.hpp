@@ -63,7 +63,7 @@ struct RegisteredOptionTable {
 };
 const std::vector<RegisteredOptionTable> &OptionTables();
 void RegisterOptionTable(const char *title, const std::vector<OptionInfo> *rows, std::function<PetscErrorCode(MPI_Comm)> read_defaults);
-// The row of a full option name ("-lattice_k"), NULL if no table declares it.
+// The row of a full option name ("-lattice_k", in any case), NULL if no table declares it.
 const OptionInfo *FindOption(const std::string &name);
 
 // The option prefixes of nltopo's components ("-wp_"), registered by each

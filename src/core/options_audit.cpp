@@ -17,6 +17,27 @@
 
 namespace nltopo {
 
+namespace {
+// The capture RunStudyFromOptions holds while the running study declares its solvers.
+std::vector<std::string> *g_solver_capture = nullptr;
+
+// The option classes of the objects a solver of each kind creates under its
+// prefix: a TS its SNES, KSP and PC (and their matrices' -mat_*), an SNES its
+// nonlinear preconditioner, KSP and PC, an EPS its ST (with the ST's own KSP,
+// -<prefix>st_ksp_*), BV, DS, RG and FN.
+void CaptureSolverPrefix(const char *prefix, std::initializer_list<const char *> classes)
+{
+  if (!g_solver_capture) return;
+  for (const char *c : classes) {
+    const std::string p = std::string(prefix) + c;
+    if (std::find(g_solver_capture->begin(), g_solver_capture->end(), p) == g_solver_capture->end()) g_solver_capture->push_back(p);
+  }
+}
+} // namespace
+
+SolverPrefixCapture::SolverPrefixCapture() { g_solver_capture = &prefixes_; }
+SolverPrefixCapture::~SolverPrefixCapture() { g_solver_capture = nullptr; }
+
 // A throw-away object of a solver class, configured from the database.
 template <typename T, PetscErrorCode (*Create)(MPI_Comm, T *), PetscErrorCode (*Prefix)(T, const char[]), PetscErrorCode (*FromOptions)(T),
           PetscErrorCode (*Destroy)(T *)>
@@ -36,6 +57,7 @@ PetscErrorCode DeclareTS(MPI_Comm comm, const char *prefix)
   char type[64] = "";
   PetscBool set;
   PetscFunctionBeginUser;
+  CaptureSolverPrefix(prefix, {"ts_", "snes_", "ksp_", "pc_", "mat_"});
   PetscCall(Declare<TS, TSCreate, TSSetOptionsPrefix, TSSetFromOptions, TSDestroy>(comm, prefix));
   // the provenance's effective type: given, or the code's default for this prefix (a default that changes is then caught on resume)
   PetscCall(PetscOptionsGetString(NULL, prefix, "-ts_type", type, sizeof(type), &set));
@@ -46,11 +68,13 @@ PetscErrorCode DeclareTS(MPI_Comm comm, const char *prefix)
 }
 PetscErrorCode DeclareSNES(MPI_Comm comm, const char *prefix)
 {
+  CaptureSolverPrefix(prefix, {"snes_", "npc_", "ksp_", "pc_", "mat_"});
   NoteSolverPrefix((std::string(prefix) + "snes_").c_str(), "SNES; its KSP and PC: -" + std::string(prefix) + "ksp_*, -" + std::string(prefix) + "pc_*");
   return Declare<SNES, SNESCreate, SNESSetOptionsPrefix, SNESSetFromOptions, SNESDestroy>(comm, prefix);
 }
 PetscErrorCode DeclareEPS(MPI_Comm comm, const char *prefix)
 {
+  CaptureSolverPrefix(prefix, {"eps_", "st_", "bv_", "ds_", "rg_", "fn_"});
   NoteSolverPrefix((std::string(prefix) + "eps_").c_str(), "SLEPc EPS");
   return Declare<EPS, EPSCreate, EPSSetOptionsPrefix, EPSSetFromOptions, EPSDestroy>(comm, prefix);
 }
@@ -59,6 +83,7 @@ namespace {
 
 struct Unused {
   std::vector<std::string> names, values; // names without the leading '-'
+  std::vector<bool> has_value;            // a flag has none ("" is a value)
 };
 
 PetscErrorCode UnusedOptions(Unused *u)
@@ -70,6 +95,7 @@ PetscErrorCode UnusedOptions(Unused *u)
   for (PetscInt i = 0; i < n; i++) {
     u->names.emplace_back(names[i]);
     u->values.emplace_back(values[i] ? values[i] : "");
+    u->has_value.push_back(values[i] != NULL);
   }
   PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
   PetscFunctionReturn(0);
@@ -77,58 +103,20 @@ PetscErrorCode UnusedOptions(Unused *u)
 
 bool StartsWith(const std::string &s, const char *p) { return s.compare(0, std::strlen(p), p) == 0; }
 
-// PETSc's own options: read at PetscInitialize/PetscFinalize or by objects
-// nltopo does not create; never reported.
-bool PetscOwn(const std::string &n)
+// PETSc compares option names case-insensitively (strcasecmp): so does every check here.
+std::string Lower(std::string s)
 {
-  static const char *own[] = {"log",
-                              "options_",
-                              "malloc",
-                              "memory_view",
-                              "objects_dump",
-                              "help",
-                              "h",
-                              "info",
-                              "version",
-                              "history",
-                              "on_error",
-                              "fp_trap",
-                              "check_pointer_intensity",
-                              "nox",
-                              "viewer",
-                              "mpi",
-                              "display",
-                              "debugger",
-                              "stop_for_debugger",
-                              "start_in_debugger",
-                              "no_signal_handler",
-                              "skip_petscrc",
-                              "use_gpu_aware_mpi",
-                              "petsc",
-                              "error_output",
-                              "saws",
-                              "python",
-                              "x_virtual",
-                              "checkstack",
-                              "blas",
-                              "omp_",
-                              "device",
-                              "slepc",
-                              "citations",
-                              "compare",
-                              "timeout",
-                              "test_"};
-  for (const char *p : own)
-    if (StartsWith(n, p)) return true;
-  return false;
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return (char)std::tolower(c); });
+  return s;
 }
 
 // nltopo's own option blocks (complete in every options function) as opposed
 // to the options of solver objects with these prefixes (-sim_ts_*, -nnm_snes_*, ...).
+// n: lower case, without the dash.
 bool OwnComponent(const std::string &n)
 {
   static const char *solver_prefixes[] = {"sim_", "nnm_start_", "nnm_", "linear_", "floquet_mf_", "floquet_"};
-  static const char *classes[] = {"ts_", "snes_", "ksp_", "pc_", "eps_", "st_", "bv_", "ds_", "rg_", "fn_", "mat_", "dm_", "tao_", "sf_"};
+  static const char *classes[] = {"ts_", "snes_", "npc_", "ksp_", "pc_", "eps_", "st_", "bv_", "ds_", "rg_", "fn_", "mat_", "dm_", "tao_", "sf_"};
   bool own = StartsWith(n, "study") || StartsWith(n, "output");
   for (const std::string &p : ComponentPrefixes()) own = own || StartsWith(n, p.c_str() + 1); // the registered prefixes carry the dash
   if (!own) return false;
@@ -247,6 +235,54 @@ size_t EditDistance(const std::string &a, const std::string &b)
 
 } // namespace
 
+// PETSc 3.18's and SLEPc's own options: read by PetscInitialize, PetscFinalize
+// and the library itself, never by an object nltopo configures (the
+// PetscInitialize and PetscFinalize manual pages, and the option names the
+// library reads). -options_file, -options_file_yaml, -options_string_yaml,
+// -prefix_push and -prefix_pop never reach the database.
+bool PetscGlobalOption(const std::string &name)
+{
+  static const std::set<std::string> exact = {
+      "help", "version", "info", "info_exclude", "history", "citations",
+      // logging (-log_view and its companions)
+      "log", "log_all", "log_exclude", "log_exclude_actions", "log_exclude_objects", "log_summary", "log_sync", "log_threshold", "log_trace", "log_view",
+      "log_view_gpu_time", "log_view_memory", "log_mpe", "log_perfstubs",
+      // memory
+      "malloc", "malloc_coalesce", "malloc_debug", "malloc_dump", "malloc_hbw", "malloc_info", "malloc_requested_size", "malloc_test", "malloc_view",
+      "malloc_view_threshold", "memory_view", "objects_dump", "get_total_flops",
+      // the options database
+      "options_left", "options_view", "options_monitor", "options_monitor_cancel", "options_suppress_deprecated_warnings", "skip_petscrc",
+      // errors, signals, debuggers
+      "on_error_abort", "on_error_attach_debugger", "on_error_emacs", "on_error_mpiabort", "mpi_return_on_error", "start_in_debugger",
+      "stop_for_debugger", "debugger_nodes", "debugger_ranks", "debugger_pause", "no_signal_handler", "fp_trap", "check_pointer_intensity",
+      "checkfunctionlist", "error_output_none", "error_output_stdout", "mpidump", "petsc_sleep", "petsc_ci", "petsc_ci_portable_error_output",
+      // MPI, devices, graphics, bindings
+      "use_gpu_aware_mpi", "mpi_linear_solver_server", "mpi_linear_solver_server_view", "nox", "nox_warning", "x_virtual", "display", "python",
+      "library_preload"};
+  static const char *families[] = {"saws", "device", "viewer", "draw"}; // -saws_*, -device_*, -viewer_*, -draw_*
+  const std::string n = Lower(name);
+  if (exact.count(n)) return true;
+  for (const char *f : families)
+    if (n == f || StartsWith(n, (std::string(f) + "_").c_str())) return true;
+  return false;
+}
+
+OptionOwner ClassifyOption(const std::string &name, const std::vector<std::string> &solver_prefixes)
+{
+  // Options of the objects nltopo creates without a prefix (vectors, matrices,
+  // the lattice's DMDA, their scatters: -vec_view, -mat_view, -dm_view,
+  // -sf_type, ...): PETSc reads them when the objects are assembled or used.
+  static const char *unprefixed_views[] = {"vec_", "mat_", "dm_", "sf_", "vecscatter_", "is_"};
+  const std::string n = Lower(name);
+  if (PetscGlobalOption(n)) return OptionOwner::Petsc;
+  if (OwnComponent(n) || FindOption("-" + n)) return OptionOwner::Nltopo;
+  for (const std::string &p : solver_prefixes)
+    if (StartsWith(n, p.c_str())) return OptionOwner::Solver;
+  for (const char *v : unprefixed_views)
+    if (StartsWith(n, v)) return OptionOwner::Solver;
+  return OptionOwner::Unknown;
+}
+
 std::string ClosestOption(const std::string &name, const std::set<std::string> &candidates)
 {
   std::string best;
@@ -263,7 +299,8 @@ PetscErrorCode CheckFiniteOptionValues(MPI_Comm comm, const OptionList &given, b
   PetscFunctionBeginUser;
   for (const auto &o : given) {
     const std::string &name = o.first, &v = o.second;
-    if (solvers_only && OwnComponent(name)) continue;
+    const bool own = OwnComponent(Lower(name));
+    if (solvers_only && own) continue;
     size_t pos = 0;
     while (pos <= v.size()) {
       size_t end = v.find(',', pos);
@@ -276,7 +313,7 @@ PetscErrorCode CheckFiniteOptionValues(MPI_Comm comm, const OptionList &given, b
         const double x = std::strtod(tok.c_str(), &stop);
         std::string low = tok;
         std::transform(low.begin(), low.end(), low.begin(), [](unsigned char c) { return (char)std::tolower(c); });
-        const bool norm_name = low == "infinity" && !OwnComponent(name); // PETSc's norm type names (-ts_adapt_wnormtype infinity)
+        const bool norm_name = low == "infinity" && !own; // PETSc's norm type names (-ts_adapt_wnormtype infinity)
         PetscCheck(*stop || std::isfinite(x) || norm_name, comm, PETSC_ERR_USER, "-%s %s: the value must be a finite number", name.c_str(), v.c_str());
       }
       pos = end + 1;
@@ -301,10 +338,10 @@ PetscErrorCode CheckOptionValueShapes(MPI_Comm comm, const char *study, OptionsF
   PetscFunctionBeginUser;
   PetscCall(CollectKnownOptions(comm, {{study, options}}, &known, &kinds));
   for (const auto &o : given) {
-    const std::string &n = o.first, &v = o.second;
-    const auto k = kinds.find(n);
-    if (k == kinds.end() || PetscOwn(n)) continue;        // unknown names are the unused-options audit's
-    if (k->second != OptionKind::Flag && OwnComponent(n)) // solver options may take an optional value (-sim_ts_monitor)
+    const std::string &n = o.first, &v = o.second; // n as given: the lines name it so
+    const auto k = kinds.find(Lower(n));
+    if (k == kinds.end() || PetscGlobalOption(n)) continue;      // unknown names are the unused-options audit's
+    if (k->second != OptionKind::Flag && OwnComponent(Lower(n))) // solver options may take an optional value (-sim_ts_monitor)
       PetscCheck(!v.empty(), comm, PETSC_ERR_USER, "-%s: no value given (-help shows its default and meaning)", n.c_str());
     if (k->second == OptionKind::Integer && !v.empty()) {
       errno = 0;
@@ -322,7 +359,13 @@ PetscErrorCode CollectKnownOptions(MPI_Comm comm, const std::map<std::string, Op
                                    std::map<std::string, OptionKind> *kinds)
 {
   PetscBool had_help;
+  Unused before;
   PetscFunctionBeginUser;
+  // The options functions read the run's own database (its values choose the
+  // solver types whose options they list); what they mark used is unmarked
+  // after, so that the audit's verdicts, and -options_left's listing at the
+  // end, stay true.
+  PetscCall(UnusedOptions(&before));
   PetscCall(PetscOptionsHasName(NULL, NULL, "-help", &had_help));
   if (!had_help) PetscCall(PetscOptionsSetValue(NULL, "-help", NULL));
   auto saved = PetscHelpPrintf;
@@ -348,25 +391,25 @@ PetscErrorCode CollectKnownOptions(MPI_Comm comm, const std::map<std::string, Op
   PetscHelpPrintf = saved;
   PetscVFPrintf = g_saved_vfprintf;
   if (!had_help) PetscCall(PetscOptionsClearValue(NULL, "-help"));
+  for (size_t i = 0; i < before.names.size(); i++) {
+    PetscBool used;
+    const std::string name = "-" + before.names[i];
+    PetscCall(PetscOptionsUsed(NULL, before.names[i].c_str(), &used));
+    if (!used) continue;
+    PetscCall(PetscOptionsClearValue(NULL, name.c_str())); // set again: unused
+    PetscCall(PetscOptionsSetValue(NULL, name.c_str(), before.has_value[i] ? before.values[i].c_str() : NULL));
+  }
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode AuditUnusedOptions(MPI_Comm comm, const char *study, const std::map<std::string, OptionsFn> &studies, bool early)
+// Rank 0's candidates (names as given, without the dash), kept only where
+// every rank left them unused: an option counts as used if any rank used it
+// (sweep ranks run different points).
+static PetscErrorCode UnusedOnEveryRank(MPI_Comm comm, const std::vector<std::string> &mine, std::vector<std::string> *bad)
 {
-  Unused u;
-  PetscMPIInt rank;
-  std::vector<std::string> lines;
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  PetscCall(UnusedOptions(&u));
-  // An option counts as used if any rank used it (sweep ranks run different
-  // points): rank 0's candidates, kept only where every rank left them unused.
   std::string packed;
-  for (size_t i = 0; i < u.names.size(); i++) {
-    std::string mismatch;
-    if (early) TypeMismatch(u.names[i], &mismatch);
-    if (!PetscOwn(u.names[i]) && (!early || OwnComponent(u.names[i]) || !mismatch.empty())) packed += u.names[i] + '\n';
-  }
+  for (const std::string &n : mine) packed += n + '\n';
   int len = (int)packed.size();
   PetscCallMPI(MPI_Bcast(&len, 1, MPI_INT, 0, comm));
   if (!len) PetscFunctionReturn(0);
@@ -385,20 +428,41 @@ PetscErrorCode AuditUnusedOptions(MPI_Comm comm, const char *study, const std::m
     used[i] = f ? 1 : 0;
   }
   PetscCallMPI(MPI_Allreduce(used.data(), any.data(), (int)cand.size(), MPI_INT, MPI_MAX, comm));
-  std::vector<std::string> bad;
   for (size_t i = 0; i < cand.size(); i++)
-    if (!any[i]) bad.push_back(cand[i]);
+    if (!any[i]) bad->push_back(cand[i]);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AuditUnusedOptions(MPI_Comm comm, const char *study, const std::map<std::string, OptionsFn> &studies, bool early,
+                                  const std::vector<std::string> &solver_prefixes)
+{
+  Unused u;
+  PetscMPIInt rank;
+  std::vector<std::string> lines, mine, bad;
+  std::map<std::string, std::string> value; // as given (reading it would mark it used)
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCall(UnusedOptions(&u));
+  // Early: every option but PETSc's own and those of the study's solver
+  // objects, which may read them during the run (checked at the end).
+  for (size_t i = 0; i < u.names.size(); i++) {
+    const std::string &n = u.names[i];
+    value[n] = u.values[i];
+    std::string mismatch;
+    if (early) TypeMismatch(Lower(n), &mismatch);
+    const OptionOwner owner = ClassifyOption(n, solver_prefixes);
+    if (owner != OptionOwner::Petsc && (!early || owner != OptionOwner::Solver || !mismatch.empty())) mine.push_back(n);
+  }
+  PetscCall(UnusedOnEveryRank(comm, mine, &bad));
   if (bad.empty()) PetscFunctionReturn(0);
 
   std::map<std::string, std::set<std::string>> known;
   PetscCall(CollectKnownOptions(comm, studies, &known));
   std::set<std::string> all;
   for (const auto &k : known) all.insert(k.second.begin(), k.second.end());
-  for (const std::string &n : bad) {
-    char value[256] = "";
-    PetscBool set;
-    PetscCall(PetscOptionsGetString(NULL, NULL, ("-" + n).c_str(), value, sizeof(value), &set));
-    const std::string shown = "-" + n + (value[0] ? std::string(" ") + value : std::string());
+  for (const std::string &given : bad) {
+    const std::string n = Lower(given), &v = value[given];
+    const std::string shown = "-" + given + (v.empty() ? std::string() : " " + v);
     std::string owner;
     for (const auto &k : known)
       if (k.first != study && k.second.count(n)) {
@@ -411,9 +475,11 @@ PetscErrorCode AuditUnusedOptions(MPI_Comm comm, const char *study, const std::m
     else if (known[study].count(n)) line = shown + ": not used by this run (it applies only to other solver types or settings; remove it)";
     else if (!owner.empty()) line = shown + ": not an option of -study " + study + " (it belongs to -study " + owner + "); remove it";
     else {
-      // Early: nltopo's own blocks are complete, so the name is unknown. At the
-      // end it may be a solver option of a type this run did not select.
-      const std::string near = ClosestOption(n, all);
+      // Early, only nltopo's own blocks and unknown names are here. At the end
+      // it may be a solver option of a type this run did not select.
+      std::string near = ClosestOption(n, all);
+      for (const std::string &k : known[study]) // a solver option without the study's prefix: -ts_type for -sim_ts_type
+        if (near.empty() && k.size() > n.size() + 1 && k.compare(k.size() - n.size(), n.size(), n) == 0 && k[k.size() - n.size() - 1] == '_') near = k;
       const std::string hint = near.empty() ? std::string(" (-help lists the options)") : " (did you mean -" + near + "?)";
       const bool solver = !early && (StartsWith(n, "sim_") || StartsWith(n, "nnm_") || StartsWith(n, "linear_") || StartsWith(n, "floquet"));
       line = solver ? shown + ": not used by this run" + hint : "unknown option " + shown + hint;

@@ -49,17 +49,52 @@ PetscErrorCode CheckOptionValueShapes(MPI_Comm comm, const char *study, OptionsF
 PetscErrorCode CheckFiniteOptionValues(MPI_Comm comm, const OptionList &given, bool solvers_only);
 
 // The option names each options function would print under -help, without
-// printing anything (known[name] = the option names of that study).
+// printing anything (known[name] = the option names of that study, lower
+// case). What they mark used in the database is unmarked after: the run's
+// database keeps its marks of what the run itself read.
 // kinds (optional): what kind each listed option is.
 PetscErrorCode CollectKnownOptions(MPI_Comm comm, const std::map<std::string, OptionsFn> &studies, std::map<std::string, std::set<std::string>> *known,
                                    std::map<std::string, OptionKind> *kinds = nullptr);
 
-// Unused options of the database (set, never queried). early: only those the
-// options functions are complete for (nltopo's own component prefixes, not the
-// solver objects' and PETSc's own), checked before anything is computed;
-// otherwise every unused option except PETSc's own, checked before the output
-// is committed. Each gets one line; the run fails on the first problem.
-PetscErrorCode AuditUnusedOptions(MPI_Comm comm, const char *study, const std::map<std::string, OptionsFn> &studies, bool early);
+// Who reads an option (name without the dash, in any case: PETSc compares
+// names case-insensitively, and so does every check here):
+// - Petsc: PETSc itself (-log_view, -malloc_debug, -options_left, ...: PetscGlobalOption);
+// - Nltopo: an option table's row, or a name under one of nltopo's component
+//   prefixes (a misspelt -force_omgea is nltopo's, and unknown to it);
+// - Solver: under a solver prefix the running study declared (solver_prefixes:
+//   "sim_ts_", "nnm_ksp_", ...), or an option of the objects nltopo creates
+//   without a prefix (-vec_*, -mat_*, -dm_*, -sf_*, -vecscatter_*, -is_*):
+//   PETSc objects may read them during the run, so they are checked after it;
+// - Unknown: anything else (-forc_energy, -ts_type): nothing in the run reads it.
+enum class OptionOwner { Petsc, Nltopo, Solver, Unknown };
+OptionOwner ClassifyOption(const std::string &name, const std::vector<std::string> &solver_prefixes);
+// PETSc's and SLEPc's own options (read at start-up, at the end, or by the
+// library itself), name without the dash, any case.
+bool PetscGlobalOption(const std::string &name);
+
+// While alive, records the option prefixes of the solver objects declared
+// (DeclareTS, DeclareSNES, DeclareEPS), with the classes of the objects each
+// creates: "sim_" TS gives "sim_ts_", "sim_snes_", "sim_ksp_", "sim_pc_", "sim_mat_".
+class SolverPrefixCapture {
+public:
+  SolverPrefixCapture();
+  ~SolverPrefixCapture();
+  SolverPrefixCapture(const SolverPrefixCapture &) = delete;
+  SolverPrefixCapture &operator=(const SolverPrefixCapture &) = delete;
+  const std::vector<std::string> &Prefixes() const { return prefixes_; }
+
+private:
+  std::vector<std::string> prefixes_;
+};
+
+// Unused options of the database (set, never queried); each gets one line and
+// the run fails on the first problem. early (before any work, after the study
+// declared its options): every option except PETSc's own and those under the
+// study's solver_prefixes (a type-mismatched -sim_ts_rk_type is refused too);
+// otherwise (before the output is committed) every unused option except
+// PETSc's own. Reading the values for the lines marks nothing used.
+PetscErrorCode AuditUnusedOptions(MPI_Comm comm, const char *study, const std::map<std::string, OptionsFn> &studies, bool early,
+                                  const std::vector<std::string> &solver_prefixes = {});
 
 // Closest name by edit distance (Damerau-Levenshtein), "" if none is close.
 std::string ClosestOption(const std::string &name, const std::set<std::string> &candidates);

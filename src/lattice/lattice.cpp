@@ -6,6 +6,16 @@
 
 namespace nltopo {
 
+PetscErrorCode CheckLatticeMemory(MPI_Comm comm, PetscInt N)
+{
+  PetscMPIInt size;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  // K, L, the state and work vectors: a few hundred bytes per site (N = 10^6: ~0.3 GB).
+  PetscCall(CheckMemory(comm, 300.0 * (double)N / size, "the lattice (-lattice_cells)"));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Lattice::Setup(MPI_Comm comm, const LatticeParams &p)
 {
   const PetscInt *lx;
@@ -17,8 +27,7 @@ PetscErrorCode Lattice::Setup(MPI_Comm comm, const LatticeParams &p)
   PetscCallMPI(MPI_Comm_size(comm, &size_));
   PetscCheck(N >= size_, comm, PETSC_ERR_USER, "-lattice_cells %" PetscInt_FMT " gives N = %" PetscInt_FMT " sites, fewer than the %d MPI ranks", p.cells, N,
              (int)size_);
-  // K, L, the state and work vectors: a few hundred bytes per site (N = 10^6: ~0.3 GB).
-  PetscCall(CheckMemory(comm, 300.0 * (double)N / size_, "the lattice (-lattice_cells)"));
+  PetscCall(CheckLatticeMemory(comm, N));
   PetscCall(DMDACreate1d(comm, DM_BOUNDARY_NONE, N, 1, 1, NULL, da_.out()));
   PetscCall(DMSetUp(da_));
   PetscCall(DMDASetFieldName(da_, 0, "u"));

@@ -23,6 +23,10 @@ struct EnergyParts {
   PetscReal Total() const { return kinetic + linear + quartic; }
 };
 
+// Refuses a lattice of N sites on comm that would not fit in memory (Setup
+// checks it; a study checks it from its options before any set-up, Study::CheckResources).
+PetscErrorCode CheckLatticeMemory(MPI_Comm comm, PetscInt N);
+
 class Lattice {
 public:
   PetscErrorCode Setup(MPI_Comm comm, const LatticeParams &p);

@@ -239,6 +239,18 @@ PetscErrorCode DenseLeadingPairs(PetscInt n_, PetscReal *a, PetscInt nev, const 
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode CheckDenseMonodromyMemory(MPI_Comm comm, PetscInt N, const FloquetMfOptions &o)
+{
+  PetscMPIInt rank;
+  const double n = 2.0 * (double)N;
+  PetscFunctionBeginUser;
+  if (n > o.dense_max) PetscFunctionReturn(0);
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  // rank 0 holds M, its Hessenberg form and a copy for the QR
+  PetscCall(CheckMemory(comm, rank == 0 ? 3.0 * 8.0 * n * n : 0.0, "the dense monodromy's eigenvalues (2N <= -floquet_mf_dense_max)"));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FloquetLeadingDense(const Lattice &lat, Mat S, PetscInt nev, const FloquetOptions &o, LeadingMultipliers *r)
 {
   const PetscInt n = 2 * lat.N(), N = lat.N();

@@ -124,6 +124,9 @@ PetscInt MatrixFreeVerdict(const LeadingMultipliers &r, PetscReal tol);
 // iteration on the Hessenberg form), for the Krein signatures and the kind.
 // max_modulus: the largest nontrivial |mu|; verdict stable or unstable.
 PetscErrorCode FloquetLeadingDense(const Lattice &lat, Mat S, PetscInt nev, const FloquetOptions &o, LeadingMultipliers *r);
+// Refuses the dense route's monodromy (2N <= o.dense_max: 2N x 2N on rank 0)
+// where it would not fit in memory; FloquetLeadingDense checks it, a study before any set-up.
+PetscErrorCode CheckDenseMonodromyMemory(MPI_Comm comm, PetscInt N, const FloquetMfOptions &o);
 
 // Its serial kernel: a (n x n, column-major, overwritten) on one process; uidx,
 // vidx: the row of u_s and v_s for each site s (natural order); iface: the

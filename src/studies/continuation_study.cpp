@@ -71,6 +71,13 @@ protected:
     PetscCall(DeclareEPS(comm, "floquet_mf_"));
     PetscFunctionReturn(0);
   }
+  PetscErrorCode CheckResources() override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(nnm_.CheckResources(comm_));
+    if (fk_ == FloquetKind::MatrixFree) PetscCall(CheckDenseMonodromyMemory(comm_, nnm_.lp.N(), fmo_));
+    PetscFunctionReturn(0);
+  }
   // -cont_resume of the -output file itself replaces it (no -output_overwrite needed).
   PetscErrorCode OutputPath(std::string *path) override
   {

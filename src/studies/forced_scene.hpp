@@ -85,6 +85,15 @@ struct ForcedScene {
     PetscFunctionReturn(0);
   }
   const LinearModes *ModesOrNull() const { return ModesComputed() ? &modes : NULL; }
+  // The memory of what Build allocates on comm, from the options alone
+  // (Study::CheckResources): the lattice and, when computed, the linear modes' dense path.
+  PetscErrorCode CheckResources(MPI_Comm comm) const
+  {
+    PetscFunctionBeginUser;
+    PetscCall(CheckLatticeMemory(comm, lp.N()));
+    if (ModesComputed()) PetscCall(CheckLinearModesMemory(comm, lp.N(), mo));
+    PetscFunctionReturn(0);
+  }
 
 private:
   Modes modes_ = Modes::Needed;

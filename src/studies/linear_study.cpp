@@ -67,6 +67,15 @@ protected:
     PetscFunctionReturn(0);
   }
   PetscErrorCode DeclareSolvers(MPI_Comm comm) override { return DeclareEPS(comm, "linear_"); }
+  PetscErrorCode CheckResources() override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(CheckLatticeMemory(comm_, lp_.N()));
+    PetscCall(CheckLinearModesMemory(comm_, lp_.N(), mo_));
+    // The transition's arrays, held on every rank (each computes them all).
+    if (gl_.n) PetscCall(CheckMemory(comm_, 8.0 * (double)gl_.n * (double)(lp_.N() + 12), "/linear/transition (-linear_gamma_list n x N sites)"));
+    PetscFunctionReturn(0);
+  }
   PetscErrorCode Build() override
   {
     PetscFunctionBeginUser;
@@ -74,8 +83,6 @@ protected:
     EffectList fx(lat_); // the undamped modes of K: no non-conservative effect belongs here
     PetscCall(BuildEffects(lat_, nullptr, &fx));
     PetscCall(fx.RequireConservative("-study linear (the normal modes of K)"));
-    // The transition's arrays, held on every rank (each computes them all).
-    if (gl_.n) PetscCall(CheckMemory(comm_, 8.0 * (double)gl_.n * (double)(lat_.N() + 12), "/linear/transition (-linear_gamma_list n x N sites)"));
     PetscFunctionReturn(0);
   }
   PetscErrorCode Solve() override

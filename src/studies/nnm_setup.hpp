@@ -6,6 +6,7 @@
 #include "bands/linear_modes.hpp"
 #include "core/options_audit.hpp"
 #include "orbits/continuation.hpp"
+#include "orbits/shooting_system.hpp"
 #include <string>
 #include <vector>
 
@@ -45,6 +46,20 @@ struct NnmSetup {
     PetscCall(DeclareSNES(comm, "nnm_start_"));
     PetscCall(DeclareTS(comm, "nnm_"));
     PetscCall(DeclareEPS(comm, "linear_"));
+    PetscFunctionReturn(0);
+  }
+  // The memory of what Build allocates, from the options alone (Study::CheckResources):
+  // the lattice, the linear modes' dense path, the dense shooting Jacobian.
+  PetscErrorCode CheckResources(MPI_Comm comm) const
+  {
+    PetscMPIInt rank, size;
+    PetscFunctionBeginUser;
+    PetscCallMPI(MPI_Comm_rank(comm, &rank));
+    PetscCallMPI(MPI_Comm_size(comm, &size));
+    const PetscInt N = lp.N(), owned = N / size + (rank < N % size ? 1 : 0); // the DMDA's split of the sites
+    PetscCall(CheckLatticeMemory(comm, N));
+    PetscCall(CheckLinearModesMemory(comm, N, mo));
+    if (so.jacobian == ShootingJacobian::Dense) PetscCall(CheckDenseJacobianMemory(comm, N, 2 * owned + 2));
     PetscFunctionReturn(0);
   }
   // study: "-study continuation", for the refusal of non-conservative effects.

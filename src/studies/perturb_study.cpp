@@ -275,6 +275,13 @@ protected:
     PetscCall(DeclareTS(comm, "sim_")); // -linear_eps_*: NnmSetup's
     PetscFunctionReturn(0);
   }
+  PetscErrorCode CheckResources() override
+  {
+    PetscFunctionBeginUser;
+    if (po_.fep.empty()) PetscCall(nnm_.CheckResources(comm_)); // the insulated branch, continued here
+    PetscCall(sc_.CheckResources(PETSC_COMM_SELF));             // every realisation: a lattice and its modes on one rank
+    PetscFunctionReturn(0);
+  }
   // omega(E) of the unperturbed insulated NNM (from -perturb_fep, or continued here), omega_ext at every E*.
   PetscErrorCode Build() override
   {

@@ -1,6 +1,7 @@
 #include "studies/registry.hpp"
 #include "core/option_help.hpp"
 #include "core/option_reference.hpp"
+#include "core/options_input.hpp"
 #include <algorithm>
 #include <cstring>
 #include <cstdio>
@@ -150,7 +151,8 @@ PetscErrorCode RunStudyFromOptions(MPI_Comm comm)
   std::string known;
   PetscBool list_help;
   PetscFunctionBeginUser;
-  RegisterStudyContracts();        // its schemas and compared option prefixes
+  PetscCall(CheckOptionsAgree(comm)); // ranks started with different options fail together (core/options_input.hpp)
+  RegisterStudyContracts();           // its schemas and compared option prefixes
   PetscCall(TSSymSplitRegister()); // nltopo's TS types, before any -*ts_type is read
   PetscCall(TSRknRegister());
   for (const auto &s : kStudies) known += std::string(known.empty() ? "" : ", ") + s.name;
@@ -182,7 +184,12 @@ PetscErrorCode RunStudyFromOptions(MPI_Comm comm)
   PetscCall(CheckOptionValueShapes(comm, name, StudyOptionFunctions()[name], given)); // a missing value, an integer PETSc would wrap
   const OptionsFn options = StudyOptionFunctions()[name];
   if (OwnHelp()) StartHelpCollection();
-  PetscCall(options(comm));                               // -help: prints them all; otherwise marks them read and checks their ranges
+  std::vector<std::string> solver_prefixes; // what the study's solver objects may read during the run
+  {
+    SolverPrefixCapture capture;
+    PetscCall(options(comm)); // -help: prints them all; otherwise marks them read and checks their ranges
+    solver_prefixes = capture.Prefixes();
+  }
   PetscCall(CheckFiniteOptionValues(comm, given, false)); // nan/inf that no range check of nltopo's caught
   if (OwnHelp()) {
     std::vector<std::string> own;
@@ -196,7 +203,8 @@ PetscErrorCode RunStudyFromOptions(MPI_Comm comm)
     PetscFunctionReturn(0);
   }
   g_running = entry;
-  PetscCall(AuditUnusedOptions(comm, name, StudyOptionFunctions(), true)); // misspelt or foreign options fail before any work
+  // misspelt, foreign and unknown options fail before any work (only the solver objects' wait for the end-of-run audit)
+  PetscCall(AuditUnusedOptions(comm, name, StudyOptionFunctions(), true, solver_prefixes));
   PetscCall(SetCommitGuard(AuditOptionsBeforeCommit));
   PetscCall(entry->create()->Run(comm, entry->name));
   PetscFunctionReturn(0);

@@ -93,7 +93,12 @@ protected:
     PetscCall(sc_.ReadOptions(comm_, declaring_, true, ForcedScene::Modes::Needed, NULL)); // -force_profile none: a free run
     PetscCall(StoreOptionsFromOptions(comm_, sc_.lp, sc_.sim, &store_));
     PetscCall(sc_.ReadModeOptions(comm_, declaring_));
-    if (declaring_) PetscFunctionReturn(0);
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode CheckResources() override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(sc_.CheckResources(comm_));
     if (store_.store_u && sc_.sim.sample_dt > 0) {
       PetscMPIInt nranks;
       PetscCallMPI(MPI_Comm_size(comm_, &nranks));

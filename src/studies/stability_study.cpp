@@ -163,6 +163,7 @@ protected:
     PetscCall(DeclareTS(comm, "sim_"));
     PetscFunctionReturn(0);
   }
+  PetscErrorCode CheckResources() override { return nnm_.CheckResources(comm_); }
   PetscErrorCode Build() override
   {
     PetscFunctionBeginUser;

@@ -54,6 +54,10 @@ PetscErrorCode Study::EndInterrupted(const Interruption &it)
   SETERRQ(comm_, PETSC_ERR_SIG, "interrupted by %s %s; partial output %s (complete = 0)%s", sig, it.where.c_str(), path_.c_str(), it.tail.c_str());
 }
 
+static int g_setup_stages = 0;
+
+int SetupStagesEntered() { return g_setup_stages; }
+
 PetscErrorCode Study::Run(MPI_Comm comm, const char *name)
 {
   OutputFile out;
@@ -62,9 +66,13 @@ PetscErrorCode Study::Run(MPI_Comm comm, const char *name)
   name_ = name;
   PetscCall(PetscTime(&t_start_));
   PetscCall(LogRegister());
-  PetscCall(PetscLogStagePush(Log().setup));
+  // What the options decide is refused in the Main Stage, before any set-up:
+  // their values and combinations, the memory they ask for, the output path.
   PetscCall(ReadOptions());
+  PetscCall(CheckResources());
   PetscCall(OutputPath(&path_));
+  PetscCall(PetscLogStagePush(Log().setup));
+  g_setup_stages++;
   if (!WritesOwnFile()) PetscCall(out.Open(comm, path_, "", OutputBytes()));
   PetscCall(Build());
   PetscCall(PetscLogStagePop());

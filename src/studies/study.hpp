@@ -30,6 +30,11 @@ protected:
   virtual PetscErrorCode ReadOptions() = 0;
   // The solver prefixes (DeclareTS, DeclareSNES, DeclareEPS), after ReadOptions under DeclareOptions.
   virtual PetscErrorCode DeclareSolvers(MPI_Comm comm) { return 0; }
+  // The resource guards that the options decide (the memory of the lattice,
+  // of dense matrices and of stored arrays), after ReadOptions and before the
+  // Setup stage: a refusal comes before any set-up, as fast at 10^5 cells as
+  // at 5. The same guards stay where the objects are allocated.
+  virtual PetscErrorCode CheckResources() { return 0; }
   // The -output path; a study that resumes its own file says so here.
   virtual PetscErrorCode OutputPath(std::string *path);
   // The bytes the output will take (the free-space check at open).
@@ -69,5 +74,9 @@ protected:
 };
 
 using StudyFactory = std::unique_ptr<Study> (*)();
+
+// How many times a study has entered its Setup stage in this process (the
+// bad-options tests: a refusal of the options comes before any set-up).
+int SetupStagesEntered();
 
 } // namespace nltopo

@@ -244,6 +244,7 @@ protected:
     PetscFunctionReturn(0);
   }
   PetscErrorCode DeclareSolvers(MPI_Comm comm) override { return ForcedScene::DeclareSolvers(comm); }
+  PetscErrorCode CheckResources() override { return sc_.CheckResources(PETSC_COMM_SELF); } // every rank its own lattice
   // -sweep_resume continues -output itself (no -output_overwrite needed).
   PetscErrorCode OutputPath(std::string *path) override
   {

@@ -219,11 +219,11 @@ PetscErrorCode WorkPrecisionOptionsFromOptions(MPI_Comm comm, WorkPrecisionOptio
   for (size_t k = 0; k < o->configs.size(); k++) PetscCall(ParseConfig(comm, "-wp_configs: configuration", o->configs[k], &p, o->shooting));
   PetscCall(ParseConfig(comm, "-wp_nnm_reference", o->nnm_reference, &p, true));
   for (const auto &pr : p)
-    PetscCheck(pr.first != "-nnm_steps_per_period", comm, PETSC_ERR_USER,
+    PetscCheck(LowerName(pr.first) != "-nnm_steps_per_period", comm, PETSC_ERR_USER,
                "-wp_nnm_reference: leave out -nnm_steps_per_period (-wp_nnm_reference_steps sets it)");
   PetscCall(ParseConfig(comm, "-wp_reference", o->reference, &p));
   for (const auto &pr : p)
-    PetscCheck(pr.first != "-sim_ts_rtol" && pr.first != "-sim_ts_atol" && pr.first != "-sim_ts_adapt_dt_max", comm, PETSC_ERR_USER,
+    PetscCheck(LowerName(pr.first) != "-sim_ts_rtol" && LowerName(pr.first) != "-sim_ts_atol" && LowerName(pr.first) != "-sim_ts_adapt_dt_max", comm, PETSC_ERR_USER,
                "-wp_reference \"%s\": leave out %s (the study sets the reference tolerance and step cap: -wp_reference_tol, -wp_reference_dt_max)",
                o->reference.c_str(), pr.first.c_str());
   PetscCheck(o->reference_tol_min <= o->reference_tol, comm, PETSC_ERR_USER,

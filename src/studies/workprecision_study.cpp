@@ -53,6 +53,7 @@ protected:
     else PetscCall(ForcedScene::DeclareSolvers(comm));
     PetscFunctionReturn(0);
   }
+  PetscErrorCode CheckResources() override { return wo_.shooting ? nnm_.CheckResources(comm_) : sc_.CheckResources(comm_); }
   PetscErrorCode Build() override
   {
     PetscFunctionBeginUser;

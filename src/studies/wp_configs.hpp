@@ -44,6 +44,12 @@ inline bool LooksLikeValue(const std::string &tok)
   return tok.size() > 1 && (std::isdigit((unsigned char)tok[1]) || tok[1] == '.'); // a negative number
 }
 
+inline std::string LowerName(std::string s)
+{
+  for (char &c : s) c = (char)std::tolower((unsigned char)c);
+  return s;
+}
+
 // "-a 1 -b -c x" -> (-a, 1), (-b, ""), (-c, x); only integrator options.
 // shooting: the configurations of a shooting point take -nnm_ts_* and -nnm_steps_per_period.
 inline PetscErrorCode ParseConfig(MPI_Comm comm, const char *what, const std::string &cfg, OptionPairs *out, bool shooting = false)
@@ -58,8 +64,9 @@ inline PetscErrorCode ParseConfig(MPI_Comm comm, const char *what, const std::st
     const std::string &name = tok[i];
     PetscCheck(name.size() > 1 && name[0] == '-' && !LooksLikeValue(name), comm, PETSC_ERR_USER, "%s \"%s\": %s is not an option name", what, cfg.c_str(),
                name.c_str());
+    const std::string low = LowerName(name); // PETSc's option names are case-insensitive
     const bool ok =
-        shooting ? name.rfind("-nnm_ts_", 0) == 0 || name == "-nnm_steps_per_period" : name.rfind("-sim_ts_", 0) == 0 || name == "-sim_dt_quartic_energy";
+        shooting ? low.rfind("-nnm_ts_", 0) == 0 || low == "-nnm_steps_per_period" : low.rfind("-sim_ts_", 0) == 0 || low == "-sim_dt_quartic_energy";
     PetscCheck(ok, comm, PETSC_ERR_USER, "%s \"%s\": %s is not an integrator option (configurations take %s; the scene's options go outside)", what,
                cfg.c_str(), name.c_str(), shooting ? "-nnm_ts_* and -nnm_steps_per_period" : "-sim_ts_* and -sim_dt_quartic_energy");
     std::string value;
@@ -125,7 +132,8 @@ inline void Label(const OptionPairs &opts, std::string *method, std::string *acc
 {
   std::vector<std::string> m, a;
   std::string rtol, atol, dt, steps;
-  for (const auto &[name, value] : opts) {
+  for (const auto &[given, value] : opts) {
+    const std::string name = LowerName(given);
     if (name == "-sim_ts_rtol") rtol = value;
     else if (name == "-sim_ts_atol") atol = value;
     else if (name == "-sim_ts_dt") dt = value;

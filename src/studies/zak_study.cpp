@@ -208,6 +208,7 @@ protected:
     PetscFunctionReturn(0);
   }
   PetscErrorCode DeclareSolvers(MPI_Comm comm) override { return ForcedScene::DeclareSolvers(comm); }
+  PetscErrorCode CheckResources() override { return sc_.CheckResources(PETSC_COMM_SELF); } // every rank its own lattice
   PetscErrorCode Build() override
   {
     PetscFunctionBeginUser;

@@ -17,6 +17,17 @@ and range, an extreme (0, -1, 2^31, 1e300, 1e-300, ...), a wrong type ("abc",
 and never hangs, dies of a signal, aborts, calls MPI_Abort or prints a PETSc
 traceback. Unparsable and non-finite values must never be accepted.
 
+About 40 % of the cases also get an input family (input_family): the option
+names in mixed case, the mutations in an options file (plain, nested, on a
+pipe, or mutated: a byte-order mark, a word after a value, two options on a
+line, a missing nested file, files that include each other), a stray word on
+the command line or in PETSC_OPTIONS, or only the stray words' legitimate
+look-alikes; a mutated file or a stray word must be refused with a line
+naming it, a look-alike never called stray, and no copy of a piped file left.
+
+Run policy (tests/scenes/fuzz.sh): CI runs 30 cases with a fixed seed and 30
+with a fresh random seed it prints; the opt-in long run (ctest -L long) 500.
+
 The option table below is nltopo's own options with a type and a range that
 keeps an accepted run small; the fuzzer checks it against the option tables
 the binary declares (nltopo -option_tables json: names, types, enum choices,
@@ -268,13 +279,155 @@ def check_table(nltopo):
     return problems
 
 
+# ---------------------------------------------------------------------------
+# Input families (issue 34): how the options reach nltopo, not their values.
+# A case may get one (input_family): its option names in mixed case (PETSc's
+# names are case-insensitive, so the contract is the plain case's); its
+# mutations in an options file, possibly mutated (a byte-order mark, a word
+# after a value, two options on a line, a missing nested file, files that
+# include each other: each an error naming the file), nested, or read from a
+# pipe (/dev/stdin, or /dev/fd/N at 1 rank); a stray word on the command line
+# or in PETSC_OPTIONS (an error), or only its legitimate look-alikes
+# (negative numbers, values that begin with a space: never called stray).
+# The case then carries: muts_in_argv, files {name: bytes}, argv_extra,
+# env_extra, stdin / fd_pipe (bytes), and what the run must print:
+# expect_error (a substring of the one line) or never (a substring it must not hold).
+
+INPUT_FAMILY_SHARE = 0.4
+
+
+def mixed_case(rng, name):
+    """-lattice_k as -Lattice_K, -LATTICE_k, ...: some letter upper-case."""
+    while True:
+        s = "".join(c.upper() if c.isalpha() and rng.random() < 0.4 else c for c in name)
+        if s != name or not any(c.isalpha() for c in name):
+            return s
+
+
+def file_line(args):
+    """An options-file line for one mutation's arguments (a value with spaces, or empty, quoted)."""
+    if len(args) == 1:
+        return args[0]
+    v = args[1]
+    return "%s %s" % (args[0], '"%s"' % v if (v == "" or " " in v or "\t" in v) else v)
+
+
+def options_file_family(rng, case):
+    lines = [file_line(a) for a, _ in case["muts"]]
+    if rng.random() < 0.5:  # what PETSc ignores: comments, blank lines, tabs, CR LF
+        lines.insert(rng.randint(0, len(lines)), "# a comment line")
+        lines.append("")
+    sep = "\r\n" if rng.random() < 0.2 else "\n"
+    kind = rng.choice(["plain", "plain", "nested", "pipe", "bom", "trailing", "two", "missing", "cycle"])
+    extra = dict(family="file:" + kind, muts_in_argv=False, files={}, argv_extra=[])
+    body = sep.join(lines) + sep
+    if kind == "bom":
+        body = "\ufeff" + body
+        extra["expect_error"] = "byte-order mark"
+    elif kind == "trailing":
+        body += "-lattice_k 1 %s%s" % (rng.choice(["!", "x", "2", "! comment"]), sep)
+        extra["expect_error"] = "scene.opts line"
+    elif kind == "two":
+        body += "-lattice_k 1 -lattice_gamma 0.5" + sep
+        extra["expect_error"] = "two options on one line"
+    elif kind == "missing":
+        body += "-options_file gone.opts" + sep
+        extra["expect_error"] = "cannot read options file gone.opts"
+    elif kind == "cycle":
+        body += "-options_file other.opts" + sep
+        extra["files"]["other.opts"] = ("-lattice_k 1" + sep + "-options_file scene.opts" + sep).encode()
+        extra["expect_error"] = "include each other"
+    if kind == "nested":
+        extra["files"]["scene.opts"] = ("-options_file inner.opts" + sep).encode()
+        extra["files"]["inner.opts"] = body.encode()
+        extra["argv_extra"] = ["-options_file", "scene.opts"]
+    elif kind == "pipe":
+        if case["ranks"] == 1 and rng.random() < 0.5:
+            extra["fd_pipe"] = body.encode()  # -options_file /dev/fd/N, as the shell's <(...)
+        else:
+            extra["stdin"] = body.encode()
+            extra["argv_extra"] = ["-options_file", "/dev/stdin"]
+    else:
+        extra["files"]["scene.opts"] = body.encode()
+        extra["argv_extra"] = ["-options_file", "scene.opts"]
+    return extra
+
+
+def stray_family(rng, case):
+    """A stray word after a complete option (an error), or only look-alikes that are values."""
+    look_alikes = ["-lattice_cubic", rng.choice(["-0.25", "-.5", "-1e-3", "-0"])]
+    if rng.random() < 0.5:
+        return dict(family="stray:look-alike", argv_extra=look_alikes, never="is neither an option")
+    word = rng.choice(["1", "0.5", "x", ",", "extra.opts", "-1", "1,2"])
+    return dict(family="stray:argv", argv_extra=look_alikes + ["-lattice_k", "1", word], expect_error="is neither an option nor an option's value")
+
+
+def env_family(rng, case):
+    """PETSC_OPTIONS: a backslash-escaped space (a stray word), or values PETSc reads as written."""
+    if rng.random() < 0.5:
+        return dict(family="env:stray", env_extra={"PETSC_OPTIONS": "-lattice_k 1\\ 2"}, expect_error="PETSC_OPTIONS")
+    return dict(family="env:plain", env_extra={"PETSC_OPTIONS": rng.choice(["-lattice_cubic -0.5", '-lattice_cubic "-0.25"'])}, never="PETSC_OPTIONS")
+
+
+def input_family(rng, case):
+    """None for most cases; otherwise one family's fields (see above)."""
+    if rng.random() >= INPUT_FAMILY_SHARE:
+        return {}
+    kind = rng.choice(["case", "file", "file", "stray", "env"])
+    if kind == "case":
+        muts = [([mixed_case(rng, a[0])] + a[1:], c) for a, c in case["muts"]]
+        return dict(family="case", muts=muts)
+    if kind == "file":
+        return options_file_family(rng, case)
+    if kind == "stray":
+        return stray_family(rng, case)
+    return env_family(rng, case)
+
+
+def input_setup(case, d):
+    """Writes the case's files into its directory; the arguments, environment, stdin and fds of its run."""
+    for name, data in case.get("files", {}).items():
+        with open(os.path.join(d, name), "wb") as f:
+            f.write(data)
+    argv = list(case.get("argv_extra", []))
+    env = dict(os.environ, TMPDIR=d)  # a leftover copy of a piped file shows in the case directory
+    env.update(case.get("env_extra", {}))
+    fds = ()
+    if "fd_pipe" in case:
+        r, w = os.pipe()
+        os.write(w, case["fd_pipe"])  # a few hundred bytes: within the pipe's buffer
+        os.close(w)
+        fds = (r,)
+        argv += ["-options_file", "/dev/fd/%d" % r]
+    return argv, env, case.get("stdin"), fds
+
+
+def input_problems(case, d, rc, lines):
+    """What an input family demands beyond the common contract."""
+    problems = []
+    left = sorted(f for f in os.listdir(d) if f.startswith("nltopo-options-"))
+    if left:
+        problems.append("left behind: %s" % " ".join(left))
+    want, never = case.get("expect_error"), case.get("never")
+    if rc == 0 and want:
+        problems.append("%s: exit 0, expected an error naming '%s'" % (case.get("family"), want))
+    elif rc is not None and rc > 0 and lines:
+        if want and want not in lines[0]:
+            problems.append("%s: the error does not name '%s'" % (case.get("family"), want))
+        if never and never in lines[0]:
+            problems.append("%s: a legitimate form refused: %s" % (case.get("family"), lines[0]))
+    return problems
+
+
 def make_case(seed, i, options):
     rng = random.Random("%d:%d" % (seed, i))
     study = STUDIES[i % len(STUDIES)]
     ranks = 1 + i % 2  # 7 studies: each study alternates between 1 and 2 ranks too
     names = rng.sample(options[study], rng.randint(1, 3))
     muts = [mutate(rng, n) for n in names]
-    return dict(i=i, study=study, ranks=ranks, names=names, muts=muts)
+    case = dict(i=i, study=study, ranks=ranks, names=names, muts=muts)
+    case.update(input_family(rng, case))  # how the options reach nltopo (issue 34)
+    return case
 
 
 CRASH = re.compile(r"PETSC ERROR|MPI_ABORT|MPI_Abort|Caught signal|Segmentation|Aborted|core dumped|terminate called|"
@@ -288,13 +441,17 @@ def run_case(case, args, workroot):
     out = "out.h5"
     cmd = ["-study", case["study"]] + BASE[case["study"]]
     for a, _ in case["muts"]:
-        cmd += a
-    cmd += ["-output", out]
+        cmd += a if case.get("muts_in_argv", True) else []
+    extra_argv, env, stdin, fds = input_setup(case, d)
+    cmd += extra_argv + ["-output", out]
     full = ([args.mpiexec, "-q", "-n", "2"] if case["ranks"] == 2 else []) + [args.nltopo] + cmd
     t0 = time.time()
-    p = subprocess.Popen(full, cwd=d, stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True)
+    p = subprocess.Popen(full, cwd=d, stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True, env=env,
+                         stdin=subprocess.PIPE if stdin is not None else subprocess.DEVNULL, pass_fds=fds)
+    for fd in fds:
+        os.close(fd)
     try:
-        so, se = p.communicate(timeout=args.timeout)
+        so, se = p.communicate(input=stdin, timeout=args.timeout)
         hung = False
     except subprocess.TimeoutExpired:
         hung = True
@@ -337,9 +494,10 @@ def run_case(case, args, workroot):
             problems.append("exit %d but %s exists" % (rc, out))
         if len(lines) != 1 or not lines[0].startswith("nltopo: error: "):
             problems.append("not a one-line 'nltopo: error:' message (%d non-empty stderr lines)" % len(lines))
-        elif len(case["muts"]) == 1 and classes[0] in ("garbage", "nonfinite"):
+        elif len(case["muts"]) == 1 and classes[0] in ("garbage", "nonfinite") and not case.get("expect_error"):  # a mutated file is named first
             if "-" + case["names"][0] not in lines[0].lower():
                 problems.append("the error does not name -%s" % case["names"][0])
+    problems += input_problems(case, d, rc, lines)
     if not problems:
         shutil.rmtree(d, ignore_errors=True)
     verdict = "ok" if rc == 0 else ("error" if rc is not None else "hang")
@@ -470,7 +628,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("nltopo")
     ap.add_argument("work")
-    ap.add_argument("--cases", type=int, default=210)
+    ap.add_argument("--cases", type=int, default=30)
     ap.add_argument("--seed", type=int, default=20261122)
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--only", type=int, default=None)
@@ -480,6 +638,7 @@ def main():
     ap.add_argument("--resume-cases", type=int, default=16, help="cases of the corrupted-resume-state family (0: none)")
     args = ap.parse_args()
     args.nltopo = os.path.abspath(args.nltopo)
+    args.work = os.path.abspath(args.work)  # the cases' TMPDIR
     os.makedirs(args.work, exist_ok=True)
     t0 = time.time()
     problems = check_table(args.nltopo)
@@ -503,7 +662,7 @@ def main():
         with lock:
             results.append(r)
             if args.verbose or r["problems"]:
-                print("case %d %s np%d %-5s %5.1fs %s | %s" % (c["i"], c["study"], c["ranks"], r["verdict"], r["seconds"],
+                print("case %d %s np%d %s %-5s %5.1fs %s | %s" % (c["i"], c["study"], c["ranks"], c.get("family", "values"), r["verdict"], r["seconds"],
                       " ".join(" ".join(a) if len(a) == 1 else "%s %r" % (a[0], a[1]) for a, _ in c["muts"]), r["first"]))
                 sys.stdout.flush()
         return r

@@ -102,3 +102,46 @@ cases=$((cases + 1))
 echo "ok: $(cat stderr.txt)"
 [ "$cases" -ge 20 ] || fail "only $cases bad-input cases"
 echo "bad input OK: $cases cases, each at 1 and 2 ranks (the write faults also at 3)"
+
+# Unknown options and the resource guards the options decide: refused before
+# any set-up, at 1 and 2 ranks; -log_view shows no stage but the Main Stage.
+for args in "-study simulate -lattice_cells 25000 -forc_energy 0.5" "-study continuation -lattice_cells 100000"; do
+  for np in 1 2; do
+    check_one "$np" "unknown option -forc_energy\|dense shooting Jacobian" o.h5 $args -log_view
+    grep -q "Main Stage" stdout.txt || fail "no -log_view at $np rank(s) for: $args"
+    ! grep -qE "^ +[0-9]+: +(Setup|Solve|Write):" stdout.txt || fail "a stage beyond the Main Stage entered at $np rank(s) for: $args"
+  done
+  echo "ok (Main Stage only): $(cat stderr.txt)"
+done
+
+# The command line and options files as PETSc reads them (core/options_input.hpp):
+# a syntax problem is one line naming the file and line, an include cycle
+# ends, a stray word is an error, at 1 and 2 ranks.
+printf -- '-options_file cyc_b.opts\n' > cyc_a.opts
+printf -- '-lattice_k 1\n-options_file cyc_a.opts\n' > cyc_b.opts
+expect_error "options file cyc_b.opts line 2: options files include each other (cyc_a.opts -> cyc_b.opts -> cyc_a.opts)" o.h5 -options_file cyc_a.opts
+printf '\xef\xbb\xbf-study linear\n' > bom.opts
+expect_error "options file bom.opts line 1: the file starts with a UTF-8 byte-order mark" o.h5 -options_file bom.opts
+printf -- '-study linear\n-options_file gone.opts\n' > nest.opts
+expect_error "options file nest.opts line 2: cannot read options file gone.opts: No such file or directory" o.h5 -options_file nest.opts
+printf -- '-study linear -lattice_cells 5\n' > two.opts
+expect_error "options file two.opts line 1: two options on one line" o.h5 -options_file two.opts
+expect_error "command line: '1' is neither an option nor an option's value (after -sweep_energy_list 0.1,)" o.h5 $W -sweep_energy_list 0.1, 1
+PETSC_OPTIONS='-output my\ file.h5' expect_error "PETSC_OPTIONS: 'file.h5' is neither an option nor an option's value" o.h5 -study linear -lattice_cells 5
+PETSC_OPTIONS='-options_file gone.opts' expect_error "PETSC_OPTIONS: cannot read options file gone.opts" o.h5 -study linear -lattice_cells 5
+# a file on a pipe is read once, whole (it was drained, and the run used the default lattice)
+"$NLTOPO" -options_file <(printf -- '-study linear\n-lattice_cells 7\n') -output pipe1.h5 > stdout.txt 2> stderr.txt || { cat stderr.txt; fail "an options file on a pipe"; }
+grep -q "Nc = 7" stdout.txt || fail "an options file on a pipe was not read"
+printf -- '-study linear\n-lattice_cells 7\n' | "$MPIEXEC" -q -n 2 "$NLTOPO" -options_file /dev/stdin -output pipe2.h5 > stdout.txt 2> stderr.txt || { cat stderr.txt; fail "-options_file /dev/stdin at 2 ranks"; }
+grep -q "Nc = 7" stdout.txt || fail "-options_file /dev/stdin at 2 ranks was not read"
+! ls "${TMPDIR:-/tmp}"/nltopo-options-* > /dev/null 2>&1 || fail "the copy of a piped options file was left behind"
+echo "ok: options files on a pipe and /dev/stdin, at 1 and 2 ranks"
+# ranks started with different options: one line, no hang, no file
+set +e
+timeout 60 "$MPIEXEC" -q -n 1 "$NLTOPO" $S -output mpmd.h5 : -n 1 "$NLTOPO" $S -output mpmd.h5 -force_omega abc > stdout.txt 2> stderr.txt
+rc=$?
+set -e
+[ $rc -ne 124 ] || fail "hang: ranks started with different options"
+[ $rc -ne 0 ] && [ "$(grep -c . stderr.txt)" -eq 1 ] && grep -q "rank 1 was started with other options than rank 0" stderr.txt || { cat stderr.txt; fail "ranks started with different options"; }
+! ls mpmd.h5* > /dev/null 2>&1 || fail "ranks started with different options left a file"
+echo "ok: $(cat stderr.txt)"

@@ -7,6 +7,7 @@
 #include "core/errors.hpp"
 #include "io/output.hpp"
 #include "studies/registry.hpp"
+#include "studies/study.hpp"
 #include "helpers.hpp"
 #include <cstdio>
 #include <cstdlib>
@@ -67,6 +68,9 @@ struct Refusal {
   PetscErrorCode code = 0;
   std::string err;
   std::vector<std::string> files;
+  std::vector<std::string> unused; // the options its database holds unused at the end (what -options_left lists)
+  double seconds = 0;              // the run's wall time (RunStudyFromOptions)
+  int setups = 0;                  // how many times it entered a study's Setup stage
 };
 
 inline std::vector<std::string> DirEntries(const std::string &dir)
@@ -109,7 +113,11 @@ inline Refusal RunRefused(const std::vector<std::string> &args, const std::strin
   REQUIRE(tmp);
   dup2(fileno(tmp), 2);
   PetscPushErrorHandler(OneLineErrorHandler, NULL);
+  const int setups = SetupStagesEntered();
+  const double t0 = MPI_Wtime();
   r.code = RunStudyFromOptions(PETSC_COMM_WORLD);
+  r.seconds = MPI_Wtime() - t0;
+  r.setups = SetupStagesEntered() - setups;
   PetscPopErrorHandler();
   std::fflush(stderr);
   dup2(saved, 2);
@@ -119,6 +127,13 @@ inline Refusal RunRefused(const std::vector<std::string> &args, const std::strin
   size_t n;
   while ((n = std::fread(buf, 1, sizeof(buf), tmp)) > 0) r.err.append(buf, n);
   std::fclose(tmp);
+  {
+    PetscInt n;
+    char **names, **values;
+    PCHK(PetscOptionsLeftGet(db, &n, &names, &values));
+    for (PetscInt i = 0; i < n; i++) r.unused.push_back(names[i]);
+    PCHK(PetscOptionsLeftRestore(db, &n, &names, &values));
+  }
   PCHK(PetscOptionsPop());
   PCHK(PetscOptionsDestroy(&db));
   // What a refused run may have set for the process: nothing of it may reach the next test.

@@ -20,7 +20,9 @@
 // after work (the end-of-run audit, -cont_switch events, a diverging run) and
 // the write faults.
 #include "bad_options.hpp"
+#include "core/options_input.hpp"
 #include <regex>
+#include <sys/stat.h>
 
 using namespace nltopo;
 using namespace nltopo::test;
@@ -144,35 +146,328 @@ const std::vector<BadCase> &OptionCases()
 
 } // namespace
 
+// The contract for one refused run (all ranks together): it failed, with
+// exactly one line matching pattern and no source path, and left no file.
+static void CheckRefusal(const Refusal &r, const BadCase &c, const std::string &dir)
+{
+  const std::regex source_path("\\.c:[0-9]", std::regex::basic);
+  // rank 0 prints the line of a collective error: its text, and the line count of all ranks
+  int lines = 0, all_lines = 0, failed = r.code ? 1 : 0, all_failed = 0, files = (int)r.files.size(), max_files = 0, output = 0, any_output = 0;
+  for (const std::string &f : r.files) output += f == "o.h5";
+  MPI_Allreduce(&output, &any_output, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
+  for (char ch : r.err) lines += ch == '\n';
+  MPI_Allreduce(&lines, &all_lines, 1, MPI_INT, MPI_SUM, PETSC_COMM_WORLD);
+  MPI_Allreduce(&failed, &all_failed, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD);
+  MPI_Allreduce(&files, &max_files, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
+  char text[2048] = "";
+  if (!Rank()) PCHK(PetscStrncpy(text, r.err.c_str(), sizeof(text)));
+  MPI_Bcast(text, sizeof(text), MPI_CHAR, 0, PETSC_COMM_WORLD);
+  std::string left;
+  for (const std::string &f : r.files) left += f + " ";
+  INFO("nltopo " << c.args << "\nprinted: " << text << "left: " << left);
+  CHECK(all_failed == 1);
+  CHECK(all_lines == 1);
+  CHECK(std::regex_search(text, std::regex(c.pattern, std::regex::basic)));
+  CHECK(!std::regex_search(text, source_path));
+  CHECK(any_output == 0);
+  CHECK(max_files == 0); // nor a temporary or journal
+  for (const std::string &f : r.files) std::remove((dir + "/" + f).c_str());
+}
+
 TEST_CASE("bad options: each refused in-process with one line naming it, no output and no temporary left", "[options]")
 {
   const std::string dir = SharedTempDir();
   REQUIRE(!dir.empty());
-  const std::regex source_path("\\.c:[0-9]", std::regex::basic);
-  for (const BadCase &c : OptionCases()) {
+  for (const BadCase &c : OptionCases()) CheckRefusal(RunRefused(SplitArgs(c.args), dir), c, dir);
+  MPI_Barrier(PETSC_COMM_WORLD);
+  if (!Rank()) rmdir(dir.c_str());
+}
+
+// Options that nothing in the run reads (neither nltopo's tables, nor the
+// study's solver objects, nor PETSc itself) and the resource guards the
+// options decide are refused before any set-up: no study enters its Setup
+// stage, and a large scene is refused as fast as a 5-cell one.
+TEST_CASE("bad options: unknown options and resource guards are refused before any set-up, as fast as on a 5-cell scene", "[options]")
+{
+  const std::string dir = SharedTempDir();
+  REQUIRE(!dir.empty());
+  const std::vector<BadCase> cases = {
+      {"unknown option -forc_energy 0.5 (did you mean -force_energy?)", "-study simulate -lattice_cells 25000 -forc_energy 0.5"},
+      {"unknown option -forc_energy 0.5 (did you mean -force_energy?)", "-study sweep -lattice_cells 25000 -sweep_omega_n 8 -sweep_energy_n 8 -forc_energy 0.5"},
+      {"unknown option -forc_energy 0.5 (did you mean -force_energy?)", "-study zak -lattice_cells 25000 -forc_energy 0.5"},
+      {"unknown option -ts_type rk", "-study simulate -lattice_cells 25000 -ts_type rk"},
+      {"unknown option -sim_tss_type rk (did you mean -sim_ts_type?)", "-study simulate -lattice_cells 25000 -sim_tss_type rk"},
+      {"unknown option -linear_epss_nev 4 (did you mean -linear_eps_nev?)", "-study linear -lattice_cells 25000 -linear_epss_nev 4"},
+      {"-nnm_snes_rtol 1e-3: not an option of -study simulate (it belongs to -study continuation)", "-study simulate -lattice_cells 25000 -nnm_snes_rtol 1e-3"},
+      {"-floquet_eps_nev 3: not an option of -study simulate", "-study simulate -lattice_cells 25000 -floquet_eps_nev 3"},
+      {"dense shooting Jacobian .* more than this machine's", "-study continuation -lattice_cells 100000"},
+      {"dense shooting Jacobian .* more than this machine's", "-study perturb -lattice_cells 100000"},
+      {"dense shooting Jacobian .* more than this machine's", "-study stability -lattice_cells 100000"},
+      {"dense shooting Jacobian .* more than this machine's", "-study workprecision -wp_scene shooting -lattice_cells 100000"},
+  };
+  // The same mistake on a 5-cell scene: the time a refusal of the options takes.
+  double small = 0;
+  for (const char *study : {"simulate", "sweep", "continuation"}) {
+    const Refusal r = RunRefused(SplitArgs(std::string("-study ") + study + " -lattice_cells 5 -forc_energy 0.5"), dir);
+    CheckRefusal(r, {"unknown option -forc_energy", study}, dir);
+    small = std::max(small, r.seconds);
+  }
+  for (const BadCase &c : cases) {
     const Refusal r = RunRefused(SplitArgs(c.args), dir);
-    // rank 0 prints the line of a collective error: its text, and the line count of all ranks
-    int lines = 0, all_lines = 0, failed = r.code ? 1 : 0, all_failed = 0, files = (int)r.files.size(), max_files = 0, output = 0, any_output = 0;
-    for (const std::string &f : r.files) output += f == "o.h5";
-    MPI_Allreduce(&output, &any_output, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
-    for (char ch : r.err) lines += ch == '\n';
-    MPI_Allreduce(&lines, &all_lines, 1, MPI_INT, MPI_SUM, PETSC_COMM_WORLD);
-    MPI_Allreduce(&failed, &all_failed, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD);
-    MPI_Allreduce(&files, &max_files, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
-    char text[2048] = "";
-    if (!Rank()) PCHK(PetscStrncpy(text, r.err.c_str(), sizeof(text)));
-    MPI_Bcast(text, sizeof(text), MPI_CHAR, 0, PETSC_COMM_WORLD);
-    std::string left;
-    for (const std::string &f : r.files) left += f + " ";
-    INFO("nltopo " << c.args << "\nprinted: " << text << "left: " << left);
-    CHECK(all_failed == 1);
-    CHECK(all_lines == 1);
-    CHECK(std::regex_search(text, std::regex(c.pattern, std::regex::basic)));
-    CHECK(!std::regex_search(text, source_path));
-    CHECK(any_output == 0);
-    CHECK(max_files == 0); // nor a temporary or journal
-    for (const std::string &f : r.files) std::remove((dir + "/" + f).c_str());
+    CheckRefusal(r, c, dir);
+    INFO("nltopo " << c.args << ": " << r.seconds << " s, a 5-cell scene's refusal " << small << " s");
+    CHECK(r.setups == 0);
+    CHECK(r.seconds < 3 * small + 0.5); // margin for a loaded machine; the run itself takes 30 s and more
   }
   MPI_Barrier(PETSC_COMM_WORLD);
   if (!Rank()) rmdir(dir.c_str());
+}
+
+// -options_left after a refusal lists the refused option as unused: the audit
+// reads the options' values without marking them used ("There are no unused
+// options" next to "unknown option -bogus" was the bug).
+TEST_CASE("bad options: a refused option stays unused in the database (-options_left lists it)", "[options]")
+{
+  const std::string dir = SharedTempDir();
+  REQUIRE(!dir.empty());
+  for (const std::string &args : {std::string("-study linear -lattice_cells 5 -bogus 1"), std::string("-study simulate -sim_t_final 5 -sweep_omega_n 3"),
+                                   std::string("-study simulate -sim_t_final 5 -force_omgea 2")}) {
+    const Refusal r = RunRefused(SplitArgs(args), dir);
+    INFO("nltopo " << args);
+    CHECK(r.code != 0);
+    const std::string refused = SplitArgs(args)[SplitArgs(args).size() - 2].substr(1);
+    CHECK(std::count(r.unused.begin(), r.unused.end(), refused) == 1);
+    CHECK(r.unused.size() == 1); // the study's own options were read
+  }
+  MPI_Barrier(PETSC_COMM_WORLD);
+  if (!Rank()) rmdir(dir.c_str());
+}
+
+// PETSc compares option names case-insensitively (-Force_Energy is
+// -force_energy), and so does every check of nltopo's: the missing value, the
+// 32-bit integer, the audit of unused options and its did-you-mean, the
+// type-mismatched solver option, the workprecision configurations.
+TEST_CASE("bad options: every check compares option names as PETSc does, case-insensitively", "[options]")
+{
+  const std::string dir = SharedTempDir();
+  REQUIRE(!dir.empty());
+  const std::vector<BadCase> cases = {
+      {"-Force_Energy: no value given", S + "-Force_Energy"},
+      {"-LATTICE_K: no value given", L + "-LATTICE_K ''"},
+      {"unknown option -Force_Omgea 2 (did you mean -force_omega?)", S + "-Force_Omgea 2"},
+      {"unknown option -FORC_ENERGY 0.5 (did you mean -force_energy?)", S + "-FORC_ENERGY 0.5"},
+      {"-LATTICE_CELLS 4294967301: out of the integer range", "-study linear -LATTICE_CELLS 4294967301"},
+      {"-Sim_TS_Max_Steps 99999999999: out of the integer range", S + "-Sim_TS_Max_Steps 99999999999"},
+      {"-Sweep_Omega_N 3: not an option of -study simulate (it belongs to -study sweep)", S + "-Sweep_Omega_N 3"},
+      {"-Sim_TS_RK_Type 5dp: not used by this run (-sim_ts_type is symsplit", W + "-sim_ts_type symsplit -sim_ts_dt 0.1 -Sim_TS_RK_Type 5dp"},
+      {"-Lattice_K is not an integrator option", P + "-wp_configs ' -Sim_TS_Type rk -Lattice_K 2'"},
+      {"-wp_reference .*: leave out -SIM_TS_RTOL", P + "-wp_reference ' -sim_ts_type rkn -SIM_TS_RTOL 1e-9'"},
+  };
+  for (const BadCase &c : cases) {
+    const Refusal r = RunRefused(SplitArgs(c.args), dir);
+    CheckRefusal(r, c, dir);
+    CHECK(r.setups == 0);
+  }
+  MPI_Barrier(PETSC_COMM_WORLD);
+  if (!Rank()) rmdir(dir.c_str());
+}
+
+// A word that is neither an option nor an option's value is an error (PETSc
+// skips it silently: -sweep_energy_list 0.1, 1 would run one energy); the
+// rule is PETSc's own (PetscOptionsValidKey, PetscOptionsInsertArgs and
+// PetscOptionsInsertString), so the legitimate look-alikes stay legal.
+TEST_CASE("bad options: stray words on the command line and in PETSC_OPTIONS, and their legitimate look-alikes", "[options][serial]")
+{
+  struct Words {
+    std::string pattern, line; // pattern "": accepted
+  };
+  const std::vector<Words> argv = {
+      {"command line: '1' is neither an option nor an option's value (after -sweep_energy_list 0.1,)", "-study sweep -sweep_energy_list 0.1, 1"},
+      {"'extra' is neither an option nor an option's value (after -study linear)", "-study linear extra"},
+      {"'scene.opts' .* (before any option); did you mean -options_file scene.opts?", "scene.opts -study linear"},
+      {"'b.opts' is neither .* (after -options_file a.opts)", "-options_file a.opts b.opts"},
+      {"'-2' is neither .* (after -force_energy 1)", "-study simulate -force_energy 1 -2"},
+      {"'' is neither .* (after -lattice_k 2)", "-study linear -lattice_k 2 ''"},
+      {"", "-study workprecision -wp_configs ' -sim_ts_type symsplit -sim_ts_dt 0.2' -wp_repeats 1"},
+      {"", "-study linear -lattice_cubic -50 -lattice_gamma -0.5 -force_energy -.5 -lattice_k -1e-3 -x -inf"},
+      {"", "-study sweep -sweep_energy_list 0.1,1 -sim_store_u -sim_progress 0"},
+      {"", "-prefix_push lattice_ -cells 5 -prefix_pop -study linear -lattice_k ''"},
+      {"", "-study linear -output 'my file.h5' -log_view :log.txt"},
+  };
+  for (const Words &w : argv) {
+    const std::string line = StrayArgument(SplitArgs(w.line));
+    INFO("nltopo " << w.line << "\n-> " << line);
+    if (w.pattern.empty()) CHECK(line.empty());
+    else CHECK(std::regex_search(line, std::regex(w.pattern, std::regex::basic)));
+  }
+  const std::vector<Words> env = {
+      {"PETSC_OPTIONS: 'file.h5' is neither .* (after -output my\\\\); PETSc splits it at spaces (a backslash does not escape one)", "-output my\\ file.h5"},
+      {"PETSC_OPTIONS: '1' is neither", "-sweep_energy_list 0.1, 1"},
+      {"", "-output \"my file.h5\" -lattice_cubic -1"},
+      {"", " -log_view   -lattice_k 2 "},
+  };
+  for (const Words &w : env) {
+    const std::string line = StrayInOptionsString(w.line, "PETSC_OPTIONS");
+    INFO("PETSC_OPTIONS='" << w.line << "'\n-> " << line);
+    if (w.pattern.empty()) CHECK(line.empty());
+    else CHECK(std::regex_search(line, std::regex(w.pattern, std::regex::basic)));
+  }
+}
+
+namespace {
+// Writes the files (name, content) into dir on rank 0.
+void WriteFiles(const std::string &dir, const std::vector<std::pair<std::string, std::string>> &files)
+{
+  if (!Rank())
+    for (const auto &f : files) {
+      std::FILE *o = std::fopen((dir + "/" + f.first).c_str(), "wb");
+      REQUIRE(o);
+      std::fwrite(f.second.data(), 1, f.second.size(), o);
+      std::fclose(o);
+    }
+  MPI_Barrier(PETSC_COMM_WORLD);
+}
+
+// CheckOptionsSources on the command line (words, after the program name), run in dir.
+std::string SourcesLine(const std::string &dir, const std::vector<std::string> &words)
+{
+  char cwd[4096];
+  REQUIRE(getcwd(cwd, sizeof cwd));
+  REQUIRE(chdir(dir.c_str()) == 0);
+  std::vector<std::string> all = {"nltopo"};
+  all.insert(all.end(), words.begin(), words.end());
+  std::vector<char *> argv;
+  for (std::string &w : all) argv.push_back(&w[0]);
+  const std::string line = CheckOptionsSources(PETSC_COMM_WORLD, (int)argv.size(), argv.data());
+  REQUIRE(chdir(cwd) == 0);
+  return line;
+}
+} // namespace
+
+// Options files as PETSc reads them: each problem is one line naming the file
+// and the line, the same on every rank (rank 0 reads), never a traceback,
+// never an endless recursion; -lattice_Gamma is refused however it reaches
+// the database (a nested file, -prefix_push).
+TEST_CASE("bad options: options files, read by PETSc's reader before the run, each problem in one line naming file and line", "[options]")
+{
+  const std::string dir = SharedTempDir();
+  REQUIRE(!dir.empty());
+  WriteFiles(dir, {{"ok.opts", "# a scene\n\n   -study linear   # comment\n-lattice_cells\t6\r\n-lattice_cubic -1.5\n-wp_configs \" -sim_ts_type symsplit\"\n"},
+                   {"bom.opts", "\xEF\xBB\xBF-study linear\n"},
+                   {"bang.opts", "-study linear\n-lattice_cells 5 !\n"},
+                   {"two.opts", "-study linear -lattice_cells 5\n"},
+                   {"space.opts", "-study linear\n-output my file.h5\n"},
+                   {"garbage.opts", std::string("-study linear\n\x01\x9c\xfe\x7f binary\n", 26)},
+                   {"nested.opts", "-study linear\n-options_file gone.opts\n"},
+                   {"a.opts", "-lattice_k 1\n-options_file b.opts\n"},
+                   {"b.opts", "-lattice_k 2\n-options_file a.opts\n"},
+                   {"self.opts", "-options_file self.opts\n"},
+                   {"bare.opts", "-options_file\n"},
+                   {"push.opts", "-prefix_push lattice_\n-Gamma 0.5\n-prefix_pop\n"},
+                   {"outer.opts", "-study linear\n-OPTIONS_FILE push.opts\n"},
+                   {"gamma.opts", "-options_file ok.opts\n-LATTICE_gamma 0.2\n"}});
+  if (!Rank()) REQUIRE(mkdir((dir + "/adir").c_str(), 0700) == 0);
+  MPI_Barrier(PETSC_COMM_WORLD);
+  struct FileCase {
+    std::string pattern; // "" : accepted
+    std::vector<std::string> words;
+  };
+  const std::vector<FileCase> cases = {
+      {"", {"-options_file", "ok.opts"}},
+      {"", {"-study", "linear", "-lattice_cubic", "-2", "-options_file", "ok.opts", "-lattice_k", "0.5"}},
+      {"^options file bom.opts line 1: the file starts with a UTF-8 byte-order mark; save it without one$", {"-options_file", "bom.opts"}},
+      {"^options file bang.opts line 2: '!' after the value (comments start with #)$", {"-options_file", "bang.opts"}},
+      {"^options file two.opts line 1: two options on one line", {"-options_file", "two.opts"}},
+      {"^options file space.opts line 2: 'file.h5' after the value (a value with spaces is quoted", {"-options_file", "space.opts"}},
+      {"^options file garbage.opts line 2: '\\\\x01\\\\x9C\\\\xFE\\\\x7F' is not an option", {"-options_file", "garbage.opts"}},
+      {"^options file nested.opts line 2: cannot read options file gone.opts: No such file or directory$", {"-options_file", "nested.opts"}},
+      {"^cannot read -options_file gone.opts: No such file or directory$", {"-study", "linear", "-options_file", "gone.opts"}},
+      {"^-options_file adir is a directory$", {"-options_file", "adir"}},
+      {"options files include each other (a.opts -> b.opts -> a.opts)", {"-options_file", "a.opts"}},
+      {"options files include each other (self.opts -> self.opts)", {"-Options_File", "self.opts"}},
+      {"^options file bare.opts line 1: -options_file needs a file name$", {"-options_file", "bare.opts"}},
+      {"^-options_file needs a file name$", {"-study", "linear", "-options_file", "-lattice_k", "2"}},
+      {"^-lattice_Gamma is the same option as -lattice_gamma .*-lattice_cubic$", {"-options_file", "outer.opts"}},
+      {"^-lattice_Gamma is the same option", {"-study", "linear", "-prefix_push", "lattice_", "-Gamma", "0.5", "-prefix_pop"}},
+      {"^-LATTICE_gamma is the same option", {"-options_file", "gamma.opts"}},
+      {"^command line: '1' is neither an option nor an option's value", {"-study", "sweep", "-sweep_energy_list", "0.1,", "1"}},
+  };
+  for (const FileCase &c : cases) {
+    const std::string line = SourcesLine(dir, c.words);
+    std::string cmd;
+    for (const std::string &w : c.words) cmd += " " + w;
+    INFO("nltopo" << cmd << "\n-> " << line);
+    if (c.pattern.empty()) CHECK(line.empty());
+    else CHECK(std::regex_search(line, std::regex(c.pattern, std::regex::basic)));
+    CHECK(line.find('\n') == std::string::npos);
+  }
+  // PETSC_OPTIONS (rank 0's, as PETSc reads it): a missing file and a stray word
+  const char *saved = std::getenv("PETSC_OPTIONS");
+  const std::string keep = saved ? saved : "";
+  setenv("PETSC_OPTIONS", "-options_file gone.opts", 1);
+  CHECK(SourcesLine(dir, {"-study", "linear"}) == "PETSC_OPTIONS: cannot read options file gone.opts: No such file or directory");
+  setenv("PETSC_OPTIONS", "-output my\\ file.h5", 1);
+  CHECK(std::regex_search(SourcesLine(dir, {"-study", "linear"}), std::regex("^PETSC_OPTIONS: 'file.h5' is neither", std::regex::basic)));
+  setenv("PETSC_OPTIONS", "-options_file ok.opts -output \"my file.h5\"", 1);
+  CHECK(SourcesLine(dir, {"-study", "linear"}).empty());
+  if (saved) setenv("PETSC_OPTIONS", keep.c_str(), 1);
+  else unsetenv("PETSC_OPTIONS");
+  MPI_Barrier(PETSC_COMM_WORLD);
+  if (!Rank()) {
+    for (const std::string &f : DirEntries(dir)) {
+      if (f == "adir") rmdir((dir + "/" + f).c_str());
+      else std::remove((dir + "/" + f).c_str());
+    }
+    rmdir(dir.c_str());
+  }
+}
+
+// Ranks started with different options (an MPMD launch, a per-rank file that
+// differs) fail together with one line, before anything else: the command
+// lines are compared before PETSc starts (ArgumentsDifferAcrossRanks), the
+// databases when the study starts (CheckOptionsAgree).
+TEST_CASE("bad options: options that differ between ranks fail together in one line", "[options]")
+{
+  int size;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  std::vector<std::string> words = {"nltopo", "-study", "simulate", "-sim_t_final", "5"};
+  if (Rank() == size - 1 && size > 1) words.insert(words.end(), {"-force_omega", "abc"});
+  std::vector<char *> argv;
+  for (std::string &w : words) argv.push_back(&w[0]);
+  const std::string line = ArgumentsDifferAcrossRanks(PETSC_COMM_WORLD, (int)argv.size(), argv.data());
+  INFO(line);
+  if (size == 1) CHECK(line.empty());
+  else CHECK(line == "rank " + std::to_string(size - 1) + " was started with other options than rank 0 (after argument 4, rank " + std::to_string(size - 1) +
+                         " has '-force_omega abc', rank 0 nothing); every rank must be given the same command line");
+  if (size == 1) return; // the database check below needs a second rank
+  const std::string dir = SharedTempDir();
+  REQUIRE(!dir.empty());
+  const Refusal r = RunRefused(SplitArgs(S + (Rank() == 1 ? "-force_omega abc" : "-force_omega 2")), dir);
+  CheckRefusal(r, {"the options differ between ranks: rank 1 has '-force_omega abc', rank 0 '-force_omega 2'", S}, dir);
+  CHECK(r.setups == 0);
+  MPI_Barrier(PETSC_COMM_WORLD);
+  if (!Rank()) rmdir(dir.c_str());
+}
+
+// Who reads an option, as the audit decides before any work: PETSc's own
+// global options (an inventory, not prefixes: -hello is not -h), nltopo's,
+// the declared solver objects', or nobody.
+TEST_CASE("bad options: every option is nltopo's, a declared solver's, PETSc's own, or unknown", "[options][serial]")
+{
+  RegisterStudyContracts(); // the component prefixes
+  const std::vector<std::string> solvers = {"sim_ts_", "sim_snes_", "sim_ksp_", "sim_pc_", "sim_mat_", "linear_eps_", "linear_st_"};
+  const std::vector<std::pair<std::string, OptionOwner>> cases = {
+      {"log_view", OptionOwner::Petsc},         {"Log_View", OptionOwner::Petsc},          {"malloc_debug", OptionOwner::Petsc},
+      {"options_left", OptionOwner::Petsc},     {"viewer_binary_skip_info", OptionOwner::Petsc}, {"info", OptionOwner::Petsc},
+      {"no_signal_handler", OptionOwner::Petsc}, {"lattice_k", OptionOwner::Nltopo},        {"LATTICE_K", OptionOwner::Nltopo},
+      {"force_omgea", OptionOwner::Nltopo},     {"study", OptionOwner::Nltopo},            {"option_tables", OptionOwner::Nltopo},
+      {"sim_ts_rtol", OptionOwner::Solver},     {"Sim_TS_Adapt_Type", OptionOwner::Solver}, {"linear_st_ksp_type", OptionOwner::Solver},
+      {"mat_view", OptionOwner::Solver},        {"sf_type", OptionOwner::Solver},          {"forc_energy", OptionOwner::Unknown},
+      {"ts_type", OptionOwner::Unknown},        {"nnm_snes_rtol", OptionOwner::Unknown},   {"hello", OptionOwner::Unknown},
+      {"mpi_foo", OptionOwner::Unknown},        {"petsc_foo", OptionOwner::Unknown},       {"test_x", OptionOwner::Unknown},
+      {"logview", OptionOwner::Unknown},        {"sim_tss_type", OptionOwner::Nltopo}}; // under -sim_, not a solver class: a misspelt nltopo option
+  for (const auto &c : cases) {
+    INFO("-" << c.first);
+    CHECK(ClassifyOption(c.first, solvers) == c.second);
+  }
 }
