@@ -34,12 +34,12 @@ wait_until() {
   echo "FAILED: timed out waiting for: $*" >&2
   exit 1
 }
-# check_interrupted <rc> <stderr file> <output file> <pattern>: non-zero exit, one
-# nltopo line naming SIGTERM and the output, the file complete = 0, no temporary
+# check_interrupted <rc> <stderr file> <output file> <pattern> [signal]: non-zero exit, one
+# nltopo line naming the signal (SIGTERM) and the output, the file complete = 0, no temporary
 check_interrupted() {
-  local rc=$1 err=$2 out=$3 pattern=$4
-  [ "$rc" -ne 0 ] || { echo "FAILED: exit 0 after SIGTERM ($out)"; exit 1; }
-  if [ "$(grep -c '^nltopo:' "$err")" -ne 1 ] || ! grep -q -- "^nltopo: interrupted by SIGTERM $pattern.*partial output $out (complete = 0)" "$err"; then
+  local rc=$1 err=$2 out=$3 pattern=$4 sig=${5:-SIGTERM}
+  [ "$rc" -ne 0 ] || { echo "FAILED: exit 0 after $sig ($out)"; exit 1; }
+  if [ "$(grep -c '^nltopo:' "$err")" -ne 1 ] || ! grep -q -- "^nltopo: interrupted by $sig $pattern.*partial output $out (complete = 0)" "$err"; then
     cat "$err"
     echo "FAILED: not one 'interrupted' line for $out"
     exit 1
@@ -143,4 +143,50 @@ expect_fail2 "time integration stopped at t = " fp.h5 -options_file "$SRC/option
 # one rank cannot write its sweep journal (a directory in the way)
 mkdir -p fj.h5.journal.1 && touch fj.h5.journal.1/keep
 expect_fail2 "cannot write the sweep journal fj.h5.journal.1" fj.h5 -study sweep -sweep_omega_n 2 -sweep_energy_n 2 -sim_t_final 100
+
+# 4. SIGHUP (a closed terminal or session) stops a run like SIGTERM: at 1 rank
+#    (exit 129 = 128 + SIGHUP) and at 2 ranks (to one rank process: all stop).
+C4=(-options_file "$SRC/options/fep.opts" -cont_branch insulated -floquet 0 -cont_energy_max 100 -cont_verbose 1)
+"$NLTOPO" "${C4[@]}" -output hup1.h5 -options_left > hup1.txt 2> hup1.err &
+pid=$!
+wait_until 120 points_printed hup1.txt 4
+kill -HUP "$pid"
+wait_limited "$pid"
+[ "$RC" -eq 129 ] || { cat hup1.err; echo "FAILED: exit $RC after SIGHUP, expected 129"; exit 1; }
+check_interrupted "$RC" hup1.err hup1.h5 "after [0-9]* points of branch insulated" SIGHUP
+"${M2[@]}" "$NLTOPO" "${C4[@]}" -output hup2.h5 -options_left > hup2.txt 2> hup2.err &
+pid=$!
+wait_until 120 points_printed hup2.txt 4
+rank=$(pgrep -P "$pid" -x nltopo | tail -1)
+[ -n "$rank" ] || { echo "FAILED: no rank process under mpiexec $pid"; exit 1; }
+kill -HUP "$rank"
+wait_limited "$pid"
+check_interrupted "$RC" hup2.err hup2.h5 "after [0-9]* points of branch insulated" SIGHUP
+
+# 5. SIGPIPE is ignored: a run whose stdout reader is gone (`| head -1`, or a
+#    reader gone before the first line) drops what it prints, finishes and
+#    commits, exit 0 and nothing on stderr; also under PETSc's
+#    -no_signal_handler. Under mpiexec (Open MPI 4.1) mpiexec itself aborts on
+#    the broken pipe and sends the ranks SIGTERM: they stop as interrupted, with
+#    no crash banner (docs/errors.md "Signals").
+C5=(-options_file "$SRC/options/fep.opts" -cont_branch insulated -floquet 0 -cont_energy_max 1 -cont_verbose 1)
+piped() { # piped <output> <reader...>: nltopo's exit status in RC
+  local out=$1
+  shift
+  RC=0
+  timeout "$LIMIT" "$NLTOPO" "${C5[@]}" -output "$out" -options_left 2> "$out.err" | "$@" > /dev/null || RC=${PIPESTATUS[0]}
+  [ "$RC" -eq 0 ] && [ ! -s "$out.err" ] || { cat "$out.err"; echo "FAILED: exit $RC with stdout closed ($out)"; exit 1; }
+  $PY "$CHECKS/signals.py" complete_output "$out"
+  echo "ok: stdout closed under the run ($*): exit 0, $out complete"
+}
+piped pipe_head.h5 head -1
+piped pipe_gone.h5 true
+C5+=(-no_signal_handler)
+piped pipe_nsh.h5 head -1
+rc=0
+timeout "$LIMIT" "${M2[@]}" "$NLTOPO" "${C5[@]}" -output pipe2.h5 -options_left 2> pipe2.err | head -1 > /dev/null || rc=${PIPESTATUS[0]}
+if grep -q "PETSC ERROR\|MPI_ABORT" pipe2.err; then cat pipe2.err; echo "FAILED: crash banner with stdout closed at 2 ranks"; exit 1; fi
+if [ "$rc" -eq 0 ]; then $PY "$CHECKS/signals.py" complete_output pipe2.h5; else grep -q "^nltopo: interrupted by SIGTERM" pipe2.err || { cat pipe2.err; exit 1; }; fi
+if ls pipe2.h5.tmp.* > /dev/null 2>&1; then echo "FAILED: temporary left: $(ls pipe2.h5.tmp.*)"; exit 1; fi
+echo "ok: stdout closed under mpiexec -n 2: exit $rc, $(grep '^nltopo:' pipe2.err || echo 'no nltopo line')"
 echo "signals scene OK"

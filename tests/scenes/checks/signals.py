@@ -16,6 +16,11 @@ def partial(path):
     require(complete(path) == 0, path)
 
 
+def complete_output(path):
+    """A run that finished (e.g. with its stdout closed under it) leaves its output complete = 1."""
+    require(complete(path) == 1, path)
+
+
 def done_points(path):
     """Print how many points of the sweep in path are done."""
     print(int(group(path, "sweep/done")[:].sum()))
