@@ -52,6 +52,12 @@ PetscErrorCode DeclareOutputOptions(MPI_Comm comm, const char *study)
   return ReadOutputOptions(comm, study, &path, &overwrite);
 }
 
+PetscErrorCode OutputPathOption(MPI_Comm comm, const char *study, std::string *path)
+{
+  PetscBool overwrite;
+  return ReadOutputOptions(comm, study, path, &overwrite);
+}
+
 PetscErrorCode OutputPathFromOptions(MPI_Comm comm, const char *study, std::string *path, const std::function<bool(const std::string &)> &resumes)
 {
   PetscBool overwrite;

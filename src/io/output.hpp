@@ -18,6 +18,9 @@ namespace nltopo {
 PetscErrorCode OutputPathFromOptions(MPI_Comm comm, const char *study, std::string *path, const std::function<bool(const std::string &)> &resumes = nullptr);
 // The same options read without looking at the file (a study's options function, -help).
 PetscErrorCode DeclareOutputOptions(MPI_Comm comm, const char *study);
+// -output as given (default "<study>.h5"), without the checks: the path a run
+// claims (io/output_claim.hpp) before it looks at what is there.
+PetscErrorCode OutputPathOption(MPI_Comm comm, const char *study, std::string *path);
 
 // Called by Commit before a complete output is renamed into place, when the
 // file's communicator spans every rank (the registry's unused-options audit).

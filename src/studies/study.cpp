@@ -53,7 +53,6 @@ PetscErrorCode Study::EndInterrupted(const Interruption &it)
 
 PetscErrorCode Study::Run(MPI_Comm comm, const char *name)
 {
-  OutputFile out;
   PetscFunctionBeginUser;
   comm_ = comm;
   name_ = name;
@@ -61,8 +60,19 @@ PetscErrorCode Study::Run(MPI_Comm comm, const char *name)
   PetscCall(LogRegister());
   PetscCall(PetscLogStagePush(Log().setup));
   PetscCall(ReadOptions());
+  PetscCall(OutputPathOption(comm, name, &path_));
+  PetscCall(claim_.Acquire(comm, path_)); // one run per -output, before anything there is read or written
+  const PetscErrorCode ierr = RunClaimed();
+  claim_.Release(); // however the run ended
+  PetscFunctionReturn(ierr);
+}
+
+PetscErrorCode Study::RunClaimed()
+{
+  OutputFile out;
+  PetscFunctionBeginUser;
   PetscCall(OutputPath(&path_));
-  if (!WritesOwnFile()) PetscCall(out.Open(comm, path_, "", OutputBytes()));
+  if (!WritesOwnFile()) PetscCall(out.Open(comm_, path_, "", OutputBytes()));
   PetscCall(Build());
   PetscCall(PetscLogStagePop());
 
@@ -79,10 +89,10 @@ PetscErrorCode Study::Run(MPI_Comm comm, const char *name)
   if (WritesOwnFile()) PetscCall(Write(NULL));
   else {
     PetscCall(Write(out.Viewer()));
-    PetscCall(out.Commit(name, Elapsed()));
+    PetscCall(out.Commit(name_, Elapsed()));
   }
   PetscCall(PetscLogStagePop());
-  if (!WritesOwnFile()) PetscCall(PetscPrintf(comm, "  wrote %s\n", path_.c_str()));
+  if (!WritesOwnFile()) PetscCall(PetscPrintf(comm_, "  wrote %s\n", path_.c_str()));
   PetscFunctionReturn(0);
 }
 

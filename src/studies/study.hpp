@@ -9,6 +9,7 @@
 // line). A study supplies only what is its own: the options it reads, Build,
 // Solve, Write and what an interruption leaves.
 #include "io/output.hpp"
+#include "io/output_claim.hpp"
 #include <memory>
 #include <string>
 
@@ -66,6 +67,11 @@ protected:
   const char *name_ = "";
   std::string path_; // -output
   PetscLogDouble t_start_ = 0;
+
+private:
+  // Run's steps once -output is claimed.
+  PetscErrorCode RunClaimed();
+  OutputClaim claim_; // one run per -output (io/output_claim.hpp)
 };
 
 using StudyFactory = std::unique_ptr<Study> (*)();

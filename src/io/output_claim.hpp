@@ -1,0 +1,47 @@
+#pragma once
+// One run per -output (docs/errors.md "One run per output"). Before a run
+// reads or writes anything next to its -output, rank 0 creates the lock file
+// <output>.lock with O_CREAT | O_EXCL: atomic on local filesystems and on NFS
+// v3 and later, where flock is not honoured. The lock holds one line naming
+// its owner (process id, host, boot id, the process's start time), and the
+// run removes it when it ends, however it ends. Only the holder of the lock
+// writes <output>, its temporaries (<file>.tmp.*), its partial output and
+// the sweep's journals.
+//
+// A second run into the same -output is refused in one line that names the
+// owner. It never waits. A lock whose owner is provably gone is taken over:
+// same host and boot, and its process no longer running (or a zombie, or its
+// id reused by a later process). This covers SIGKILL and the OOM killer. The
+// taker removes the dead run's temporaries, keeps its partial output and
+// journals for a resume, and says so in one warning line. A lock of another
+// host, or one that names no owner, is never taken over: the refusal says to
+// remove it once that run is known to be over.
+#include <petscsys.h>
+#include <string>
+#include <vector>
+
+namespace nltopo {
+
+// <output>.lock
+std::string LockPath(const std::string &output);
+// The files whose path starts with prefix (in prefix's directory), e.g. FilesNamed("o.h5.tmp.").
+std::vector<std::string> FilesNamed(const std::string &prefix);
+
+class OutputClaim {
+public:
+  OutputClaim() = default;
+  OutputClaim(const OutputClaim &) = delete;
+  OutputClaim &operator=(const OutputClaim &) = delete;
+  ~OutputClaim() { Release(); }
+  // Collective on comm. Rank 0 claims path (and removes stale temporaries);
+  // if it cannot, every rank fails with the same one line.
+  PetscErrorCode Acquire(MPI_Comm comm, const std::string &path);
+  // Rank 0 removes the lock if it holds it. Not collective: also on error paths.
+  void Release();
+  bool Held() const { return !lock_.empty(); }
+
+private:
+  std::string lock_, owner_; // the lock file and the line it holds (rank 0, while held)
+};
+
+} // namespace nltopo
