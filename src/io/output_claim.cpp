@@ -8,6 +8,7 @@
 #include <dirent.h>
 #include <fcntl.h>
 #include <fstream>
+#include <sys/stat.h>
 #include <sstream>
 #include <unistd.h>
 #include <vector>
@@ -15,6 +16,8 @@
 namespace nltopo {
 
 std::string LockPath(const std::string &output) { return output + ".lock"; }
+
+std::string PartialPath(const std::string &output) { return output + ".partial.h5"; }
 
 namespace {
 
@@ -221,13 +224,16 @@ PetscErrorCode OutputClaim::Acquire(MPI_Comm comm, const std::string &path)
     std::string note;
     const std::string refusal = Claim(path, lock, me, &note);
     if (refusal.empty()) {
+      path_ = path;
       lock_ = lock;
       owner_ = me.Line();
+      RecordFound();
       // Only the holder writes temporaries: any left are a killed run's.
       std::string removed;
-      for (const std::string &f : FilesNamed(path + ".tmp.")) {
+      std::vector<std::string> tmp = FilesNamed(path + ".tmp."), ptmp = FilesNamed(PartialPath(path) + ".tmp.");
+      tmp.insert(tmp.end(), ptmp.begin(), ptmp.end());
+      for (const std::string &f : tmp)
         if (!std::remove(f.c_str())) removed += (removed.empty() ? "" : ", ") + f;
-      }
       if (!removed.empty()) note += (note.empty() ? "removed " : "; removed its temporaries ") + removed + (note.empty() ? ", left by a killed run" : "");
       if (!note.empty()) {
         std::fprintf(stderr, "nltopo: warning: -output %s: %s\n", path.c_str(), note.c_str());
@@ -241,9 +247,34 @@ PetscErrorCode OutputClaim::Acquire(MPI_Comm comm, const std::string &path)
   PetscFunctionReturn(0);
 }
 
-void OutputClaim::Release()
+static unsigned long Inode(const std::string &f)
+{
+  struct stat st;
+  return stat(f.c_str(), &st) ? 0 : (unsigned long)st.st_ino;
+}
+
+void OutputClaim::RecordFound()
 {
   if (lock_.empty()) return;
+  partial_found_ = !access(PartialPath(path_).c_str(), F_OK);
+  journals_found_.clear();
+  for (const std::string &f : FilesNamed(path_ + ".journal.")) journals_found_.emplace_back(f, Inode(f));
+}
+
+void OutputClaim::Release(RunEnd end)
+{
+  if (lock_.empty()) return;
+  const std::string partial = PartialPath(path_);
+  std::vector<std::string> gone = FilesNamed(path_ + ".tmp."), more = FilesNamed(partial + ".tmp.");
+  gone.insert(gone.end(), more.begin(), more.end());
+  if (end == RunEnd::Complete || (end == RunEnd::Failed && !partial_found_)) gone.push_back(partial);
+  if (end != RunEnd::Interrupted)
+    for (const std::string &f : FilesNamed(path_ + ".journal.")) {
+      bool found = false;
+      for (const auto &j : journals_found_) found = found || (j.first == f && j.second == Inode(f));
+      if (end == RunEnd::Complete || !found) gone.push_back(f); // (a journal recreated under a found name has another inode)
+    }
+  for (const std::string &f : gone) std::remove(f.c_str());
   if (FirstLine(lock_) == owner_) unlink(lock_.c_str()); // (never another run's)
   lock_.clear();
   owner_.clear();

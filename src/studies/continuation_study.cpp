@@ -71,11 +71,13 @@ protected:
     PetscCall(DeclareEPS(comm, "floquet_mf_"));
     PetscFunctionReturn(0);
   }
-  // -cont_resume of the -output file itself replaces it (no -output_overwrite needed).
+  // -cont_resume of the -output file itself, or of its partial output, replaces it (no -output_overwrite needed).
   PetscErrorCode OutputPath(std::string *path) override
   {
     PetscFunctionBeginUser;
-    PetscCall(OutputPathFromOptions(comm_, name_, path, [&](const std::string &p) { return ch_.resume && SameFile(p, ch_.resume_file); }));
+    PetscCall(OutputPathFromOptions(
+        comm_, name_, path, [&](const std::string &p) { return ch_.resume && (SameFile(p, ch_.resume_file) || SameFile(PartialPath(p), ch_.resume_file)); },
+        "-cont_resume {}"));
     PetscFunctionReturn(0);
   }
   PetscErrorCode Build() override
@@ -149,13 +151,13 @@ private:
     PetscTime(&cur->b0);
     cur->j0 = shoot.JacobianEvaluations(), cur->r0 = shoot.ResidualEvaluations(), cur->p0 = shoot.TangentProducts(), cur->k0 = shoot.KrylovIterations();
   }
-  // -output with the branches done and this one so far, complete = 0.
+  // <output>.partial.h5 with the branches done and this one so far, complete = 0.
   PetscErrorCode WritePartial(const LiveBranch &cur, const char *reason)
   {
     OutputFile f;
     PetscFunctionBeginUser;
     PetscCall(PetscLogStagePush(Log().write));
-    PetscCall(f.Open(comm_, path_, "checkpoint."));
+    PetscCall(f.Open(comm_, PartialPath(path_), "checkpoint."));
     PetscCall(WriteBandEdges(f.Viewer(), "/continuation", InfiniteBandEdges(nnm_.lat.Params())));
     for (const BranchRecord &r : done_) PetscCall(WriteRecord(f.Viewer(), r, fk_, n2_, fmo_.nev));
     if (!cur.b.energy.empty()) {
@@ -178,7 +180,7 @@ private:
     CheckpointHook ck(comm_, floquet, ch_.checkpoint_seconds, [&]() -> PetscErrorCode {
       PetscFunctionBeginUser;
       PetscCall(WritePartial(cur, "checkpoint: the run was still going"));
-      PetscCall(PetscPrintf(comm_, "  [%s] checkpoint: %zu points written to %s\n", cur.label.c_str(), cur.b.energy.size(), path_.c_str()));
+      PetscCall(PetscPrintf(comm_, "  [%s] checkpoint: %zu points written to %s\n", cur.label.c_str(), cur.b.energy.size(), PartialPath(path_).c_str()));
       PetscFunctionReturn(0);
     });
     const bool mode = cur.parent.empty(); // a -cont_branch entry: from its linear mode unless resumed
@@ -226,7 +228,8 @@ private:
     PetscCall(WritePartial(cur, reason.c_str()));
     SETERRQ(comm_, PETSC_ERR_SIG,
             "interrupted by %s%s%s after %zu points of branch %s (last E = %g); partial output %s (complete = 0); -cont_resume %s continues it", sn,
-            *doing ? " " : "", doing, b.energy.size(), cur.label.c_str(), b.energy.empty() ? 0.0 : (double)b.energy.back(), path_.c_str(), path_.c_str());
+            *doing ? " " : "", doing, b.energy.size(), cur.label.c_str(), b.energy.empty() ? 0.0 : (double)b.energy.back(), PartialPath(path_).c_str(),
+            PartialPath(path_).c_str());
   }
 
   // The branch just continued into done_: its events (-cont_bifurcations), the

@@ -2,6 +2,8 @@
 #include "core/log.hpp"
 #include "core/options_audit.hpp"
 #include "core/signals.hpp"
+#include <cstdlib>
+#include <cstring>
 
 namespace nltopo {
 
@@ -36,7 +38,7 @@ PetscErrorCode Study::CommitPartial()
 {
   OutputFile partial;
   PetscFunctionBeginUser;
-  PetscCall(partial.Open(comm_, path_, "partial."));
+  PetscCall(partial.Open(comm_, PartialPath(path_), "partial."));
   PetscCall(Write(partial.Viewer()));
   PetscCall(partial.Commit(name_, Elapsed(), false));
   PetscFunctionReturn(0);
@@ -48,7 +50,19 @@ PetscErrorCode Study::EndInterrupted(const Interruption &it)
   PetscFunctionBeginUser;
   PetscCheck(it.partial, comm_, PETSC_ERR_SIG, "interrupted by %s %s; no output written%s", sig, it.where.c_str(), it.tail.c_str());
   PetscCall(CommitPartial());
-  SETERRQ(comm_, PETSC_ERR_SIG, "interrupted by %s %s; partial output %s (complete = 0)%s", sig, it.where.c_str(), path_.c_str(), it.tail.c_str());
+  SETERRQ(comm_, PETSC_ERR_SIG, "interrupted by %s %s; partial output %s (complete = 0)%s", sig, it.where.c_str(), PartialPath(path_).c_str(),
+          it.tail.c_str());
+}
+
+// NLTOPO_TEST_LATE_ERROR=1 (the tests' hook, docs/errors.md): an error after
+// the computation, before the output is written, as an error found at the end
+// of a long run would be.
+static PetscErrorCode TestLateError(MPI_Comm comm)
+{
+  PetscFunctionBeginUser;
+  const char *e = std::getenv("NLTOPO_TEST_LATE_ERROR");
+  PetscCheck(!e || std::strcmp(e, "1"), comm, PETSC_ERR_USER, "NLTOPO_TEST_LATE_ERROR=1: an error after the computation (a test hook)");
+  PetscFunctionReturn(0);
 }
 
 PetscErrorCode Study::Run(MPI_Comm comm, const char *name)
@@ -63,7 +77,7 @@ PetscErrorCode Study::Run(MPI_Comm comm, const char *name)
   PetscCall(OutputPathOption(comm, name, &path_));
   PetscCall(claim_.Acquire(comm, path_)); // one run per -output, before anything there is read or written
   const PetscErrorCode ierr = RunClaimed();
-  claim_.Release(); // however the run ended
+  claim_.Release(!ierr ? RunEnd::Complete : IsInterrupt(ierr) ? RunEnd::Interrupted : RunEnd::Failed); // however the run ended
   PetscFunctionReturn(ierr);
 }
 
@@ -72,6 +86,7 @@ PetscErrorCode Study::RunClaimed()
   OutputFile out;
   PetscFunctionBeginUser;
   PetscCall(OutputPath(&path_));
+  claim_.RecordFound(); // again: -output_overwrite may have discarded an earlier partial output
   if (!WritesOwnFile()) PetscCall(out.Open(comm_, path_, "", OutputBytes()));
   PetscCall(Build());
   PetscCall(PetscLogStagePop());
@@ -85,6 +100,7 @@ PetscErrorCode Study::RunClaimed()
   }
   PetscCall(PetscLogStagePop());
 
+  PetscCall(TestLateError(comm_));
   PetscCall(PetscLogStagePush(Log().write));
   if (WritesOwnFile()) PetscCall(Write(NULL));
   else {

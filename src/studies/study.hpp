@@ -44,7 +44,7 @@ protected:
   // (true; false: Solve reports its interruption itself, as continuation's
   // does): whether Write has a partial output to commit (complete = 0), and
   // where the run stopped, for the one line "interrupted by SIGTERM <where>;
-  // partial output x.h5 (complete = 0)<tail>" (or "...; no output written<tail>").
+  // partial output x.h5.partial.h5 (complete = 0)<tail>" (or "...; no output written<tail>").
   struct Interruption {
     bool partial = false;
     std::string where, tail;
@@ -57,8 +57,9 @@ protected:
   virtual bool WritesOwnFile() const { return false; }
 
   PetscReal Elapsed() const; // wall seconds since Run started
-  // What Write gives so far, committed at -output as complete = 0 (a study
-  // stopped by a signal keeps its finished part; Run commits complete outputs only).
+  // What Write gives so far, committed as complete = 0 at <output>.partial.h5
+  // (a study stopped by a signal keeps its finished part; -output only ever
+  // receives a complete output).
   PetscErrorCode CommitPartial();
   // After an interrupted Solve: the partial output if any, then the one line (always an error).
   PetscErrorCode EndInterrupted(const Interruption &it);
