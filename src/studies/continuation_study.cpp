@@ -38,6 +38,8 @@ struct LiveBranch {
 
 // -cont_resume: a branch as the earlier output holds it.
 struct Resume {
+  std::string label;
+  PetscReal omega = 0;
   Branch b;
   FloquetColumns f;
   bool found = false;
@@ -104,6 +106,7 @@ protected:
       PetscReal omega;
       std::string label;
       PetscCall(BranchStart(nnm_.lat, nnm_.modes, ch_.names[k], u_, &omega, &label));
+      resumes_[k].label = label, resumes_[k].omega = omega;
       PetscCall(ReadResume(comm_, ch_.resume_file, label, fk_, n2_, fmo_.nev, &resumes_[k].b, &resumes_[k].f, &resumes_[k].found, mf_hook_->Route()));
     }
     for (PetscInt k = 0; k < ch_.nb; k++) PetscCall(ContinueOne(k));
@@ -163,6 +166,17 @@ private:
     if (!cur.b.energy.empty()) {
       BranchRecord rec = Snapshot(cur, cur.b);
       rec.b.stop_reason = reason;
+      PetscCall(WriteRecord(f.Viewer(), rec, fk_, n2_, fmo_.nev));
+    }
+    // The -cont_branch entries of a -cont_resume not continued yet, as read:
+    // the partial output this run may replace keeps their points (their
+    // events are located again when they are continued).
+    for (const Resume &r : resumes_) {
+      bool written = !r.found || r.label == cur.label;
+      for (const BranchRecord &d : done_) written = written || d.label == r.label;
+      if (written) continue;
+      BranchRecord rec;
+      rec.label = r.label, rec.omega = r.omega, rec.b = r.b, rec.f = r.f;
       PetscCall(WriteRecord(f.Viewer(), rec, fk_, n2_, fmo_.nev));
     }
     PetscCall(f.Commit(name_, Elapsed(), false));

@@ -217,4 +217,20 @@ timeout "$LIMIT" "$NLTOPO" "${C4[@]}" -cont_resume re.h5.partial.h5 -output re.h
 [ ! -e re.h5.partial.h5 ] && ! cmp -s re.h5 re.copy || { echo "FAILED: the resume did not replace re.h5 and its partial output"; exit 1; }
 $PY "$CHECKS/signals.py" complete_output re.h5
 echo "ok: an interrupted re-run left the complete re.h5, its part in re.h5.partial.h5; refused, then resumed"
+# 6b. A resume of a two-branch partial output stopped while it extends the
+#     first branch: its partial output still holds the second branch's points.
+C6=(-options_file "$SRC/options/fep.opts" -cont_branch insulated,interface -floquet 0 -cont_verbose 1)
+timeout "$LIMIT" "$NLTOPO" "${C6[@]}" -cont_energy_max 1e-4 -output two.h5 -options_left > two.txt
+mv two.h5 two.h5.partial.h5
+n_interface=$($PY "$CHECKS/signals.py" branch_points two.h5.partial.h5 interface)
+"$NLTOPO" "${C6[@]}" -cont_energy_max 100 -cont_resume two.h5.partial.h5 -output two.h5 -options_left > two_res.txt 2> two_res.err &
+pid=$!
+insulated_grew() { [ "$(grep -c '\[insulated\] .* E = ' two_res.txt || true)" -ge 4 ]; }
+wait_until 120 insulated_grew
+kill -TERM "$pid"
+wait_limited "$pid"
+grep -q "^nltopo: interrupted by SIGTERM after [0-9]* points of branch insulated" two_res.err || { cat two_res.err; exit 1; }
+[ "$($PY "$CHECKS/signals.py" branch_points two.h5.partial.h5 interface)" -eq "$n_interface" ] ||
+  { echo "FAILED: the stopped resume dropped the second branch's points from its partial output"; exit 1; }
+echo "ok: a resume stopped in its first branch kept the second branch's $n_interface points"
 echo "signals scene OK"

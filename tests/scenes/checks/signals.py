@@ -21,6 +21,11 @@ def complete_output(path):
     require(complete(path) == 1, path)
 
 
+def branch_points(path, label):
+    """Print how many points branch label of the continuation output path holds."""
+    print(int(group(path, "continuation/" + label)["energy"].shape[0]))
+
+
 def done_points(path):
     """Print how many points of the sweep in path are done."""
     print(int(group(path, "sweep/done")[:].sum()))
