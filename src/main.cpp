@@ -73,7 +73,7 @@ static int Run(int argc, char **argv)
   }
   PetscPopErrorHandler();
   PetscErrorCode fin = SlepcFinalize();
-  nltopo::IgnoreBrokenPipe(); // (PetscFinalize reset it to the default: MPI_Finalize may still write)
+  nltopo::IgnoreBrokenPipe();                                                     // (PetscFinalize reset it to the default: MPI_Finalize may still write)
   if (nltopo::IsInterrupt(ierr) || (!ierr && sig)) return 128 + (sig ? sig : 15); // the shell's convention for "stopped by signal n"
   return (ierr || fin) ? 1 : 0;
 }

@@ -138,8 +138,7 @@ std::string RemoveStale(const std::string &path, const std::string &lock, const 
   const std::string guard = lock + ".takeover";
   const int fd = open(guard.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
   if (fd < 0)
-    return "-output " + path + ": its lock " + lock + " is stale and another run is taking it over right now (if none is, remove " + guard +
-           "); try again";
+    return "-output " + path + ": its lock " + lock + " is stale and another run is taking it over right now (if none is, remove " + guard + "); try again";
   const std::string mine = me.Line() + "\n";
   const bool wrote = write(fd, mine.data(), mine.size()) == (ssize_t)mine.size();
   close(fd);
@@ -175,8 +174,7 @@ std::string Claim(const std::string &path, const std::string &lock, const Owner 
       usleep(20000);
     }
     if (gone) continue;
-    if (!o.Parse(line))
-      return "-output " + path + " is locked by " + lock + ", which names no nltopo run: if no run is writing " + path + ", remove " + lock;
+    if (!o.Parse(line)) return "-output " + path + " is locked by " + lock + ", which names no nltopo run: if no run is writing " + path + ", remove " + lock;
     std::string why;
     switch (Check(o, me, &why)) {
     case Liveness::Running:

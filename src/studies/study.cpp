@@ -50,8 +50,7 @@ PetscErrorCode Study::EndInterrupted(const Interruption &it)
   PetscFunctionBeginUser;
   PetscCheck(it.partial, comm_, PETSC_ERR_SIG, "interrupted by %s %s; no output written%s", sig, it.where.c_str(), it.tail.c_str());
   PetscCall(CommitPartial());
-  SETERRQ(comm_, PETSC_ERR_SIG, "interrupted by %s %s; partial output %s (complete = 0)%s", sig, it.where.c_str(), PartialPath(path_).c_str(),
-          it.tail.c_str());
+  SETERRQ(comm_, PETSC_ERR_SIG, "interrupted by %s %s; partial output %s (complete = 0)%s", sig, it.where.c_str(), PartialPath(path_).c_str(), it.tail.c_str());
 }
 
 // NLTOPO_TEST_LATE_ERROR=1 (the tests' hook, docs/errors.md): an error after

@@ -512,7 +512,7 @@ private:
   PetscMPIInt rank_ = 0, size_ = 1;
   std::unique_ptr<const ZeroOneTest> zero_one_;
   SweepGrid grid_;
-  std::string resume_from_; // -sweep_resume: <output>.partial.h5 if there is one, else -output
+  std::string resume_from_;  // -sweep_resume: <output>.partial.h5 if there is one, else -output
   std::vector<size_t> todo_; // grid indices to compute, in the order they are handed out
   Journal journal_;
   WorkQueue queue_;
