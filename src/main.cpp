@@ -63,7 +63,7 @@ static int Run(int argc, char **argv)
   if (started) return 1;
   PetscPushErrorHandler(nltopo::OneLineErrorHandler, NULL);
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL); // HDF5's stack dumps off: every failure gets nltopo's one line
-  nltopo::InstallStopSignalHandlers();   // SIGINT, SIGTERM: stop at the next safe point
+  nltopo::InstallStopSignalHandlers();   // SIGINT, SIGTERM, SIGHUP: stop at the next safe point; SIGPIPE ignored
   PetscErrorCode ierr = nltopo::RunStudyFromOptions(PETSC_COMM_WORLD);
   int sig = nltopo::StopSignalSeen();
   if (nltopo::IsInterrupt(ierr) && !nltopo::InterruptReported())
@@ -76,6 +76,7 @@ static int Run(int argc, char **argv)
   }
   PetscPopErrorHandler();
   PetscErrorCode fin = SlepcFinalize();
+  nltopo::IgnoreBrokenPipe();                                                     // (PetscFinalize reset it to the default: MPI_Finalize may still write)
   if (nltopo::IsInterrupt(ierr) || (!ierr && sig)) return 128 + (sig ? sig : 15); // the shell's convention for "stopped by signal n"
   return (ierr || fin) ? 1 : 0;
 }

@@ -1,6 +1,7 @@
 #pragma once
-// SIGINT and SIGTERM stop a run at its next safe point (docs/errors.md
-// "Signals"). The handler only records the signal (a volatile
+// SIGINT, SIGTERM and SIGHUP stop a run at its next safe point (docs/errors.md
+// "Signals"); SIGPIPE is ignored (a reader of stdout that went away, e.g.
+// `nltopo ... | head`: the run drops what it prints and finishes). The handler only records the signal (a volatile
 // sig_atomic_t); the studies poll it where they can stop without losing what
 // is done, write that (root attribute complete = 0) and exit non-zero with
 //   nltopo: interrupted by SIGTERM at <safe point>; partial output <file> (complete = 0)
@@ -9,9 +10,14 @@
 
 namespace nltopo {
 
-// Installs the handler for SIGINT and SIGTERM (replacing PETSc's). Call once,
-// after PetscInitialize.
+// Installs the handler for SIGINT, SIGTERM and SIGHUP and ignores SIGPIPE
+// (replacing PETSc's handler), and makes PETSc's printing to stdout stop
+// quietly once its reader is gone (EPIPE). Call once, after PetscInitialize.
 void InstallStopSignalHandlers();
+// SIGPIPE ignored: again after PetscFinalize, whose PetscPopSignalHandler resets it.
+void IgnoreBrokenPipe();
+// Whether a write to stdout failed because its reader is gone.
+bool StdoutClosed();
 
 // The stop signal this process received (0: none). Not collective; async-signal safe to read.
 int StopSignalLocal();
@@ -23,7 +29,7 @@ PetscErrorCode InterruptRequested(MPI_Comm comm, int *sig);
 // The largest signal number any InterruptRequested has returned in this process (0: none).
 int StopSignalSeen();
 
-// "SIGINT", "SIGTERM" or "signal <n>".
+// "SIGINT", "SIGTERM", "SIGHUP" or "signal <n>".
 const char *SignalName(int sig);
 
 // Returns the silent error PETSC_ERR_SIG (empty message: OneLineErrorHandler

@@ -1,5 +1,6 @@
 #include "io/output.hpp"
 #include "io/cost_card.hpp"
+#include "io/output_claim.hpp"
 #include "core/effective_options.hpp"
 #include "core/errors.hpp"
 #include "core/log.hpp"
@@ -52,12 +53,47 @@ PetscErrorCode DeclareOutputOptions(MPI_Comm comm, const char *study)
   return ReadOutputOptions(comm, study, &path, &overwrite);
 }
 
-PetscErrorCode OutputPathFromOptions(MPI_Comm comm, const char *study, std::string *path, const std::function<bool(const std::string &)> &resumes)
+PetscErrorCode OutputPathOption(MPI_Comm comm, const char *study, std::string *path)
+{
+  PetscBool overwrite;
+  return ReadOutputOptions(comm, study, path, &overwrite);
+}
+
+// A fresh run next to an earlier run's partial output: refused (it would
+// replace it), or with -output_overwrite the partial output and its journals
+// are discarded. Rank 0 looks; every rank fails alike.
+static PetscErrorCode CheckPartial(MPI_Comm comm, const std::string &path, PetscBool overwrite, const char *resume_how)
+{
+  PetscMPIInt rank;
+  char msg[1024] = "";
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  const std::string partial = PartialPath(path);
+  if (!rank && !access(partial.c_str(), F_OK)) {
+    if (overwrite) {
+      std::remove(partial.c_str());
+      for (const std::string &f : FilesNamed(path + ".journal.")) std::remove(f.c_str());
+    } else {
+      std::string how = resume_how ? resume_how : "";
+      if (how.find("{}") != std::string::npos) how.replace(how.find("{}"), 2, partial);
+      const std::string m = "-output " + path + ": " + partial + " holds the partial output (complete = 0) of an earlier run; " +
+                            (how.empty() ? "" : "continue it with " + how + ", or ") + "remove it or give -output_overwrite to start afresh";
+      PetscCall(PetscStrncpy(msg, m.c_str(), sizeof(msg)));
+    }
+  }
+  PetscCallMPI(MPI_Bcast(msg, sizeof(msg), MPI_CHAR, 0, comm));
+  PetscCheck(!msg[0], comm, PETSC_ERR_FILE_WRITE, "%s", msg);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode OutputPathFromOptions(MPI_Comm comm, const char *study, std::string *path, const std::function<bool(const std::string &)> &resumes,
+                                     const char *resume_how)
 {
   PetscBool overwrite;
   PetscFunctionBeginUser;
   PetscCall(ReadOutputOptions(comm, study, path, &overwrite));
   if (!(resumes && resumes(*path))) PetscCall(CheckOverwrite(comm, *path, study, overwrite));
+  if (!(resumes && resumes(PartialPath(*path)))) PetscCall(CheckPartial(comm, *path, overwrite, resume_how));
   PetscFunctionReturn(0);
 }
 

@@ -1,9 +1,10 @@
 #pragma once
 // HDF5 output per docs/outputs.md. The file is written under a
 // temporary name and renamed at Commit(), so a failed or killed run never
-// leaves a partial file at the -output path. The one exception is asked for:
-// a continuation with -cont_checkpoint_seconds commits whole, readable files
-// of the points so far, marked by the root attribute complete = 0.
+// leaves a partial file at the -output path. What a run has before it ends
+// (a checkpoint, an interrupted run's part) is committed whole and readable,
+// marked by the root attribute complete = 0, at <output>.partial.h5
+// (PartialPath, io/output_claim.hpp), never at -output.
 #include "core/handle.hpp"
 #include <functional>
 #include <string>
@@ -14,10 +15,18 @@ namespace nltopo {
 // -output <file.h5>, default "<study>.h5". An existing nltopo output there of
 // another study or other options (io/run_options.hpp) is an error unless
 // -output_overwrite is given, or resumes(path) says this run continues that
-// very file (its resume check applies instead).
-PetscErrorCode OutputPathFromOptions(MPI_Comm comm, const char *study, std::string *path, const std::function<bool(const std::string &)> &resumes = nullptr);
+// very file (its resume check applies instead). So is an existing partial
+// output <path>.partial.h5 (io/output_claim.hpp), whatever its options,
+// unless resumes(<path>.partial.h5): a fresh run would replace it. The
+// refusal says how to continue it: resume_how, e.g. "-sweep_resume" or
+// "-cont_resume {}" ({} the partial file). -output_overwrite discards it.
+PetscErrorCode OutputPathFromOptions(MPI_Comm comm, const char *study, std::string *path, const std::function<bool(const std::string &)> &resumes = nullptr,
+                                     const char *resume_how = nullptr);
 // The same options read without looking at the file (a study's options function, -help).
 PetscErrorCode DeclareOutputOptions(MPI_Comm comm, const char *study);
+// -output as given (default "<study>.h5"), without the checks: the path a run
+// claims (io/output_claim.hpp) before it looks at what is there.
+PetscErrorCode OutputPathOption(MPI_Comm comm, const char *study, std::string *path);
 
 // Called by Commit before a complete output is renamed into place, when the
 // file's communicator spans every rank (the registry's unused-options audit).

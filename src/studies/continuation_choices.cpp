@@ -76,11 +76,11 @@ static const auto &kBranchChoiceTable = DeclareOptionTable<BranchChoices>("cont_
   t.StringList("branch", &BranchChoices::branch, 16, "Comma-separated branches: insulated, interface, acoustic_top, optical_bottom, optical_top, mode<k> or k",
                OptionClass::Extent)
       .Real("checkpoint_seconds", &BranchChoices::checkpoint_seconds, Closed(0, 1e7),
-            "Write -output with the points so far (root attribute complete = 0) at most this often, so that a killed run keeps them "
-            "(0: only at the end)",
+            "Write <output>.partial.h5 with the points so far (root attribute complete = 0) at most this often, so that a killed run keeps "
+            "them (0: only at the end)",
             OptionClass::Bookkeeping)
       .String("resume", &BranchChoices::resume,
-              "Continue the branches of this earlier -output (complete or a checkpoint) from their last points, keeping their "
+              "Continue the branches of this earlier output (complete, or a <output>.partial.h5) from their last points, keeping their "
               "points; branches it lacks start afresh",
               OptionClass::Bookkeeping)
       .Default("none");

@@ -38,6 +38,8 @@ struct LiveBranch {
 
 // -cont_resume: a branch as the earlier output holds it.
 struct Resume {
+  std::string label;
+  PetscReal omega = 0;
   Branch b;
   FloquetColumns f;
   bool found = false;
@@ -78,11 +80,13 @@ protected:
     if (fk_ == FloquetKind::MatrixFree) PetscCall(CheckDenseMonodromyMemory(comm_, nnm_.lp.N(), fmo_));
     PetscFunctionReturn(0);
   }
-  // -cont_resume of the -output file itself replaces it (no -output_overwrite needed).
+  // -cont_resume of the -output file itself, or of its partial output, replaces it (no -output_overwrite needed).
   PetscErrorCode OutputPath(std::string *path) override
   {
     PetscFunctionBeginUser;
-    PetscCall(OutputPathFromOptions(comm_, name_, path, [&](const std::string &p) { return ch_.resume && SameFile(p, ch_.resume_file); }));
+    PetscCall(OutputPathFromOptions(
+        comm_, name_, path, [&](const std::string &p) { return ch_.resume && (SameFile(p, ch_.resume_file) || SameFile(PartialPath(p), ch_.resume_file)); },
+        "-cont_resume {}"));
     PetscFunctionReturn(0);
   }
   PetscErrorCode Build() override
@@ -110,6 +114,7 @@ protected:
       PetscReal omega;
       std::string label;
       PetscCall(BranchStart(nnm_.lat, nnm_.modes, ch_.names[k], u_, &omega, &label));
+      resumes_[k].label = label, resumes_[k].omega = omega;
       PetscCall(ReadResume(comm_, ch_.resume_file, label, fk_, n2_, fmo_.nev, &resumes_[k].b, &resumes_[k].f, &resumes_[k].found, mf_hook_->Route()));
     }
     for (PetscInt k = 0; k < ch_.nb; k++) PetscCall(ContinueOne(k));
@@ -157,18 +162,29 @@ private:
     PetscTime(&cur->b0);
     cur->j0 = shoot.JacobianEvaluations(), cur->r0 = shoot.ResidualEvaluations(), cur->p0 = shoot.TangentProducts(), cur->k0 = shoot.KrylovIterations();
   }
-  // -output with the branches done and this one so far, complete = 0.
+  // <output>.partial.h5 with the branches done and this one so far, complete = 0.
   PetscErrorCode WritePartial(const LiveBranch &cur, const char *reason)
   {
     OutputFile f;
     PetscFunctionBeginUser;
     PetscCall(PetscLogStagePush(Log().write));
-    PetscCall(f.Open(comm_, path_, "checkpoint."));
+    PetscCall(f.Open(comm_, PartialPath(path_), "checkpoint."));
     PetscCall(WriteBandEdges(f.Viewer(), "/continuation", InfiniteBandEdges(nnm_.lat.Params())));
     for (const BranchRecord &r : done_) PetscCall(WriteRecord(f.Viewer(), r, fk_, n2_, fmo_.nev));
     if (!cur.b.energy.empty()) {
       BranchRecord rec = Snapshot(cur, cur.b);
       rec.b.stop_reason = reason;
+      PetscCall(WriteRecord(f.Viewer(), rec, fk_, n2_, fmo_.nev));
+    }
+    // The -cont_branch entries of a -cont_resume not continued yet, as read:
+    // the partial output this run may replace keeps their points (their
+    // events are located again when they are continued).
+    for (const Resume &r : resumes_) {
+      bool written = !r.found || r.label == cur.label;
+      for (const BranchRecord &d : done_) written = written || d.label == r.label;
+      if (written) continue;
+      BranchRecord rec;
+      rec.label = r.label, rec.omega = r.omega, rec.b = r.b, rec.f = r.f;
       PetscCall(WriteRecord(f.Viewer(), rec, fk_, n2_, fmo_.nev));
     }
     PetscCall(f.Commit(name_, Elapsed(), false));
@@ -186,7 +202,7 @@ private:
     CheckpointHook ck(comm_, floquet, ch_.checkpoint_seconds, [&]() -> PetscErrorCode {
       PetscFunctionBeginUser;
       PetscCall(WritePartial(cur, "checkpoint: the run was still going"));
-      PetscCall(PetscPrintf(comm_, "  [%s] checkpoint: %zu points written to %s\n", cur.label.c_str(), cur.b.energy.size(), path_.c_str()));
+      PetscCall(PetscPrintf(comm_, "  [%s] checkpoint: %zu points written to %s\n", cur.label.c_str(), cur.b.energy.size(), PartialPath(path_).c_str()));
       PetscFunctionReturn(0);
     });
     const bool mode = cur.parent.empty(); // a -cont_branch entry: from its linear mode unless resumed
@@ -234,7 +250,8 @@ private:
     PetscCall(WritePartial(cur, reason.c_str()));
     SETERRQ(comm_, PETSC_ERR_SIG,
             "interrupted by %s%s%s after %zu points of branch %s (last E = %g); partial output %s (complete = 0); -cont_resume %s continues it", sn,
-            *doing ? " " : "", doing, b.energy.size(), cur.label.c_str(), b.energy.empty() ? 0.0 : (double)b.energy.back(), path_.c_str(), path_.c_str());
+            *doing ? " " : "", doing, b.energy.size(), cur.label.c_str(), b.energy.empty() ? 0.0 : (double)b.energy.back(), PartialPath(path_).c_str(),
+            PartialPath(path_).c_str());
   }
 
   // The branch just continued into done_: its events (-cont_bifurcations), the

@@ -9,6 +9,7 @@
 // line). A study supplies only what is its own: the options it reads, Build,
 // Solve, Write and what an interruption leaves.
 #include "io/output.hpp"
+#include "io/output_claim.hpp"
 #include <memory>
 #include <string>
 
@@ -48,7 +49,7 @@ protected:
   // (true; false: Solve reports its interruption itself, as continuation's
   // does): whether Write has a partial output to commit (complete = 0), and
   // where the run stopped, for the one line "interrupted by SIGTERM <where>;
-  // partial output x.h5 (complete = 0)<tail>" (or "...; no output written<tail>").
+  // partial output x.h5.partial.h5 (complete = 0)<tail>" (or "...; no output written<tail>").
   struct Interruption {
     bool partial = false;
     std::string where, tail;
@@ -61,8 +62,9 @@ protected:
   virtual bool WritesOwnFile() const { return false; }
 
   PetscReal Elapsed() const; // wall seconds since Run started
-  // What Write gives so far, committed at -output as complete = 0 (a study
-  // stopped by a signal keeps its finished part; Run commits complete outputs only).
+  // What Write gives so far, committed as complete = 0 at <output>.partial.h5
+  // (a study stopped by a signal keeps its finished part; -output only ever
+  // receives a complete output).
   PetscErrorCode CommitPartial();
   // After an interrupted Solve: the partial output if any, then the one line (always an error).
   PetscErrorCode EndInterrupted(const Interruption &it);
@@ -71,6 +73,11 @@ protected:
   const char *name_ = "";
   std::string path_; // -output
   PetscLogDouble t_start_ = 0;
+
+private:
+  // Run's steps once -output is claimed.
+  PetscErrorCode RunClaimed();
+  OutputClaim claim_; // one run per -output (io/output_claim.hpp)
 };
 
 using StudyFactory = std::unique_ptr<Study> (*)();

@@ -70,9 +70,10 @@ const GridAxisFields<SweepOptions> kEnergyAxis = {
 const auto &kSweepTable = DeclareOptionTable<SweepOptions>("sweep_", "Sweep: grid of forced runs (omega_ext x E*)", [](OptionTable<SweepOptions> &t) {
   GridAxisRows(t, kOmegaAxis);
   GridAxisRows(t, kEnergyAxis);
-  t.Bool("resume", &SweepOptions::resume, "Continue the sweep stored in -output: compute only the points not done", OptionClass::Bookkeeping)
+  t.Bool("resume", &SweepOptions::resume, "Continue the sweep stored in <output>.partial.h5 (or -output): compute only the points not done",
+         OptionClass::Bookkeeping)
       .Bool("kcorr", &SweepOptions::kcorr, "Score every run with the 0-1 test for chaos (-kcorr_* options)")
-      .Real("checkpoint", &SweepOptions::checkpoint, LeftOpen(0, 1e7), "Rewrite -output with the points done so far every this many wall seconds",
+      .Real("checkpoint", &SweepOptions::checkpoint, LeftOpen(0, 1e7), "Rewrite <output>.partial.h5 with the points done so far every this many wall seconds",
             OptionClass::Bookkeeping)
       .Real("progress", &SweepOptions::progress, Closed(0, 1e7), "Report progress every this many wall seconds (0: never)", OptionClass::Bookkeeping);
 });
@@ -111,7 +112,7 @@ PetscErrorCode SweepOptionsFromOptions(MPI_Comm comm, SweepOptions *o)
 }
 
 // complete: false for the file a sweep keeps while it runs (and leaves when
-// interrupted or failed), true once every point is done.
+// interrupted) at <path>.partial.h5, true once every point is done: at path.
 PetscErrorCode WriteSweep(const std::string &path, const SweepGrid &g, const SweepOptions &so, PetscInt computed, PetscReal wall, bool complete)
 {
   OutputFile out;
@@ -121,7 +122,7 @@ PetscErrorCode WriteSweep(const std::string &path, const SweepGrid &g, const Swe
   const PetscInt no = (PetscInt)g.omega.size();
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(Log().output, 0, 0, 0, 0));
-  PetscCall(out.Open(PETSC_COMM_SELF, path));
+  PetscCall(out.Open(PETSC_COMM_SELF, complete ? path : PartialPath(path)));
   PetscViewer w = out.Viewer();
   const char *grp = "/sweep";
   PetscCall(WriteArray(w, grp, "omega", g.omega));
@@ -245,13 +246,18 @@ protected:
   }
   PetscErrorCode DeclareSolvers(MPI_Comm comm) override { return ForcedScene::DeclareSolvers(comm); }
   PetscErrorCode CheckResources() override { return sc_.CheckResources(PETSC_COMM_SELF); } // every rank its own lattice
-  // -sweep_resume continues -output itself (no -output_overwrite needed).
+  // -sweep_resume continues -output's partial output, or -output itself (no -output_overwrite needed).
   PetscErrorCode OutputPath(std::string *path) override
   {
+    int partial = 0;
     PetscFunctionBeginUser;
-    PetscCall(OutputPathFromOptions(comm_, name_, path, [&](const std::string &) { return (bool)so_.resume; }));
-    if (so_.resume)
-      PetscCall(CheckResumeOptions(comm_, *path, name_, "-sweep_resume")); // the same physics and numerics, or one line naming the first difference
+    PetscCall(OutputPathFromOptions(
+        comm_, name_, path, [&](const std::string &) { return (bool)so_.resume; }, "-sweep_resume"));
+    if (!so_.resume) PetscFunctionReturn(0);
+    if (!rank_) partial = !access(PartialPath(*path).c_str(), F_OK);
+    PetscCallMPI(MPI_Bcast(&partial, 1, MPI_INT, 0, comm_));
+    resume_from_ = partial ? PartialPath(*path) : *path;
+    PetscCall(CheckResumeOptions(comm_, resume_from_, name_, "-sweep_resume")); // the same physics and numerics, or one line naming the first difference
     PetscFunctionReturn(0);
   }
   bool WritesOwnFile() const override { return true; }
@@ -415,7 +421,7 @@ protected:
     PetscCheck(!sig || done_now == (PetscInt)grid_.Size(), comm_, PETSC_ERR_SIG,
                "interrupted by %s between sweep points (%" PetscInt_FMT " of %zu done, %" PetscInt_FMT
                " by this run); partial output %s (complete = 0); -sweep_resume continues it",
-               SignalName(sig), done_now, grid_.Size(), total_computed, path_.c_str());
+               SignalName(sig), done_now, grid_.Size(), total_computed, PartialPath(path_).c_str());
     PetscFunctionReturn(0);
   }
 
@@ -435,8 +441,9 @@ private:
           [&]() -> PetscErrorCode {
             PetscFunctionBeginUser;
             if (so_.resume) {
-              PetscCheck(!access(path_.c_str(), F_OK), PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "-sweep_resume: no sweep file %s to resume", path_.c_str());
-              PetscCall(grid_.Load(path_));
+              PetscCheck(!access(resume_from_.c_str(), F_OK), PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "-sweep_resume: no sweep file %s or %s to resume",
+                         PartialPath(path_).c_str(), path_.c_str());
+              PetscCall(grid_.Load(resume_from_));
               PetscCall(grid_.MergeJournals(path_, &merged));
             }
             PetscCall(WriteSweep(path_, grid_, so_, 0, 0, false)); // the file exists (and is valid) from the start
@@ -448,7 +455,7 @@ private:
         for (const std::string &f : JournalFiles(path_)) std::remove(f.c_str()); // merged (resume) or stale (fresh start)
         if (so_.resume)
           PetscCall(PetscPrintf(PETSC_COMM_SELF, "nltopo sweep: resuming %s: %" PetscInt_FMT " of %zu points done (%" PetscInt_FMT " from journals)\n",
-                                path_.c_str(), grid_.Done(), grid_.Size(), merged));
+                                resume_from_.c_str(), grid_.Done(), grid_.Size(), merged));
       }
     }
     PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm_));
@@ -510,6 +517,7 @@ private:
   PetscMPIInt rank_ = 0, size_ = 1;
   std::unique_ptr<const ZeroOneTest> zero_one_;
   SweepGrid grid_;
+  std::string resume_from_;  // -sweep_resume: <output>.partial.h5 if there is one, else -output
   std::vector<size_t> todo_; // grid indices to compute, in the order they are handed out
   Journal journal_;
   WorkQueue queue_;

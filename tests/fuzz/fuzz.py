@@ -28,6 +28,12 @@ naming it, a look-alike never called stray, and no copy of a piped file left.
 Run policy (tests/scenes/fuzz.sh): CI runs 30 cases with a fixed seed and 30
 with a fresh random seed it prints; the opt-in long run (ctest -L long) 500.
 
+A second family, concurrent runs on one output (--concurrent N cases, seeded
+by the same --seed; rerun one with --only-concurrent CASE), starts two runs of
+different scenes into one -output a random moment apart: at most one exits 0,
+with its own complete result, the other stops with one line, and nothing but
+the output is left (run_concurrent_case).
+
 The option table below is nltopo's own options with a type and a range that
 keeps an accepted run small; the fuzzer checks it against the option tables
 the binary declares (nltopo -option_tables json: names, types, enum choices,
@@ -624,6 +630,108 @@ def corrupted_resume_cases(args, n):
     return n_bad
 
 
+# Concurrent runs on one output (docs/errors.md "One run per output"): two runs
+# of different scenes (another study, or the same study with another
+# -lattice_cubic) into one -output, the second started a random 0-0.6 s
+# after the first, each at 1 or 2 ranks. At most one exits 0, and the file
+# is then complete and that run's (its study and -lattice_cubic). Every other
+# run stops with one 'nltopo: error:' line (another run holds the output, or
+# an earlier result of another scene is there). Nothing beside the file is
+# left (lock, temporary, partial output, journal), and no run hangs or crashes.
+CONCURRENT_STUDIES = ["simulate", "sweep", "continuation", "linear", "zak", "stability"]
+MPI_NOISE = re.compile(r"mca_sharedfp_sm_component_file_query")  # Open MPI singletons sharing a session directory
+
+
+def make_concurrent_case(seed, i):
+    rng = random.Random("%d:concurrent:%d" % (seed, i))
+    cubic = rng.choice([0.1, 0.2, 0.3, 0.4])
+    runs = [(rng.choice(CONCURRENT_STUDIES), rng.randint(1, 2), c) for c in (cubic, cubic + 0.05)]
+    return dict(i=i, runs=runs, delay=rng.uniform(0.0, 0.6))
+
+
+def run_concurrent_case(case, args, workroot):
+    d = os.path.join(workroot, "k%04d" % case["i"])
+    shutil.rmtree(d, ignore_errors=True)
+    os.makedirs(d)
+    out, cmds, procs = "out.h5", [], []
+    t0 = time.time()
+    for k, (study, ranks, cubic) in enumerate(case["runs"]):
+        if k:
+            time.sleep(case["delay"])
+        cmd = ([args.mpiexec, "-q", "-n", "2"] if ranks == 2 else []) + [args.nltopo, "-study", study] + BASE[study] + \
+            ["-lattice_cubic", repr(cubic), "-output", out]
+        cmds.append(cmd)
+        procs.append(subprocess.Popen(cmd, cwd=d, stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True))
+    results, problems = [], []
+    for k, p in enumerate(procs):
+        try:
+            so, se = p.communicate(timeout=max(1.0, args.timeout - (time.time() - t0)))
+            rc = p.returncode
+        except subprocess.TimeoutExpired:
+            try:
+                os.killpg(p.pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+            so, se = p.communicate()
+            rc = None
+            problems.append("run %d: hang: no exit within %g s" % (k, args.timeout))
+        se = se.decode(errors="replace")
+        lines = [l for l in se.splitlines() if l.strip() and not MPI_NOISE.search(l)]
+        results.append((rc, lines))
+        if rc is not None and (rc < 0 or rc >= 128):
+            problems.append("run %d: crash: exit status %d (signal)" % (k, rc))
+        if CRASH.search(se):
+            problems.append("run %d: crash: stderr shows a signal, abort or PETSc traceback" % k)
+        if rc is not None and 0 < rc < 128 and (len(lines) != 1 or not lines[0].startswith("nltopo: error: ")):
+            problems.append("run %d: exit %d without one 'nltopo: error:' line (%d lines)" % (k, rc, len(lines)))
+    winners = [k for k, (rc, _) in enumerate(results) if rc == 0]
+    path = os.path.join(d, out)
+    if len(winners) > 1:
+        problems.append("both runs exited 0 into one -output")
+    elif winners:
+        study, _, cubic = case["runs"][winners[0]]
+        try:
+            import h5py
+            with h5py.File(path, "r") as f:
+                got = f.attrs["options"]
+                got = (got.decode() if isinstance(got, bytes) else str(got)) + " "
+                st = f.attrs["study"]
+                st = st.decode() if isinstance(st, bytes) else str(st)
+                if int(f.attrs["complete"]) != 1 or st != study or ("-lattice_cubic %r " % cubic) not in got:
+                    problems.append("run %d exited 0 but %s is not its complete result (study %s, complete %s)" % (winners[0], out, st, f.attrs["complete"]))
+        except Exception as e:  # noqa: BLE001
+            problems.append("run %d exited 0 without a readable %s: %s" % (winners[0], out, e))
+    elif os.path.exists(path):
+        problems.append("no run exited 0 but %s exists" % out)
+    left = sorted(f for f in os.listdir(d) if f.startswith(out) and f != out)
+    if left:
+        problems.append("left behind: %s" % " ".join(left))
+    if not problems:
+        shutil.rmtree(d, ignore_errors=True)
+    return dict(case=case, problems=problems, cmds=cmds, results=results, seconds=time.time() - t0)
+
+
+def concurrent_cases(args, ids):
+    """The concurrent-runs family; returns the failed results."""
+    failed = []
+    for i in ids:
+        r = run_concurrent_case(make_concurrent_case(args.seed, i), args, args.work)
+        c = r["case"]
+        if args.verbose or r["problems"]:
+            print("concurrent case %d: %s, delay %.2f s: exits %s %5.1fs | %s" % (
+                i, " + ".join("%s np%d cubic %g" % x for x in c["runs"]), c["delay"], [rc for rc, _ in r["results"]], r["seconds"],
+                " | ".join(l[0] for _, l in r["results"] if l)))
+        if r["problems"]:
+            failed.append(r)
+            print("FAIL concurrent case %d (--seed %d --only-concurrent %d): %s" % (i, args.seed, i, "; ".join(r["problems"])))
+            for cmd, (rc, lines) in zip(r["cmds"], r["results"]):
+                print("  command (exit %s): %s" % (rc, " ".join(shlex.quote(x) for x in cmd)))
+                for l in lines[:6]:
+                    print("  stderr: " + l)
+        sys.stdout.flush()
+    return failed
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("nltopo")
@@ -636,6 +744,8 @@ def main():
     ap.add_argument("--mpiexec", default=os.environ.get("MPIEXEC", "mpiexec"))
     ap.add_argument("--verbose", action="store_true")
     ap.add_argument("--resume-cases", type=int, default=16, help="cases of the corrupted-resume-state family (0: none)")
+    ap.add_argument("--concurrent", type=int, default=6, help="cases of the concurrent-runs family")
+    ap.add_argument("--only-concurrent", type=int, default=None)
     args = ap.parse_args()
     args.nltopo = os.path.abspath(args.nltopo)
     args.work = os.path.abspath(args.work)  # the cases' TMPDIR
@@ -652,6 +762,8 @@ def main():
         return 1
     for s in options:
         options[s] = [n for n in options[s] if n not in NOT_FUZZED]
+    if args.only_concurrent is not None:
+        return 1 if concurrent_cases(args, [args.only_concurrent]) else 0
     ids = [args.only] if args.only is not None else list(range(args.cases))
     cases = [make_case(args.seed, i, options) for i in ids]
     lock = threading.Lock()
@@ -677,12 +789,18 @@ def main():
         print("  command: " + " ".join(shlex.quote(x) for x in r["cmd"]))
         for l in r["stderr"].splitlines()[:12]:
             print("  stderr: " + l)
+    cfailed = []
+    if args.only is None and args.concurrent > 0:
+        t1 = time.time()
+        cfailed = concurrent_cases(args, list(range(args.concurrent)))
+        print("fuzz: %d concurrent-runs cases, seed %d, %.0f s: %d passed, %d failed" % (args.concurrent, args.seed, time.time() - t1,
+                                                                                     args.concurrent - len(cfailed), len(cfailed)))
     n_ok = sum(1 for r in results if r["verdict"] == "ok")
     n_err = sum(1 for r in results if r["verdict"] == "error")
     print("fuzz: %d cases (%d completed, %d refused with one line), seed %d, %.0f s" % (len(results), n_ok, n_err, args.seed, time.time() - t0))
     print("fuzz: %d passed, %d failed" % (len(results) - len(failed), len(failed)))
     resume_failed = corrupted_resume_cases(args, args.resume_cases) if args.only is None and args.resume_cases > 0 else 0
-    return 1 if failed or resume_failed else 0
+    return 1 if failed or cfailed or resume_failed else 0
 
 
 if __name__ == "__main__":

@@ -21,7 +21,9 @@ check_one() { # check_one <np> <pattern> <output file> nltopo args...
   grep -q -- "$pattern" stderr.txt || { cat stderr.txt; fail "error does not name '$pattern' at $np rank(s) for: $*"; }
   ! grep -q "\.c:[0-9]" stderr.txt || { cat stderr.txt; fail "a source path in the message for: $*"; }
   [ ! -f "$out" ] || fail "output left behind at $np rank(s) for: $*"
-  ls -d "$out".tmp.* "$out".journal.* > /dev/null 2>&1 && fail "temporary left behind at $np rank(s) for: $*"
+  for f in "$out".tmp.* "$out".journal.* "$out".lock "$out".partial.h5; do # (an unmatched glob stays as itself)
+    [ ! -e "$f" ] || fail "$f left behind at $np rank(s) for: $*"
+  done
   return 0
 }
 expect_error() { # expect_error <pattern> <output file> nltopo args...

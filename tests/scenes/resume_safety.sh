@@ -126,4 +126,74 @@ for np in 1 2; do
   done
   echo "ok (np $np): corrupted resume states refused in one line"
 done
+
+# Partial and failed runs (docs/errors.md): an error found at the end of a run
+# (NLTOPO_TEST_LATE_ERROR=1, the test hook: after the computation, before the
+# output is written) leaves nothing behind: no -output, partial output,
+# journal, temporary or lock; a failing re-run over a complete result leaves
+# it byte for byte; a failing resume leaves the partial output it continued.
+# A fresh run next to a partial output is refused (it would replace it) unless
+# it resumes it or is given -output_overwrite.
+for np in 1 2; do
+  if [ "$np" -eq 1 ]; then RUN=(timeout "$LIMIT" "$NLTOPO"); else RUN=(timeout "$LIMIT" "$MPIEXEC" -q -n 2 "$NLTOPO"); fi
+  late() { # late <output> nltopo args...: fails at the end with the hook's one line
+    local out=$1 rc=0
+    shift
+    NLTOPO_TEST_LATE_ERROR=1 "${RUN[@]}" "$@" -output "$out" -options_left > late.txt 2> late.err || rc=$?
+    [ "$rc" -ne 0 ] && [ "$rc" -ne 124 ] && [ "$(grep -c . late.err)" -eq 1 ] && grep -q "NLTOPO_TEST_LATE_ERROR=1: an error after the computation" late.err ||
+      { cat late.err; echo "FAILED (np $np, exit $rc): $*"; exit 1; }
+  }
+  left_only() { # left_only <output> [files...]: next to <output> exactly these files
+    local out=$1 want have
+    shift
+    want=$(printf '%s\n' "$@" | sort | grep . || true)
+    have=$(ls -d "$out" "$out".* 2> /dev/null | sort || true)
+    [ "$have" = "$want" ] || { echo "FAILED (np $np): next to $out: '$have', expected '$want'"; exit 1; }
+  }
+  SWL=(-study sweep -sweep_omega_n 2 -sweep_energy_n 2 -sweep_energy_min 1e-3 -sweep_energy_max 1e-2 -sim_t_final 300 -sweep_checkpoint 1e-9)
+  COL=(-study continuation -lattice_layout interface -lattice_cells 5 -lattice_cubic 0.5 -cont_energy_max 1e-4 -cont_max_points 3 -cont_verbose 0
+       -cont_checkpoint_seconds 1e-9)
+  # fresh runs that checkpoint, failing at the end: nothing left
+  late lsw$np.h5 "${SWL[@]}"
+  grep -q "points written\|computed\|nltopo sweep" late.txt
+  left_only lsw$np.h5
+  late lco$np.h5 "${COL[@]}"
+  grep -q "checkpoint: 3 points written to lco$np.h5.partial.h5" late.txt || { cat late.txt; echo "FAILED: no checkpoint before the late error"; exit 1; }
+  left_only lco$np.h5
+  # an error found only at the end without the hook (here an option unused by the run's solvers): the same
+  rc=0
+  "${RUN[@]}" "${SWL[@]}" -sim_mat_type aij -output lnat$np.h5 > nat.txt 2> nat.err || rc=$?
+  [ "$rc" -ne 0 ] && [ "$rc" -ne 124 ] && [ "$(grep -c . nat.err)" -eq 1 ] || { cat nat.err; echo "FAILED (np $np, exit $rc): -sim_mat_type aij"; exit 1; }
+  left_only lnat$np.h5
+  # the same scenes re-run over their complete results, failing at the end: the results unchanged
+  ok "${SWL[@]}" -output lsw$np.h5
+  ok "${COL[@]}" -output lco$np.h5
+  cp lsw$np.h5 lsw.copy
+  cp lco$np.h5 lco.copy
+  late lsw$np.h5 "${SWL[@]}"
+  late lco$np.h5 "${COL[@]}"
+  cmp lsw$np.h5 lsw.copy && cmp lco$np.h5 lco.copy || { echo "FAILED (np $np): a failed re-run changed a complete result"; exit 1; }
+  left_only lsw$np.h5 lsw$np.h5
+  left_only lco$np.h5 lco$np.h5
+  # a partial output next to -output (here: the complete sweep as a partial one): a fresh run is refused
+  cp lsw$np.h5 lsw$np.h5.partial.h5
+  refused "-output lsw$np.h5: lsw$np.h5.partial.h5 holds the partial output (complete = 0) of an earlier run; continue it with -sweep_resume, or remove it or give -output_overwrite to start afresh" \
+    lsw$np.h5.partial.h5 "${SWL[@]}" -output lsw$np.h5
+  cp lco$np.h5 lco$np.h5.partial.h5
+  refused "continue it with -cont_resume lco$np.h5.partial.h5, or remove it" lco$np.h5.partial.h5 "${COL[@]}" -output lco$np.h5
+  # a resume of it failing at the end leaves it (the sweep's rewritten with the same points)
+  late lsw$np.h5 "${SWL[@]}" -sweep_resume
+  grep -q "resuming lsw$np.h5.partial.h5: 4 of 4 points done" late.txt
+  [ "$($PY "$CHECKS/signals.py" done_points lsw$np.h5.partial.h5)" -eq 4 ] || { echo "FAILED (np $np): the failed resume lost points"; exit 1; }
+  late lco$np.h5 "${COL[@]}" -cont_resume lco$np.h5.partial.h5
+  cmp lco$np.h5.partial.h5 lco.copy || { echo "FAILED (np $np): the failed resume changed its partial output"; exit 1; }
+  left_only lsw$np.h5 lsw$np.h5 lsw$np.h5.partial.h5
+  left_only lco$np.h5 lco$np.h5 lco$np.h5.partial.h5
+  # resumed to the end: the complete output replaces the partial one; -output_overwrite discards it
+  ok "${SWL[@]}" -sweep_resume -output lsw$np.h5
+  left_only lsw$np.h5 lsw$np.h5
+  ok "${COL[@]}" -output_overwrite -output lco$np.h5
+  left_only lco$np.h5 lco$np.h5
+  echo "ok (np $np): late errors leave nothing and destroy nothing; partial outputs are resumed or refused"
+done
 echo "resume safety scene OK"

@@ -1,9 +1,10 @@
 # Stop signals (docs/errors.md "Signals"). SIGTERM to mpiexec (by
 # its process id) of a 2-rank sweep and of a 2-rank continuation, and to a
 # serial continuation and stability study: each stops at its next safe point with one line
-# "nltopo: interrupted by SIGTERM ...", a non-zero exit, its output marked
-# complete = 0 and no temporary (or journal) left; the resumed run equals an
-# uninterrupted one bit for bit. Then failures at 2 ranks leave no temporary
+# "nltopo: interrupted by SIGTERM ...", a non-zero exit, its partial output
+# <output>.partial.h5 marked complete = 0, no -output, and no temporary, lock
+# (or journal) left; the resumed run equals an uninterrupted one bit for bit
+# and replaces the partial output. Then failures at 2 ranks leave no temporary
 # and do not hang. Every run is under a time limit.
 source "$(dirname "$0")/common.bash"
 LIMIT=180 # seconds for any one run
@@ -34,18 +35,20 @@ wait_until() {
   echo "FAILED: timed out waiting for: $*" >&2
   exit 1
 }
-# check_interrupted <rc> <stderr file> <output file> <pattern>: non-zero exit, one
-# nltopo line naming SIGTERM and the output, the file complete = 0, no temporary
+# check_interrupted <rc> <stderr file> <output file> <pattern> [signal]: non-zero exit, one
+# nltopo line naming the signal (SIGTERM) and the partial output <output>.partial.h5,
+# that file complete = 0, no -output written, no temporary or lock left
 check_interrupted() {
-  local rc=$1 err=$2 out=$3 pattern=$4
-  [ "$rc" -ne 0 ] || { echo "FAILED: exit 0 after SIGTERM ($out)"; exit 1; }
-  if [ "$(grep -c '^nltopo:' "$err")" -ne 1 ] || ! grep -q -- "^nltopo: interrupted by SIGTERM $pattern.*partial output $out (complete = 0)" "$err"; then
+  local rc=$1 err=$2 out=$3 pattern=$4 sig=${5:-SIGTERM}
+  [ "$rc" -ne 0 ] || { echo "FAILED: exit 0 after $sig ($out)"; exit 1; }
+  if [ "$(grep -c '^nltopo:' "$err")" -ne 1 ] || ! grep -q -- "^nltopo: interrupted by $sig $pattern.*partial output $out.partial.h5 (complete = 0)" "$err"; then
     cat "$err"
     echo "FAILED: not one 'interrupted' line for $out"
     exit 1
   fi
-  if ls "$out".tmp.* > /dev/null 2>&1; then echo "FAILED: temporary left: $(ls "$out".tmp.*)"; exit 1; fi
-  $PY "$CHECKS/signals.py" partial "$out" || { echo "FAILED: $out not complete = 0"; exit 1; }
+  if ls "$out".tmp.* "$out".partial.h5.tmp.* "$out".lock > /dev/null 2>&1; then echo "FAILED: temporary or lock left: $(ls "$out".*)"; exit 1; fi
+  [ ! -e "$out" ] || { echo "FAILED: an interrupted run wrote $out"; exit 1; }
+  $PY "$CHECKS/signals.py" partial "$out.partial.h5" || { echo "FAILED: $out.partial.h5 not complete = 0"; exit 1; }
   echo "ok (exit $rc): $(grep '^nltopo:' "$err")"
 }
 
@@ -65,10 +68,11 @@ rc=$RC
 echo "sweep: mpiexec exited $($PY "$CHECKS/signals.py" elapsed "$t0" "$(date +%s.%N)") s after SIGTERM"
 check_interrupted "$rc" sw_int.err sw_int.h5 "between sweep points"
 if ls sw_int.h5.journal.* > /dev/null 2>&1; then echo "FAILED: journals left (they are merged into the file)"; exit 1; fi
-done_before=$($PY "$CHECKS/signals.py" done_points sw_int.h5)
+done_before=$($PY "$CHECKS/signals.py" done_points sw_int.h5.partial.h5)
 [ "$done_before" -lt 32 ] || { echo "FAILED: the sweep ended before the signal arrived: nothing to test"; exit 1; }
 timeout "$LIMIT" "${M2[@]}" "$NLTOPO" "${SW[@]}" -output sw_int.h5 -sweep_resume -options_left > sw_res.txt
 $PY "$CHECKS/signals.py" sweep_resumed "$done_before"
+[ ! -e sw_int.h5.partial.h5 ] || { echo "FAILED: the completed resume left its partial output"; exit 1; }
 
 # 2. Continuations: SIGTERM between (or inside) the solves of two points; the
 #    resume takes the stored tangent and step, so it goes on exactly as the
@@ -92,7 +96,7 @@ wait_limited "$pid"
 rc=$RC
 [ "$rc" -eq 143 ] || { echo "FAILED: exit $rc, expected 143 (128 + SIGTERM)"; exit 1; }
 check_interrupted "$rc" c1_int.err c1_int.h5 "after [0-9]* points of branch insulated"
-timeout "$LIMIT" "$NLTOPO" "${C1[@]}" -cont_resume c1_int.h5 -output c1_int.h5 -options_left > c1_res.txt
+timeout "$LIMIT" "$NLTOPO" "${C1[@]}" -cont_resume c1_int.h5.partial.h5 -output c1_int.h5 -options_left > c1_res.txt
 grep -q "stored tangent and step" c1_res.txt
 compare_branches c1_full.h5 c1_int.h5 energy omega period mcr beta z0 newton_its multipliers_re multipliers_im max_modulus stable
 
@@ -106,7 +110,7 @@ kill -TERM "$pid"
 wait_limited "$pid"
 rc=$RC
 check_interrupted "$rc" c2_int.err c2_int.h5 "after [0-9]* points of branch insulated"
-timeout "$LIMIT" "${M2[@]}" "$NLTOPO" "${C2[@]}" -cont_resume c2_int.h5 -output c2_int.h5 -options_left > c2_res.txt
+timeout "$LIMIT" "${M2[@]}" "$NLTOPO" "${C2[@]}" -cont_resume c2_int.h5.partial.h5 -output c2_int.h5 -options_left > c2_res.txt
 grep -q "stored tangent and step" c2_res.txt
 compare_branches c2_full.h5 c2_int.h5 energy omega period mcr beta z0 newton_its
 
@@ -129,7 +133,7 @@ expect_fail2() { # expect_fail2 <pattern> <output> nltopo args...
   timeout "$LIMIT" "${M2[@]}" "$NLTOPO" "$@" -output "$out" > f.txt 2> f.err || rc=$?
   [ "$rc" -ne 0 ] && [ "$rc" -ne 124 ] || { cat f.err; echo "FAILED (exit $rc): $*"; exit 1; }
   [ "$(grep -c . f.err)" -eq 1 ] && grep -q -- "$pattern" f.err || { cat f.err; echo "FAILED: not one line naming '$pattern'"; exit 1; }
-  if ls "$out".tmp.* > /dev/null 2>&1; then echo "FAILED: temporary left: $(ls "$out".tmp.*)"; exit 1; fi
+  if ls "$out" "$out".tmp.* "$out".lock "$out".partial.h5 > /dev/null 2>&1; then echo "FAILED: left behind: $(ls -d "$out"*)"; exit 1; fi
   echo "ok: $(cat f.err)"
 }
 # an error after the output is opened, on every rank (the continuation's first orbit)
@@ -143,4 +147,94 @@ expect_fail2 "time integration stopped at t = " fp.h5 -options_file "$SRC/option
 # one rank cannot write its sweep journal (a directory in the way)
 mkdir -p fj.h5.journal.1 && touch fj.h5.journal.1/keep
 expect_fail2 "cannot write the sweep journal fj.h5.journal.1" fj.h5 -study sweep -sweep_omega_n 2 -sweep_energy_n 2 -sim_t_final 100
+
+# 4. SIGHUP (a closed terminal or session) stops a run like SIGTERM: at 1 rank
+#    (exit 129 = 128 + SIGHUP) and at 2 ranks (to one rank process: all stop).
+C4=(-options_file "$SRC/options/fep.opts" -cont_branch insulated -floquet 0 -cont_energy_max 100 -cont_verbose 1)
+"$NLTOPO" "${C4[@]}" -output hup1.h5 -options_left > hup1.txt 2> hup1.err &
+pid=$!
+wait_until 120 points_printed hup1.txt 4
+kill -HUP "$pid"
+wait_limited "$pid"
+[ "$RC" -eq 129 ] || { cat hup1.err; echo "FAILED: exit $RC after SIGHUP, expected 129"; exit 1; }
+check_interrupted "$RC" hup1.err hup1.h5 "after [0-9]* points of branch insulated" SIGHUP
+"${M2[@]}" "$NLTOPO" "${C4[@]}" -output hup2.h5 -options_left > hup2.txt 2> hup2.err &
+pid=$!
+wait_until 120 points_printed hup2.txt 4
+rank=$(pgrep -P "$pid" -x nltopo | tail -1)
+[ -n "$rank" ] || { echo "FAILED: no rank process under mpiexec $pid"; exit 1; }
+kill -HUP "$rank"
+wait_limited "$pid"
+check_interrupted "$RC" hup2.err hup2.h5 "after [0-9]* points of branch insulated" SIGHUP
+
+# 5. SIGPIPE is ignored: a run whose stdout reader is gone (`| head -1`, or a
+#    reader gone before the first line) drops what it prints, finishes and
+#    commits, exit 0 and nothing on stderr; also under PETSc's
+#    -no_signal_handler. Under mpiexec (Open MPI 4.1) mpiexec itself aborts on
+#    the broken pipe and sends the ranks SIGTERM: they stop as interrupted, with
+#    no crash banner (docs/errors.md "Signals").
+C5=(-options_file "$SRC/options/fep.opts" -cont_branch insulated -floquet 0 -cont_energy_max 0.01 -cont_verbose 1)
+piped() { # piped <output> <reader...>: nltopo's exit status in RC
+  local out=$1
+  shift
+  RC=0
+  timeout "$LIMIT" "$NLTOPO" "${C5[@]}" -output "$out" -options_left 2> "$out.err" | "$@" > /dev/null || RC=${PIPESTATUS[0]}
+  [ "$RC" -eq 0 ] && [ ! -s "$out.err" ] || { cat "$out.err"; echo "FAILED: exit $RC with stdout closed ($out)"; exit 1; }
+  $PY "$CHECKS/signals.py" complete_output "$out"
+  echo "ok: stdout closed under the run ($*): exit 0, $out complete"
+}
+piped pipe_head.h5 head -1
+piped pipe_gone.h5 true
+C5+=(-no_signal_handler)
+piped pipe_nsh.h5 head -1
+rc=0
+timeout "$LIMIT" "${M2[@]}" "$NLTOPO" "${C5[@]}" -output pipe2.h5 -options_left 2> pipe2.err | head -1 > /dev/null || rc=${PIPESTATUS[0]}
+if grep -q "PETSC ERROR\|MPI_ABORT" pipe2.err; then cat pipe2.err; echo "FAILED: crash banner with stdout closed at 2 ranks"; exit 1; fi
+if [ "$rc" -eq 0 ] || grep -q "^nltopo: SIGTERM arrived after the last safe point" pipe2.err; then # (the run was done when mpiexec's SIGTERM came)
+  $PY "$CHECKS/signals.py" complete_output pipe2.h5
+else
+  grep -q "^nltopo: interrupted by SIGTERM" pipe2.err || { cat pipe2.err; exit 1; }
+fi
+if ls pipe2.h5.tmp.* pipe2.h5.partial.h5.tmp.* pipe2.h5.lock > /dev/null 2>&1; then echo "FAILED: temporary or lock left: $(ls pipe2.h5.*)"; exit 1; fi
+echo "ok: stdout closed under mpiexec -n 2: exit $rc, $(grep '^nltopo:' pipe2.err || echo 'no nltopo line')"
+
+# 6. An interrupted re-run never replaces a complete result: it leaves it byte
+#    for byte and its part goes to <output>.partial.h5; a fresh run is then
+#    refused next to that partial output (it would replace it), and the
+#    resume replaces both with the complete output.
+cp c2_full.h5 re.h5
+cp re.h5 re.copy
+"$NLTOPO" "${C4[@]}" -output re.h5 -options_left > re.txt 2> re.err &
+pid=$!
+wait_until 120 points_printed re.txt 4
+kill -TERM "$pid"
+wait_limited "$pid"
+grep -q "^nltopo: interrupted by SIGTERM after [0-9]* points of branch insulated.*partial output re.h5.partial.h5 (complete = 0); -cont_resume re.h5.partial.h5 continues it$" re.err ||
+  { cat re.err; echo "FAILED: the interrupted re-run's line"; exit 1; }
+cmp re.h5 re.copy || { echo "FAILED: an interrupted re-run changed the complete re.h5"; exit 1; }
+$PY "$CHECKS/signals.py" partial re.h5.partial.h5
+rc=0
+timeout "$LIMIT" "$NLTOPO" "${C4[@]}" -output re.h5 > no.txt 2> no.err || rc=$?
+[ "$rc" -ne 0 ] && grep -q "^nltopo: error: -output re.h5: re.h5.partial.h5 holds the partial output (complete = 0) of an earlier run; continue it with -cont_resume re.h5.partial.h5, or remove it or give -output_overwrite to start afresh$" no.err ||
+  { cat no.err; echo "FAILED: a fresh run next to a partial output was not refused"; exit 1; }
+timeout "$LIMIT" "$NLTOPO" "${C4[@]}" -cont_resume re.h5.partial.h5 -output re.h5 -options_left > re_res.txt
+[ ! -e re.h5.partial.h5 ] && ! cmp -s re.h5 re.copy || { echo "FAILED: the resume did not replace re.h5 and its partial output"; exit 1; }
+$PY "$CHECKS/signals.py" complete_output re.h5
+echo "ok: an interrupted re-run left the complete re.h5, its part in re.h5.partial.h5; refused, then resumed"
+# 6b. A resume of a two-branch partial output stopped while it extends the
+#     first branch: its partial output still holds the second branch's points.
+C6=(-options_file "$SRC/options/fep.opts" -cont_branch insulated,interface -floquet 0 -cont_verbose 1)
+timeout "$LIMIT" "$NLTOPO" "${C6[@]}" -cont_energy_max 1e-4 -output two.h5 -options_left > two.txt
+mv two.h5 two.h5.partial.h5
+n_interface=$($PY "$CHECKS/signals.py" branch_points two.h5.partial.h5 interface)
+"$NLTOPO" "${C6[@]}" -cont_energy_max 100 -cont_resume two.h5.partial.h5 -output two.h5 -options_left > two_res.txt 2> two_res.err &
+pid=$!
+insulated_grew() { [ "$(grep -c '\[insulated\] .* E = ' two_res.txt || true)" -ge 4 ]; }
+wait_until 120 insulated_grew
+kill -TERM "$pid"
+wait_limited "$pid"
+grep -q "^nltopo: interrupted by SIGTERM after [0-9]* points of branch insulated" two_res.err || { cat two_res.err; exit 1; }
+[ "$($PY "$CHECKS/signals.py" branch_points two.h5.partial.h5 interface)" -eq "$n_interface" ] ||
+  { echo "FAILED: the stopped resume dropped the second branch's points from its partial output"; exit 1; }
+echo "ok: a resume stopped in its first branch kept the second branch's $n_interface points"
 echo "signals scene OK"

@@ -38,7 +38,8 @@ $PY "$CHECKS/sweep.py" killed_readable
 nj=$( (cat killed.h5.journal.* 2> /dev/null || true) | wc -l)
 echo "journal lines at the kill: $nj"
 run2 "${OPTS[@]}" -output killed.h5 -sweep_resume | tee resumed.txt
-grep -q "resuming killed.h5" resumed.txt
+grep -q "resuming killed.h5.partial.h5" resumed.txt
+[ ! -e killed.h5.partial.h5 ] || { echo "the completed resume left its partial output"; exit 1; }
 
 # Point (omega index 2, E* index 3) through the simulate study with the same options.
 W=$($PY "$CHECKS/sweep.py" grid_value omega 2)

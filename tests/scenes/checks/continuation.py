@@ -54,10 +54,10 @@ def mcr_min():
 
 
 def killed_checkpoint():
-    """A run killed mid-branch (SIGKILL): ck.h5 readable, its points consistent across datasets, complete = 0;
-    the finished runs complete = 1."""
-    require(complete("ck.h5") == 0)
-    b = group("ck.h5", "continuation/insulated")
+    """A run killed mid-branch (SIGKILL): its checkpoint ck.h5.partial.h5 readable, its points consistent
+    across datasets, complete = 0, and no ck.h5; the finished runs complete = 1."""
+    require(complete("ck.h5.partial.h5") == 0 and not os.path.exists("ck.h5"))
+    b = group("ck.h5.partial.h5", "continuation/insulated")
     n = b.attrs["points"]
     require(n >= 3 and b["energy"].shape == (n,) and b["z0"].shape == (n, 204) and b["multipliers_re"].shape == (n, 1) and b["stable"].shape == (n,))
     require("checkpoint" in attr_str(b, "stop_reason"))
@@ -66,7 +66,8 @@ def killed_checkpoint():
 
 
 def final_checkpoint():
-    """The 2-rank run with checkpoints, run to its end: the final file, complete = 1."""
+    """The 2-rank run with checkpoints, run to its end: the final file, complete = 1; its checkpoint removed."""
+    require(not os.path.exists("ck2.h5.partial.h5"))
     b = group("ck2.h5", "continuation/insulated")
     require(complete("ck2.h5") == 1 and b.attrs["reached_energy_max"] == 1 and b["multipliers_re"].shape == (b.attrs["points"], 1))
     print("2-rank checkpoints, then the complete file:", b.attrs["points"], "points")

@@ -16,6 +16,16 @@ def partial(path):
     require(complete(path) == 0, path)
 
 
+def complete_output(path):
+    """A run that finished (e.g. with its stdout closed under it) leaves its output complete = 1."""
+    require(complete(path) == 1, path)
+
+
+def branch_points(path, label):
+    """Print how many points branch label of the continuation output path holds."""
+    print(int(group(path, "continuation/" + label)["energy"].shape[0]))
+
+
 def done_points(path):
     """Print how many points of the sweep in path are done."""
     print(int(group(path, "sweep/done")[:].sum()))
@@ -47,7 +57,7 @@ def branch_resumed(full, resumed, *keys):
 
 def first_case_kept():
     """The stability study stopped by SIGTERM during its second case keeps the first."""
-    s = group("st_int.h5", "stability")
+    s = group("st_int.h5.partial.h5", "stability")
     require(list(s.keys()) == ["case0"] and s.attrs["cases_done"] == 1)
 
 

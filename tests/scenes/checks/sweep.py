@@ -8,8 +8,10 @@ from scene_check import group, main, require, same
 
 
 def killed_readable():
-    """The sweep killed with SIGKILL: its file is complete and readable, with points still missing."""
-    d = group("killed.h5", "sweep/done")[:]   # a complete, readable file at any moment
+    """The sweep killed with SIGKILL: its partial output (killed.h5 itself is never written before the
+    end) is readable, with points still missing."""
+    require(not os.path.exists("killed.h5"))
+    d = group("killed.h5.partial.h5", "sweep/done")[:]   # a complete, readable file at any moment
     print("killed sweep: file readable,", int(d.sum()), "of", d.size, "points in the HDF5 file")
     require(d.sum() < d.size, "the sweep finished before it was killed: nothing to test")
 
@@ -33,7 +35,7 @@ def grid():
     for k in phys:
         require(same(f1[k], f2[k]), "np1 vs np2", k)
         require(same(f1[k], fk[k]), "uninterrupted vs resumed", k)
-    done_before = int(open("resumed.txt").read().split("resuming killed.h5: ")[1].split()[0])
+    done_before = int(open("resumed.txt").read().split("resuming killed.h5.partial.h5: ")[1].split()[0])
     require(fk.attrs["points_computed"] == 16 - done_before, fk.attrs["points_computed"], done_before)
     print("resume recomputed", fk.attrs["points_computed"], "of 16 points; grid equal bit for bit (np1, np2, killed + resumed)")
     # the sweep's point equals the simulate study's run
