@@ -319,6 +319,17 @@ std::string OneLine(const std::string &m)
 // in PETSc's case-insensitive database, and not the cubic coefficient.
 bool GammaTrap(const char *name) { return !strcasecmp(name, "lattice_gamma") && std::strcmp(name, "lattice_gamma"); }
 
+// Sees every option as it is set, with the name as written (the database
+// keeps the first spelling of a name: -lattice_gamma from a file, then
+// -lattice_Gamma on the command line, is stored as lattice_gamma).
+PetscErrorCode GammaMonitor(const char name[], const char[], void *ctx)
+{
+  auto *found = static_cast<std::string *>(ctx);
+  const char *n = name[0] == '-' ? name + 1 : name;
+  if (found->empty() && GammaTrap(n)) *found = n;
+  return 0;
+}
+
 // Rank 0: PETSc reads argv, PETSC_OPTIONS, the petscrc files and every file
 // they name into a throw-away database, as PetscInitialize will.
 std::string PetscReads(int argc, char **argv)
@@ -334,11 +345,18 @@ std::string PetscReads(int argc, char **argv)
   const MPI_Comm world = PETSC_COMM_WORLD;
   PETSC_COMM_WORLD = PETSC_COMM_SELF; // PetscOptionsInsert reads files on "rank 0 of the world": this rank, alone
   g_petsc_error.clear();
+  std::string trap;
+  if (!PetscOptionsPush(db)) { // the monitor is set on the default database
+    PetscOptionsMonitorSet(GammaMonitor, &trap, NULL);
+    PetscOptionsPop();
+  }
   PetscPushErrorHandler(KeepFirstError, NULL);
   const PetscErrorCode ierr = PetscOptionsInsert(db, &n, &a, NULL);
   PetscPopErrorHandler();
   PETSC_COMM_WORLD = world;
   if (ierr) line = OneLine(g_petsc_error);
+  else if (!trap.empty())
+    line = "-" + trap + " is the same option as -lattice_gamma (PETSc option names are case-insensitive); set the cubic coefficient with -lattice_cubic";
   else {
     PetscInt k;
     char **names, **values;
