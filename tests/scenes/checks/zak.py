@@ -42,11 +42,11 @@ def threshold():
 
 
 def interrupted():
-    """Issue 34, class 9: the interrupted scan's file (zi.h5): complete = 0, some runs not done, the
+    """Issue 34, class 9: the interrupted scan's partial output (zi.h5.partial.h5): complete = 0, some runs not done, the
     threshold not determined (NaN) and energy_last_distinct below the first energy not run."""
     from scene_check import complete
-    require(complete("zi.h5") == 0)
-    z = group("zi.h5", "zak")
+    require(complete("zi.h5.partial.h5") == 0)
+    z = group("zi.h5.partial.h5", "zak")
     done, e = z["done"][:], z["energy"][:]
     require(done.shape == (400, 2) and 0 < done.sum() < done.size, done.sum())
     require(np.isnan(z.attrs["energy_threshold"]), z.attrs["energy_threshold"])
