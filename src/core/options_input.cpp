@@ -204,7 +204,11 @@ void WalkFile(Walk *w, const std::string &given, const std::string &from)
     w->error = head + shown + " is a directory";
     return;
   }
-  if (!S_ISREG(st.st_mode) || yaml) return; // a pipe is read once, by PETSc; YAML files have no includes
+  if (!S_ISREG(st.st_mode) && !argv) { // PETSc opens a file twice: a pipe it is not given a copy of loses its start
+    w->error = head + shown + " is not a regular file (a pipe?): PETSc would lose its start; name a pipe on the command line, or save it to a file";
+    return;
+  }
+  if (!S_ISREG(st.st_mode) || yaml) return; // a pipe on the command line was copied to a file; YAML files have no includes
   for (size_t k = 0; k < w->stack.size(); k++)
     if (w->stack[k] == std::make_pair(st.st_dev, st.st_ino)) {
       std::string chain;

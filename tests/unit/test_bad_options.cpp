@@ -365,8 +365,10 @@ TEST_CASE("bad options: options files, read by PETSc's reader before the run, ea
                    {"bare.opts", "-options_file\n"},
                    {"push.opts", "-prefix_push lattice_\n-Gamma 0.5\n-prefix_pop\n"},
                    {"outer.opts", "-study linear\n-OPTIONS_FILE push.opts\n"},
-                   {"gamma.opts", "-options_file ok.opts\n-LATTICE_gamma 0.2\n"}});
+                   {"gamma.opts", "-options_file ok.opts\n-LATTICE_gamma 0.2\n"},
+                   {"piped.opts", "-study linear\n-options_file fifo\n"}});
   if (!Rank()) REQUIRE(mkdir((dir + "/adir").c_str(), 0700) == 0);
+  if (!Rank()) REQUIRE(mkfifo((dir + "/fifo").c_str(), 0600) == 0); // never opened: a pipe named in a file is refused from its stat
   MPI_Barrier(PETSC_COMM_WORLD);
   struct FileCase {
     std::string pattern; // "" : accepted
@@ -391,6 +393,7 @@ TEST_CASE("bad options: options files, read by PETSc's reader before the run, ea
       {"^-lattice_Gamma is the same option", {"-study", "linear", "-prefix_push", "lattice_", "-Gamma", "0.5", "-prefix_pop"}},
       // after -lattice_gamma: the database keeps the first spelling of a name, the check sees each as it is set
       {"^-lattice_Gamma is the same option", {"-study", "linear", "-lattice_gamma", "0.4", "-lattice_Gamma", "0.5"}},
+      {"^options file piped.opts line 2: options file fifo is not a regular file (a pipe?)", {"-options_file", "piped.opts"}},
       {"^-LATTICE_gamma is the same option", {"-options_file", "gamma.opts"}},
       {"^command line: '1' is neither an option nor an option's value", {"-study", "sweep", "-sweep_energy_list", "0.1,", "1"}},
   };
