@@ -466,6 +466,9 @@ PetscErrorCode CreateRunTS(const EffectList &fx, const SimulationOptions &o, Run
   PetscFunctionReturn(0);
 }
 
+// More fixed steps than any run can take (days at a microsecond a step).
+static const double kMaxFixedSteps = 1e12;
+
 // The fixed step of basicsymplectic and symsplit (times dt_scale and the
 // quartic-energy factor), shortened to divide the run into equal steps.
 PetscErrorCode SetFixedStep(const EffectList &fx, const SimulationOptions &o, Run *run, TS ts, Vec z, bool symplectic, bool splitting)
@@ -490,10 +493,14 @@ PetscErrorCode SetFixedStep(const EffectList &fx, const SimulationOptions &o, Ru
       }
       if (E > o.dt_quartic_energy) scale *= std::pow(o.dt_quartic_energy / E, 0.25);
     }
-    if (scale != 1) {
-      PetscCall(TSGetTimeStep(ts, &dt));
-      PetscCall(TSSetTimeStep(ts, dt * scale));
-    }
+    PetscCall(TSGetTimeStep(ts, &dt));
+    // a step so short that the run could never end (a tiny -sim_dt_quartic_energy) is refused, not run
+    const double steps = (double)(o.t_final - o.t_start) / (dt * scale);
+    PetscCheck(std::isfinite(steps) && steps <= kMaxFixedSteps, comm, PETSC_ERR_USER,
+               "-sim_ts_dt %g, scaled by %g (-sim_dt_quartic_energy %g), needs %.3g steps for -sim_t_final %g: more than %.0e; raise "
+               "-sim_ts_dt or -sim_dt_quartic_energy",
+               (double)dt, (double)scale, (double)o.dt_quartic_energy, steps, (double)o.t_final, kMaxFixedSteps);
+    if (scale != 1) PetscCall(TSSetTimeStep(ts, dt * scale));
   }
   if (splitting) {
     // Fixed step, shortened to divide the run into equal steps; the cut-off is

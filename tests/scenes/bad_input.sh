@@ -40,6 +40,8 @@ W="-study sweep -sweep_omega_n 2 -sweep_energy_n 1 -sim_t_final 20"
 # argv preflight (before PETSc starts; one line from the first rank only)
 expect_error "-options_file $WORK/missing.opts" o.h5 -options_file "$WORK/missing.opts"
 expect_error "-lattice_cubic" o.h5 -study linear -lattice_Gamma 0.5
+# a fixed step scaled so short that the run could never end (found by the fuzzer: a hang at 2 ranks)
+expect_error "needs 2.5e+76 steps for -sim_t_final 5.: more than 1e+12" o.h5 $S -sim_ts_type symsplit -sim_ts_dt 0.2 -sim_dt_quartic_energy 1e-300
 # a run names its study (nltopo alone prints usage: the help scene)
 expect_error "no -study given (one of: linear, simulate, continuation, sweep, zak, perturb, workprecision, stability)" o.h5 -lattice_cells 5
 # the output file
