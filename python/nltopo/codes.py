@@ -18,6 +18,10 @@ INSTABILITY = ("0 none; 1 B-B (critical eigenvector in the bulk); 2 B-E (between
 EVENT_KIND = ("1 energy fold; 2 branch point (+1); 3 period doubling (-1); 4 Krein collision (pass); "
               "5 Hamiltonian-Hopf; 6 internal resonance")
 DIRECTION = "1 an instability begins along the branch (fold: E maximum); -1 it ends (fold: E minimum); 0 neither (a Krein pass)"
+VERDICT = ("-1 not computed (resumed from a file written before verdicts); 0 stable (dense route: every multiplier within 1 + tol); "
+           "1 unstable-localized (a multiplier beyond 1 + delta, eigenvector at the interface, confirmed by k-period integration); "
+           "2 unstable-extended (the same, extended eigenvector); 3 stable-to (nothing beyond 1 + verdict_bound); "
+           "4 unresolved (verdict_reason says why)")
 PREDICTABLE = "1 predictable; 0 unpredictable (twin statistics); -1 not checked (no -sweep_mcr_tol)"
 
 # (group pattern, name) -> codes, for format 0. A pattern segment "<...>" or
@@ -27,6 +31,7 @@ FORMAT0 = {
     ("/continuation/<branch>", "stable"): STABLE,
     ("/continuation/<branch>", "instability"): INSTABILITY,
     ("/continuation/<branch>", "krein"): KREIN,
+    ("/continuation/<branch>", "verdict"): VERDICT,  # (format 1 on; listed so the table knows every code)
     ("/continuation/<branch>", "reached_energy_max"): YES_NO,
     ("/continuation/<branch>/bifurcations", "kind"): EVENT_KIND,
     ("/continuation/<branch>/bifurcations", "direction"): DIRECTION,

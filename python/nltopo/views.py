@@ -223,7 +223,8 @@ class Branch(Group):
     """/continuation/<branch>: one NNM family, a point per orbit.
 
     Arrays energy, omega, period, mcr, z0, ...; with -floquet multipliers
-    (complex), krein, max_modulus, stable, instability; `events` the located
+    (complex), krein, max_modulus, stable, instability, the verdicts (verdict,
+    verdict_name, verdict_bound, verdict_efold, verdict_reason); `events` the located
     bifurcations, decoded."""
 
     def __init__(self, run, path):
@@ -263,6 +264,12 @@ class Branch(Group):
     def instability_name(self):
         """`instability` decoded: "none", "B-B", "B-E", "E-E" (or "not computed") per point."""
         return self.decode("instability")
+
+    @property
+    def verdict_name(self):
+        """`verdict` decoded per point: "stable", "unstable-localized", "unstable-extended",
+        "stable-to", "unresolved" (with verdict_bound, verdict_efold, verdict_reason)."""
+        return self.decode("verdict")
 
     @property
     def events(self):

@@ -21,4 +21,18 @@ PetscErrorCode GatherVec(Vec v, bool to_all, std::vector<PetscReal> *out)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode BroadcastStrings(MPI_Comm comm, std::vector<std::string> *v)
+{
+  std::vector<char> buf;
+  std::vector<PetscInt> len;
+  PetscFunctionBeginUser;
+  for (const std::string &s : *v) len.push_back((PetscInt)s.size()), buf.insert(buf.end(), s.begin(), s.end());
+  PetscCall(BroadcastFromRoot(comm, MPIU_INT, &len));
+  PetscCall(BroadcastFromRoot(comm, MPI_CHAR, &buf));
+  v->clear();
+  size_t at = 0;
+  for (PetscInt n : len) v->emplace_back(buf.data() + at, (size_t)n), at += (size_t)n;
+  PetscFunctionReturn(0);
+}
+
 } // namespace nltopo

@@ -3,6 +3,7 @@
 // (other ranks get an empty vector). For small vectors (N ~ 10^2..10^4).
 #include <petscvec.h>
 #include <petscsys.h>
+#include <string>
 #include <vector>
 
 namespace nltopo {
@@ -19,5 +20,8 @@ template <typename T> PetscErrorCode BroadcastFromRoot(MPI_Comm comm, MPI_Dataty
   if (n) PetscCallMPI(MPI_Bcast(v->data(), (PetscMPIInt)n, type, 0, comm));
   PetscFunctionReturn(0);
 }
+
+// Rank 0's strings to every rank.
+PetscErrorCode BroadcastStrings(MPI_Comm comm, std::vector<std::string> *v);
 
 } // namespace nltopo

@@ -1,4 +1,5 @@
 #include "io/input.hpp"
+#include <cstring>
 #include <hdf5.h>
 
 namespace nltopo {
@@ -43,6 +44,40 @@ PetscErrorCode ReadInts(const std::string &file, const char *dataset, std::vecto
   PetscFunctionBeginUser;
   PetscCall(ReadDataset(file, dataset, H5T_NATIVE_INT, &buf));
   out->assign(buf.begin(), buf.end());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ReadStrings(const std::string &file, const char *dataset, std::vector<std::string> *out)
+{
+  PetscFunctionBeginUser;
+  H5E_auto2_t func;
+  void *data;
+  H5Eget_auto2(H5E_DEFAULT, &func, &data);
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  hid_t d = f < 0 ? -1 : H5Dopen2(f, dataset, H5P_DEFAULT);
+  hid_t t = d < 0 ? -1 : H5Dget_type(d);
+  hid_t s = d < 0 ? -1 : H5Dget_space(d);
+  const bool fixed = t >= 0 && H5Tget_class(t) == H5T_STRING && H5Tis_variable_str(t) == 0;
+  const size_t width = fixed ? H5Tget_size(t) : 0;
+  const hssize_t n = s < 0 ? -1 : H5Sget_simple_extent_npoints(s);
+  herr_t st = -1;
+  if (fixed && n >= 0) {
+    std::vector<char> buf((size_t)n * width + 1, '\0');
+    st = n ? H5Dread(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf.data()) : 0;
+    out->clear();
+    for (hssize_t i = 0; st >= 0 && i < n; i++) {
+      const char *c = buf.data() + (size_t)i * width;
+      out->emplace_back(c, strnlen(c, width));
+    }
+  }
+  if (s >= 0) H5Sclose(s);
+  if (t >= 0) H5Tclose(t);
+  if (d >= 0) H5Dclose(d);
+  if (f >= 0) H5Fclose(f);
+  H5Eset_auto2(H5E_DEFAULT, func, data);
+  PetscCheck(f >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot open HDF5 file %s", file.c_str());
+  PetscCheck(st >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_READ, "cannot read dataset %s from %s as fixed-length strings", dataset, file.c_str());
   PetscFunctionReturn(0);
 }
 

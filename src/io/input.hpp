@@ -10,6 +10,8 @@ namespace nltopo {
 // Not collective: call on the rank that needs the data. Errors name the file and dataset.
 PetscErrorCode ReadDoubles(const std::string &file, const char *dataset, std::vector<PetscReal> *out);
 PetscErrorCode ReadInts(const std::string &file, const char *dataset, std::vector<PetscInt> *out);
+// A one-dimensional dataset of fixed-length strings (as WriteStringArray writes them).
+PetscErrorCode ReadStrings(const std::string &file, const char *dataset, std::vector<std::string> *out);
 // Whether the file opens and holds the dataset (absolute path, e.g. "/continuation/insulated/energy").
 bool HasDataset(const std::string &file, const char *dataset);
 // A root attribute of the file (string, or integer), or with name

@@ -358,8 +358,7 @@ PetscErrorCode WriteStringArray(PetscViewer v, const char *group, const char *na
   for (const auto &s : data) width = std::max(width, (PetscInt)s.size() + 1);
   PetscCallMPI(MPI_Bcast(&n, 1, MPIU_INT, 0, comm));
   PetscCallMPI(MPI_Bcast(&width, 1, MPIU_INT, 0, comm));
-  PetscCheck(n > 0, comm, PETSC_ERR_ARG_SIZ, "string dataset %s/%s: no values", group, name);
-  std::vector<char> buf(rank ? 1 : (size_t)(n * width), '\0');
+  std::vector<char> buf(rank || !n ? 1 : (size_t)(n * width), '\0'); // (no values: a dataset with no rows)
   if (!rank)
     for (PetscInt i = 0; i < n; i++) std::copy(data[i].begin(), data[i].end(), buf.begin() + i * width);
   H5CHK(type = H5Tcopy(H5T_C_S1));

@@ -19,7 +19,7 @@ enum class FieldType { Real, Int, String };
 
 // Units are the model's scaled units (docs/model.md: unit masses, k = 1):
 // "time", "rad/time", "energy", "displacement", "displacement/time", "force",
-// "rad", "1/time", "(rad/time)^2"; "s" is wall-clock seconds; "1" a pure
+// "rad", "1/time", "(rad/time)^2", "periods" (of the orbit); "s" is wall-clock seconds; "1" a pure
 // number, count, index or string. A state vector names its parts' units.
 struct Field {
   const char *name; // may hold one placeholder, e.g. "error_<observable>"
@@ -42,7 +42,7 @@ constexpr const char *kInstability =
 constexpr const char *kEventKind =
     "1 energy fold; 2 branch point (+1); 3 period doubling (-1); 4 Krein collision (pass); 5 Hamiltonian-Hopf; 6 internal resonance";
 constexpr const char *kDirection = "1 an instability begins along the branch (fold: E maximum); -1 it ends (fold: E minimum); 0 neither (a Krein pass)";
-constexpr const char *kVerdict = "0 stable (dense route: every multiplier within 1 + tol); 1 unstable-localized (a multiplier beyond 1 + delta, "
+constexpr const char *kVerdict = "-1 not computed (resumed from a file written before verdicts); 0 stable (dense route: every multiplier within 1 + tol); 1 unstable-localized (a multiplier beyond 1 + delta, "
                                   "eigenvector at the interface, confirmed by k-period integration); 2 unstable-extended (the same, extended eigenvector); "
                                   "3 stable-to (nothing beyond 1 + verdict_bound); 4 unresolved (verdict_reason says why)";
 constexpr const char *kPredictable = "1 predictable; 0 unpredictable (twin statistics); -1 not checked (no -sweep_mcr_tol)";

@@ -16,7 +16,11 @@ static const auto &kFloquetTable =
           .Int("edge_sites", &FloquetOptions::edge_sites, Closed(0, PETSC_MAX_INT), "Sites on each side of the interface cell that count as the edge region")
           .Real("edge_weight", &FloquetOptions::edge_weight, Open(0.5, 1),
                 "Unstable eigenvector: edge (E-E) above this share of its displacement norm in the edge region, bulk (B-B) below 1 minus it, B-E between")
-          .Why("edge above it and bulk below 1 minus it must not overlap");
+          .Why("edge above it and bulk below 1 minus it must not overlap")
+          .Int("confirm_periods", &FloquetOptions::confirm_periods, Closed(1, 100000),
+               "An unstable verdict is confirmed by integrating its eigenvector v this many periods k: |M^k v| = |mu|^k |v| (2k tangent integrations for a complex pair)")
+          .Real("confirm_rtol", &FloquetOptions::confirm_rtol, Open(0, 1),
+                "The growth rate per period measured over -floquet_confirm_periods must match ln|mu| to this relative tolerance, else the orbit is unresolved");
     });
 
 PetscErrorCode FloquetOptionsFromOptions(MPI_Comm comm, FloquetOptions *o)
@@ -179,8 +183,15 @@ PetscErrorCode CriticalVector(const Lattice &lat, EPS eps, const std::vector<Pet
 
 } // namespace
 
+PetscErrorCode EigenvectorShares(const Lattice &lat, Vec xr, Vec xi, PetscInt e, PetscReal *kappa, PetscReal *edge)
+{
+  PetscFunctionBeginUser;
+  PetscCall(KreinAndEdge(lat, xr, xi, e, kappa, edge));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FloquetAnalysis(const Lattice &lat, Mat S, const FloquetOptions &o, FloquetResult *r, const PetscReal *target, std::vector<PetscReal> *vec,
-                               PetscReal circle_vectors)
+                               PetscReal circle_vectors, Vec worst_re, Vec worst_im)
 {
   const PetscInt n = 2 * lat.N(), nl = 2 * lat.OwnedCount();
   OwnedMat M;
@@ -251,9 +262,15 @@ PetscErrorCode FloquetAnalysis(const Lattice &lat, Mat S, const FloquetOptions &
     }
   }
   r->stable = r->max_modulus <= 1 + o.tol;
+  if (worst >= 0) r->worst_re = re[worst], r->worst_im = std::abs(im[worst]);
   if (!r->stable) { // the kind, from the localisation of the most unstable eigenvector
     const PetscReal w = edge[worst];
     r->instability = Localisation(o, w);
+    if (worst_re && worst_im) {
+      PetscScalar kr, ki;
+      PetscCall(EPSGetEigenpair(eps, worst, &kr, &ki, worst_re, worst_im));
+      if (ki == 0) PetscCall(VecZeroEntries(worst_im));
+    }
   }
   if (vec) PetscCall(CriticalVector(lat, eps, re, im, target, xr, xi, vec));
   if (circle_vectors >= 0) {

@@ -16,6 +16,8 @@ struct FloquetOptions {
   PetscReal edge_weight = 0.75; // an eigenvector with more of its displacement norm than this
                                 // within +-edge_sites of the interface counts as an edge (localised) mode
   PetscInt edge_sites = 10;
+  PetscInt confirm_periods = 20; // an unstable verdict is confirmed by integrating its eigenvector this many periods
+  PetscReal confirm_rtol = 0.1;  // ... and its growth rate per period must match ln|mu| to this relative tolerance
 };
 PetscErrorCode FloquetOptionsFromOptions(MPI_Comm comm, FloquetOptions *o);
 
@@ -25,6 +27,7 @@ struct FloquetResult {
   std::vector<PetscReal> edge;   // share of each eigenvector's displacement norm in the edge region
   std::vector<PetscReal> kappa;  // the Krein value -i v^H J v / |v|^2 itself (krein is its sign above krein_tol)
   PetscReal max_modulus = 0;
+  PetscReal worst_re = 1, worst_im = 0; // the multiplier of largest modulus (upper half plane member)
   bool stable = true;
   PetscInt instability = 0; // 0 none, 1 bulk-bulk, 2 bulk-edge, 3 edge-edge
   PetscInt trivial = 0;     // multipliers within 1e-4 of 1 (2 for an isolated NNM)
@@ -45,8 +48,14 @@ struct FloquetResult {
 // [u_1..u_N, v_1..v_N] on every rank, unit norm, its phase turned so that its
 // real part (written) is largest, the largest entry positive.
 // circle_vectors >= 0: also r->vectors (above), for edge shares >= it.
+// worst_re, worst_im (optional, state layout like z0): the eigenvector of the
+// multiplier of largest modulus, when the orbit is unstable (for ConfirmGrowth).
 PetscErrorCode FloquetAnalysis(const Lattice &lat, Mat S, const FloquetOptions &o, FloquetResult *r, const PetscReal *target = nullptr,
-                               std::vector<PetscReal> *vec = nullptr, PetscReal circle_vectors = -1);
+                               std::vector<PetscReal> *vec = nullptr, PetscReal circle_vectors = -1, Vec worst_re = nullptr, Vec worst_im = nullptr);
+
+// The Krein value -i v^H J v / |v|^2 and the edge share of the displacement
+// norm (within e sites of the interface cell) of v = xr + i xi, state layout. Collective.
+PetscErrorCode EigenvectorShares(const Lattice &lat, Vec xr, Vec xi, PetscInt e, PetscReal *kappa, PetscReal *edge);
 
 // The Krein signature of a Krein value kappa = -i v^H J v / |v|^2: 0 below
 // -floquet_krein_tol (real multipliers, off the circle, or on a collision).

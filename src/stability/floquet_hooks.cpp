@@ -1,19 +1,59 @@
 #include "stability/floquet_hooks.hpp"
 #include <algorithm>
+#include <cmath>
+#include <string>
+#include <cstdio>
 #include <cstring>
 
 namespace nltopo {
 
+void FloquetColumns::AddVerdict(const OrbitVerdict &v)
+{
+  verdict.push_back((PetscInt)v.code);
+  verdict_bound.push_back(v.bound);
+  verdict_efold.push_back(v.efold);
+  verdict_reason.push_back(v.reason);
+}
+
+// The dense route's verdict: stable, or unstable with the most unstable eigenvector's class, confirmed.
+static PetscErrorCode DenseVerdict(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, const FloquetOptions &o, bool stable, PetscReal max_modulus,
+                                   std::complex<PetscReal> mu, PetscInt cls, Vec vr, Vec vi, OrbitVerdict *v)
+{
+  char b[200];
+  PetscFunctionBeginUser;
+  if (stable) {
+    std::snprintf(b, sizeof b, "dense monodromy: every multiplier within 1 + %.1e (max |mu| - 1 = %.1e)", (double)o.tol, (double)(max_modulus - 1));
+    *v = StableVerdict(o.tol, b);
+    PetscFunctionReturn(0);
+  }
+  if (cls < 1) { // no eigenvector (inverse iteration failed): the class is unknown and nothing can be confirmed
+    std::snprintf(b, sizeof b, "dense monodromy: |mu| = %.7f beyond 1 + %.1e, but its eigenvector was not found", (double)std::abs(mu), (double)o.tol);
+    *v = UnresolvedVerdict(std::abs(mu) - 1, b);
+    PetscFunctionReturn(0);
+  }
+  std::snprintf(b, sizeof b, "dense monodromy: |mu| = %.7f beyond 1 + %.1e, eigenvector edge class %s", (double)std::abs(mu), (double)o.tol,
+                cls == 3 ? "E-E" : cls == 2 ? "B-E" : "B-B");
+  *v = UnstableVerdict(mu, cls, b);
+  PetscCall(ConfirmGrowth(flow, z0, T, beta, vr, vi, o, v));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FloquetHook::Point(Vec z0, PetscReal T, PetscReal beta, Vec)
 {
   FloquetResult r;
+  OrbitVerdict v;
   PetscFunctionBeginUser;
   if (!S_) {
     PetscCall(flow_.CreateSensitivityMatrix(S_.out()));
     PetscCall(VecDuplicate(z0, zT_.out()));
+    PetscCall(VecDuplicate(z0, vr_.out()));
+    PetscCall(VecDuplicate(z0, vi_.out()));
   }
-  PetscCall(flow_.IntegrateWithMonodromy(z0, T, flow_.FloquetBeta(beta), zT_, S_)); // at the converged orbit
-  PetscCall(FloquetAnalysis(flow_.Lat(), S_, opt_, &r));
+  const PetscReal fb = flow_.FloquetBeta(beta);
+  PetscCall(flow_.IntegrateWithMonodromy(z0, T, fb, zT_, S_)); // at the converged orbit
+  PetscCall(FloquetAnalysis(flow_.Lat(), S_, opt_, &r, nullptr, nullptr, -1, vr_, vi_));
+  PetscCall(DenseVerdict(flow_, z0, T, fb, opt_, r.stable, r.max_modulus, {r.worst_re, r.worst_im}, r.instability, vr_, vi_, &v));
+  c.AddVerdict(v);
   c.re.insert(c.re.end(), r.re.begin(), r.re.end());
   c.im.insert(c.im.end(), r.im.begin(), r.im.end());
   c.krein.insert(c.krein.end(), r.krein.begin(), r.krein.end());
@@ -25,22 +65,63 @@ PetscErrorCode FloquetHook::Point(Vec z0, PetscReal T, PetscReal beta, Vec)
   PetscFunctionReturn(0);
 }
 
+// The verdict of a -floquet_mf route from its leading multipliers and the leading eigenvector (vr_, vi_).
+PetscErrorCode FloquetMfHook::RouteVerdict(Vec z0, PetscReal T, PetscReal beta, const LeadingMultipliers &r, OrbitVerdict *v)
+{
+  char b[240];
+  PetscFunctionBeginUser;
+  if (Dense()) {
+    std::complex<PetscReal> mu(r.re.empty() ? 1 : r.re[0], r.im.empty() ? 0 : r.im[0]);
+    PetscCall(DenseVerdict(flow_, z0, T, beta, opt_, r.verdict == kStable, r.max_modulus, mu, r.instability, vr_, vi_, v));
+    PetscFunctionReturn(0);
+  }
+  if (r.verdict == kUnstable) { // the leading accepted multiplier beyond 1 + max(tol, its resolution)
+    PetscInt best = 0;
+    for (PetscInt k = 1; k < r.converged; k++)
+      if (std::hypot(r.re[k], r.im[k]) > std::hypot(r.re[best], r.im[best])) best = k;
+    PetscReal kappa, edge;
+    PetscCall(EigenvectorShares(flow_.Lat(), vr_, vi_, opt_.edge_sites, &kappa, &edge));
+    const PetscInt cls = Localisation(opt_, edge);
+    std::snprintf(b, sizeof b, "matrix-free (%s): |mu| = %.7f beyond 1 + %.1e, eigenvector edge class %s",
+                  mopt_.which == FloquetMfWhich::Critical ? "critical" : "largest", (double)std::hypot(r.re[best], r.im[best]), (double)opt_.tol,
+                  cls == 3 ? "E-E" : cls == 2 ? "B-E" : "B-B");
+    *v = UnstableVerdict({r.re[best], r.im[best]}, cls, b);
+    PetscCall(ConfirmGrowth(flow_, z0, T, beta, vr_, vi_, opt_, v));
+  } else if (r.converged < mopt_.nev) {
+    std::snprintf(b, sizeof b, "matrix-free: %" PetscInt_FMT " of %" PetscInt_FMT " leading multipliers converged; nothing is bounded", r.converged, mopt_.nev);
+    *v = UnresolvedVerdict(std::numeric_limits<PetscReal>::infinity(), b);
+  } else {
+    std::snprintf(b, sizeof b, "matrix-free (%s): no multiplier found beyond 1 + %.1e, but a Krein quadruplet inside the spectrum cannot be excluded",
+                  mopt_.which == FloquetMfWhich::Critical ? "critical" : "largest", (double)opt_.tol);
+    *v = UnresolvedVerdict(std::numeric_limits<PetscReal>::infinity(), b);
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FloquetMfHook::Point(Vec z0, PetscReal T, PetscReal beta, Vec dz0)
 {
   LeadingMultipliers r;
+  OrbitVerdict v;
   const MPI_Comm comm = flow_.Lat().Comm();
+  const PetscReal fb = flow_.FloquetBeta(beta);
   PetscFunctionBeginUser;
+  if (!vr_) {
+    PetscCall(VecDuplicate(z0, vr_.out()));
+    PetscCall(VecDuplicate(z0, vi_.out()));
+  }
   if (Dense()) {
     if (!S_) {
       PetscCall(flow_.CreateSensitivityMatrix(S_.out()));
       PetscCall(VecDuplicate(z0, zT_.out()));
     }
-    PetscCall(flow_.IntegrateWithMonodromy(z0, T, flow_.FloquetBeta(beta), zT_, S_));
-    PetscCall(FloquetLeadingDense(flow_.Lat(), S_, mopt_.nev, opt_, &r));
+    PetscCall(flow_.IntegrateWithMonodromy(z0, T, fb, zT_, S_));
+    PetscCall(FloquetLeadingDense(flow_.Lat(), S_, mopt_.nev, opt_, &r, vr_, vi_));
   } else {
-    PetscCall(FloquetLeading(flow_, z0, T, flow_.FloquetBeta(beta), mopt_, &r, &warm_, dz0));
+    PetscCall(FloquetLeading(flow_, z0, T, fb, mopt_, &r, &warm_, dz0, vr_, vi_));
     r.verdict = MatrixFreeVerdict(r, opt_.tol);
   }
+  PetscCall(RouteVerdict(z0, T, fb, r, &v));
+  c.AddVerdict(v);
   c.re.insert(c.re.end(), r.re.begin(), r.re.end());
   c.im.insert(c.im.end(), r.im.begin(), r.im.end());
   c.max_modulus.push_back(r.max_modulus);
@@ -77,7 +158,40 @@ PetscErrorCode FloquetMfHook::Announce() const
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PrintFloquetSummary(MPI_Comm comm, const std::string &label, const FloquetColumns &f, PetscReal tol, const char *mf_route)
+// The verdict lines of PrintFloquetSummary.
+static PetscErrorCode PrintVerdicts(MPI_Comm comm, const std::string &label, const FloquetColumns &f, const std::vector<PetscReal> *energy)
+{
+  const size_t n = f.verdict.size();
+  PetscInt count[5] = {0, 0, 0, 0, 0}, listed = 0, unknown = 0;
+  PetscFunctionBeginUser;
+  if (!n) PetscFunctionReturn(0);
+  for (PetscInt x : f.verdict)
+    if (x >= 0 && x <= 4) count[x]++;
+    else unknown++;
+  PetscCall(PetscPrintf(comm, "  [%s] verdicts: %" PetscInt_FMT " stable, %" PetscInt_FMT " stable-to, %" PetscInt_FMT " unstable-localized, %" PetscInt_FMT
+                              " unstable-extended, %" PetscInt_FMT " unresolved",
+                        label.c_str(), count[0], count[3], count[1], count[2], count[4]));
+  if (unknown) PetscCall(PetscPrintf(comm, ", %" PetscInt_FMT " not computed (resumed from a file without verdicts)", unknown));
+  PetscCall(PetscPrintf(comm, "\n"));
+  for (size_t k = 0; k < n; k++) {
+    const Verdict c = (Verdict)f.verdict[k];
+    if (f.verdict[k] < 0 || c == Verdict::Stable || c == Verdict::StableTo) continue;
+    if (++listed > 12) {
+      PetscCall(PetscPrintf(comm, "    ... (every orbit's verdict_reason is in the output)\n"));
+      break;
+    }
+    char e[40] = "";
+    if (energy && k < energy->size()) std::snprintf(e, sizeof e, " E = %.4g", (double)(*energy)[k]);
+    PetscCall(PetscPrintf(comm, "    point %zu%s: %s, bound %.2e%s%s: %s\n", k, e, VerdictName(c), (double)f.verdict_bound[k],
+                          std::isfinite(f.verdict_efold[k]) ? ", e-folding (periods) " : "",
+                          std::isfinite(f.verdict_efold[k]) ? std::to_string((long long)std::llround(f.verdict_efold[k])).c_str() : "",
+                          f.verdict_reason[k].c_str()));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PrintFloquetSummary(MPI_Comm comm, const std::string &label, const FloquetColumns &f, PetscReal tol, const char *mf_route,
+                                   const std::vector<PetscReal> *energy)
 {
   const bool mf = mf_route != nullptr, dense = !mf || !std::strcmp(mf_route, "dense");
   PetscInt ns = 0, nu = 0;
@@ -98,6 +212,7 @@ PetscErrorCode PrintFloquetSummary(MPI_Comm comm, const std::string &label, cons
     PetscCall(PetscPrintf(comm, ", max |det M - 1| = %.1e", (double)dmax));
   }
   PetscCall(PetscPrintf(comm, "\n"));
+  PetscCall(PrintVerdicts(comm, label, f, energy));
   PetscFunctionReturn(0);
 }
 

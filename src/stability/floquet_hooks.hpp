@@ -6,6 +6,7 @@
 #include "orbits/continuation.hpp"
 #include "stability/floquet.hpp"
 #include "stability/floquet_mf.hpp"
+#include "stability/verdict.hpp"
 #include <string>
 #include <vector>
 
@@ -20,6 +21,11 @@ struct FloquetColumns {
   std::vector<PetscReal> edge; // dense route: each eigenvector's edge share (kept in memory for -cont_bifurcations, not written)
   PetscInt products = 0, unconverged = 0;
   std::string route; // matrix-free hook: "dense" (2N <= -floquet_mf_dense_max) or "matrix-free"
+  // The verdict of each orbit (stability/verdict.hpp): code, bound, e-folding time in periods, reason.
+  std::vector<PetscInt> verdict;
+  std::vector<PetscReal> verdict_bound, verdict_efold;
+  std::vector<std::string> verdict_reason;
+  void AddVerdict(const OrbitVerdict &v);
 };
 
 // -floquet: the multipliers, Krein signatures and stability of every orbit
@@ -35,7 +41,7 @@ private:
   PeriodicFlow &flow_;
   FloquetOptions opt_;
   OwnedMat S_;
-  OwnedVec zT_;
+  OwnedVec zT_, vr_, vi_; // vr_, vi_: the most unstable eigenvector (ConfirmGrowth)
 };
 
 // -floquet_mf (long lattices): the -floquet_mf_nev leading multipliers of
@@ -61,13 +67,17 @@ private:
   FloquetMfOptions mopt_;
   std::vector<OwnedVec> warm_; // the previous orbit's eigenvectors: the next solve's initial space
   OwnedMat S_;                 // the dense route's sensitivity matrix
-  OwnedVec zT_;
+  OwnedVec zT_, vr_, vi_;      // vr_, vi_: the leading eigenvector (ConfirmGrowth)
+  PetscErrorCode RouteVerdict(Vec z0, PetscReal T, PetscReal beta, const LeadingMultipliers &r, OrbitVerdict *v);
 };
 
 // A branch's one-line Floquet summary: how many of its orbits are stable at
 // -floquet_tol tol, and the dense route's largest |det M - 1| or the
 // matrix-free route's undecided orbits and monodromy products. mf_route:
 // nullptr for -floquet, else the -floquet_mf hook's Route().
-PetscErrorCode PrintFloquetSummary(MPI_Comm comm, const std::string &label, const FloquetColumns &f, PetscReal tol, const char *mf_route);
+// Then the verdicts: a count per verdict and a line per unstable or
+// unresolved orbit (at most 12; energy: the orbits' energies, optional).
+PetscErrorCode PrintFloquetSummary(MPI_Comm comm, const std::string &label, const FloquetColumns &f, PetscReal tol, const char *mf_route,
+                                   const std::vector<PetscReal> *energy = nullptr);
 
 } // namespace nltopo

@@ -232,9 +232,16 @@ PetscErrorCode DenseLeadingPairs(PetscInt n_, PetscReal *a, PetscInt nev, const 
     out->mu.push_back(mu[i]), out->krein.push_back(krein), out->edge.push_back(edge);
   }
   out->instability = 0;
+  out->lead_re.clear(), out->lead_im.clear();
   if (out->max_modulus > 1 + o.tol && !out->edge.empty()) { // the leading multiplier is then the most unstable
     const PetscReal w = out->edge[0];
     out->instability = std::isfinite(w) ? Localisation(o, w) : -1;
+    if (std::isfinite(w)) {
+      const PetscReal *xr = &vr[(size_t)first[pick[0]] * n];
+      out->lead_re.assign(xr, xr + n);
+      out->lead_im.assign(n, 0.0);
+      if (mu[pick[0]].imag() > 0) out->lead_im.assign(xr + n, xr + 2 * n);
+    }
   }
   PetscFunctionReturn(0);
 }
@@ -251,7 +258,22 @@ PetscErrorCode CheckDenseMonodromyMemory(MPI_Comm comm, PetscInt N, const Floque
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FloquetLeadingDense(const Lattice &lat, Mat S, PetscInt nev, const FloquetOptions &o, LeadingMultipliers *r)
+// Rank 0's vector x (global state order; empty: zero) into the distributed v.
+static PetscErrorCode ScatterFromRoot(const std::vector<PetscReal> &x, Vec v)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecZeroEntries(v));
+  if (!x.empty()) {
+    std::vector<PetscInt> idx(x.size());
+    std::iota(idx.begin(), idx.end(), 0);
+    PetscCall(VecSetValues(v, (PetscInt)x.size(), idx.data(), x.data(), INSERT_VALUES));
+  }
+  PetscCall(VecAssemblyBegin(v));
+  PetscCall(VecAssemblyEnd(v));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FloquetLeadingDense(const Lattice &lat, Mat S, PetscInt nev, const FloquetOptions &o, LeadingMultipliers *r, Vec lead_re, Vec lead_im)
 {
   const PetscInt n = 2 * lat.N(), N = lat.N();
   const MPI_Comm comm = lat.Comm();
@@ -268,10 +290,10 @@ PetscErrorCode FloquetLeadingDense(const Lattice &lat, Mat S, PetscInt nev, cons
   std::vector<PetscReal> out(3 * nev + 2, NAN);
   PetscErrorCode code = 0;
   char msg[256] = "";
+  LeadingPairs lead;
   if (rank == 0) {
     std::vector<PetscInt> u(N), v(N); // natural site -> PETSc state index
     for (PetscInt s = 0; s < N; s++) u[s] = lat.StateIndexU(s), v[s] = lat.StateIndexV(s);
-    LeadingPairs lead;
     const PetscInt iface = lat.Params().layout == Layout::Interface ? lat.Params().InterfaceSite() : -1;
     PetscCall(CaptureError([&]() { return DenseLeadingPairs(n, a.data(), nev, o, u, v, iface, &lead); }, &code, msg, sizeof msg));
     for (PetscInt k = 0; k < (PetscInt)lead.mu.size(); k++) out[3 * k] = lead.mu[k].real(), out[3 * k + 1] = lead.mu[k].imag(), out[3 * k + 2] = lead.krein[k];
@@ -289,6 +311,10 @@ PetscErrorCode FloquetLeadingDense(const Lattice &lat, Mat S, PetscInt nev, cons
   r->instability = (PetscInt)out[3 * nev + 1];
   r->products = n; // the 2N tangent columns of the monodromy
   r->verdict = r->max_modulus <= 1 + o.tol ? kStable : kUnstable;
+  if (lead_re && lead_im) {
+    PetscCall(ScatterFromRoot(lead.lead_re, lead_re));
+    PetscCall(ScatterFromRoot(lead.lead_im, lead_im));
+  }
   PetscCall(PetscLogEventEnd(Log().floquet, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -517,8 +543,39 @@ static PetscErrorCode AcceptMultipliers(MonodromyShell &shell, EPS eps, Vec z0, 
   PetscFunctionReturn(0);
 }
 
+// The eigenvector of M of the accepted multiplier of largest modulus (see
+// FloquetLeading): x = xr + i xi from the eigensolver; on the critical route
+// x lies in span{v_mu, v_1/mu} (B's eigenspace of b) and v = M x - x / mu
+// keeps the v_mu part.
+static PetscErrorCode LeadingVector(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, EPS eps, const LeadingMultipliers &r,
+                                    const std::vector<PetscInt> &kept, bool critical, Vec vr, Vec vi)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecZeroEntries(vr));
+  PetscCall(VecZeroEntries(vi));
+  PetscInt best = -1;
+  for (PetscInt k = 0; k < r.converged && k < (PetscInt)kept.size(); k++)
+    if (best < 0 || std::hypot(r.re[k], r.im[k]) > std::hypot(r.re[best], r.im[best])) best = k;
+  if (best < 0) PetscFunctionReturn(0);
+  PetscCall(EPSGetEigenvector(eps, kept[best], vr, vi));
+  if (!critical) PetscFunctionReturn(0);
+  const std::complex<PetscReal> inv = 1.0 / std::complex<PetscReal>(r.re[best], r.im[best]);
+  OwnedVec zT, mr, mi;
+  PetscCall(VecDuplicate(z0, zT.out()));
+  PetscCall(VecDuplicate(vr, mr.out()));
+  PetscCall(VecDuplicate(vr, mi.out()));
+  PetscCall(flow.IntegrateWithTangent(z0, T, beta, vr, 0, 0, zT, mr));
+  PetscCall(flow.IntegrateWithTangent(z0, T, beta, vi, 0, 0, zT, mi));
+  // (mr + i mi) - inv (vr + i vi)
+  PetscCall(VecAXPBYPCZ(mr, -inv.real(), inv.imag(), 1.0, vr, vi));
+  PetscCall(VecAXPBYPCZ(mi, -inv.imag(), -inv.real(), 1.0, vr, vi));
+  PetscCall(VecCopy(mr, vr));
+  PetscCall(VecCopy(mi, vi));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, const FloquetMfOptions &o, LeadingMultipliers *r,
-                              std::vector<OwnedVec> *warm, Vec dz0)
+                              std::vector<OwnedVec> *warm, Vec dz0, Vec lead_re, Vec lead_im)
 {
   MonodromyShell shell;
   OwnedEPS eps;
@@ -540,6 +597,7 @@ PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal
   PetscCall(DistinctEigenvalues(shell, z0, o.nev, critical, defl, init, &eps, &seen, &first, &tol));
   PetscCall(AcceptMultipliers(shell, eps, z0, seen, first, tol, o, r, &kept));
   r->products = shell.Products();
+  if (lead_re && lead_im) PetscCall(LeadingVector(flow, z0, T, beta, eps, *r, kept, critical, lead_re, lead_im));
   if (warm) { // this orbit's eigenvectors (real and imaginary parts, one copy per pair) start the next solve
     warm->clear();
     for (PetscInt i : kept) {

@@ -106,8 +106,11 @@ struct LeadingMultipliers {
 // the initial Krylov space; replaced by this orbit's. dz0 (optional): the
 // state part of the family tangent at this orbit; with -floquet_mf_deflate the
 // trivial pair is deflated and the nev multipliers returned are nontrivial.
+// lead_re, lead_im (optional, state layout): the eigenvector of M for the
+// accepted multiplier of largest modulus (on the critical route the eigenvector
+// of B projected onto it: v = M x - x / mu); zero when none was accepted.
 PetscErrorCode FloquetLeading(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, const FloquetMfOptions &o, LeadingMultipliers *r,
-                              std::vector<OwnedVec> *warm = nullptr, Vec dz0 = nullptr);
+                              std::vector<OwnedVec> *warm = nullptr, Vec dz0 = nullptr, Vec lead_re = nullptr, Vec lead_im = nullptr);
 
 // The verdict of a matrix-free result at -floquet_tol tol: unstable when a
 // converged multiplier lies beyond 1 + max(tol, its resolution), otherwise
@@ -123,7 +126,10 @@ PetscInt MatrixFreeVerdict(const LeadingMultipliers &r, PetscReal tol);
 // critical route orders them. Only their eigenvectors are computed (inverse
 // iteration on the Hessenberg form), for the Krein signatures and the kind.
 // max_modulus: the largest nontrivial |mu|; verdict stable or unstable.
-PetscErrorCode FloquetLeadingDense(const Lattice &lat, Mat S, PetscInt nev, const FloquetOptions &o, LeadingMultipliers *r);
+// lead_re, lead_im (optional, state layout): the leading multiplier's
+// eigenvector when the orbit is unstable (for ConfirmGrowth); zero otherwise.
+PetscErrorCode FloquetLeadingDense(const Lattice &lat, Mat S, PetscInt nev, const FloquetOptions &o, LeadingMultipliers *r, Vec lead_re = nullptr,
+                                   Vec lead_im = nullptr);
 // Refuses the dense route's monodromy (2N <= o.dense_max: 2N x 2N on rank 0)
 // where it would not fit in memory; FloquetLeadingDense checks it, a study before any set-up.
 PetscErrorCode CheckDenseMonodromyMemory(MPI_Comm comm, PetscInt N, const FloquetMfOptions &o);
@@ -138,6 +144,7 @@ struct LeadingPairs {
   std::vector<PetscReal> edge;
   PetscReal max_modulus = 0;
   PetscInt instability = 0;
+  std::vector<PetscReal> lead_re, lead_im; // unstable: the leading pair's eigenvector in PETSc state order (else empty)
 };
 PetscErrorCode DenseLeadingPairs(PetscInt n, PetscReal *a, PetscInt nev, const FloquetOptions &o, const std::vector<PetscInt> &uidx,
                                  const std::vector<PetscInt> &vidx, PetscInt iface, LeadingPairs *out);

@@ -1,23 +1,9 @@
 #include "stability/verdict.hpp"
-#include "core/option_table.hpp"
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 namespace nltopo {
-
-static const auto &kVerdictTable = DeclareOptionTable<VerdictOptions>(
-    "floquet_confirm_", "Confirmation of unstable Floquet verdicts (integrate the eigenvector k periods)", [](OptionTable<VerdictOptions> &t) {
-      t.Int("periods", &VerdictOptions::confirm_periods, Closed(1, 100000),
-            "Periods k the unstable eigenvector is integrated to confirm |M^k v| = |mu|^k |v| (2k tangent integrations for a complex pair)")
-          .Real("rtol", &VerdictOptions::confirm_rtol, Open(0, 1), "The measured growth rate per period must match ln|mu| to this relative tolerance");
-    });
-
-PetscErrorCode VerdictOptionsFromOptions(MPI_Comm comm, VerdictOptions *o)
-{
-  PetscFunctionBeginUser;
-  PetscCall(kVerdictTable.Read(comm, o));
-  PetscFunctionReturn(0);
-}
 
 const char *VerdictName(Verdict v)
 {
@@ -29,6 +15,33 @@ const char *VerdictName(Verdict v)
   case Verdict::Unresolved: return "unresolved";
   }
   return "unresolved";
+}
+
+static OrbitVerdict Make(Verdict code, PetscReal bound, const std::string &reason)
+{
+  OrbitVerdict v;
+  v.code = code, v.bound = bound, v.reason = reason;
+  return v;
+}
+OrbitVerdict StableVerdict(PetscReal tol, const std::string &reason) { return Make(Verdict::Stable, tol, reason); }
+OrbitVerdict StableToVerdict(PetscReal delta, const std::string &reason) { return Make(Verdict::StableTo, delta, reason); }
+OrbitVerdict UnresolvedVerdict(PetscReal bound, const std::string &reason) { return Make(Verdict::Unresolved, bound, reason); }
+
+std::string VerdictLabel(const OrbitVerdict &v)
+{
+  static const char *cls[] = {"-", "B-B", "B-E", "E-E"};
+  char b[160];
+  switch (v.code) {
+  case Verdict::UnstableLocalized:
+  case Verdict::UnstableExtended:
+    std::snprintf(b, sizeof b, "%s(|mu| = %.7f, %s, e-folding %.3g periods)", VerdictName(v.code), (double)std::hypot(v.mu_re, v.mu_im),
+                  cls[v.cls >= 0 && v.cls <= 3 ? v.cls : 0], (double)v.efold);
+    break;
+  case Verdict::Stable: std::snprintf(b, sizeof b, "stable(|mu| <= 1 + %.1e)", (double)v.bound); break;
+  case Verdict::StableTo: std::snprintf(b, sizeof b, "stable-to(%.1e)", (double)v.bound); break;
+  default: std::snprintf(b, sizeof b, "unresolved(bound %.1e)", (double)v.bound); break;
+  }
+  return b;
 }
 
 OrbitVerdict UnstableVerdict(std::complex<PetscReal> mu, PetscInt cls, const std::string &reason)
@@ -55,7 +68,7 @@ static PetscErrorCode PairNorm(Vec x, Vec y, PetscReal *n)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ConfirmGrowth(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, Vec vr, Vec vi, const VerdictOptions &o, OrbitVerdict *v)
+PetscErrorCode ConfirmGrowth(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, Vec vr, Vec vi, const FloquetOptions &o, OrbitVerdict *v)
 {
   OwnedVec x, y, w, zT;
   PetscReal n0, nk;
@@ -88,7 +101,11 @@ PetscErrorCode ConfirmGrowth(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal 
       << " per period where ln|mu| = " << expect << " (-floquet_confirm_rtol " << o.confirm_rtol << "); " << v->reason;
     v->reason = s.str();
     v->code = Verdict::Unresolved; // bound stays |mu| - 1: growth this large is neither shown nor excluded
-    v->efold = PETSC_INFINITY;
+    v->efold = std::numeric_limits<PetscReal>::infinity();
+  } else {
+    std::ostringstream s;
+    s << v->reason << "; confirmed: the eigenvector grew at " << rate << " per period over " << o.confirm_periods << " periods (ln|mu| = " << expect << ")";
+    v->reason = s.str();
   }
   PetscFunctionReturn(0);
 }

@@ -12,6 +12,7 @@
 // (ConfirmGrowth); a failed confirmation makes the orbit unresolved.
 #include "orbits/flow.hpp"
 #include "stability/floquet.hpp"
+#include <limits>
 #include <string>
 
 namespace nltopo {
@@ -24,23 +25,24 @@ struct OrbitVerdict {
   Verdict code = Verdict::Unresolved;
   // stable: -floquet_tol; stable-to: delta; unstable-*: |mu| - 1; unresolved:
   // the largest |mu| - 1 the route could not exclude (+inf when it has no bound).
-  PetscReal bound = PETSC_INFINITY;
+  PetscReal bound = std::numeric_limits<PetscReal>::infinity();
   PetscInt cls = 0;               // unstable-*: the eigenvector's class (Localisation: 1 B-B, 2 B-E, 3 E-E); 0 otherwise
   PetscReal mu_re = 0, mu_im = 0; // unstable-*: the multiplier (|mu| > 1 member, upper half plane)
-  PetscReal efold = PETSC_INFINITY; // unstable-*: e-folding time of the growth in periods, 1 / ln|mu|
+  PetscReal efold = std::numeric_limits<PetscReal>::infinity(); // unstable-*: e-folding time of the growth in periods, 1 / ln|mu|
   PetscReal confirmed_rate = 0;     // unstable-*: ln(|M^k v| / |v|) / k measured by ConfirmGrowth
   std::string reason;               // one line: how the route reached the verdict
 };
 
-struct VerdictOptions {
-  PetscInt confirm_periods = 20;   // k of the confirmation (-floquet_confirm_periods)
-  PetscReal confirm_rtol = 0.1;    // |rate - ln|mu|| <= rtol ln|mu| confirms (-floquet_confirm_rtol)
-};
-PetscErrorCode VerdictOptionsFromOptions(MPI_Comm comm, VerdictOptions *o);
-
 // Whether an eigenvector with edge share w carries weight at the interface:
 // its class (Localisation) is B-E or E-E, i.e. w >= 1 - -floquet_edge_weight.
 inline bool Localised(const FloquetOptions &o, PetscReal w) { return Localisation(o, w) >= 2; }
+
+// stable (the dense route) at -floquet_tol tol; stable-to(delta); unresolved(reason, bound).
+OrbitVerdict StableVerdict(PetscReal tol, const std::string &reason);
+OrbitVerdict StableToVerdict(PetscReal delta, const std::string &reason);
+OrbitVerdict UnresolvedVerdict(PetscReal bound, const std::string &reason);
+// One line: "unstable-localized(|mu| = 1.0042360, B-E, e-folding 237 periods)", "stable-to(1.0e-03)", ...
+std::string VerdictLabel(const OrbitVerdict &v);
 
 // An unstable verdict for multiplier mu with eigenvector class cls, before confirmation.
 OrbitVerdict UnstableVerdict(std::complex<PetscReal> mu, PetscInt cls, const std::string &reason);
@@ -48,7 +50,8 @@ OrbitVerdict UnstableVerdict(std::complex<PetscReal> mu, PetscInt cls, const std
 // Confirms an unstable verdict: integrates v = vr + i vi (state layout; vi
 // may be null for a real multiplier) k periods with the tangent flow at the
 // orbit (z0, T, beta) and compares ln(|M^k v| / |v|) / k with ln|mu|. A
-// failure turns the verdict into unresolved, naming both rates. Collective.
-PetscErrorCode ConfirmGrowth(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, Vec vr, Vec vi, const VerdictOptions &o, OrbitVerdict *v);
+// failure turns the verdict into unresolved, naming both rates. k and the
+// tolerance: -floquet_confirm_periods, -floquet_confirm_rtol. Collective.
+PetscErrorCode ConfirmGrowth(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, Vec vr, Vec vi, const FloquetOptions &o, OrbitVerdict *v);
 
 } // namespace nltopo

@@ -20,6 +20,7 @@ struct Cells {
   std::vector<PetscReal> *reals = nullptr;
   std::vector<PetscInt> *ints = nullptr; // written as the schema's type (newton_its: real)
   PetscReal *scalar = nullptr;           // a one-value dataset
+  std::vector<std::string> *strings = nullptr;
 };
 struct AttrValue {
   PetscReal r = 0;
@@ -30,6 +31,7 @@ struct AttrValue {
 enum : unsigned {
   kRank0 = 1,     // resume: kept on rank 0 only (not broadcast)
   kStepState = 2, // written once there are points; resume: read if present (files of older versions lack it)
+  kInfOk = 4,     // resume: +-inf is a value a run writes (a verdict's bound or e-folding time)
 };
 
 // One field of the schema and where BranchRecord keeps it: a dataset (data,
@@ -56,6 +58,10 @@ const Column kColumns[] = {
   {"det_error", 0, [](BranchRecord &r) { return Cells{&r.f.det_error}; }, nullptr},
   {"stable", 0, [](BranchRecord &r) { return Cells{nullptr, &r.f.stable}; }, nullptr},
   {"instability", 0, [](BranchRecord &r) { return Cells{nullptr, &r.f.instability}; }, nullptr},
+  {"verdict", 0, [](BranchRecord &r) { return Cells{nullptr, &r.f.verdict}; }, nullptr},
+  {"verdict_bound", kInfOk, [](BranchRecord &r) { return Cells{&r.f.verdict_bound}; }, nullptr},
+  {"verdict_efold", kInfOk, [](BranchRecord &r) { return Cells{&r.f.verdict_efold}; }, nullptr},
+  {"verdict_reason", 0, [](BranchRecord &r) { return Cells{nullptr, nullptr, nullptr, &r.f.verdict_reason}; }, nullptr},
   {"linear_omega", 0, nullptr, [](const BranchRecord &r, AttrValue *a) { a->r = r.omega; }},
   {"parent", 0, nullptr, [](const BranchRecord &r, AttrValue *a) { a->s = r.parent; }},
   {"period_multiple", 0, nullptr, [](const BranchRecord &r, AttrValue *a) { a->i = r.period_multiple; }},
@@ -191,10 +197,11 @@ PetscErrorCode WriteEvents(PetscViewer v, const BranchRecord &r, PetscInt n2)
 // The first value of x that a stored resume state may not hold (x.size() if
 // none): anything not finite, except NaN in a Floquet column (nan_ok), where it
 // means "not computed" (outputs.md). Counts (ints) must also fit an int.
-size_t FirstInvalid(const std::vector<PetscReal> &x, bool nan_ok, bool count)
+size_t FirstInvalid(const std::vector<PetscReal> &x, bool nan_ok, bool count, bool inf_ok = false)
 {
   for (size_t i = 0; i < x.size(); i++) {
     if (nan_ok && std::isnan(x[i])) continue;
+    if (inf_ok && std::isinf(x[i])) continue;
     if (!std::isfinite(x[i]) || (count && std::abs(x[i]) > (PetscReal)PETSC_MAX_INT)) return i;
   }
   return x.size();
@@ -220,9 +227,13 @@ PetscErrorCode ReadBranchColumns(const std::string &file, const std::string &g, 
       PetscCall(ReadInts(file, path.c_str(), d.ints));
       continue;
     }
+    if (d.strings) {
+      PetscCall(ReadStrings(file, path.c_str(), d.strings));
+      continue;
+    }
     std::vector<PetscReal> x;
     PetscCall(ReadDoubles(file, path.c_str(), &x));
-    const size_t bad = FirstInvalid(x, floquet, d.ints != nullptr);
+    const size_t bad = FirstInvalid(x, floquet, d.ints != nullptr, (c->flags & kInfOk) != 0);
     char v[32];
     if (bad < x.size()) std::snprintf(v, sizeof v, "%g", (double)x[bad]); // (PETSc's %g would print "nan.")
     PetscCheck(bad == x.size(), PETSC_COMM_SELF, PETSC_ERR_USER,
@@ -289,7 +300,8 @@ PetscErrorCode WriteRecord(PetscViewer v, const BranchRecord &r, FloquetKind fk,
     if ((c->flags & kStepState) && !np) continue;              // where the continuation stands: what -cont_resume needs to go on bit for bit
     const Cells d = DataOf(*c, const_cast<BranchRecord &>(r)); // the accessors only point, the record is not changed
     const PetscInt row = RowLength(fd->shape, n2, nev);
-    if (d.scalar) PetscCall(WriteArray(v, gc, fd->name, std::vector<PetscReal>{*d.scalar}));
+    if (d.strings) PetscCall(WriteStringArray(v, gc, fd->name, *d.strings));
+    else if (d.scalar) PetscCall(WriteArray(v, gc, fd->name, std::vector<PetscReal>{*d.scalar}));
     else if (d.ints && fd->type == FieldType::Int) PetscCall(WriteIntArray(v, gc, fd->name, *d.ints, row ? row : 1, !std::strcmp(fd->shape, "npts x nev")));
     else {
       const std::vector<PetscReal> conv = d.ints ? std::vector<PetscReal>(d.ints->begin(), d.ints->end()) : std::vector<PetscReal>();
@@ -356,8 +368,14 @@ PetscErrorCode ReadResume(MPI_Comm comm, const std::string &file, const std::str
       const Cells d = DataOf(*c, rec);
       const size_t n = np * (size_t)std::max<PetscInt>(1, RowLength(fd->shape, n2, nev));
       // a missing -floquet_mf verdict or class is "not decided" / "not computed", never 0 (unstable / stable)
-      const PetscInt unknown = fk == FloquetKind::MatrixFree && (!std::strcmp(fd->name, "stable") || !std::strcmp(fd->name, "instability")) ? -1 : 0;
-      if (d.reals) {
+      const PetscInt unknown = (fk == FloquetKind::MatrixFree && (!std::strcmp(fd->name, "stable") || !std::strcmp(fd->name, "instability"))) ||
+                                       !std::strcmp(fd->name, "verdict")
+                                   ? -1
+                                   : 0;
+      if (d.strings) {
+        if (!comparable) d.strings->clear();
+        d.strings->resize(n, "not computed (resumed from a file written before verdicts)");
+      } else if (d.reals) {
         if (!comparable) d.reals->clear();
         d.reals->resize(n, NAN);
       } else {
@@ -380,6 +398,7 @@ PetscErrorCode ReadResume(MPI_Comm comm, const std::string &file, const std::str
     const Cells d = DataOf(*c, rec);
     if (d.reals) PetscCall(BroadcastFromRoot(comm, MPIU_REAL, d.reals));
     if (d.ints) PetscCall(BroadcastFromRoot(comm, MPIU_INT, d.ints));
+    if (d.strings) PetscCall(BroadcastStrings(comm, d.strings));
   }
   *b = std::move(rb);
   *f = std::move(rf);

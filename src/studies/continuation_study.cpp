@@ -271,7 +271,7 @@ private:
     d.seconds = b1 - cur.b0;
     d.located = rec.located, d.events = std::move(rec.events);
     d.bif_tol = rec.bif_tol, d.bif_seconds = rec.bif_seconds, d.bif_probes = rec.bif_probes;
-    if (fk_ != FloquetKind::None) PetscCall(PrintFloquetSummary(comm_, label, d.f, flo_.tol, fk_ == FloquetKind::MatrixFree ? mf_hook_->Route() : nullptr));
+    if (fk_ != FloquetKind::None) PetscCall(PrintFloquetSummary(comm_, label, d.f, flo_.tol, fk_ == FloquetKind::MatrixFree ? mf_hook_->Route() : nullptr, &d.b.energy));
     PetscCall(
         PetscPrintf(comm_, "  [%s] %.2f s, %.3f s per new point\n", label.c_str(), (double)(b1 - cur.b0), (double)(b1 - cur.b0) / std::max<size_t>(nnew, 1)));
     PetscFunctionReturn(0);

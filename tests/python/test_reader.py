@@ -215,6 +215,18 @@ def test_branch_floquet_and_stability_verdicts(runs):
     assert np.all(b.instability[b.stable == 1] == 0) and np.all(b.instability[b.stable == 0] > 0)
     assert set(b.stable_name) <= {"stable", "unstable"} and "unstable" in set(b.stable_name)
     assert list(b.instability_name) == [ncodes.short(b.codes("instability")[int(c)]) for c in b.instability]
+    # the verdicts: the dense route says stable or unstable-* (confirmed), never stable-to; the bound,
+    # e-folding time and class agree with the multipliers; every orbit has a reason
+    v = list(b.verdict_name)
+    assert set(v) <= {"stable", "unstable-localized", "unstable-extended", "unresolved"}
+    assert [x == "stable" for x in v] == list(b.stable == 1)
+    unstable = np.array([x.startswith("unstable") for x in v])
+    np.testing.assert_allclose(b.verdict_bound[unstable], b.max_modulus[unstable] - 1, rtol=1e-9)
+    np.testing.assert_allclose(b.verdict_efold[unstable], 1 / np.log(b.max_modulus[unstable]), rtol=1e-9)
+    assert np.all(np.isinf(b.verdict_efold[~unstable])) and np.all(b.verdict_bound[b.stable == 1] == tol)
+    assert [x == "unstable-localized" for x in v] == list(unstable & (b.instability >= 2))
+    assert all(len(s) > 20 for s in b.verdict_reason)
+    assert all("confirmed" in s for s, u in zip(b.verdict_reason, unstable) if u)
 
 
 def test_events_decoded(runs):
@@ -281,6 +293,11 @@ def test_matrix_free_floquet(runs):
     assert set(b.stable) <= {-1, 0} and set(b.stable_name) <= {"not decided", "unstable"}
     assert set(b.instability_name) == {"not computed"}
     assert b.floquet_undecided == np.count_nonzero(b.stable == -1)
+    # the critical route bounds nothing on its own: unresolved with an infinite bound, or unstable-* confirmed
+    v = b.verdict_name
+    assert set(v) <= {"unresolved", "unstable-localized", "unstable-extended"}
+    assert np.all(np.isinf(b.verdict_bound[v == "unresolved"]))
+    assert all("quadruplet" in s or "converged" in s for s, x in zip(b.verdict_reason, v) if x == "unresolved")
 
 
 # ---------------------------------------------------------------------------
