@@ -39,6 +39,7 @@ FORMAT0 = {
     ("/continuation/<branch>/bifurcations", "krein"): KREIN,
     ("/stability/case<k>", "floquet_stable"): YES_NO,
     ("/stability/case<k>", "instability"): INSTABILITY,
+    ("/stability/case<k>", "verdict"): VERDICT,
     ("/stability/case<k>", "persisted"): YES_NO,
     ("/stability/case<k>", "omega_replaced"): YES_NO,
     ("/sweep", "reached"): YES_NO,

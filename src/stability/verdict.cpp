@@ -110,4 +110,27 @@ PetscErrorCode ConfirmGrowth(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal 
   PetscFunctionReturn(0);
 }
 
+// The dense route's verdict: stable, or unstable with the most unstable eigenvector's class, confirmed.
+PetscErrorCode DenseVerdict(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, const FloquetOptions &o, bool stable, PetscReal max_modulus,
+                                   std::complex<PetscReal> mu, PetscInt cls, Vec vr, Vec vi, OrbitVerdict *v)
+{
+  char b[200];
+  PetscFunctionBeginUser;
+  if (stable) {
+    std::snprintf(b, sizeof b, "dense monodromy: every multiplier within 1 + %.1e (max |mu| - 1 = %.1e)", (double)o.tol, (double)(max_modulus - 1));
+    *v = StableVerdict(o.tol, b);
+    PetscFunctionReturn(0);
+  }
+  if (cls < 1) { // no eigenvector (inverse iteration failed): the class is unknown and nothing can be confirmed
+    std::snprintf(b, sizeof b, "dense monodromy: |mu| = %.7f beyond 1 + %.1e, but its eigenvector was not found", (double)std::abs(mu), (double)o.tol);
+    *v = UnresolvedVerdict(std::abs(mu) - 1, b);
+    PetscFunctionReturn(0);
+  }
+  std::snprintf(b, sizeof b, "dense monodromy: |mu| = %.7f beyond 1 + %.1e, eigenvector edge class %s", (double)std::abs(mu), (double)o.tol,
+                cls == 3 ? "E-E" : cls == 2 ? "B-E" : "B-B");
+  *v = UnstableVerdict(mu, cls, b);
+  PetscCall(ConfirmGrowth(flow, z0, T, beta, vr, vi, o, v));
+  PetscFunctionReturn(0);
+}
+
 } // namespace nltopo

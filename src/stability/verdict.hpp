@@ -54,4 +54,11 @@ OrbitVerdict UnstableVerdict(std::complex<PetscReal> mu, PetscInt cls, const std
 // tolerance: -floquet_confirm_periods, -floquet_confirm_rtol. Collective.
 PetscErrorCode ConfirmGrowth(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, Vec vr, Vec vi, const FloquetOptions &o, OrbitVerdict *v);
 
+// The dense route's verdict (all 2N multipliers known): stable within
+// -floquet_tol, else unstable-* for the most unstable multiplier mu with its
+// eigenvector's class cls (< 1: no eigenvector, unresolved), confirmed by
+// ConfirmGrowth on its eigenvector (vr, vi). Collective.
+PetscErrorCode DenseVerdict(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, const FloquetOptions &o, bool stable, PetscReal max_modulus,
+                            std::complex<PetscReal> mu, PetscInt cls, Vec vr, Vec vi, OrbitVerdict *v);
+
 } // namespace nltopo

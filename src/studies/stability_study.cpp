@@ -12,6 +12,7 @@
 #include "io/output.hpp"
 #include "orbits/continuation.hpp"
 #include "stability/floquet.hpp"
+#include "stability/verdict.hpp"
 #include "studies/registry.hpp"
 #include "studies/study.hpp"
 #include "timeint/simulation.hpp"
@@ -138,6 +139,7 @@ PetscErrorCode StabilityOptionsFromOptions(MPI_Comm comm, StabilityOptions *o)
 struct StabilityCase {
   std::vector<PetscReal> t, corr, mcr, energy; // per window (Persistence)
   FloquetResult fr;
+  OrbitVerdict verdict; // from the dense route, confirmed (stability/verdict.hpp)
   PetscReal omega_target = 0, period = 0, orbit_energy = 0, tail_min = 1, energy_drift = 0;
   bool persisted = false;
   PetscInt omega_replaced = 0; // 1: no orbit solved at omega_target; the branch's first orbit stands for it (RunCase)
@@ -229,6 +231,10 @@ protected:
       PetscCall(WriteAttr(v, g.c_str(), "max_modulus", k.fr.max_modulus));
       PetscCall(WriteAttr(v, g.c_str(), "floquet_stable", (PetscInt)k.fr.stable));
       PetscCall(WriteAttr(v, g.c_str(), "instability", k.fr.instability));
+      PetscCall(WriteAttr(v, g.c_str(), "verdict", (PetscInt)k.verdict.code));
+      PetscCall(WriteAttr(v, g.c_str(), "verdict_bound", k.verdict.bound));
+      PetscCall(WriteAttr(v, g.c_str(), "verdict_efold", k.verdict.efold));
+      PetscCall(WriteAttr(v, g.c_str(), "verdict_reason", k.verdict.reason.c_str()));
       PetscCall(WriteAttr(v, g.c_str(), "persisted", (PetscInt)k.persisted));
       PetscCall(WriteAttr(v, g.c_str(), "corr_tail_min", k.tail_min));
       PetscCall(WriteAttr(v, g.c_str(), "energy_drift", k.energy_drift));
@@ -294,7 +300,14 @@ private:
     EnergyParts e;
     PetscCall(nnm_.fx.Energy(z_, &e));
     PetscCall(nnm_.flow.IntegrateWithMonodromy(z_, T, nnm_.flow.FloquetBeta(beta), zT_, S_));
-    PetscCall(FloquetAnalysis(nnm_.lat, S_, flo_, &k->fr));
+    {
+      OwnedVec vr, vi;
+      PetscCall(VecDuplicate(z_, vr.out()));
+      PetscCall(VecDuplicate(z_, vi.out()));
+      PetscCall(FloquetAnalysis(nnm_.lat, S_, flo_, &k->fr, nullptr, nullptr, -1, vr, vi));
+      PetscCall(DenseVerdict(nnm_.flow, z_, T, nnm_.flow.FloquetBeta(beta), flo_, k->fr.stable, k->fr.max_modulus, {k->fr.worst_re, k->fr.worst_im},
+                             k->fr.instability, vr, vi, &k->verdict));
+    }
     OwnedVec zp;
     PetscCall(VecDuplicate(z_, zp.out()));
     PetscCall(PerturbState(nnm_.lat, z_, st_.eps, st_.seed, c, zp));
@@ -312,7 +325,7 @@ private:
     PetscCall(PetscPrintf(comm_,
                           "nltopo stability: omega %.4f (E = %.4g): Floquet max |mu| = %.6f (%s), %" PetscInt_FMT
                           " periods: shape correlation %.3f at the end (min %.3f over the last 10 %%), MCR %.3f -> %.3f: %s\n",
-                          (double)(2 * PETSC_PI / T), (double)e.Total(), (double)k->fr.max_modulus, k->fr.stable ? "stable" : "unstable", st_.periods,
+                          (double)(2 * PETSC_PI / T), (double)e.Total(), (double)k->fr.max_modulus, VerdictLabel(k->verdict).c_str(), st_.periods,
                           (double)sink.corr_.back(), (double)k->tail_min, (double)sink.mcr_.front(), (double)sink.mcr_.back(),
                           k->persisted ? "the standing wave persisted" : "the standing wave did NOT persist"));
     k->omega_target = wt;
@@ -359,6 +372,10 @@ StudyContract StabilityStudyContract()
              {"max_modulus", A, R, "scalar", "1", "largest |mu|"},
              {"floquet_stable", A, I, "scalar", "1", "1 if Floquet-stable", codes::kYesNo},
              {"instability", A, I, "scalar", "1", "0 none, 1 B-B, 2 B-E, 3 E-E", codes::kInstability},
+             {"verdict", A, I, "scalar", "1", "the orbit's stability verdict, dense route (docs/long-lattices.md, Verdicts)", codes::kVerdict},
+             {"verdict_bound", A, R, "scalar", "1", "stable: -floquet_tol; unstable-*: |mu| - 1 of the confirmed multiplier; unresolved: |mu| - 1 not confirmed"},
+             {"verdict_efold", A, R, "scalar", "periods", "unstable-*: e-folding time of the growth, 1 / ln|mu|, in periods; inf otherwise"},
+             {"verdict_reason", A, S, "scalar", "1", "how the verdict was reached, one line"},
              {"persisted", A, I, "scalar", "1", "1 if the shape persisted", codes::kYesNo},
              {"corr_tail_min", A, R, "scalar", "1", "min shape correlation over the last 10 %"},
              {"energy_drift", A, R, "scalar", "1", "relative energy drift"}}}}};

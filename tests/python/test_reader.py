@@ -432,6 +432,11 @@ def test_stability(runs):
     # the linear limit is stable; omega 2.5 (E ~ 90) past the E-E instability (tests/scenes/stability.sh)
     assert cases[0].floquet_stable == 1 and cases[0].instability_name == "none"
     assert cases[1].floquet_stable == 0 and cases[1].instability_name == "E-E"
+    # the verdicts: stable at -floquet_tol; past it unstable-localized (E-E), confirmed, e-folding 1/ln|mu|
+    assert cases[0].decode("verdict") == "stable" and cases[0].verdict_bound == float(r.effective_options["floquet_tol"])
+    assert cases[1].decode("verdict") == "unstable-localized" and "confirmed" in cases[1].verdict_reason
+    assert cases[1].verdict_bound == pytest.approx(cases[1].max_modulus - 1, rel=1e-9)
+    assert cases[1].verdict_efold == pytest.approx(1 / np.log(cases[1].max_modulus), rel=1e-9)
 
 
 def test_workprecision(runs):
