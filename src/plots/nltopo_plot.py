@@ -65,13 +65,24 @@ def stretches(E, w, mask):
     return np.exp(np.array(x, float)), np.array(y, float), at
 
 
+# the verdicts that are not an unstable class (stability_class): (label, colour, marker)
+VERDICT_MARK = {-3: ("stable-to(delta): nothing beyond 1 + delta", "tab:green", "v"),
+                -4: ("unresolved (verdict_reason says why)", "0.45", "d")}
+
+
 def stability_class(g):
-    """Per orbit: 0 stable, 1-3 the unstable class, -1 unstable without a class, -2 not decided or not computed."""
+    """Per orbit: 0 stable, 1-3 the unstable class, -1 unstable without a class, -2 not decided or not computed,
+    and from the verdicts (when written): -3 stable-to(delta), -4 unresolved."""
     if "stable" not in g:
         return np.full(len(g.energy), -2)
     st = np.asarray(g.stable).astype(int)
     cls = np.asarray(g.instability).astype(int) if "instability" in g else np.full(len(st), -1)
-    return np.where(st == 1, 0, np.where(st == 0, np.where(cls > 0, cls, -1), -2))
+    old = np.where(st == 1, 0, np.where(st == 0, np.where(cls > 0, cls, -1), -2))
+    if "verdict" not in g:
+        return old
+    v = np.asarray(g.verdict).astype(int)
+    unstable = np.where(cls > 0, cls, -1)
+    return np.select([v == 0, (v == 1) | (v == 2), v == 3, v == 4], [0, unstable, -3, -4], old)
 
 
 def parser(doc):

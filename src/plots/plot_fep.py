@@ -6,7 +6,9 @@
     stretches of each branch as segments coloured by class (the paper's
     Fig. 4b): B-B, which the paper calls effectively stable, thin orange;
     B-E purple and E-E red, thick; modal interactions (x); lettered orbits of
-    the insulated branch; the located bifurcations (-cont_bifurcations)
+    the insulated branch; orbits whose verdict is stable-to(delta) (green
+    triangles) or unresolved (grey diamonds), from a long-lattice route;
+    the located bifurcations (-cont_bifurcations)
     numbered 1, 2, ... as AUTO labels them, each a circle coloured by its type
     (LP fold, BP branch point, PD period doubling, HH+/HH- Hamiltonian-Hopf
     onset/end, KC a Krein collision that passes, R p/q an internal resonance)
@@ -114,6 +116,11 @@ def draw_branches(ax, branches, colour, ylim):
                 ax.plot(np.where(keep, x, np.nan), np.where(keep, y, np.nan), "-", color=col, lw=lw, alpha=0.85, solid_capstyle="butt",
                         zorder=2 if not thin else 4, marker="o" if thin else None, ms=5, mfc="none", mec=col, markevery=at if thin else None,
                         label=label if label not in seen else "_" + label, gid=f"stretch {c}")
+        for c, (label, col, mk) in nltopo_plot.VERDICT_MARK.items():  # stable-to and unresolved orbits
+            sel = (cls == c) & inside
+            if sel.any():
+                seen = {l.get_label() for l in ax.get_lines()}
+                ax.plot(E[sel], w[sel], mk, ms=5, color=col, zorder=4, label=label if label not in seen else "_" + label, gid=f"verdict {c}")
         inter = np.asarray(g.interactions).astype(int) if "interactions" in g else np.zeros(0, int)
         inter = inter[(w[inter] >= lo) & (w[inter] <= hi)] if len(inter) else inter
         if len(inter):

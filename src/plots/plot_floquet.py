@@ -3,9 +3,11 @@
 insulated branch by default), from -study continuation -floquet:
 (a) the arguments of the Floquet multipliers against omega, coloured by their
     Krein signature (+1, -1, 0: real, or off the unit circle);
-(b) every |mu| against omega, coloured by the orbit's instability class
-    (stable, B-B, B-E, E-E: the eigenvector of its largest multiplier);
-(c) max |mu| - 1 along the branch (log), coloured by class;
+(b) every |mu| against omega, coloured by the orbit's verdict (stable;
+    unstable-extended B-B; unstable-localized B-E or E-E: the eigenvector
+    of its largest multiplier; stable-to(delta); unresolved);
+(c) max |mu| - 1 along the branch (log), coloured by verdict, with the
+    delta of each stable-to(delta) orbit;
 (d) the branch's FEP coloured by class, with the orbits of a -study stability
     file (the 30,000-period runs, Fig. 4c) marked when one is given.
 A -floquet_mf branch holds the leading pairs only: with its dense route
@@ -45,7 +47,10 @@ def figure(run, cases=None, branch="insulated"):
     # -floquet_mf written matrix-free (or before its verdicts, without a route): no classes or
     # signatures; stable 0 unstable, -1 not decided (a Krein quadruplet is not excluded)
     mf = "floquet_products" in g and route != "dense"
-    if mf:
+    verdicts = "verdict" in g and np.all(np.asarray(g.verdict) >= 0)
+    if verdicts:  # the verdict of each orbit, unstable ones by class (nltopo_plot.stability_class)
+        cls = nltopo_plot.stability_class(g)
+    elif mf:
         cls = np.select([g.stable == 0], [-1], -2)
     else:
         cls = np.asarray(g.instability).astype(int)
@@ -53,6 +58,10 @@ def figure(run, cases=None, branch="insulated"):
     classes = dict(nltopo_plot.INSTABILITY)
     classes[-1] = ("unstable (kind not computed)", "tab:red")
     classes[-2] = ("not decided (matrix-free: a Krein quadruplet is not excluded)", "0.55")
+    if verdicts:
+        classes.update({1: ("unstable-extended B-B", "tab:orange"), 2: ("unstable-localized B-E", "tab:purple"), 3: ("unstable-localized E-E", "tab:red"),
+                        -3: (nltopo_plot.VERDICT_MARK[-3][0], nltopo_plot.VERDICT_MARK[-3][1]),
+                        -4: (nltopo_plot.VERDICT_MARK[-4][0], nltopo_plot.VERDICT_MARK[-4][1])})
     has_krein = "krein" in g and not mf
     if has_krein:
         fig, axes = plt.subplots(2, 2, figsize=(12.5, 9.5))
@@ -90,6 +99,8 @@ def figure(run, cases=None, branch="insulated"):
     a_mod.yaxis.set_minor_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
     a_mod.set(xlabel=r"$\omega$ (rad/time)", ylabel=r"|$\mu$|", title="(b) |Floquet multipliers| by instability class" if has_krein else "(a) |Floquet multipliers|")
     a_mod.legend(fontsize=7, loc="best", markerscale=2)
+    if verdicts and (cls == -3).any():  # what the long-lattice route resolved: nothing beyond 1 + delta
+        a_max.plot(w[cls == -3], np.asarray(g.verdict_bound)[cls == -3], "v", ms=5, mfc="none", color="tab:green", label="delta of stable-to(delta)")
     tol = float(run.options.get("floquet_tol", 1e-6))
     a_max.axhline(tol, color="k", ls=":", lw=0.8, label=f"-floquet_tol {tol:g}")
     a_max.set(yscale="log", xlabel=r"$\omega$ (rad/time)", ylabel=r"|max |$\mu$| - 1|", title=("(c)" if has_krein else "(b)") + " largest multiplier: distance from the circle")

@@ -42,9 +42,9 @@ grep -q "computed by the matrix-free route, this run would take the dense one" m
 $PY "$CHECKS/long_nnm.py" old_file_resumed
 $PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_fep.py" floquet.h5 floquet.png > /dev/null
 $PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_floquet.py" floquet.h5 multipliers.png > /dev/null
-# the figure tells the verdicts apart: matrix-free orbits are "not decided", the dense leading pairs have classes
+# the figure tells the verdicts apart: matrix-free orbits are "unresolved", the dense leading pairs' unstable ones have classes
 $PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_floquet.py" mf20.h5 mf20.png > mf20_plot.txt
-grep -qE "orbits by class: not decided \(matrix-free: a Krein quadruplet is not excluded\) [0-9]+$" mf20_plot.txt
+grep -qE "orbits by class: unresolved \(verdict_reason says why\) [0-9]+$" mf20_plot.txt
 $PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_floquet.py" lead20.h5 lead20.png > lead20_plot.txt
-grep -qE "orbits by class: stable [0-9]+, B-B 2, B-E 1$" lead20_plot.txt   # the three quadruplets (full analysis: B-E, B-B, B-B)
+grep -qE "orbits by class: stable [0-9]+, unstable-extended B-B 2, unstable-localized B-E 1$" lead20_plot.txt   # the three quadruplets (full analysis: B-E, B-B, B-B)
 test -s floquet.png
