@@ -108,6 +108,8 @@ struct StabilityOptions {
   std::vector<PetscReal> omegas{std::sqrt(3.0), 1.8245, 2.1876, 2.2654};
   PetscReal eps = 0.01, corr_min = 0.9;
   PetscInt periods = 30000, sample_periods = 10, seed = 1;
+  PetscInt growth_periods = 0;      // > 0: measure the growth along the unstable eigenvector over this many periods (MeasureGrowth)
+  PetscReal growth_eps = 1e-8;      // its perturbation, relative to the orbit's norm
 };
 
 const auto &kStabilityTable =
@@ -120,7 +122,12 @@ const auto &kStabilityTable =
           .Real("perturbation", &StabilityOptions::eps, RightOpen(0, 1), "Perturbation size relative to the orbit's norm (uniform random per entry)")
           .Int("seed", &StabilityOptions::seed, Closed(PETSC_MIN_INT, PETSC_MAX_INT), "Seed of the perturbation")
           .Real("corr_min", &StabilityOptions::corr_min, LeftOpen(0, 1),
-                "The standing wave persisted if its shape correlation stays above this over the last 10 % of the run");
+                "The standing wave persisted if its shape correlation stays above this over the last 10 % of the run")
+          .Int("growth_periods", &StabilityOptions::growth_periods, Closed(0, 1000000),
+               "An unstable orbit: integrate it and its perturbation along the unstable eigenvector this many periods and fit the growth rate "
+               "of their distance (0: off)")
+          .Real("growth_perturbation", &StabilityOptions::growth_eps, Open(0, 1e-2),
+                "Size of that perturbation relative to the orbit's norm (small: the fit uses the periods before the distance reaches 1e-3 of it)");
     });
 
 PetscErrorCode StabilityOptionsFromOptions(MPI_Comm comm, StabilityOptions *o)
@@ -135,11 +142,81 @@ PetscErrorCode StabilityOptionsFromOptions(MPI_Comm comm, StabilityOptions *o)
   PetscFunctionReturn(0);
 }
 
+// The state at every sample (one per period) of a reference run, and then
+// the distance of another run's samples from them.
+class TwinDistance : public SampleSink {
+public:
+  explicit TwinDistance(PetscInt n_local) : n_(n_local) {}
+  PetscErrorCode Sample(PetscReal, Vec z, const EnergyParts &) override
+  {
+    const PetscScalar *a;
+    PetscFunctionBeginUser;
+    PetscCall(VecGetArrayRead(z, &a));
+    if (recording_) ref_.insert(ref_.end(), a, a + n_);
+    else {
+      const size_t k = dist_.size();
+      PetscReal d = 0;
+      for (PetscInt i = 0; i < n_ && (k + 1) * n_ <= ref_.size(); i++) d += (a[i] - ref_[k * n_ + i]) * (a[i] - ref_[k * n_ + i]);
+      dist_.push_back(d); // local sum of squares: reduced by the caller
+    }
+    PetscCall(VecRestoreArrayRead(z, &a));
+    PetscFunctionReturn(0);
+  }
+  void StopRecording() { recording_ = false; }
+  std::vector<PetscReal> dist_;
+
+private:
+  PetscInt n_;
+  bool recording_ = true;
+  std::vector<PetscReal> ref_;
+};
+
+// The growth along the unstable eigenvector v of the orbit z (period T), by
+// direct simulation with the study's integrator (-sim_ts_*): the orbit and
+// z + eps |z| v / |v| run side by side for -stability_growth_periods periods,
+// and ln of their distance at each period is fitted by least squares in the
+// periods before it reaches 1e-3 |z| (the linear regime). Compared with the
+// Floquet rate ln|mu|: the same number if the verdict is right.
+PetscErrorCode MeasureGrowth(const EffectList &fx, const SimulationOptions &sim, Vec z, PetscReal T, Vec v, const StabilityOptions &st, PetscReal *rate,
+                             PetscInt *fitted)
+{
+  OwnedVec zp;
+  PetscReal nz, nv;
+  PetscInt nl;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetLocalSize(z, &nl));
+  PetscCall(VecNorm(z, NORM_2, &nz));
+  PetscCall(VecNorm(v, NORM_2, &nv));
+  PetscCall(VecDuplicate(z, zp.out()));
+  PetscCall(VecWAXPY(zp, st.growth_eps * nz / nv, v, z));
+  SimulationOptions run = sim;
+  run.t_final = st.growth_periods * T;
+  run.sample_dt = T;
+  TwinDistance twin(nl);
+  SimulationResult r;
+  PetscCall(Simulate(fx, run, z, &twin, &r));
+  twin.StopRecording();
+  PetscCall(Simulate(fx, run, zp, &twin, &r));
+  std::vector<PetscReal> d(twin.dist_.size());
+  PetscCall(MPIU_Allreduce(twin.dist_.data(), d.data(), (PetscMPIInt)d.size(), MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)z)));
+  PetscReal sx = 0, sy = 0, sxx = 0, sxy = 0;
+  PetscInt n = 0;
+  for (size_t k = 0; k < d.size() && std::sqrt(d[k]) < 1e-3 * nz; k++, n++) {
+    const PetscReal y = 0.5 * std::log(d[k]);
+    sx += k, sy += y, sxx += (PetscReal)k * k, sxy += k * y;
+  }
+  *fitted = n;
+  *rate = n > 2 ? (n * sxy - sx * sy) / (n * sxx - sx * sx) : NAN;
+  PetscFunctionReturn(0);
+}
+
 // One case's results: /stability/case<c>.
 struct StabilityCase {
   std::vector<PetscReal> t, corr, mcr, energy; // per window (Persistence)
   FloquetResult fr;
   OrbitVerdict verdict; // from the dense route, confirmed (stability/verdict.hpp)
+  PetscReal growth_rate = NAN; // -stability_growth_periods: the measured growth per period along the unstable eigenvector
+  PetscInt growth_fitted = 0;  // ... and the periods its fit used
   PetscReal omega_target = 0, period = 0, orbit_energy = 0, tail_min = 1, energy_drift = 0;
   bool persisted = false;
   PetscInt omega_replaced = 0; // 1: no orbit solved at omega_target; the branch's first orbit stands for it (RunCase)
@@ -235,6 +312,8 @@ protected:
       PetscCall(WriteAttr(v, g.c_str(), "verdict_bound", k.verdict.bound));
       PetscCall(WriteAttr(v, g.c_str(), "verdict_efold", k.verdict.efold));
       PetscCall(WriteAttr(v, g.c_str(), "verdict_reason", k.verdict.reason.c_str()));
+      PetscCall(WriteAttr(v, g.c_str(), "growth_rate", k.growth_rate));
+      PetscCall(WriteAttr(v, g.c_str(), "growth_periods_fitted", k.growth_fitted));
       PetscCall(WriteAttr(v, g.c_str(), "persisted", (PetscInt)k.persisted));
       PetscCall(WriteAttr(v, g.c_str(), "corr_tail_min", k.tail_min));
       PetscCall(WriteAttr(v, g.c_str(), "energy_drift", k.energy_drift));
@@ -307,6 +386,14 @@ private:
       PetscCall(FloquetAnalysis(nnm_.lat, S_, flo_, &k->fr, nullptr, nullptr, -1, vr, vi));
       PetscCall(DenseVerdict(nnm_.flow, z_, T, nnm_.flow.FloquetBeta(beta), flo_, k->fr.stable, k->fr.max_modulus, {k->fr.worst_re, k->fr.worst_im},
                              k->fr.instability, vr, vi, &k->verdict));
+      if (st_.growth_periods > 0 && !k->fr.stable) {
+        PetscCall(MeasureGrowth(nnm_.fx, sim_, z_, T, vr, st_, &k->growth_rate, &k->growth_fitted));
+        PetscCall(PetscPrintf(comm_,
+                              "nltopo stability: omega %.4f: growth along the unstable eigenvector by direct simulation: %.4e per period over %" PetscInt_FMT
+                              " periods; Floquet ln|mu| = %.4e (ratio %.4f)\n",
+                              (double)(2 * PETSC_PI / T), (double)k->growth_rate, k->growth_fitted, (double)std::log(k->fr.max_modulus),
+                              (double)(k->growth_rate / std::log(k->fr.max_modulus))));
+      }
     }
     OwnedVec zp;
     PetscCall(VecDuplicate(z_, zp.out()));
@@ -376,6 +463,10 @@ StudyContract StabilityStudyContract()
              {"verdict_bound", A, R, "scalar", "1", "stable: -floquet_tol; unstable-*: |mu| - 1 of the confirmed multiplier; unresolved: |mu| - 1 not confirmed"},
              {"verdict_efold", A, R, "scalar", "periods", "unstable-*: e-folding time of the growth, 1 / ln|mu|, in periods; inf otherwise"},
              {"verdict_reason", A, S, "scalar", "1", "how the verdict was reached, one line"},
+             {"growth_rate", A, R, "scalar", "1",
+              "-stability_growth_periods: ln of the distance growth per period of a perturbation along the unstable eigenvector, by direct simulation "
+              "(compare ln max_modulus); NaN when not measured"},
+             {"growth_periods_fitted", A, I, "scalar", "1", "periods the growth fit used (before the distance reached 1e-3 of the orbit's norm)"},
              {"persisted", A, I, "scalar", "1", "1 if the shape persisted", codes::kYesNo},
              {"corr_tail_min", A, R, "scalar", "1", "min shape correlation over the last 10 %"},
              {"energy_drift", A, R, "scalar", "1", "relative energy drift"}}}}};

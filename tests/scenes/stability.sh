@@ -4,10 +4,11 @@
 # Floquet-stable AND persist; omega = 2.5 (E ~ 270, past the E-E instability
 # that starts at omega 2.43) must be Floquet-unstable through a real multiplier,
 # its perturbation must grow at the Floquet rate, and the standing wave must
-# be lost within 3000 periods.
+# be lost within 3000 periods; a perturbation of 1e-8 along its unstable eigenvector, run
+# beside the orbit (-stability_growth_periods), grows at ln|mu| per period.
 source "$(dirname "$0")/common.bash"
 run1 -options_file "$SRC/options/stability.opts" -stability_omega 1.7320508075688772,2.2,2.5 -stability_periods 3000 \
-     -stability_sample_periods 1 -sim_progress 0 -output st.h5 | tee out.txt
+     -stability_sample_periods 1 -stability_growth_periods 40 -sim_progress 0 -output st.h5 | tee out.txt
 $PY "$CHECKS/stability.py" three_orbits
 $PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_stability.py" st.h5 st.png
 # Issue 34, class 8: a frequency between the linear one and the branch's first orbit
