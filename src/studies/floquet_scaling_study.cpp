@@ -164,7 +164,7 @@ private:
     PetscCall(BranchStart(s->lat, s->modes, so_.branch.c_str(), u, &omega, &label));
     FloquetMfHook hook(s->flow, flo_, fmo_);
     hook.Clear();
-    PetscCall(PetscPrintf(comm_, "  [%s, N = %" PetscInt_FMT "]", label.c_str(), s->lat.N()));
+    PetscCall(PetscPrintf(comm_, "  [%s, N = %" PetscInt_FMT "]\n", label.c_str(), s->lat.N()));
     PetscCall(hook.Announce());
     SizeRun r;
     r.cells = cells, r.N = s->lat.N();
