@@ -19,6 +19,8 @@ EVENT_KIND = ("1 energy fold; 2 branch point (+1); 3 period doubling (-1); 4 Kre
               "5 Hamiltonian-Hopf; 6 internal resonance")
 DIRECTION = "1 an instability begins along the branch (fold: E maximum); -1 it ends (fold: E minimum); 0 neither (a Krein pass)"
 PREDICTABLE = "1 predictable; 0 unpredictable (twin statistics); -1 not checked (no -sweep_mcr_tol)"
+SCALING_VERDICT = ("0 stable (no orbit of the window unstable at any N); 1 persists (p < -scaling_persist_exponent); 2 finite-size "
+                   "(p >= it); 3 undetermined (fewer than two N with an unstable orbit, or the threshold within one standard error of p)")
 
 # (group pattern, name) -> codes, for format 0. A pattern segment "<...>" or
 # "case<k>" stands for any name (the schema's convention).
@@ -36,6 +38,10 @@ FORMAT0 = {
     ("/stability/case<k>", "instability"): INSTABILITY,
     ("/stability/case<k>", "persisted"): YES_NO,
     ("/stability/case<k>", "omega_replaced"): YES_NO,
+    ("/floquet_scaling/cells<c>", "stable"): STABLE,
+    ("/floquet_scaling/cells<c>", "instability"): INSTABILITY,
+    ("/floquet_scaling/windows", "envelope_instability"): INSTABILITY,
+    ("/floquet_scaling/windows", "verdict"): SCALING_VERDICT,
     ("/sweep", "reached"): YES_NO,
     ("/sweep", "failed"): YES_NO,
     ("/sweep", "predictable"): PREDICTABLE,
