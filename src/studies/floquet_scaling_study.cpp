@@ -31,6 +31,7 @@ struct ScalingOptions {
   std::vector<PetscReal> windows{0, 1, 2};
   std::string branch = "insulated";
   PetscReal persist_exponent = 0.5;
+  PetscInt instability_class = 0; // 0: any; 1-3: only orbits whose leading instability has this class
 };
 
 const auto &kScalingTable = DeclareOptionTable<ScalingOptions>(
@@ -43,7 +44,10 @@ const auto &kScalingTable = DeclareOptionTable<ScalingOptions>(
           .String("branch", &ScalingOptions::branch, "The branch continued at each size, named as in -cont_branch (insulated, interface, ..., mode<k>)")
           .Real("persist_exponent", &ScalingOptions::persist_exponent, Closed(0, 10),
                 "A window's instability persists when its envelope exponent p (|mu| - 1 ~ C N^-p) is below this, and is a finite-size effect at or "
-                "above it (0: no decay; 1: the 1/N of two extended band pairs)");
+                "above it (0: no decay; 1: the 1/N of two extended band pairs)")
+          .Int("class", &ScalingOptions::instability_class, Closed(0, 3),
+               "Envelope of one instability class only: 1 B-B, 2 B-E, 3 E-E (the leading pair's class; an orbit whose leading instability has "
+               "another class counts as stable for it); 0 any");
     });
 
 PetscErrorCode ScalingOptionsFromOptions(MPI_Comm comm, ScalingOptions *o)
@@ -136,6 +140,7 @@ protected:
     PetscCall(WriteAttr(v, "/floquet_scaling", "sizes_done", (PetscInt)runs_.size()));
     PetscCall(WriteAttr(v, "/floquet_scaling", "persist_exponent", so_.persist_exponent));
     PetscCall(WriteAttr(v, "/floquet_scaling", "floquet_tol", flo_.tol));
+    PetscCall(WriteAttr(v, "/floquet_scaling", "class", so_.instability_class));
     for (const SizeRun &r : runs_) PetscCall(WriteSize(v, r));
     if (fitted_) PetscCall(WriteWindows(v));
     PetscFunctionReturn(0);
@@ -178,6 +183,15 @@ private:
     runs_.push_back(std::move(r));
     PetscFunctionReturn(0);
   }
+  // The moduli the envelope takes (-scaling_class c > 0: an orbit whose leading
+  // instability has another class counts as |mu| = 1, stable for class c).
+  std::vector<PetscReal> ClassModulus(const FloquetColumns &f) const
+  {
+    std::vector<PetscReal> m = f.max_modulus;
+    for (size_t i = 0; i < m.size() && so_.instability_class > 0; i++)
+      if (f.instability[i] > 0 && f.instability[i] != so_.instability_class) m[i] = 1;
+    return m;
+  }
   // Per window: the envelope at each N and its fit, printed.
   PetscErrorCode FitWindows()
   {
@@ -191,9 +205,9 @@ private:
       std::vector<PetscReal> e(nn);
       for (size_t k = 0; k < nn; k++) {
         const SizeRun &r = runs_[k];
-        const PetscInt i = WindowMaximum(r.b.energy, r.f.max_modulus, so_.windows[w], so_.windows[w + 1], &e[k]);
+        const PetscInt i = WindowMaximum(r.b.energy, ClassModulus(r.f), so_.windows[w], so_.windows[w + 1], &e[k]);
         env_[w * nn + k] = e[k];
-        if (i >= 0) env_energy_[w * nn + k] = r.b.energy[i], env_class_[w * nn + k] = r.f.instability[i];
+        if (i >= 0) env_energy_[w * nn + k] = r.b.energy[i], env_class_[w * nn + k] = e[k] > flo_.tol ? r.f.instability[i] : 0;
       }
       fits_.push_back(FitEnvelope(N, e, flo_.tol, so_.persist_exponent));
       const EnvelopeFit &f = fits_.back();
@@ -272,7 +286,8 @@ StudyContract FloquetScalingStudyContract()
             {{"branch", A, S, "scalar", "1", "-scaling_branch"},
              {"sizes_done", A, I, "scalar", "1", "lattice sizes whose branch is written (fewer than -scaling_cells: interrupted)"},
              {"persist_exponent", A, R, "scalar", "1", "-scaling_persist_exponent: the verdict's threshold on p"},
-             {"floquet_tol", A, R, "scalar", "1", "-floquet_tol: an orbit is unstable beyond 1 + this"}}},
+             {"floquet_tol", A, R, "scalar", "1", "-floquet_tol: an orbit is unstable beyond 1 + this"},
+             {"class", A, I, "scalar", "1", "-scaling_class: the instability class the envelopes take, 0 any, 1 B-B, 2 B-E, 3 E-E"}}},
            {"/floquet_scaling/cells<c>",
             "",
             {{"energy", D, R, "npts", "energy", "total energy of each orbit of the branch at this size"},
@@ -292,9 +307,9 @@ StudyContract FloquetScalingStudyContract()
             {{"energy_lo", D, R, "nwin", "energy", "window's lower edge (included)"},
              {"energy_hi", D, R, "nwin", "energy", "window's upper edge (excluded)"},
              {"N", D, R, "nsizes", "1", "the sizes, ascending"},
-             {"envelope", D, R, "nwin x nsizes", "1", "largest |mu| - 1 over the window's orbits at each N (NaN: no orbit in the window)"},
+             {"envelope", D, R, "nwin x nsizes", "1", "largest |mu| - 1 over the window's orbits at each N (of -scaling_class only when given; NaN: no orbit in the window)"},
              {"envelope_energy", D, R, "nwin x nsizes", "energy", "energy of the orbit that sets it"},
-             {"envelope_instability", D, I, "nwin x nsizes", "1", "its class, 0 stable, 1 B-B, 2 B-E, 3 E-E; -1 no orbit", codes::kInstability},
+             {"envelope_instability", D, I, "nwin x nsizes", "1", "its class, 0 stable (at most tol), 1 B-B, 2 B-E, 3 E-E; -1 no orbit", codes::kInstability},
              {"exponent", D, R, "nwin", "1", "p of the least-squares fit envelope ~ C N^-p in log-log, over the N with envelope > tol (NaN: fewer than two)"},
              {"prefactor", D, R, "nwin", "1", "C"},
              {"r2", D, R, "nwin", "1", "coefficient of determination of the log-log fit (near 0 also when p is near 0: read the residual)"},

@@ -26,14 +26,14 @@ def content():
     """s1.h5 (1 rank: three sizes) and s2.h5 (2 ranks: the first two): each size each a branch to E = 2 with the dense route's columns in range
     (PR in [1, N] sites, edge share in [0, 1], the class from the edge share on unstable orbits); each window's envelope
     the largest |mu| - 1 of its orbits, its exponent the log-log least squares of them, the verdict by the documented
-    rule; 2 ranks equal to 1 rank on the sizes both ran."""
+    rule, s2.h5's envelopes of B-E orbits only (-scaling_class 2); 2 ranks equal to 1 rank on the sizes both ran."""
     tol = 1e-6  # -floquet_tol's default
     fits = 0
     for path, cells in (("s1.h5", (5, 10, 20)), ("s2.h5", (5, 10))):
         require(complete(path), path)
         top = group(path, "floquet_scaling")
         require(top.attrs["sizes_done"] == len(cells) and abs(top.attrs["floquet_tol"] - tol) < 1e-15, dict(top.attrs))
-        thr = top.attrs["persist_exponent"]
+        thr, cls = top.attrs["persist_exponent"], top.attrs["class"]
         W = group(path, "floquet_scaling/windows")
         N = W["N"][:]
         require(list(N) == [4 * c + 2 for c in cells], N)
@@ -53,11 +53,12 @@ def content():
             # the class of an unstable orbit from its leading vector's edge share (-floquet_edge_weight 0.75)
             want = np.where(edge > 0.75, 3, np.where(edge < 0.25, 1, 2))
             require(np.all(cl[u] == want[u]) and np.all(cl[~u] == 0), cl, edge)
+            mc = np.where((cls > 0) & (cl > 0) & (cl != cls), 1.0, m)  # -scaling_class: other classes count as stable
             for w in range(len(lo)):
                 sel = (E >= lo[w]) & (E < hi[w])
-                env = (m[sel].max() - 1) if sel.any() else np.nan
+                env = (mc[sel].max() - 1) if sel.any() else np.nan
                 require(np.isclose(W["envelope"][w, k], env, rtol=0, atol=1e-15, equal_nan=True), w, k, W["envelope"][w, k], env)
-        require(unstable >= 3, unstable)  # the branch has B-E quadruplets below E = 2 at these sizes
+        require(unstable >= 3 and cls == (2 if path == "s2.h5" else 0), unstable, cls)  # the branch has B-E quadruplets below E = 2 at these sizes
         for w in range(len(lo)):
             p, n, v = fit(N, W["envelope"][w], tol, thr)
             require(W["npoints"][w] == n and W["verdict"][w] == v, w, W["npoints"][w], n, W["verdict"][w], v)
