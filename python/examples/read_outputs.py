@@ -78,6 +78,18 @@ def show_stability(run):
               f"{'persisted' if c.persisted else 'lost'} over {c.t[-1]:.0f} time units")
 
 
+def show_floquet_scaling(run):
+    top = run.floquet_scaling
+    if "windows" not in top.groups:
+        print(f"  {top.sizes_done} sizes done, no fit (interrupted)")
+        return
+    w = run.group(top.path + "/windows")
+    for k in range(len(w.energy_lo)):
+        verdict = w.codes("verdict")[int(w.verdict[k])]
+        print(f"  E in [{w.energy_lo[k]:g}, {w.energy_hi[k]:g}): envelope ~ N^-p, p = {w.exponent[k]:.3f} "
+              f"(R^2 {w.r2[k]:.2f}, {w.npoints[k]} sizes): {verdict.split(' (')[0]}")
+
+
 def show_workprecision(run):
     w = run.workprecision
     for k, cfg in enumerate(w.configs):
@@ -88,7 +100,8 @@ def show_workprecision(run):
 
 
 SHOW = {"continuation": show_continuation, "linear": show_linear, "simulate": show_simulate, "sweep": show_sweep,
-        "zak": show_zak, "perturb": show_perturb, "stability": show_stability, "workprecision": show_workprecision}
+        "zak": show_zak, "perturb": show_perturb, "stability": show_stability,
+        "floquet_scaling": show_floquet_scaling, "workprecision": show_workprecision}
 
 
 def main():

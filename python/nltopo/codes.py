@@ -23,6 +23,8 @@ VERDICT = ("-1 not computed (resumed from a file written before verdicts); 0 sta
            "2 unstable-extended (the same, extended eigenvector); 3 stable-to (nothing beyond 1 + verdict_bound); "
            "4 unresolved (verdict_reason says why)")
 PREDICTABLE = "1 predictable; 0 unpredictable (twin statistics); -1 not checked (no -sweep_mcr_tol)"
+SCALING_VERDICT = ("0 stable (no orbit of the window unstable at any N); 1 persists (p < -scaling_persist_exponent); 2 finite-size "
+                   "(p >= it); 3 undetermined (fewer than two N with an unstable orbit, or the threshold within one standard error of p)")
 
 # (group pattern, name) -> codes, for format 0. A pattern segment "<...>" or
 # "case<k>" stands for any name (the schema's convention).
@@ -42,6 +44,10 @@ FORMAT0 = {
     ("/stability/case<k>", "verdict"): VERDICT,
     ("/stability/case<k>", "persisted"): YES_NO,
     ("/stability/case<k>", "omega_replaced"): YES_NO,
+    ("/floquet_scaling/cells<c>", "stable"): STABLE,
+    ("/floquet_scaling/cells<c>", "instability"): INSTABILITY,
+    ("/floquet_scaling/windows", "envelope_instability"): INSTABILITY,
+    ("/floquet_scaling/windows", "verdict"): SCALING_VERDICT,
     ("/sweep", "reached"): YES_NO,
     ("/sweep", "failed"): YES_NO,
     ("/sweep", "predictable"): PREDICTABLE,

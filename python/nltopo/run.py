@@ -20,7 +20,7 @@ class Run:
     Root: study, version, options (dict), effective_options (dict), complete,
     format_version, wall_seconds, cost (dict of /cost). Groups: linear,
     simulate, continuation, branches, sweep, zak, perturb, stability,
-    workprecision (each raises MissingError if the file lacks it)."""
+    floquet_scaling, workprecision (each raises MissingError if the file lacks it)."""
 
     def __init__(self, path):
         self.path = os.fspath(path)
@@ -189,6 +189,11 @@ class Run:
     @property
     def stability(self):
         return self._view("stability", _views.Stability, "/stability")
+
+    @property
+    def floquet_scaling(self):
+        """/floquet_scaling of -study floquet_scaling: its cells<c> groups (one branch per size) and windows (the fits)."""
+        return self._view("floquet_scaling", _views.Group, "/floquet_scaling")
 
     @property
     def workprecision(self):

@@ -77,14 +77,15 @@ PetscErrorCode GatherMonodromy(Mat S, PetscInt n, std::vector<PetscReal> *a)
 namespace {
 
 // Sums over the owned state entries of x (u part first, then v): -i v^H J v / |v|^2 for v = xr + i xi,
-// which is 2 (xr_u . xi_v - xr_v . xi_u) / |v|^2, and the edge share of the displacement norm.
-PetscErrorCode KreinAndEdge(const Lattice &lat, Vec xr, Vec xi, PetscInt e, PetscReal *kappa, PetscReal *edge)
+// which is 2 (xr_u . xi_v - xr_v . xi_u) / |v|^2, the edge share of the displacement norm, and
+// the participation ratio over sites of the displacement (DisplacementParticipation).
+PetscErrorCode KreinAndEdge(const Lattice &lat, Vec xr, Vec xi, PetscInt e, PetscReal *kappa, PetscReal *edge, PetscReal *participation)
 {
   const PetscScalar *a, *b;
   const PetscInt xm = lat.OwnedCount(), xs = lat.OwnedStart();
   const bool iface = lat.Params().layout == Layout::Interface;
   const PetscInt m = lat.Params().InterfaceSite();
-  PetscReal loc[4] = {0, 0, 0, 0}, g[4];
+  PetscReal loc[5] = {0, 0, 0, 0, 0}, g[5];
   PetscFunctionBeginUser;
   PetscCall(VecGetArrayRead(xr, &a));
   PetscCall(VecGetArrayRead(xi, &b));
@@ -93,13 +94,15 @@ PetscErrorCode KreinAndEdge(const Lattice &lat, Vec xr, Vec xi, PetscInt e, Pets
     const PetscInt i = xs + k;
     const PetscReal d = a[k] * a[k] + b[k] * b[k];
     loc[2] += d;
+    loc[4] += d * d;
     if (iface && InEdgeRegion(i, m, e)) loc[3] += d;
   }
   PetscCall(VecRestoreArrayRead(xi, &b));
   PetscCall(VecRestoreArrayRead(xr, &a));
-  PetscCall(MPIU_Allreduce(loc, g, 4, MPIU_REAL, MPIU_SUM, lat.Comm()));
+  PetscCall(MPIU_Allreduce(loc, g, 5, MPIU_REAL, MPIU_SUM, lat.Comm()));
   *kappa = g[1] > 0 ? g[0] / g[1] : 0;
   *edge = g[2] > 0 ? g[3] / g[2] : 0;
+  *participation = DisplacementParticipation(g[2], g[4]);
   PetscFunctionReturn(0);
 }
 
@@ -185,9 +188,26 @@ PetscErrorCode CriticalVector(const Lattice &lat, EPS eps, const std::vector<Pet
 
 PetscErrorCode EigenvectorShares(const Lattice &lat, Vec xr, Vec xi, PetscInt e, PetscReal *kappa, PetscReal *edge)
 {
+  PetscReal participation;
   PetscFunctionBeginUser;
-  PetscCall(KreinAndEdge(lat, xr, xi, e, kappa, edge));
+  PetscCall(KreinAndEdge(lat, xr, xi, e, kappa, edge, &participation));
   PetscFunctionReturn(0);
+}
+
+PetscInt LeadingIndex(const std::vector<std::complex<PetscReal>> &mu, PetscReal tol)
+{
+  const PetscInt n = (PetscInt)mu.size();
+  std::vector<PetscInt> idx(n);
+  std::iota(idx.begin(), idx.end(), 0);
+  std::sort(idx.begin(), idx.end(), [&](PetscInt x, PetscInt y) { return std::abs(mu[x] - 1.0) < std::abs(mu[y] - 1.0); });
+  idx.erase(idx.begin(), idx.begin() + std::min<PetscInt>(2, n)); // the trivial pair
+  PetscInt big = -1, circle = -1;
+  for (PetscInt i : idx) {
+    if (big < 0 || std::abs(mu[i]) > std::abs(mu[big])) big = i;
+    if (mu[i].imag() >= 0 && std::abs(mu[i]) >= 1 - tol && (circle < 0 || std::abs(mu[i].real()) > std::abs(mu[circle].real()))) circle = i;
+  }
+  if (big >= 0 && std::abs(mu[big]) > 1 + tol) return big;
+  return circle >= 0 ? circle : big;
 }
 
 PetscErrorCode FloquetAnalysis(const Lattice &lat, Mat S, const FloquetOptions &o, FloquetResult *r, const PetscReal *target, std::vector<PetscReal> *vec,
@@ -232,13 +252,19 @@ PetscErrorCode FloquetAnalysis(const Lattice &lat, Mat S, const FloquetOptions &
   PetscCheck(nconv >= n, lat.Comm(), PETSC_ERR_NOT_CONVERGED, "Floquet: only %" PetscInt_FMT " of %" PetscInt_FMT " multipliers converged", nconv, n);
   PetscCall(MatCreateVecs(M, xr.out(), NULL));
   PetscCall(VecDuplicate(xr, xi.out()));
-  std::vector<PetscReal> re(n), im(n), kap(n), edge(n);
+  std::vector<PetscReal> re(n), im(n), kap(n), edge(n), part(n);
   for (PetscInt i = 0; i < n; i++) {
     PetscScalar kr, ki;
     PetscCall(EPSGetEigenpair(eps, i, &kr, &ki, xr, xi));
     re[i] = kr;
     im[i] = ki;
-    PetscCall(KreinAndEdge(lat, xr, xi, o.edge_sites, &kap[i], &edge[i]));
+    PetscCall(KreinAndEdge(lat, xr, xi, o.edge_sites, &kap[i], &edge[i], &part[i]));
+  }
+  {
+    std::vector<std::complex<PetscReal>> mu(n);
+    for (PetscInt i = 0; i < n; i++) mu[i] = {re[i], im[i]};
+    const PetscInt lead = LeadingIndex(mu, o.tol);
+    if (lead >= 0) r->leading_participation = part[lead], r->leading_edge = edge[lead];
   }
   std::vector<PetscInt> order(n);
   std::iota(order.begin(), order.end(), 0);

@@ -40,6 +40,9 @@ struct FloquetResult {
   // [u_1..u_N, v_1..v_N], unit norm, on every rank; empty for the others. They
   // tell the members of two orbits' spectra apart (Krein collisions that pass).
   std::vector<std::vector<std::complex<PetscReal>>> vectors;
+  // The leading nontrivial eigenvector (LeadingIndex below): its participation
+  // ratio over sites (DisplacementParticipation) and its edge share.
+  PetscReal leading_participation = NAN, leading_edge = NAN;
 };
 
 // M: the 2N x 2N monodromy in the state layout (columns 0..2N-1 of the
@@ -65,6 +68,19 @@ inline PetscInt KreinSign(const FloquetOptions &o, PetscReal kappa) { return std
 inline PetscInt Localisation(const FloquetOptions &o, PetscReal w) { return w > o.edge_weight ? 3 : (w < 1 - o.edge_weight ? 1 : 2); }
 // Whether site i lies in the edge region of the interface cell (sites iface, iface + 1) with e sites each side.
 inline bool InEdgeRegion(PetscInt i, PetscInt iface, PetscInt e) { return i >= iface - e && i <= iface + 1 + e; }
+
+// The participation ratio of an eigenvector over the sites, from its
+// displacement part: with d_i = |x_{u_i}|^2, PR = (sum_i d_i)^2 / sum_i d_i^2,
+// in units of sites (1: one site; N: spread evenly over all N). disp = sum d_i,
+// disp2 = sum d_i^2 (summed over ranks first); 0 for a vector without displacement.
+inline PetscReal DisplacementParticipation(PetscReal disp, PetscReal disp2) { return disp2 > 0 ? disp * disp / disp2 : 0; }
+
+// The leading nontrivial multiplier of a whole spectrum mu, as the dense
+// -floquet_mf route picks it (floquet_mf.hpp FloquetLeadingDense): the two
+// multipliers nearest 1 (the trivial pair) left out; beyond 1 + tol the largest
+// |mu|; otherwise, on the circle, the upper-half-plane one nearest +-1 (largest
+// |Re mu|). Its index, -1 if there is none.
+PetscInt LeadingIndex(const std::vector<std::complex<PetscReal>> &mu, PetscReal tol);
 
 // The first n columns of the dense sensitivity matrix S (the monodromy) on
 // rank 0, column-major in PETSc's state order on rows and columns alike (a

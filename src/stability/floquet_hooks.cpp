@@ -39,6 +39,7 @@ PetscErrorCode FloquetHook::Point(Vec z0, PetscReal T, PetscReal beta, Vec)
   c.det_error.push_back(r.det_error);
   c.stable.push_back(r.stable);
   c.instability.push_back(r.instability);
+  c.leading_participation.push_back(r.leading_participation), c.leading_edge.push_back(r.leading_edge);
   PetscFunctionReturn(0);
 }
 
@@ -106,6 +107,7 @@ PetscErrorCode FloquetMfHook::Point(Vec z0, PetscReal T, PetscReal beta, Vec dz0
   r.krein.resize(mopt_.nev, 0); // matrix-free: not computed
   c.krein.insert(c.krein.end(), r.krein.begin(), r.krein.end());
   c.instability.push_back(r.instability);
+  c.leading_participation.push_back(r.leading_participation), c.leading_edge.push_back(r.leading_edge);
   c.products += r.products;
   c.route = Route();
   if (r.converged < mopt_.nev && !Dense()) {

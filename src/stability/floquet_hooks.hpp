@@ -20,6 +20,9 @@ struct FloquetColumns {
   std::vector<PetscInt> krein, stable, instability;
   std::vector<PetscReal> edge; // dense route: each eigenvector's edge share (kept in memory for -cont_bifurcations, not written)
   PetscInt products = 0, unconverged = 0;
+  // issue 35 (scaling with N): per orbit, the leading nontrivial eigenvector's participation ratio over
+  // sites and edge share (floquet.hpp LeadingIndex, DisplacementParticipation); NaN matrix-free
+  std::vector<PetscReal> leading_participation, leading_edge;
   std::string route; // matrix-free hook: "dense" (2N <= -floquet_mf_dense_max) or "matrix-free"
   // The verdict of each orbit (stability/verdict.hpp): code, bound, e-folding time in periods, reason.
   std::vector<PetscInt> verdict;

@@ -205,6 +205,18 @@ void PairSignature(const PetscReal *xr, const PetscReal *xi, const FloquetOption
   *edge = disp > 0 ? near / disp : 0;
 }
 
+// The participation ratio over sites of the eigenvector's displacement
+// (xr + i xi, xi the next column when complex; floquet.hpp DisplacementParticipation).
+PetscReal PairParticipation(const PetscReal *xr, bool complex, PetscInt n, const std::vector<PetscInt> &uidx)
+{
+  PetscReal disp = 0, disp2 = 0;
+  for (PetscInt row : uidx) {
+    const PetscReal a = xr[row], b = complex ? xr[n + row] : 0, d = a * a + b * b;
+    disp += d, disp2 += d * d;
+  }
+  return DisplacementParticipation(disp, disp2);
+}
+
 } // namespace
 
 PetscErrorCode DenseLeadingPairs(PetscInt n_, PetscReal *a, PetscInt nev, const FloquetOptions &o, const std::vector<PetscInt> &uidx,
@@ -230,6 +242,8 @@ PetscErrorCode DenseLeadingPairs(PetscInt n_, PetscReal *a, PetscInt nev, const 
       PairSignature(xr, mu[i].imag() > 0 ? xr + n : nullptr, o, uidx, vidx, iface, &krein, &edge);
     }
     out->mu.push_back(mu[i]), out->krein.push_back(krein), out->edge.push_back(edge);
+    if (out->mu.size() == 1 && ifr[first[i]] == 0)
+      out->leading_edge = edge, out->leading_participation = PairParticipation(&vr[(size_t)first[i] * n], mu[i].imag() > 0, n, uidx);
   }
   out->instability = 0;
   out->lead_re.clear(), out->lead_im.clear();
@@ -287,7 +301,7 @@ PetscErrorCode FloquetLeadingDense(const Lattice &lat, Mat S, PetscInt nev, cons
   PetscCall(GatherMonodromy(S, n, &a));
   // rank 0's answer, broadcast: per pair re, im, krein; then max |mu|, instability.
   // Its LAPACK work fails on rank 0 alone: the error is made collective.
-  std::vector<PetscReal> out(3 * nev + 2, NAN);
+  std::vector<PetscReal> out(3 * nev + 4, NAN); // then the leading vector's participation ratio and edge share
   PetscErrorCode code = 0;
   char msg[256] = "";
   LeadingPairs lead;
@@ -298,6 +312,7 @@ PetscErrorCode FloquetLeadingDense(const Lattice &lat, Mat S, PetscInt nev, cons
     PetscCall(CaptureError([&]() { return DenseLeadingPairs(n, a.data(), nev, o, u, v, iface, &lead); }, &code, msg, sizeof msg));
     for (PetscInt k = 0; k < (PetscInt)lead.mu.size(); k++) out[3 * k] = lead.mu[k].real(), out[3 * k + 1] = lead.mu[k].imag(), out[3 * k + 2] = lead.krein[k];
     out[3 * nev] = lead.max_modulus, out[3 * nev + 1] = lead.instability;
+    out[3 * nev + 2] = lead.leading_participation, out[3 * nev + 3] = lead.leading_edge;
   }
   PetscCall(FailTogether(comm, code, msg));
   PetscCallMPI(MPI_Bcast(out.data(), (PetscMPIInt)out.size(), MPIU_REAL, 0, comm));
@@ -309,6 +324,7 @@ PetscErrorCode FloquetLeadingDense(const Lattice &lat, Mat S, PetscInt nev, cons
   }
   r->max_modulus = out[3 * nev];
   r->instability = (PetscInt)out[3 * nev + 1];
+  r->leading_participation = out[3 * nev + 2], r->leading_edge = out[3 * nev + 3];
   r->products = n; // the 2N tangent columns of the monodromy
   r->verdict = r->max_modulus <= 1 + o.tol ? kStable : kUnstable;
   if (lead_re && lead_im) {

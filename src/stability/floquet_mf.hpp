@@ -100,6 +100,9 @@ struct LeadingMultipliers {
   PetscInt verdict = kUndecided;
   std::vector<PetscInt> krein; // per multiplier: sign(-i v^H J v) as in FloquetResult; 0 when not computed (matrix-free)
   PetscInt instability = -1;   // the leading unstable eigenvector's class as in FloquetResult (0 stable); -1 not computed
+  // dense route: the leading pair's eigenvector (the first of re, im): its participation ratio over
+  // sites (floquet.hpp DisplacementParticipation) and edge share; NaN matrix-free (not computed)
+  PetscReal leading_participation = NAN, leading_edge = NAN;
 };
 
 // warm (optional, in/out): eigenvectors of the previous orbit of a branch as
@@ -145,6 +148,7 @@ struct LeadingPairs {
   PetscReal max_modulus = 0;
   PetscInt instability = 0;
   std::vector<PetscReal> lead_re, lead_im; // unstable: the leading pair's eigenvector in PETSc state order (else empty)
+  PetscReal leading_participation = NAN, leading_edge = NAN; // of the first pair's eigenvector (NaN: none)
 };
 PetscErrorCode DenseLeadingPairs(PetscInt n, PetscReal *a, PetscInt nev, const FloquetOptions &o, const std::vector<PetscInt> &uidx,
                                  const std::vector<PetscInt> &vidx, PetscInt iface, LeadingPairs *out);

@@ -6,6 +6,14 @@
 
 namespace nltopo {
 
+// The leading eigenvector's columns (issue 35, scaling with N), in both Floquet variants.
+static const char *const kLeadingParticipation =
+    "participation ratio of the leading nontrivial eigenvector's displacement over sites, (sum |u_i|^2)^2 / sum |u_i|^4: 1 on one site, N spread "
+    "evenly (leading: the largest |mu| beyond 1 + tol, else the circle's nearest +-1; the trivial pair left out); NaN matrix-free";
+static const char *const kLeadingEdgeShare =
+    "share of the leading nontrivial eigenvector's displacement norm within -floquet_edge_sites of the interface cell (as the instability class "
+    "uses it); NaN matrix-free";
+
 StudyContract ContinuationStudyContract()
 {
   using namespace schema_names;
@@ -53,7 +61,10 @@ StudyContract ContinuationStudyContract()
           "stable: -floquet_tol; stable-to: delta, nothing beyond 1 + delta; unstable-*: |mu| - 1 of the confirmed multiplier; unresolved: the largest "
           "|mu| - 1 not excluded (inf: no bound)"},
          {"verdict_efold", D, R, "npts", "periods", "unstable-*: e-folding time of the growth, 1 / ln|mu|, in periods of the orbit; inf otherwise"},
-         {"verdict_reason", D, S, "npts", "1", "how the route reached the verdict, one line (the multiplier, the class, the confirmation)"}}},
+         {"verdict_reason", D, S, "npts", "1", "how the route reached the verdict, one line (the multiplier, the class, the confirmation)"},
+         // issue 35: the leading eigenvector's extent
+         {"leading_participation", D, R, "npts", "sites", kLeadingParticipation},
+         {"leading_edge_share", D, R, "npts", "1", kLeadingEdgeShare}}},
        {"/continuation/<branch>/bifurcations",
         "",
         {{"kind", D, I, "nevents", "1", "1 energy fold, 2 branch point (+1), 3 period doubling (-1), 4 Krein collision, 5 Hamiltonian-Hopf, 6 internal resonance", codes::kEventKind},
@@ -91,7 +102,10 @@ StudyContract ContinuationStudyContract()
          {"floquet_products", A, I, "scalar", "1", "monodromy products (tangent integrations; the dense route: 2N columns per orbit)"},
          {"floquet_unconverged", A, I, "scalar", "1", "orbits with unconverged multipliers"},
          {"floquet_undecided", A, I, "scalar", "1", "orbits with stable = -1"},
-         {"floquet_route", A, S, "scalar", "1", "dense (2N <= -floquet_mf_dense_max) or matrix-free"}}}}};
+         {"floquet_route", A, S, "scalar", "1", "dense (2N <= -floquet_mf_dense_max) or matrix-free"},
+         // issue 35: the leading eigenvector's extent (dense route; NaN matrix-free)
+         {"leading_participation", D, R, "npts", "sites", kLeadingParticipation},
+         {"leading_edge_share", D, R, "npts", "1", kLeadingEdgeShare}}}}};
 }
 
 } // namespace nltopo

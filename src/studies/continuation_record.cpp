@@ -77,6 +77,9 @@ const Column kColumns[] = {
   {"floquet_unconverged", 0, nullptr, [](const BranchRecord &r, AttrValue *a) { a->i = r.f.unconverged; }},
   {"floquet_undecided", 0, nullptr, [](const BranchRecord &r, AttrValue *a) { a->i = (PetscInt)std::count(r.f.stable.begin(), r.f.stable.end(), -1); }},
   {"floquet_route", 0, nullptr, [](const BranchRecord &r, AttrValue *a) { a->s = r.f.route; }},
+  // issue 35: the leading eigenvector's extent (floquet_hooks.hpp)
+  {"leading_participation", 0, [](BranchRecord &r) { return Cells{&r.f.leading_participation}; }, nullptr},
+  {"leading_edge_share", 0, [](BranchRecord &r) { return Cells{&r.f.leading_edge}; }, nullptr},
 };
 // clang-format on
 

@@ -39,13 +39,16 @@ RUNS = {
                                  "-perturb_energy_list", "0.1"] + BURST),
     "stability": ("stability.opts", ["-lattice_cells", "5", "-stability_omega", "1.7320508075688772,2.5",
                                      "-stability_periods", "50", "-stability_sample_periods", "1", "-sim_progress", "0"]),
+    # two sizes, the dense Floquet route, one energy window
+    "floquet_scaling": (None, ["-study", "floquet_scaling", "-scaling_cells", "3,5", "-cont_energy_max", "1", "-scaling_energy_windows", "0,1",
+                               "-cont_verbose", "0"]),
     "workprecision": ("workprecision.opts", ["-lattice_cells", "5", "-wp_repeats", "1", "-wp_twins", "1",
                                              "-wp_configs", WP_CONFIGS] + BURST),
 }
 
 STUDY = {"linear": "linear", "simulate": "simulate", "simulate_stride": "simulate", "fep": "continuation",
          "fep_plain": "continuation", "fep_mf": "continuation", "sweep": "sweep", "zak": "zak", "perturb": "perturb", "stability": "stability",
-         "workprecision": "workprecision"}
+         "floquet_scaling": "floquet_scaling", "workprecision": "workprecision"}
 
 
 def nltopo_binary():

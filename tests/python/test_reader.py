@@ -439,6 +439,19 @@ def test_stability(runs):
     assert cases[1].verdict_efold == pytest.approx(1 / np.log(cases[1].max_modulus), rel=1e-9)
 
 
+def test_floquet_scaling(runs):
+    r = runs["floquet_scaling"]
+    top = r.floquet_scaling
+    assert sorted(top.groups) == ["cells3", "cells5", "windows"] and top.sizes_done == 2
+    w = r.group("/floquet_scaling/windows")
+    assert list(w.N) == [14, 22] and w.envelope.shape == (1, 2)
+    for k, c in enumerate((3, 5)):
+        g = r.group(f"/floquet_scaling/cells{c}")
+        assert w.envelope[0, k] == pytest.approx(np.max(g.max_modulus[g.energy < 1]) - 1, abs=1e-15)
+        assert np.all((g.leading_participation >= 1) & (g.leading_participation <= g.N))
+    assert ncodes.short(w.codes("verdict")[int(w.verdict[0])]) in ("stable", "persists", "finite-size", "undetermined")
+
+
 def test_workprecision(runs):
     w = runs["workprecision"].workprecision
     nc = len(w.configs)

@@ -114,6 +114,12 @@ const std::vector<BadCase> &OptionCases()
       {"-kcorr_nc", W + "-sweep_kcorr -kcorr_nc 0"},
       {"-zak_theta_tol", "-study zak -zak_energy_list 0.01 -sim_t_final 300 -lattice_cells 4 -zak_theta_tol 4"},
       {"-stability_periods", "-study stability -lattice_cells 5 -stability_periods 0"},
+      // -study floquet_scaling: integer, ascending sizes each within the dense Floquet route; the sizes are its own
+      {"-scaling_cells 5.5: cells per side are integers", "-study floquet_scaling -scaling_cells 5.5"},
+      {"-scaling_cells must ascend, got 5 after 10", "-study floquet_scaling -scaling_cells 10,5"},
+      {"-scaling_cells 300: 2N = 2404 > -floquet_mf_dense_max 2048", "-study floquet_scaling -scaling_cells 5,300"},
+      {"-scaling_energy_windows must ascend", "-study floquet_scaling -scaling_energy_windows 0,2,1"},
+      {"-lattice_cells is set by -study floquet_scaling (-scaling_cells)", "-study floquet_scaling -lattice_cells 5"},
       {"-cont_checkpoint_seconds", C + "-cont_checkpoint_seconds -1"},
       {"-cont_bifurcations needs -floquet without -floquet_mf", C + "-cont_bifurcations"},
       {"-cont_bifurcations needs -floquet without -floquet_mf", C + "-floquet -floquet_mf -cont_bifurcations 1"},

@@ -127,7 +127,7 @@ TEST_CASE("every option a study reads is under a prefix its contract registers",
 {
   std::map<std::string, std::set<std::string>> known;
   REQUIRE(CollectKnownOptions(PETSC_COMM_WORLD, StudyOptionFunctions(), &known) == 0);
-  CHECK(known.size() == 8);
+  CHECK(known.size() == 9);
   // Never compared: where the output goes, which study runs, and monitors
   // (PETSc's own -all_ksp_monitor among them; io/run_options.hpp).
   const std::set<std::string> outside = {"output", "output_overwrite", "study", "help"};
@@ -146,7 +146,7 @@ TEST_CASE("every option a study reads is under a prefix its contract registers",
   CHECK(compared > 100);
   // The registered prefixes themselves: the study prefixes that a forgotten line would drop.
   for (const char *p :
-       {"-wp_", "-zak_", "-perturb_", "-stability_", "-sweep_", "-kcorr_", "-cont_", "-nnm_", "-floquet", "-lattice_", "-force_", "-sim_", "-linear_"}) {
+       {"-wp_", "-zak_", "-perturb_", "-stability_", "-scaling_", "-sweep_", "-kcorr_", "-cont_", "-nnm_", "-floquet", "-lattice_", "-force_", "-sim_", "-linear_"}) {
     INFO(p);
     CHECK(std::count(ComponentPrefixes().begin(), ComponentPrefixes().end(), std::string(p)) == 1);
   }
