@@ -1,4 +1,5 @@
 #include "stability/krein_map.hpp"
+#include "core/log.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -43,7 +44,10 @@ PetscErrorCode KreinSpectrumSetup(const Lattice &lat, KreinSpectrum *s)
   const MPI_Comm comm = lat.Comm();
   const PetscInt N = lat.N(), xs = lat.OwnedStart(), xm = lat.OwnedCount();
   PetscMPIInt size;
+  static PetscLogEvent event = -1; // "KreinMap" in -log_view: the map's only cost beyond O(1) per orbit
   PetscFunctionBeginUser;
+  if (event < 0) PetscCall(PetscLogEventRegister("KreinMap", Log().classid, &event));
+  PetscCall(PetscLogEventBegin(event, 0, 0, 0, 0));
   s->bands = InfiniteBandEdges(lat.Params());
   // K on every rank: the diagonal and the bonds (K(i, i+1) = -k_i; the sign does not enter the count)
   PetscCallMPI(MPI_Comm_size(comm, &size));
@@ -72,6 +76,7 @@ PetscErrorCode KreinSpectrumSetup(const Lattice &lat, KreinSpectrum *s)
   for (const auto &[l, h] : {std::pair<PetscReal, PetscReal>{lo - 1, cut[0]}, {cut[1], cut[2]}, {cut[3], hi + 1}})
     for (PetscReal lambda : TridiagonalEigenvaluesIn(d, e, l, h))
       if (lambda > 0) s->localized.push_back(std::sqrt(lambda));
+  PetscCall(PetscLogEventEnd(event, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
