@@ -8,8 +8,13 @@ mode=${1:-demo}
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$root"
 
+# libopenblas0-pthread: OpenBLAS as the machine's libblas.so.3 and liblapack.so.3 (Debian's alternatives
+# pick it over the reference BLAS that petsc-dev pulls in): the dense Floquet route's LAPACK (Hessenberg
+# reduction and QR of the 2N x 2N monodromy) runs several times faster. The pthread build, so that a
+# 1-rank run may use threads; under MPI (one rank per core) OPENBLAS_NUM_THREADS=1 below keeps each
+# rank on one thread (benchmarks/README.md "OpenBLAS: the dense route before and after").
 packages=(g++ make cmake pkg-config git petsc-dev slepc-dev libhdf5-openmpi-dev catch2 openmpi-bin
-          python3 python3-h5py python3-numpy python3-matplotlib)
+          libopenblas0-pthread python3 python3-h5py python3-numpy python3-matplotlib)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -26,6 +31,7 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > build.log 2>&1 || { cat build.l
 cmake --build build -j"$(nproc)" >> build.log 2>&1 || { tail -50 build.log; exit 1; }
 
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+export OPENBLAS_NUM_THREADS=1 # one BLAS thread per rank under mpiexec (the ranks already fill the cores)
 case "$mode" in
   demo) ./build/nltopo -options_file options/simulate.opts ;;
   test) cd build && ctest --output-on-failure --timeout 900 ;;

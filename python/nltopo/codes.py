@@ -25,6 +25,12 @@ VERDICT = ("-1 not computed (resumed from a file written before verdicts); 0 sta
 PREDICTABLE = "1 predictable; 0 unpredictable (twin statistics); -1 not checked (no -sweep_mcr_tol)"
 SCALING_VERDICT = ("0 stable (no orbit of the window unstable at any N); 1 persists (p < -scaling_persist_exponent); 2 finite-size "
                    "(p >= it); 3 undetermined (fewer than two N with an unstable orbit, or the threshold within one standard error of p)")
+# the Krein resonance map (/continuation/<branch>/krein_map): open is a bitmask, the sum of its classes' bits
+KREIN_PAIRS = ("0 none; 1 AA (acoustic + acoustic); 2 AO (acoustic + optical); 4 OO (optical + optical); "
+               "8 EA (localised + acoustic); 16 EO (localised + optical); "
+               "32 EE (localised + localised, crossed since the previous orbit)")
+ENERGY_CRITERION = ("0 no sign change; 1 E extremum (dE/dOmega through 0: a real pair through +1); "
+                    "2 Omega extremum (dE/dOmega through infinity); 3 both")
 
 # (group pattern, name) -> codes, for format 0. A pattern segment "<...>" or
 # "case<k>" stands for any name (the schema's convention).
@@ -58,6 +64,8 @@ FORMAT0 = {
     ("/perturb/<kind>", "done"): DONE,
     ("/simulate", "energy_reached"): YES_NO,
     ("/workprecision", "reference_converged"): YES_NO,
+    ("/continuation/<branch>/krein_map", "open"): KREIN_PAIRS,
+    ("/continuation/<branch>/krein_map", "energy_criterion"): ENERGY_CRITERION,
 }
 
 _PART = re.compile(r";\s*(?=-?\d+\s)")

@@ -353,4 +353,24 @@ PetscErrorCode PeriodicFlow::IntegrateWithTangent(Vec z0, PetscReal T, PetscReal
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode PeriodicFlow::IntegrateWithTangents(Vec z0, PetscReal T, PetscReal beta, const std::vector<Vec> &dz, Vec zT, std::vector<Vec> &w)
+{
+  const PetscInt s = (PetscInt)dz.size();
+  PetscFunctionBeginUser;
+  PetscCheck(s > 0 && w.size() == dz.size(), lat_->Comm(), PETSC_ERR_ARG_SIZ, "IntegrateWithTangents: %zu start vectors and %zu results", dz.size(), w.size());
+  if (!symplectic_) {
+    for (PetscInt j = 0; j < s; j++) PetscCall(IntegrateWithTangent(z0, T, beta, dz[j], 0.0, 0.0, zT, w[j]));
+    PetscFunctionReturn(0);
+  }
+  beta_ = beta;
+  if (!sym_block_ || sym_block_cols_ != s) {
+    sym_block_ = std::make_unique<SymplecticVariationalFlow>();
+    PetscCall(sym_block_->Setup(*fx_, s, Steps()));
+    sym_block_cols_ = s;
+  }
+  sym_block_->SetSteps(Steps());
+  PetscCall(sym_block_->IntegrateBlock(z0, T, beta, dz, zT, w));
+  PetscFunctionReturn(0);
+}
+
 } // namespace nltopo

@@ -57,6 +57,13 @@ public:
   // the fixed-step discrete map, T column included (variational.hpp); on the
   // TSForward route the T column is f_beta(z(T)).
   PetscErrorCode IntegrateWithTangent(Vec z0, PetscReal T, PetscReal beta, Vec dz, PetscReal dbeta, PetscReal dT, Vec zT, Vec w);
+  // Blocked products: w[j] = dz(T)/dz0 dz[j] for s = dz.size() start vectors
+  // (w preallocated like z0), with dbeta = dT = 0: the single version's w with
+  // its beta and T sources zero, B_beta's derivative applied at beta (at
+  // beta = 0, w[j] = M dz[j]). On the symplectic route one pass over the orbit
+  // integrates all s columns, sharing the orbit state and K_T(u) (issue 35,
+  // item 5); on the other routes it is s single products.
+  PetscErrorCode IntegrateWithTangents(Vec z0, PetscReal T, PetscReal beta, const std::vector<Vec> &dz, Vec zT, std::vector<Vec> &w);
   // Integrate, and also the harmonics of the tangent stiffness K_T(u(t)) along
   // the orbit (h->parametric chooses whether the 2 w ones too). The trapezoidal
   // rule on the fixed steps is spectrally accurate for a periodic orbit.
@@ -109,6 +116,8 @@ private:
   OwnedMat J_, Jp_mono_, Jp_tlm_, S_tlm_;
   std::unique_ptr<VariationalFlow> var_dense_, var_tlm_; // created on first use
   std::unique_ptr<SymplecticVariationalFlow> sym_dense_, sym_tlm_;
+  std::unique_ptr<SymplecticVariationalFlow> sym_block_; // IntegrateWithTangents: set up for the last block size
+  PetscInt sym_block_cols_ = 0;
   bool symplectic_ = false;
   PetscInt multiple_ = 1, divisor_ = 1; // SetPeriodMultiple
   OwnedVec wb_;

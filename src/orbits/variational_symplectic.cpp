@@ -194,4 +194,56 @@ PetscErrorCode SymplecticVariationalFlow::Integrate(Vec z0, PetscReal T, PetscRe
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SymplecticVariationalFlow::IntegrateBlock(Vec z0, PetscReal T, PetscReal beta, const std::vector<Vec> &dz, Vec zT, const std::vector<Vec> &w)
+{
+  const PetscInt xm = lat_->OwnedCount(), nc = ncol_, bs = bs_, half = bs_ * xm;
+  const PetscReal bT = beta * T;
+  const PetscScalar *z, *ya;
+  PetscScalar *y, *zt;
+  PetscFunctionBeginUser;
+  PetscCheck((PetscInt)dz.size() == nc && (PetscInt)w.size() == nc, lat_->Comm(), PETSC_ERR_PLIB,
+             "symplectic variational flow: %zu start vectors and %zu results for a block of %" PetscInt_FMT " columns", dz.size(), w.size(), nc);
+  s_ = 0; // no T source: P = W_v
+  PetscCall(VecGetArrayRead(z0, &z));
+  PetscCall(VecGetArray(Y_, &y));
+  for (PetscInt k = 0; k < xm; k++) {
+    y[bs * k] = z[k];
+    y[half + bs * k] = z[xm + k];
+  }
+  for (PetscInt j = 0; j < nc; j++) { // column j of every site block
+    const PetscScalar *d;
+    PetscCall(VecGetArrayRead(dz[j], &d));
+    for (PetscInt k = 0; k < xm; k++) {
+      y[bs * k + 1 + j] = d[k];
+      y[half + bs * k + 1 + j] = d[xm + k];
+    }
+    PetscCall(VecRestoreArrayRead(dz[j], &d));
+  }
+  PetscCall(VecRestoreArray(Y_, &y));
+  PetscCall(VecRestoreArrayRead(z0, &z));
+
+  PetscCall(SolvePeriod(ts_, Y_, T, steps_, "variational"));
+
+  PetscCall(Acceleration(Y_, A_.data())); // a(u_T) and -K_T(u_T) W_u: B_beta and its derivative (Integrate)
+  PetscCall(VecGetArrayRead(Y_, &ya));
+  PetscCall(VecGetArray(zT, &zt));
+  for (PetscInt k = 0; k < xm; k++) {
+    const PetscScalar v = ya[half + bs * k];
+    zt[k] = ya[bs * k] - bT * A_[bs * k];
+    zt[xm + k] = v + bT * v;
+  }
+  PetscCall(VecRestoreArray(zT, &zt));
+  for (PetscInt j = 0; j < nc; j++) {
+    PetscScalar *wd;
+    PetscCall(VecGetArray(w[j], &wd));
+    for (PetscInt k = 0; k < xm; k++) {
+      wd[k] = ya[bs * k + 1 + j] - bT * A_[bs * k + 1 + j];
+      wd[xm + k] = (1 + bT) * ya[half + bs * k + 1 + j];
+    }
+    PetscCall(VecRestoreArray(w[j], &wd));
+  }
+  PetscCall(VecRestoreArrayRead(Y_, &ya));
+  PetscFunctionReturn(0);
+}
+
 } // namespace nltopo

@@ -43,6 +43,13 @@ public:
   PetscErrorCode Integrate(Vec z0, PetscReal T, PetscReal beta, Vec dz, PetscReal s_beta, PetscReal s_T, Vec zT, Mat S, Vec w);
   // q'' of the augmented system for the owned q (the TS acceleration).
   PetscErrorCode Acceleration(Vec Y, PetscScalar *A);
+  // Block tangent (set up with ncol = s = dz.size()): w[j] = dz(T)/dz0 dz[j]
+  // for the s start vectors at once, B_beta's derivative I + beta T Hess E
+  // applied at the end; no beta or T source (the columns of a monodromy
+  // product; at beta = 0 the products of M). One pass over the orbit: the
+  // orbit state, its acceleration and K_T(u) are computed once per stage for
+  // all s columns (site-major blocks (u_i, W_u,i(0..s-1))).
+  PetscErrorCode IntegrateBlock(Vec z0, PetscReal T, PetscReal beta, const std::vector<Vec> &dz, Vec zT, const std::vector<Vec> &w);
 
 private:
   const EffectList *fx_ = nullptr;

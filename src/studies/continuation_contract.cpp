@@ -105,7 +105,21 @@ StudyContract ContinuationStudyContract()
          {"floquet_route", A, S, "scalar", "1", "dense (2N <= -floquet_mf_dense_max) or matrix-free"},
          // issue 35: the leading eigenvector's extent (dense route; NaN matrix-free)
          {"leading_participation", D, R, "npts", "sites", kLeadingParticipation},
-         {"leading_edge_share", D, R, "npts", "1", kLeadingEdgeShare}}}}};
+         {"leading_edge_share", D, R, "npts", "1", kLeadingEdgeShare}}},
+       // the Krein resonance map (issue 35 item 4, stability/krein_map.hpp): written with -floquet (either route)
+       {"/continuation/<branch>/krein_map",
+        "",
+        {{"open", D, I, "npts x kmax", "1",
+          "opposite-signature resonances w_q + w_q' = k Omega (Omega = 2 pi / period) that the linear dispersion allows at each orbit (row) for k = 1..kmax "
+          "(column): the sum of the bits of the open pair classes (A acoustic band, O optical band, E localised linear mode of edge_omega)",
+          codes::kKreinPairs},
+         {"edge_omega", D, R, "nedge", "rad/time",
+          "the E modes: the finite lattice's linear frequencies outside both infinite-lattice bands, the branch's own linear mode left out"},
+         {"energy_criterion", D, I, "npts", "1", "where dE/dOmega changes sign along the branch (energy criterion, PRL 117, 094101 (2016))",
+          codes::kEnergyCriterion},
+         {"dE_domega", D, R, "npts", "energy/(rad/time)", "dE/dOmega by the central difference along the branch (one-sided at its ends)"},
+         {"kmax", A, I, "scalar", "1", "the largest k with a possible resonance on the branch (columns of open)"},
+         {"pair_classes", A, S, "scalar", "1", "the pair classes in bit order (bit 0 first)"}}}}};
 }
 
 } // namespace nltopo

@@ -197,6 +197,25 @@ PetscErrorCode WriteEvents(PetscViewer v, const BranchRecord &r, PetscInt n2)
   PetscFunctionReturn(0);
 }
 
+// /continuation/<branch>/krein_map (stability/krein_map.hpp): computed from
+// the branch's energies and periods and the run's linear frequencies, so a
+// resumed branch's map is recomputed whole.
+PetscErrorCode WriteKreinMap(PetscViewer v, const BranchRecord &r)
+{
+  const std::string g = "/continuation/" + r.label + "/krein_map";
+  const KreinMap m = ComputeKreinMap(*r.krein, r.omega, r.b.energy, r.b.period);
+  std::string classes;
+  for (int c = 0; c < kKreinPairClasses; c++) classes += std::string(c ? "," : "") + kKreinPairNames[c];
+  PetscFunctionBeginUser;
+  PetscCall(WriteIntArray(v, g.c_str(), "open", m.open, m.kmax, true));
+  PetscCall(WriteArray(v, g.c_str(), "edge_omega", m.edges));
+  PetscCall(WriteIntArray(v, g.c_str(), "energy_criterion", m.criterion));
+  PetscCall(WriteArray(v, g.c_str(), "dE_domega", m.slope));
+  PetscCall(WriteAttr(v, g.c_str(), "kmax", m.kmax));
+  PetscCall(WriteAttr(v, g.c_str(), "pair_classes", classes.c_str()));
+  PetscFunctionReturn(0);
+}
+
 // The first value of x that a stored resume state may not hold (x.size() if
 // none): anything not finite, except NaN in a Floquet column (nan_ok), where it
 // means "not computed" (outputs.md). Counts (ints) must also fit an int.
@@ -314,6 +333,7 @@ PetscErrorCode WriteRecord(PetscViewer v, const BranchRecord &r, FloquetKind fk,
     }
   }
   if (r.located) PetscCall(WriteEvents(v, r, n2));
+  if (r.krein && fk != FloquetKind::None && np > 0) PetscCall(WriteKreinMap(v, r));
   PetscFunctionReturn(0);
 }
 

@@ -5,6 +5,7 @@
 #include "orbits/continuation.hpp"
 #include "stability/bifurcations.hpp"
 #include "stability/floquet_hooks.hpp" // FloquetColumns
+#include "stability/krein_map.hpp"
 #include <string>
 #include <vector>
 
@@ -25,6 +26,8 @@ struct BranchRecord {
   std::vector<BifurcationEvent> events;
   PetscReal bif_tol = 0, bif_seconds = 0;
   PetscInt bif_probes = 0;
+  // the linear frequencies of the Krein resonance map (written with -floquet when set; the study's, outlives the record)
+  const KreinSpectrum *krein = nullptr;
 };
 
 enum class FloquetKind { None, Dense, MatrixFree };

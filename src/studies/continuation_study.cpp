@@ -100,6 +100,7 @@ protected:
     if (bo_.enabled) PetscCall(locator_.Setup(nnm_.shoot, flo_, bo_));
     locator_.SetProgress(nnm_.co.progress);
     n2_ = 2 * nnm_.lat.N();
+    if (fk_ != FloquetKind::None) PetscCall(KreinSpectrumSetup(nnm_.lat, &krein_)); // the Krein resonance map's linear frequencies (O(N), once)
     PetscFunctionReturn(0);
   }
   PetscErrorCode Solve() override
@@ -153,6 +154,7 @@ private:
     r.jac = shoot.JacobianEvaluations() - cur.j0, r.res = shoot.ResidualEvaluations() - cur.r0, r.tan = shoot.TangentProducts() - cur.p0,
     r.kry = shoot.KrylovIterations() - cur.k0;
     if (fk_ != FloquetKind::None) r.f = fk_ == FloquetKind::MatrixFree ? mf_hook_->c : hook_->c;
+    r.krein = &krein_;
     return r;
   }
   // The clock and the solver counters a branch's cost is measured from.
@@ -185,6 +187,7 @@ private:
       if (written) continue;
       BranchRecord rec;
       rec.label = r.label, rec.omega = r.omega, rec.b = r.b, rec.f = r.f;
+      rec.krein = &krein_;
       PetscCall(WriteRecord(f.Viewer(), rec, fk_, n2_, fmo_.nev));
     }
     PetscCall(f.Commit(name_, Elapsed(), false));
@@ -272,6 +275,8 @@ private:
     d.located = rec.located, d.events = std::move(rec.events);
     d.bif_tol = rec.bif_tol, d.bif_seconds = rec.bif_seconds, d.bif_probes = rec.bif_probes;
     if (fk_ != FloquetKind::None) PetscCall(PrintFloquetSummary(comm_, label, d.f, flo_.tol, fk_ == FloquetKind::MatrixFree ? mf_hook_->Route() : nullptr, &d.b.energy));
+    if (fk_ != FloquetKind::None && !d.b.energy.empty())
+      PetscCall(PetscPrintf(comm_, "  [%s] %s\n", label.c_str(), KreinMapSummary(ComputeKreinMap(krein_, d.omega, d.b.energy, d.b.period), krein_.bands, d.b.energy, d.b.period).c_str()));
     PetscCall(
         PetscPrintf(comm_, "  [%s] %.2f s, %.3f s per new point\n", label.c_str(), (double)(b1 - cur.b0), (double)(b1 - cur.b0) / std::max<size_t>(nnew, 1)));
     PetscFunctionReturn(0);
@@ -365,6 +370,7 @@ private:
   std::unique_ptr<FloquetMfHook> mf_hook_;
   std::vector<Resume> resumes_;
   std::vector<BranchRecord> done_;
+  KreinSpectrum krein_; // the Krein resonance map's linear frequencies (with -floquet)
 };
 
 } // namespace

@@ -113,7 +113,13 @@ def switching(bp):
     # the two sides are time-reversal images: same u0, opposite v0, same frequency-energy curve
     require(np.abs(pl["z0"][:n, :N] - mi["z0"][:n, :N]).max() < 1e-6 * np.abs(pl["z0"][:n, :N]).max())
     require(np.abs(pl["z0"][:n, N:] + mi["z0"][:n, N:]).max() < 1e-6 * np.abs(pl["z0"][:n, :N]).max())
-    require(np.abs(pl["omega"][:n] - mi["omega"][:n]).max() < 1e-7)   # two continuations: rounding apart
+    # The same frequency-energy curve: two continuations whose step lengths differ by rounding, amplified by
+    # the step control, sit at points slid along the curve (with OpenBLAS: dE/E 2.7e-7 by point 13, so
+    # d omega 1.8e-7 at equal index): compare omega at equal energy, the slide removed to first order.
+    Ep, Em, Wp, Wm = pl["energy"][:n], mi["energy"][:n], pl["omega"][:n], mi["omega"][:n]
+    require(np.abs(Em / Ep - 1).max() < 1e-5, np.abs(Em / Ep - 1).max())   # the same points to within a slide
+    slide = np.abs((Wm - Wp) - np.gradient(Wp, Ep) * (Em - Ep)).max()
+    require(slide < 1e-7, slide)
     print("branch switching OK:", pl["energy"].shape[0], "points on each side from omega", pl["omega"][0])
 
 
