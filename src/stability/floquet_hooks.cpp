@@ -1,4 +1,5 @@
 #include "stability/floquet_hooks.hpp"
+#include "stability/floquet_localized.hpp"
 #include <algorithm>
 #include <cstring>
 
@@ -37,6 +38,12 @@ PetscErrorCode FloquetMfHook::Point(Vec z0, PetscReal T, PetscReal beta, Vec dz0
     }
     PetscCall(flow_.IntegrateWithMonodromy(z0, T, flow_.FloquetBeta(beta), zT_, S_));
     PetscCall(FloquetLeadingDense(flow_.Lat(), S_, mopt_.nev, opt_, &r));
+  } else if (Localized()) { // the localized route: its verdict and (unstable) eigenvector in loc_verdict, loc_vr, loc_vi
+    if (!loc_vr) {
+      PetscCall(VecDuplicate(z0, loc_vr.out()));
+      PetscCall(VecDuplicate(z0, loc_vi.out()));
+    }
+    PetscCall(FloquetLocalized(flow_, z0, T, flow_.FloquetBeta(beta), opt_, mopt_.loc, mopt_.nev, &r, &loc_verdict, loc_vr, loc_vi));
   } else {
     PetscCall(FloquetLeading(flow_, z0, T, flow_.FloquetBeta(beta), mopt_, &r, &warm_, dz0));
     r.verdict = MatrixFreeVerdict(r, opt_.tol);
@@ -50,7 +57,7 @@ PetscErrorCode FloquetMfHook::Point(Vec z0, PetscReal T, PetscReal beta, Vec dz0
   c.instability.push_back(r.instability);
   c.products += r.products;
   c.route = Route();
-  if (r.converged < mopt_.nev && !Dense()) {
+  if (r.converged < mopt_.nev && !Dense() && !Localized()) {
     c.unconverged++;
     PetscCall(PetscPrintf(comm,
                           "  matrix-free Floquet: %" PetscInt_FMT " of %" PetscInt_FMT
@@ -70,6 +77,11 @@ PetscErrorCode FloquetMfHook::Announce() const
                           "  Floquet: the dense monodromy (2N = %" PetscInt_FMT " <= -floquet_mf_dense_max %" PetscInt_FMT
                           "): every multiplier, a stability verdict per orbit, cost ~(2N)^3\n",
                           n2, mopt_.dense_max));
+  else if (Localized())
+    PetscCall(PetscPrintf(comm,
+                          "  Floquet: localized (2N = %" PetscInt_FMT " > -floquet_mf_dense_max %" PetscInt_FMT
+                          "): the tangent equations damped beyond %" PetscInt_FMT " cells of the interface, every multiplier of the window and its absorbing layer\n",
+                          n2, mopt_.dense_max, mopt_.loc.window));
   else
     PetscCall(PetscPrintf(
         comm, "  Floquet: matrix-free (2N = %" PetscInt_FMT " > -floquet_mf_dense_max %" PetscInt_FMT "): an orbit is unstable or not decided, never stable\n",
