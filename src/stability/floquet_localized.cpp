@@ -474,6 +474,69 @@ PetscErrorCode LocalizedIndependence(PeriodicFlow &flow, Vec z0, PetscReal T, Pe
   PetscFunctionReturn(0);
 }
 
+PetscInt LocalizedClass(const FloquetOptions &fo, PetscReal edge, PetscReal inside)
+{
+  const PetscInt cls = Localisation(fo, edge);
+  return cls == 3 && 1 - inside > kRadiatingShare ? 2 : cls;
+}
+
+PetscErrorCode ConfirmLocalizedGrowth(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, Vec vr, Vec vi, const LocalizedOptions &lo, const VerdictOptions &o,
+                                      OrbitVerdict *v)
+{
+  const Lattice &lat = flow.Lat();
+  const LocalizedRegion reg = MakeLocalizedRegion(lat.N(), lat.Params().InterfaceSite(), lo);
+  const PetscInt xs = lat.OwnedStart(), xm = lat.OwnedCount();
+  OwnedVec x, y, w, zT;
+  PetscFunctionBeginUser;
+  if (v->code != Verdict::UnstableLocalized && v->code != Verdict::UnstableExtended) PetscFunctionReturn(0);
+  // |x|^2 + |y|^2 over the window's sites (u and v entries)
+  auto window_norm = [&](Vec a, Vec b, PetscReal *nrm) -> PetscErrorCode {
+    PetscReal sum = 0;
+    PetscFunctionBeginUser;
+    for (Vec q : {a, b}) {
+      if (!q) continue;
+      const PetscScalar *qa;
+      PetscCall(VecGetArrayRead(q, &qa));
+      for (PetscInt i = std::max(reg.lo, xs); i <= std::min(reg.hi, xs + xm - 1); i++)
+        if (reg.InWindow(i - reg.lo)) sum += qa[i - xs] * qa[i - xs] + qa[xm + i - xs] * qa[xm + i - xs];
+      PetscCall(VecRestoreArrayRead(q, &qa));
+    }
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPIU_REAL, MPI_SUM, lat.Comm()));
+    *nrm = std::sqrt(sum);
+    PetscFunctionReturn(0);
+  };
+  PetscCall(VecDuplicate(vr, x.out()));
+  PetscCall(VecDuplicate(vr, w.out()));
+  PetscCall(VecDuplicate(z0, zT.out()));
+  PetscCall(VecCopy(vr, x));
+  if (vi) {
+    PetscCall(VecDuplicate(vi, y.out()));
+    PetscCall(VecCopy(vi, y));
+  }
+  PetscReal n0, nk;
+  PetscCall(window_norm(x, y, &n0));
+  for (PetscInt k = 0; k < o.confirm_periods; k++) {
+    PetscCall(flow.IntegrateWithTangent(z0, T, beta, x, 0, 0, zT, w));
+    PetscCall(VecCopy(w, x));
+    if (y) {
+      PetscCall(flow.IntegrateWithTangent(z0, T, beta, y, 0, 0, zT, w));
+      PetscCall(VecCopy(w, y));
+    }
+  }
+  PetscCall(window_norm(x, y, &nk));
+  const PetscReal rate = std::log(nk / n0) / o.confirm_periods, expect = std::log(std::hypot(v->mu_re, v->mu_im));
+  v->confirmed_rate = rate;
+  if (!(std::abs(rate - expect) <= o.confirm_rtol * expect)) {
+    std::ostringstream t;
+    t << VerdictName(v->code) << " not confirmed: over " << o.confirm_periods << " periods of the undamped lattice the eigenvector's window norm grew at "
+      << rate << " per period where ln|mu| = " << expect << " (-floquet_confirm_rtol " << o.confirm_rtol << "); " << v->reason;
+    v->reason = t.str();
+    v->code = Verdict::Unresolved;
+    v->efold = PETSC_INFINITY;
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FloquetLocalized(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, const FloquetOptions &fo, const LocalizedOptions &lo, PetscInt nev,
                                 LeadingMultipliers *r, OrbitVerdict *v, Vec vr, Vec vi)
 {
@@ -515,7 +578,7 @@ PetscErrorCode FloquetLocalized(PeriodicFlow &flow, Vec z0, PetscReal T, PetscRe
   std::ostringstream head;
   head << "localized route (window " << lo.window << " cells, ramp " << lo.ramp << ", damping " << lo.damping << ", " << 2 * reg.Sites() << " columns)";
   if (!s.mu.empty() && std::abs(s.mu[0]) > 1 + delta) {
-    const PetscInt cls = Localisation(fo, s.edge[0]);
+    const PetscInt cls = LocalizedClass(fo, s.edge[0], s.inside[0]);
     std::ostringstream t;
     t << head.str() << ": |mu| = " << std::abs(s.mu[0]) << ", edge share " << s.edge[0] << ", window share " << s.inside[0] << why.str();
     if (s.inside[0] < 0.5) { // it lives where the tangent equations are damped: an artefact of the layer, not a mode of the lattice

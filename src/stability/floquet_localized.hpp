@@ -84,6 +84,25 @@ PetscErrorCode LocalizedMonodromy(PeriodicFlow &flow, Vec z0, PetscReal T, Petsc
 PetscErrorCode FloquetLocalized(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, const FloquetOptions &fo, const LocalizedOptions &lo, PetscInt nev,
                                 LeadingMultipliers *r, OrbitVerdict *v, Vec vr, Vec vi);
 
+// The class of a localized route's eigenvector: Localisation of its edge
+// share, except that a vector with more than kRadiatingShare of its
+// displacement norm in the absorbing layer (1 - inside) radiates into the band
+// continuum: a B-E resonance (class 2), however large its edge share. (The
+// dense route's B-E eigenvector mixes the edge mode with one standing band
+// wave spread over the lattice; the damped one holds the edge mode and the
+// outgoing tail only, so its edge share alone would read E-E.)
+constexpr PetscReal kRadiatingShare = 1e-3;
+PetscInt LocalizedClass(const FloquetOptions &fo, PetscReal edge, PetscReal inside);
+
+// ConfirmGrowth for the localized route: v = vr + i vi integrated k periods
+// on the undamped lattice, its growth measured on the window's sites only.
+// The eigenvector of a B-E resonance keeps emitting an outgoing wave whose
+// norm adds to the whole vector's, which therefore grows faster than
+// |mu|^k (benchmarks/README.md "Issue 35: the localized route"): the window
+// holds the mode, whose growth is |mu|^k.
+PetscErrorCode ConfirmLocalizedGrowth(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, Vec vr, Vec vi, const LocalizedOptions &lo, const VerdictOptions &o,
+                                      OrbitVerdict *v);
+
 // The independence check: the leading localized multiplier at (W, c) and with
 // W and c each halved and doubled (five solves). change[k]: |mu_k - mu_0| of
 // variant k (W/2, 2W, c/2, 2c), mu_k the variant's multiplier nearest mu_0

@@ -50,7 +50,8 @@ TEST_CASE("localized eigen part: a known quadruplet inside a dense circle spectr
   for (int i = 0; i < 4; i++)
     for (int j = 0; j < 4; j++) A(rows[i], rows[j]) = B[i][j];
   LocalizedSpectrum sp;
-  PCHK(LocalizedEigen(n2, a.data(), reg, {}, 4, FloquetOptions(), &sp));
+  std::vector<PetscReal> work = a; // overwritten
+  PCHK(LocalizedEigen(n2, work.data(), reg, {}, 4, FloquetOptions(), &sp));
   REQUIRE(sp.all.size() == (size_t)n2);
   // the dense circle spectrum: every window site's pair on the circle
   PetscInt on = 0;
@@ -77,54 +78,85 @@ TEST_CASE("localized eigen part: a known quadruplet inside a dense circle spectr
 }
 
 namespace {
-// The last orbit of a branch (z, T) and its dense monodromy S.
-struct LastOrbit : public PointHook {
-  PeriodicFlow &flow;
-  OwnedVec z, zT, dz;
-  OwnedMat S;
-  PetscReal T = 0;
-  explicit LastOrbit(PeriodicFlow &f) : flow(f) {}
-  PetscErrorCode Point(Vec z0, PetscReal TT, PetscReal, Vec dz0) override
+// The first and the last orbit of a branch (z, T).
+struct EndOrbits : public PointHook {
+  OwnedVec first, last;
+  PetscReal T0 = 0, T = 0;
+  PetscErrorCode Point(Vec z0, PetscReal TT, PetscReal, Vec) override
   {
     PetscFunctionBeginUser;
-    if (!z) PetscCall(VecDuplicate(z0, z.out()));
-    PetscCall(VecCopy(z0, z));
+    if (!first) {
+      PetscCall(VecDuplicate(z0, first.out()));
+      PetscCall(VecCopy(z0, first));
+      T0 = TT;
+    }
+    if (!last) PetscCall(VecDuplicate(z0, last.out()));
+    PetscCall(VecCopy(z0, last));
     T = TT;
     PetscFunctionReturn(0);
   }
 };
+
+// The flow of another lattice of the same springs (a longer one).
+struct LongFlow {
+  Lattice lat;
+  EffectList fx{lat};
+  PeriodicFlow flow;
+  PetscErrorCode Setup(const LatticeParams &p)
+  {
+    PetscFunctionBeginUser;
+    PetscCall(lat.Setup(PETSC_COMM_WORLD, p));
+    PetscCall(BuildLatticeEffects(lat, &fx));
+    PetscCall(flow.Setup(fx, FlowOptions()));
+    PetscFunctionReturn(0);
+  }
+};
+
+// z (of lattice a) padded with pad zero cells at both ends into zl (of lattice b).
+void Pad(const Lattice &a, Vec z, const Lattice &b, PetscInt pad, Vec zl)
+{
+  std::vector<PetscReal> u, v, ul(b.N(), 0.0), vl(b.N(), 0.0);
+  GetState(a, z, &u, &v);
+  for (PetscInt i = 0; i < a.N(); i++) ul[2 * pad + i] = u[i], vl[2 * pad + i] = v[i];
+  SetState(b, ul, vl, zl);
+}
 } // namespace
 
-TEST_CASE("localized route on the N = 102 insulated orbit with a B-E instability", "[floquet][localized]")
+TEST_CASE("localized route on the insulated orbit with a B-E instability: dense, window and damping independence, truncation", "[floquet][localized]")
 {
   NnmFixture d;
   LatticeParams p; // the paper's lattice, N = 102
   PCHK(d.Setup(p));
-  LastOrbit last(d.flow);
+  EndOrbits orb;
   ContinuationOptions co;
-  co.energy_max = 0.7; // the branch's first orbit beyond: E = 0.819, dense |mu| = 1.0061108 (B-E)
+  co.energy_max = 0.7; // the branch's first orbit beyond it: E = 0.819, dense |mu| = 1.0061108 (B-E)
   co.verbose = PETSC_FALSE;
   co.progress = 0;
   Branch b;
-  PCHK(ContinueBranch(d.shoot, d.modes.Insulated(), 2 * PETSC_PI / d.modes.Named().insulated_omega, co, "insulated", &b, &last));
+  PCHK(ContinueBranch(d.shoot, d.modes.Insulated(), 2 * PETSC_PI / d.modes.Named().insulated_omega, co, "insulated", &b, &orb));
   const Lattice &lat = d.lat;
   const PetscInt N = lat.N();
-  PCHK(d.flow.CreateSensitivityMatrix(last.S.out()));
-  PCHK(VecDuplicate(last.z, last.zT.out()));
-  PCHK(d.flow.IntegrateWithMonodromy(last.z, last.T, 0.0, last.zT, last.S));
+  OwnedMat S;
+  OwnedVec zT;
+  PCHK(d.flow.CreateSensitivityMatrix(S.out()));
+  PCHK(VecDuplicate(orb.last, zT.out()));
+  PCHK(d.flow.IntegrateWithMonodromy(orb.last, orb.T, 0.0, zT, S));
   LeadingMultipliers dense;
-  PCHK(FloquetLeadingDense(lat, last.S, 2, FloquetOptions(), &dense));
-  INFO("dense leading " << dense.re[0] << " " << dense.im[0] << " |mu| " << dense.max_modulus << " class " << dense.instability);
+  PCHK(FloquetLeadingDense(lat, S, 2, FloquetOptions(), &dense));
+  const cplx mu_dense(dense.re[0], dense.im[0]);
+  INFO("N = 102 dense leading " << mu_dense << ", |mu| " << dense.max_modulus << ", class " << dense.instability);
+  REQUIRE(dense.max_modulus == Approx(1.0061108).margin(1e-6));
+  REQUIRE(dense.instability == 2);
 
-  SECTION("undamped, the whole lattice: the dense monodromy to rounding")
+  // The region map without damping on the whole lattice is the project's tangent map: the dense monodromy to rounding.
   {
     LocalizedOptions lo;
     lo.window = 1000, lo.pad = -1; // the window covers the lattice: c = 0 everywhere
     const LocalizedRegion reg = MakeLocalizedRegion(N, p.InterfaceSite(), lo);
     REQUIRE(reg.Sites() == N);
     std::vector<PetscReal> a, f, m;
-    PCHK(LocalizedMonodromy(d.flow, last.z, last.T, 0.0, reg, &a, &f));
-    PCHK(GatherMonodromy(last.S, 2 * N, &m));
+    PCHK(LocalizedMonodromy(d.flow, orb.last, orb.T, 0.0, reg, &a, &f));
+    PCHK(GatherMonodromy(S, 2 * N, &m));
     if (Rank() == 0) {
       PetscReal err = 0, mx = 0;
       for (PetscInt c = 0; c < 2 * N; c++)
@@ -137,17 +169,81 @@ TEST_CASE("localized route on the N = 102 insulated orbit with a B-E instability
       REQUIRE(err < 1e-11 * mx);
     }
   }
-  SECTION("damped: explore")
-  {
-    for (PetscInt W : {4, 8, 12, 16})
-      for (PetscReal c : {0.25, 0.5, 1.0, 2.0}) {
-        LocalizedOptions lo;
-        lo.window = W, lo.ramp = 8, lo.damping = c;
-        LeadingMultipliers r;
-        OrbitVerdict v;
-        PCHK(FloquetLocalized(d.flow, last.z, last.T, 0.0, FloquetOptions(), lo, 3, &r, &v, nullptr, nullptr));
-        PetscPrintf(PETSC_COMM_WORLD, "W %d c %g: %s %.9f (%.9f %+.9f i) | %.9f %.9f | %s\n", (int)W, (double)c, VerdictName(v.code), (double)r.max_modulus,
-                    (double)r.re[0], (double)r.im[0], (double)std::hypot(r.re[1], r.im[1]), (double)std::hypot(r.re[2], r.im[2]), v.reason.c_str());
-      }
+
+  // The same orbit on N = 402 (75 cells of rest added at each end: the orbit is 1e-18 there), room for the window and the layer.
+  LatticeParams pl = p;
+  pl.cells = 100;
+  LongFlow L;
+  PCHK(L.Setup(pl));
+  OwnedVec z, zl, zTl;
+  PCHK(L.lat.CreateStateVector(z.out()));
+  PCHK(VecDuplicate(z, zTl.out()));
+  Pad(lat, orb.last, L.lat, 75, z);
+  { // periodic to the orbit's amplitude at the N = 102 lattice's ends (~1e-8): enough for comparisons of maps at this one orbit
+    PetscReal r, r0, nz;
+    PCHK(L.flow.Integrate(z, orb.T, 0.0, zTl));
+    PCHK(VecAXPY(zTl, -1.0, z));
+    PCHK(VecNorm(zTl, NORM_2, &r));
+    PCHK(VecNorm(z, NORM_2, &nz));
+    PCHK(d.flow.Integrate(orb.last, orb.T, 0.0, zT));
+    PCHK(VecAXPY(zT, -1.0, orb.last));
+    PCHK(VecNorm(zT, NORM_2, &r0));
+    INFO("padded orbit: |z(T) - z0| / |z0| = " << r / nz << ", on N = 102 " << r0 / nz);
+    REQUIRE(r < 1e-7 * nz);
   }
+  // The damped route: the B-E pair of the dense N = 102 route becomes a resonance with the band continuum. Its
+  // multiplier is the long-lattice limit (|mu| - 1 differs from the finite-N bubble's), its phase the pair's.
+  LocalizedOptions lo;
+  lo.window = 20, lo.ramp = 20, lo.damping = 1;
+  FloquetOptions fo;
+  LeadingMultipliers r;
+  OrbitVerdict v;
+  OwnedVec vr, vi;
+  PCHK(VecDuplicate(z, vr.out()));
+  PCHK(VecDuplicate(z, vi.out()));
+  PCHK(FloquetLocalized(L.flow, z, orb.T, 0.0, fo, lo, 3, &r, &v, vr, vi));
+  const cplx mu(r.re[0], r.im[0]);
+  INFO("localized N = 402: " << VerdictName(v.code) << " " << mu << " |mu| " << std::abs(mu) << " class " << v.cls << " | " << v.reason);
+  REQUIRE(v.code == Verdict::UnstableLocalized);
+  REQUIRE(v.cls == 2); // B-E: it radiates into the absorbing layer
+  REQUIRE(std::abs(mu) > 1 + 1e-3);
+  REQUIRE(std::abs(std::arg(mu) - std::arg(mu_dense)) < 5e-3);
+  REQUIRE(v.bound == Approx(std::abs(mu) - 1).epsilon(1e-12));
+
+  // (b) independence: W and c halved and doubled move the multiplier by far less than |mu| - 1
+  LocalizedIndependenceResult ind;
+  PCHK(LocalizedIndependence(L.flow, z, orb.T, 0.0, fo, lo, 3, &ind));
+  INFO("independence: W/2 " << ind.change[0] << ", 2W " << ind.change[1] << ", c/2 " << ind.change[2] << ", 2c " << ind.change[3] << ", modulus "
+                            << ind.max_modulus_change);
+  REQUIRE(std::abs(ind.mu0 - mu) == 0);
+  REQUIRE(ind.max_change < 1e-5);
+  REQUIRE(ind.max_modulus_change < 1e-5);
+
+  // the truncated region against the damped whole lattice (the damping to the lattice's ends)
+  LocalizedOptions full = lo;
+  full.pad = -1;
+  LeadingMultipliers rf;
+  OrbitVerdict vf;
+  PCHK(FloquetLocalized(L.flow, z, orb.T, 0.0, fo, full, 3, &rf, &vf, nullptr, nullptr));
+  INFO("whole lattice damped " << rf.re[0] << " " << rf.im[0]);
+  REQUIRE(std::abs(cplx(rf.re[0], rf.im[0]) - mu) < 1e-12);
+
+  // confirmed on the undamped lattice: the window norm of the vector grows as |mu|^k
+  VerdictOptions vo;
+  OrbitVerdict c = v;
+  PCHK(ConfirmLocalizedGrowth(L.flow, z, orb.T, 0.0, vr, vi, lo, vo, &c));
+  INFO("confirmed rate " << c.confirmed_rate << " against ln|mu| " << std::log(std::abs(mu)) << ": " << c.reason);
+  REQUIRE(c.code == Verdict::UnstableLocalized);
+
+  // a stable orbit (the branch's first, E = 1e-5): stable-to(-floquet_tol)
+  OwnedVec z1;
+  PCHK(VecDuplicate(z, z1.out()));
+  Pad(lat, orb.first, L.lat, 75, z1);
+  LeadingMultipliers r1;
+  OrbitVerdict v1;
+  PCHK(FloquetLocalized(L.flow, z1, orb.T0, 0.0, fo, lo, 3, &r1, &v1, nullptr, nullptr));
+  INFO(v1.reason);
+  REQUIRE(v1.code == Verdict::StableTo);
+  REQUIRE(v1.bound == fo.tol);
+  REQUIRE(r1.max_modulus < 1 + 1e-9);
 }
