@@ -22,6 +22,9 @@ static const auto &kLocalizedTable = DeclareOptionTable<LocalizedOptions>(
                "Cells over which the tangent damping rises smoothly (3x^2 - 2x^3) from 0 to -floquet_loc_damping (a sharp step reflects)")
           .Int("pad", &LocalizedOptions::pad, Closed(-1, 1000000), "Cells at the full damping beyond the ramp; -1: to the lattice's ends (no truncation)")
           .Real("damping", &LocalizedOptions::damping, Open(0, 1000), "Damping rate c of the tangent equations beyond the ramp, per unit time")
+          .Bool("resolve", &LocalizedOptions::resolve,
+                "At every orbit, solve again with the window halved (about half the cost once more): delta, the resolution of the verdict, is at least "
+                "the change of the leading |mu|")
           .Bool("check", &LocalizedOptions::check,
                 "At every orbit, solve again with the window and the damping halved and doubled and raise delta to the largest change of the leading multiplier "
                 "(five times the cost)");
@@ -34,11 +37,14 @@ PetscErrorCode LocalizedOptionsFromOptions(MPI_Comm comm, LocalizedOptions *o)
   PetscFunctionReturn(0);
 }
 
-static PetscLogEvent LocalizedEvent()
+// The route's -log_view event (registered on first use).
+static PetscErrorCode LocalizedEvent(PetscLogEvent *ev)
 {
-  static PetscLogEvent ev = -1;
-  if (ev < 0) PetscLogEventRegister("FloquetLocal", Log().classid, &ev);
-  return ev;
+  static PetscLogEvent e = -1;
+  PetscFunctionBeginUser;
+  if (e < 0) PetscCall(PetscLogEventRegister("FloquetLocal", Log().classid, &e));
+  *ev = e;
+  PetscFunctionReturn(0);
 }
 
 LocalizedRegion MakeLocalizedRegion(PetscInt N, PetscInt iface, const LocalizedOptions &o)
@@ -513,7 +519,7 @@ PetscErrorCode ConfirmLocalizedGrowth(PeriodicFlow &flow, Vec z0, PetscReal T, P
     PetscCall(VecDuplicate(vi, y.out()));
     PetscCall(VecCopy(vi, y));
   }
-  PetscReal n0, nk;
+  PetscReal n0 = 0, nk = 0;
   PetscCall(window_norm(x, y, &n0));
   for (PetscInt k = 0; k < o.confirm_periods; k++) {
     PetscCall(flow.IntegrateWithTangent(z0, T, beta, x, 0, 0, zT, w));
@@ -544,8 +550,10 @@ PetscErrorCode FloquetLocalized(PeriodicFlow &flow, Vec z0, PetscReal T, PetscRe
   LocalizedSpectrum s;
   PetscErrorCode code;
   char msg[256] = "";
+  PetscLogEvent ev;
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(LocalizedEvent(), 0, 0, 0, 0));
+  PetscCall(LocalizedEvent(&ev));
+  PetscCall(PetscLogEventBegin(ev, 0, 0, 0, 0));
   PetscCheck(lat.Params().layout == Layout::Interface, lat.Comm(), PETSC_ERR_USER,
              "-floquet_mf_which localized damps the tangent equations outside a window around the interface: it needs -lattice_layout interface");
   const LocalizedRegion reg = MakeLocalizedRegion(lat.N(), lat.Params().InterfaceSite(), lo);
@@ -559,47 +567,61 @@ PetscErrorCode FloquetLocalized(PeriodicFlow &flow, Vec z0, PetscReal T, PetscRe
   if (code) { // LAPACK failed on rank 0: no bound
     v->reason = std::string("localized route: ") + msg;
     r->max_modulus = NAN;
-    PetscCall(PetscLogEventEnd(LocalizedEvent(), 0, 0, 0, 0));
+    PetscCall(PetscLogEventEnd(ev, 0, 0, 0, 0));
     PetscFunctionReturn(0);
   }
-  PetscReal delta = fo.tol;
+  // delta: what this orbit's answer is resolved to (docs/long-lattices.md "The localized route")
+  PetscReal delta = fo.tol, sens = 0;
   std::ostringstream why;
+  const PetscReal m = s.mu.empty() ? 0 : std::abs(s.mu[0]);
+  if (lo.resolve && !s.mu.empty()) { // the window halved: how far the leading modulus depends on it
+    LocalizedOptions half = lo;
+    half.window = std::max<PetscInt>(1, lo.window / 2);
+    LocalizedSpectrum sh;
+    const LocalizedRegion rh = MakeLocalizedRegion(lat.N(), lat.Params().InterfaceSite(), half);
+    PetscCall(SolveRegion(flow, z0, T, beta, rh, fo, nev, &sh, &code, msg, sizeof msg));
+    sens = code || sh.mu.empty() ? PETSC_INFINITY : std::abs(std::abs(sh.mu[0]) - m);
+    why << "; the window halved moves the leading |mu| by " << sens;
+    code = 0;
+  }
   if (lo.check && !s.mu.empty()) {
     LocalizedIndependenceResult ind;
     PetscCall(LocalizedIndependence(flow, z0, T, beta, fo, lo, nev, &ind));
-    delta = std::max(delta, ind.max_modulus_change);
-    why << "; W and c halved and doubled move |mu| by " << ind.max_modulus_change;
+    sens = std::max(sens, ind.max_modulus_change);
+    why << "; W and c halved and doubled move it by " << ind.max_modulus_change;
   }
+  delta = std::max(delta, sens);
   r->converged = (PetscInt)s.mu.size();
-  r->max_modulus = s.mu.empty() ? 0 : std::abs(s.mu[0]);
+  r->max_modulus = m;
   for (size_t k = 0; k < s.mu.size(); k++) {
     r->re[k] = s.mu[k].real(), r->im[k] = s.mu[k].imag(), r->krein[k] = KreinSign(fo, s.kappa[k]), r->resolution[k] = delta;
   }
   std::ostringstream head;
-  head << "localized route (window " << lo.window << " cells, ramp " << lo.ramp << ", damping " << lo.damping << ", " << 2 * reg.Sites() << " columns)";
-  if (!s.mu.empty() && std::abs(s.mu[0]) > 1 + delta) {
+  head << "localized route (window " << lo.window << " cells, ramp " << lo.ramp << ", damping " << lo.damping << ", " << 2 * reg.Sites()
+       << " columns): leading |mu| = " << m;
+  if (!s.mu.empty()) head << ", edge share " << s.edge[0] << ", window share " << s.inside[0];
+  head << why.str();
+  r->verdict = kUndecided, r->instability = -1;
+  if (m > 1 + delta && s.inside[0] >= 0.5) {
     const PetscInt cls = LocalizedClass(fo, s.edge[0], s.inside[0]);
-    std::ostringstream t;
-    t << head.str() << ": |mu| = " << std::abs(s.mu[0]) << ", edge share " << s.edge[0] << ", window share " << s.inside[0] << why.str();
-    if (s.inside[0] < 0.5) { // it lives where the tangent equations are damped: an artefact of the layer, not a mode of the lattice
-      v->code = Verdict::Unresolved;
-      v->bound = std::abs(s.mu[0]) - 1;
-      v->reason = t.str() + ": the growing vector lies in the absorbing layer (raise -floquet_loc_damping or -floquet_loc_window)";
-      r->verdict = kUndecided, r->instability = -1;
-    } else {
-      *v = UnstableVerdict(s.mu[0], cls, t.str());
-      r->verdict = kUnstable, r->instability = cls;
-      PetscCall(ScatterVector(lat, reg, s.vector, vr, vi));
-    }
+    *v = UnstableVerdict(s.mu[0], cls, head.str());
+    r->verdict = kUnstable, r->instability = cls;
+    PetscCall(ScatterVector(lat, reg, s.vector, vr, vi));
+  } else if (m > 1 + delta) { // it lives where the tangent equations are damped: an artefact of the layer, not a mode of the lattice
+    v->code = Verdict::Unresolved;
+    v->bound = m - 1;
+    v->reason = head.str() + ": the growing vector lies in the absorbing layer (raise -floquet_loc_damping or -floquet_loc_window)";
+  } else if (m > 1 + fo.tol) { // beyond -floquet_tol, within the window's resolution
+    v->code = Verdict::Unresolved;
+    v->bound = m - 1 + sens;
+    v->reason = head.str() + ": beyond 1 + -floquet_tol but not beyond the window's resolution (raise -floquet_loc_window)";
   } else {
-    std::ostringstream t;
-    t << head.str() << ": no damped multiplier beyond 1 + " << delta << " (largest nontrivial |mu| = " << r->max_modulus << ")" << why.str();
     v->code = Verdict::StableTo;
     v->bound = delta;
-    v->reason = t.str();
-    r->verdict = kUndecided, r->instability = 0;
+    v->reason = head.str() + ": no damped multiplier beyond 1 + delta";
+    r->instability = 0;
   }
-  PetscCall(PetscLogEventEnd(LocalizedEvent(), 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(ev, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

@@ -73,14 +73,19 @@ PetscErrorCode LocalizedMonodromy(PeriodicFlow &flow, Vec z0, PetscReal T, Petsc
                                   std::vector<PetscReal> *f);
 
 // The route: the leading localized multipliers (r: re, im, max_modulus,
-// krein, instability, resolution = delta, products = the region's columns),
-// the verdict v (unstable-localized / -extended beyond 1 + delta with the
-// eigenvector's class, stable-to(delta) otherwise, unresolved when the
-// leading unstable vector lives in the absorbing layer or LAPACK fails) with
-// delta = max(-floquet_tol, the W and c change under -floquet_loc_check), and
-// for an unstable verdict the eigenvector in full-lattice state layout (zero
-// outside the region; vi zero for a real multiplier) for ConfirmGrowth. vr, vi
-// may be null. Collective.
+// krein, instability, resolution = delta, products = the region's columns)
+// and the verdict v, with delta = max(-floquet_tol, the change of the leading
+// |mu| when the window is halved (-floquet_loc_resolve), the change when W and
+// c are halved and doubled (-floquet_loc_check)):
+//   unstable-localized / -extended(mu, class)  |mu| > 1 + delta, the vector in the window
+//                                              (class: LocalizedClass)
+//   stable-to(delta)                           |mu| <= 1 + -floquet_tol and no other beyond 1 + delta
+//   unresolved(reason, bound)                  1 + -floquet_tol < |mu| <= 1 + delta (the window's
+//                                              resolution), a growing vector in the absorbing
+//                                              layer, or LAPACK failed (bound +inf)
+// For an unstable verdict also the eigenvector in full-lattice state layout
+// (zero outside the region; vi zero for a real multiplier), for
+// ConfirmLocalizedGrowth. vr, vi may be null. Collective.
 PetscErrorCode FloquetLocalized(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, const FloquetOptions &fo, const LocalizedOptions &lo, PetscInt nev,
                                 LeadingMultipliers *r, OrbitVerdict *v, Vec vr, Vec vi);
 
