@@ -10,6 +10,9 @@
 //         cells, damping; default the -floquet_loc_* options): the leading
 //         multipliers, their edge and window shares, the verdict, the time
 //  check  with -bench_check: LocalizedIndependence (W and c halved and doubled)
+//  confirm with -bench_confirm: for an unstable verdict of the first config,
+//         ConfirmLocalizedGrowth (the window norm) and ConfirmGrowth (the whole
+//         vector's norm) over -floquet_confirm_periods on the undamped lattice
 //  dense  with -bench_dense (point indices, -1 all): the dense route's leading
 //         pairs (FloquetLeadingDense, -floquet_mf_nev of them)
 // One line per point and method (bench: ...), to be read by a script.
@@ -70,10 +73,13 @@ int main(int argc, char **argv)
     FloquetMfOptions mo;
     PetscCall(FloquetMfOptionsFromOptions(comm, &mo));
     PetscInt points[1000], npoints = 1000, dense[1000], ndense = 1000;
-    PetscBool has_points, has_dense, check = PETSC_FALSE;
+    PetscBool has_points, has_dense, check = PETSC_FALSE, confirm = PETSC_FALSE;
+    VerdictOptions vo;
+    PetscCall(VerdictOptionsFromOptions(comm, &vo));
     PetscCall(PetscOptionsGetIntArray(NULL, NULL, "-bench_points", points, &npoints, &has_points));
     PetscCall(PetscOptionsGetIntArray(NULL, NULL, "-bench_dense", dense, &ndense, &has_dense));
     PetscCall(PetscOptionsGetBool(NULL, NULL, "-bench_check", &check, NULL));
+    PetscCall(PetscOptionsGetBool(NULL, NULL, "-bench_confirm", &confirm, NULL));
     char cfg[100][64], *cfgp[100];
     PetscInt ncfg = 100;
     for (PetscInt i = 0; i < 100; i++) cfgp[i] = cfg[i];
@@ -123,6 +129,15 @@ int main(int argc, char **argv)
         for (size_t k = 0; k < r.re.size(); k++)
           PetscCall(PetscPrintf(comm, " mu %.10f %.10f %.10f", (double)r.re[k], (double)r.im[k], (double)std::hypot(r.re[k], r.im[k])));
         PetscCall(PetscPrintf(comm, " | %s\n", v.reason.c_str()));
+        if (confirm && &lo == &configs[0] && (v.code == Verdict::UnstableLocalized || v.code == Verdict::UnstableExtended)) {
+          OrbitVerdict cw = v, cf = v;
+          t0 = Now();
+          PetscCall(ConfirmLocalizedGrowth(flow, o.z0, o.T, 0.0, vr, vi, lo, vo, &cw));
+          PetscCall(ConfirmGrowth(flow, o.z0, o.T, 0.0, vr, vi, vo, &cf));
+          PetscCall(PetscPrintf(comm, "bench: confirm point %d E %.6g ln|mu| %.6e window_rate %.6e %s whole_rate %.6e %s periods %d seconds %.2f\n", (int)p,
+                                (double)b.energy[p], (double)std::log(std::hypot(v.mu_re, v.mu_im)), (double)cw.confirmed_rate, VerdictName(cw.code),
+                                (double)cf.confirmed_rate, VerdictName(cf.code), (int)vo.confirm_periods, Now() - t0));
+        }
       }
       if (check) {
         LocalizedIndependenceResult ind;

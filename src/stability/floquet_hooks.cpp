@@ -44,6 +44,8 @@ PetscErrorCode FloquetMfHook::Point(Vec z0, PetscReal T, PetscReal beta, Vec dz0
       PetscCall(VecDuplicate(z0, loc_vi.out()));
     }
     PetscCall(FloquetLocalized(flow_, z0, T, flow_.FloquetBeta(beta), opt_, mopt_.loc, mopt_.nev, &r, &loc_verdict, loc_vr, loc_vi));
+    PetscCall(PetscPrintf(comm, "  Floquet (localized) at omega %.6f: %s, bound %.2e | %s\n", (double)(2 * PETSC_PI / T), VerdictName(loc_verdict.code),
+                          (double)loc_verdict.bound, loc_verdict.reason.c_str()));
   } else {
     PetscCall(FloquetLeading(flow_, z0, T, flow_.FloquetBeta(beta), mopt_, &r, &warm_, dz0));
     r.verdict = MatrixFreeVerdict(r, opt_.tol);
