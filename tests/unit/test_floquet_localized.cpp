@@ -7,6 +7,7 @@
 // the damped whole lattice.
 #include "helpers.hpp"
 #include "nnm_fixture.hpp"
+#include "stability/floquet_hooks.hpp"
 #include "stability/floquet_localized.hpp"
 #include <algorithm>
 #include <cmath>
@@ -234,6 +235,23 @@ TEST_CASE("localized route on the insulated orbit with a B-E instability: dense,
   PCHK(ConfirmLocalizedGrowth(L.flow, z, orb.T, 0.0, vr, vi, lo, vo, &c));
   INFO("confirmed rate " << c.confirmed_rate << " against ln|mu| " << std::log(std::abs(mu)) << ": " << c.reason);
   REQUIRE(c.code == Verdict::UnstableLocalized);
+
+  // the -floquet_mf hook's dispatch (-floquet_mf_which localized beyond -floquet_mf_dense_max): the same verdict and vector
+  {
+    FloquetMfOptions mo;
+    mo.which = FloquetMfWhich::Localized, mo.dense_max = 0, mo.nev = 3, mo.loc = lo;
+    FloquetMfHook hook(L.flow, fo, mo);
+    REQUIRE(std::string(hook.Route()) == "localized");
+    PCHK(hook.Point(z, orb.T, 0.0, nullptr));
+    REQUIRE(hook.loc_verdict.code == Verdict::UnstableLocalized);
+    REQUIRE(hook.loc_verdict.mu_re == mu.real());
+    REQUIRE(hook.c.stable.back() == kUnstable);
+    REQUIRE(hook.c.instability.back() == 2);
+    PetscReal dv;
+    PCHK(VecAXPY(hook.loc_vr, -1.0, vr));
+    PCHK(VecNorm(hook.loc_vr, NORM_INFINITY, &dv));
+    REQUIRE(dv == 0);
+  }
 
   // a stable orbit (the branch's first, E = 1e-5): stable-to(-floquet_tol)
   OwnedVec z1;
