@@ -82,7 +82,8 @@ PetscErrorCode FloquetMfHook::Announce() const
   else if (Localized())
     PetscCall(PetscPrintf(comm,
                           "  Floquet: localized (2N = %" PetscInt_FMT " > -floquet_mf_dense_max %" PetscInt_FMT
-                          "): the tangent equations damped beyond %" PetscInt_FMT " cells of the interface, every multiplier of the window and its absorbing layer\n",
+                          "): the tangent equations damped beyond %" PetscInt_FMT
+                          " cells of the interface, every multiplier of the window and its absorbing layer\n",
                           n2, mopt_.dense_max, mopt_.loc.window));
   else
     PetscCall(PetscPrintf(

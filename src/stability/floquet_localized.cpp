@@ -25,9 +25,10 @@ static const auto &kLocalizedTable = DeclareOptionTable<LocalizedOptions>(
           .Bool("resolve", &LocalizedOptions::resolve,
                 "At every orbit, solve again with the window halved (about half the cost once more): delta, the resolution of the verdict, is at least "
                 "the change of the leading |mu|")
-          .Bool("check", &LocalizedOptions::check,
-                "At every orbit, solve again with the window and the damping halved and doubled and raise delta to the largest change of the leading multiplier "
-                "(five times the cost)");
+          .Bool(
+              "check", &LocalizedOptions::check,
+              "At every orbit, solve again with the window and the damping halved and doubled and raise delta to the largest change of the leading multiplier "
+              "(five times the cost)");
     });
 
 PetscErrorCode LocalizedOptionsFromOptions(MPI_Comm comm, LocalizedOptions *o)
@@ -108,7 +109,8 @@ PetscErrorCode RecorderAcceleration(TS, PetscReal t, Vec z, PetscScalar *a, void
   Vec ul;
   PetscFunctionBeginUser;
   PetscCall(R.rhs->Acceleration(t, z, a));
-  PetscCheck(R.evals < R.capacity, lat.Comm(), PETSC_ERR_PLIB, "localized Floquet: more accelerations than the scheme's stages (%" PetscInt_FMT ")", R.capacity);
+  PetscCheck(R.evals < R.capacity, lat.Comm(), PETSC_ERR_PLIB, "localized Floquet: more accelerations than the scheme's stages (%" PetscInt_FMT ")",
+             R.capacity);
   PetscCall(lat.GetGhostedU(z, &ul, &u));
   R.fx->Stiffness(u, R.kd.data() - xs, R.kb.data() + 1 - xs); // kd by owned site, kb by bond xs-1 .. xs+xm-1
   PetscCall(lat.RestoreGhostedU(z, &ul, &u));
@@ -486,8 +488,8 @@ PetscInt LocalizedClass(const FloquetOptions &fo, PetscReal edge, PetscReal insi
   return cls == 3 && 1 - inside > kRadiatingShare ? 2 : cls;
 }
 
-PetscErrorCode ConfirmLocalizedGrowth(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, Vec vr, Vec vi, const LocalizedOptions &lo, const VerdictOptions &o,
-                                      OrbitVerdict *v)
+PetscErrorCode ConfirmLocalizedGrowth(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, Vec vr, Vec vi, const LocalizedOptions &lo,
+                                      const VerdictOptions &o, OrbitVerdict *v)
 {
   const Lattice &lat = flow.Lat();
   const LocalizedRegion reg = MakeLocalizedRegion(lat.N(), lat.Params().InterfaceSite(), lo);

@@ -105,8 +105,8 @@ PetscInt LocalizedClass(const FloquetOptions &fo, PetscReal edge, PetscReal insi
 // norm adds to the whole vector's, which therefore grows faster than
 // |mu|^k (benchmarks/README.md "Issue 35: the localized route"): the window
 // holds the mode, whose growth is |mu|^k.
-PetscErrorCode ConfirmLocalizedGrowth(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, Vec vr, Vec vi, const LocalizedOptions &lo, const VerdictOptions &o,
-                                      OrbitVerdict *v);
+PetscErrorCode ConfirmLocalizedGrowth(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, Vec vr, Vec vi, const LocalizedOptions &lo,
+                                      const VerdictOptions &o, OrbitVerdict *v);
 
 // The independence check: the leading localized multiplier at (W, c) and with
 // W and c each halved and doubled (five solves). change[k]: |mu_k - mu_0| of
