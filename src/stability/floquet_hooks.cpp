@@ -1,4 +1,5 @@
 #include "stability/floquet_hooks.hpp"
+#include "stability/floquet_localized.hpp"
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -48,6 +49,11 @@ PetscErrorCode FloquetMfHook::RouteVerdict(Vec z0, PetscReal T, PetscReal beta, 
 {
   char b[240];
   PetscFunctionBeginUser;
+  if (Localized()) { // its own verdict; an unstable one confirmed on the window's norm (the mode radiates into the band)
+    *v = loc_verdict;
+    PetscCall(ConfirmLocalizedGrowth(flow_, z0, T, beta, loc_vr, loc_vi, mopt_.loc, opt_, v));
+    PetscFunctionReturn(0);
+  }
   if (Dense()) {
     std::complex<PetscReal> mu(r.re.empty() ? 1 : r.re[0], r.im.empty() ? 0 : r.im[0]);
     PetscCall(DenseVerdict(flow_, z0, T, beta, opt_, r.verdict == kStable, r.max_modulus, mu, r.instability, vr_, vi_, v));
@@ -94,6 +100,12 @@ PetscErrorCode FloquetMfHook::Point(Vec z0, PetscReal T, PetscReal beta, Vec dz0
     }
     PetscCall(flow_.IntegrateWithMonodromy(z0, T, fb, zT_, S_));
     PetscCall(FloquetLeadingDense(flow_.Lat(), S_, mopt_.nev, opt_, &r, vr_, vi_));
+  } else if (Localized()) { // the localized route: its verdict and (unstable) eigenvector in loc_verdict, loc_vr, loc_vi
+    if (!loc_vr) {
+      PetscCall(VecDuplicate(z0, loc_vr.out()));
+      PetscCall(VecDuplicate(z0, loc_vi.out()));
+    }
+    PetscCall(FloquetLocalized(flow_, z0, T, fb, opt_, mopt_.loc, mopt_.nev, &r, &loc_verdict, loc_vr, loc_vi));
   } else {
     PetscCall(FloquetLeading(flow_, z0, T, fb, mopt_, &r, &warm_, dz0, vr_, vi_));
     r.verdict = MatrixFreeVerdict(r, opt_.tol);
@@ -110,7 +122,7 @@ PetscErrorCode FloquetMfHook::Point(Vec z0, PetscReal T, PetscReal beta, Vec dz0
   c.leading_participation.push_back(r.leading_participation), c.leading_edge.push_back(r.leading_edge);
   c.products += r.products;
   c.route = Route();
-  if (r.converged < mopt_.nev && !Dense()) {
+  if (r.converged < mopt_.nev && !Dense() && !Localized()) {
     c.unconverged++;
     PetscCall(PetscPrintf(comm,
                           "  matrix-free Floquet: %" PetscInt_FMT " of %" PetscInt_FMT
@@ -130,6 +142,12 @@ PetscErrorCode FloquetMfHook::Announce() const
                           "  Floquet: the dense monodromy (2N = %" PetscInt_FMT " <= -floquet_mf_dense_max %" PetscInt_FMT
                           "): every multiplier, a stability verdict per orbit, cost ~(2N)^3\n",
                           n2, mopt_.dense_max));
+  else if (Localized())
+    PetscCall(PetscPrintf(comm,
+                          "  Floquet: localized (2N = %" PetscInt_FMT " > -floquet_mf_dense_max %" PetscInt_FMT
+                          "): the tangent equations damped beyond %" PetscInt_FMT
+                          " cells of the interface, every multiplier of the window and its absorbing layer\n",
+                          n2, mopt_.dense_max, mopt_.loc.window));
   else
     PetscCall(PetscPrintf(
         comm, "  Floquet: matrix-free (2N = %" PetscInt_FMT " > -floquet_mf_dense_max %" PetscInt_FMT "): an orbit is unstable or not decided, never stable\n",
@@ -172,17 +190,18 @@ static PetscErrorCode PrintVerdicts(MPI_Comm comm, const std::string &label, con
 PetscErrorCode PrintFloquetSummary(MPI_Comm comm, const std::string &label, const FloquetColumns &f, PetscReal tol, const char *mf_route,
                                    const std::vector<PetscReal> *energy)
 {
-  const bool mf = mf_route != nullptr, dense = !mf || !std::strcmp(mf_route, "dense");
+  const bool mf = mf_route != nullptr, dense = !mf || !std::strcmp(mf_route, "dense"), localized = mf && !std::strcmp(mf_route, "localized");
   PetscInt ns = 0, nu = 0;
   PetscFunctionBeginUser;
   for (PetscInt s : f.stable) ns += s == kStable, nu += s == kUndecided;
   PetscCall(PetscPrintf(comm, "  [%s] Floquet%s: %" PetscInt_FMT " of %zu orbits stable (|mu| <= 1 + %g)", label.c_str(),
-                        !mf     ? ""
-                        : dense ? " (-floquet_mf, dense: 2N <= -floquet_mf_dense_max)"
-                                : " (matrix-free, leading pairs)",
+                        !mf         ? ""
+                        : dense     ? " (-floquet_mf, dense: 2N <= -floquet_mf_dense_max)"
+                        : localized ? " (localized: the damped window's multipliers; stable means stable-to(delta), below)"
+                                    : " (matrix-free, leading pairs)",
                         ns, f.stable.size(), (double)tol));
   if (mf) {
-    if (!dense)
+    if (!dense && !localized)
       PetscCall(PetscPrintf(comm, ", %" PetscInt_FMT " not decided (a complex quadruplet cannot be excluded matrix-free), %" PetscInt_FMT " monodromy products",
                             nu, f.products));
   } else {

@@ -20,14 +20,15 @@ static PetscErrorCode ShellMult(Mat M, Vec x, Vec y)
   PetscFunctionReturn(0);
 }
 
-static const char *const kWhichNames[] = {"largest", "critical"};
+static const char *const kWhichNames[] = {"largest", "critical", "localized"};
 
 static const auto &kFloquetMfTable = DeclareOptionTable<FloquetMfOptions>(
     "floquet_mf_", "Matrix-free Floquet multipliers (eigensolver options: -floquet_mf_eps_*)", [](OptionTable<FloquetMfOptions> &t) {
       t.Int("nev", &FloquetMfOptions::nev, Closed(1, 1000), "Leading multiplier pairs wanted per orbit (critical: one per distinct b)")
-          .Enum("which", &FloquetMfOptions::which, kWhichNames, 2,
+          .Enum("which", &FloquetMfOptions::which, kWhichNames, 3,
                 "largest: largest modulus (Krylov-Schur on M); critical: nearest the critical points +-1 or off the unit circle "
-                "(Krylov-Schur on (M + M^-1)/2)")
+                "(Krylov-Schur on (M + M^-1)/2); localized: the multipliers of perturbations localized at the interface, the tangent "
+                "equations damped outside a window (-floquet_loc_*), all of them from a dense matrix of the window and its absorbing layer")
           .Real("circle_tol", &FloquetMfOptions::circle_tol, Open(0, 1),
                 "critical: b = (mu + 1/mu)/2 within this of [-1, 1] is on the unit circle (|mu| - 1 is resolved down to sqrt(2 circle_tol))")
           .Int("dense_max", &FloquetMfOptions::dense_max, Closed(0, 20000),
@@ -41,6 +42,7 @@ PetscErrorCode FloquetMfOptionsFromOptions(MPI_Comm comm, FloquetMfOptions *o)
 {
   PetscFunctionBeginUser;
   PetscCall(kFloquetMfTable.Read(comm, o));
+  PetscCall(LocalizedOptionsFromOptions(comm, &o->loc));
   PetscFunctionReturn(0);
 }
 

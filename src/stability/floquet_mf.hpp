@@ -37,6 +37,7 @@
 // multipliers are nontrivial ones.
 #include "orbits/flow.hpp"
 #include "stability/floquet.hpp"
+#include "stability/floquet_localized_options.hpp"
 #include <complex>
 #include <vector>
 
@@ -62,7 +63,7 @@ private:
   OwnedVec zT_, zr_, xr_, yr_;
 };
 
-enum class FloquetMfWhich { Largest = 0, Critical = 1 };
+enum class FloquetMfWhich { Largest = 0, Critical = 1, Localized = 2 }; // Localized: stability/floquet_localized.hpp
 struct FloquetMfOptions {
   PetscInt nev = 4;
   FloquetMfWhich which = FloquetMfWhich::Critical;
@@ -77,6 +78,7 @@ struct FloquetMfOptions {
   // where the 2N x 2N monodromy is affordable it is the only route whose
   // "stable" is a verdict (below), and at N = 102 it is also the cheaper one.
   PetscInt dense_max = 2048;
+  LocalizedOptions loc; // -floquet_loc_* (which = localized)
 };
 PetscErrorCode FloquetMfOptionsFromOptions(MPI_Comm comm, FloquetMfOptions *o);
 

@@ -102,7 +102,7 @@ StudyContract ContinuationStudyContract()
          {"floquet_products", A, I, "scalar", "1", "monodromy products (tangent integrations; the dense route: 2N columns per orbit)"},
          {"floquet_unconverged", A, I, "scalar", "1", "orbits with unconverged multipliers"},
          {"floquet_undecided", A, I, "scalar", "1", "orbits with stable = -1"},
-         {"floquet_route", A, S, "scalar", "1", "dense (2N <= -floquet_mf_dense_max) or matrix-free"},
+         {"floquet_route", A, S, "scalar", "1", "dense (2N <= -floquet_mf_dense_max), matrix-free, or localized (-floquet_mf_which localized)"},
          // issue 35: the leading eigenvector's extent (dense route; NaN matrix-free)
          {"leading_participation", D, R, "npts", "sites", kLeadingParticipation},
          {"leading_edge_share", D, R, "npts", "1", kLeadingEdgeShare}}},

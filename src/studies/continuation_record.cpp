@@ -361,7 +361,8 @@ PetscErrorCode ReadResume(MPI_Comm comm, const std::string &file, const std::str
   *found = status[1];
   if (!*found) PetscFunctionReturn(0);
   PetscInt rowlen = 0;  // values per stored orbit
-  int route_change = 0; // -floquet_mf: 1 the file's route was matrix-free and this run's is dense, 2 the reverse
+  int route_change = 0;                          // -floquet_mf: 1 the file's route (file_route) is not this run's
+  std::vector<std::string> file_route{std::string()};
   Branch &rb = rec.b;
   FloquetColumns &rf = rec.f;
   // Rank 0 reads and checks; its error (a dataset missing or not finite) fails every rank with its line.
@@ -384,7 +385,8 @@ PetscErrorCode ReadResume(MPI_Comm comm, const std::string &file, const std::str
         for (PetscInt &x : rf.stable) x = x == 1 ? -1 : x;
         rf.instability.assign(np, -1);
       }
-      route_change = (routed ? route : std::string("matrix-free")) != mf_route ? (mf_route == "dense" ? 1 : 2) : 0;
+      file_route[0] = routed ? route : std::string("matrix-free");
+      route_change = file_route[0] != mf_route;
     }
     for (const auto &[fd, c, floquet] : fields) { // padded: files written before krein or det_error were stored
       if (!floquet || fd->kind != FieldKind::Dataset) continue;
@@ -408,10 +410,11 @@ PetscErrorCode ReadResume(MPI_Comm comm, const std::string &file, const std::str
     }
   }
   PetscCallMPI(MPI_Bcast(&route_change, 1, MPI_INT, 0, comm));
+  PetscCall(BroadcastStrings(comm, &file_route));
   PetscCheck(route_change == 0, comm, PETSC_ERR_USER,
-             "-cont_resume %s: branch %s's Floquet multipliers were computed by the %s route, this run would take the %s one (-floquet_mf_dense_max): "
-             "its verdicts would mix",
-             file.c_str(), label.c_str(), route_change == 1 ? "matrix-free" : "dense", route_change == 1 ? "dense" : "matrix-free");
+             "-cont_resume %s: branch %s's Floquet multipliers were computed by the %s route, this run would take the %s one "
+             "(-floquet_mf_dense_max, -floquet_mf_which): its verdicts would mix",
+             file.c_str(), label.c_str(), file_route[0].c_str(), mf_route.c_str());
   PetscCallMPI(MPI_Bcast(&rowlen, 1, MPIU_INT, 0, comm));
   PetscCheck(rowlen == n2, comm, PETSC_ERR_USER,
              "-cont_resume %s: branch %s has orbits of %" PetscInt_FMT " values, this lattice has 2N = %" PetscInt_FMT " (same -lattice_cells?)", file.c_str(),

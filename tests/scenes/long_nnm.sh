@@ -15,15 +15,16 @@ common=(-cont_energy_max 3 -cont_verbose 0 -cont_max_change 0.2)
 run1 -options_file "$SRC/options/fep.opts" -cont_branch insulated -floquet 0 -cont_energy_max 5 -cont_verbose 0 -cont_max_change 0.04 -output dense.h5 > dense.txt
 run1 -options_file "$SRC/options/fep_long.opts" -lattice_cells 25 -floquet 0 "${common[@]}" -output mf102.h5 > mf102.txt
 run2 -options_file "$SRC/options/fep_long.opts" -lattice_cells 250 -floquet 0 "${common[@]}" -output mf1002.h5 > mf1002.txt
-# the matrix-free route (forced at this N by -floquet_mf_dense_max 0), with enough eigensolver restarts that every multiplier converges
-run1 -options_file "$SRC/options/fep_long.opts" -lattice_cells 25 -cont_energy_max 1 -cont_verbose 0 -cont_max_change 0.2 -floquet_mf_eps_max_it 40 -floquet_mf_dense_max 0 -output floquet.h5 > floquet.txt
+# the matrix-free route (forced at this N by -floquet_mf_dense_max 0; the critical selection, not the
+# localized route fep_long.opts takes), with enough eigensolver restarts that every multiplier converges
+run1 -options_file "$SRC/options/fep_long.opts" -lattice_cells 25 -cont_energy_max 1 -cont_verbose 0 -cont_max_change 0.2 -floquet_mf_eps_max_it 40 -floquet_mf_dense_max 0 -floquet_mf_which critical -output floquet.h5 > floquet.txt
 # issue 20's check at N = 102: fep_long.opts as shipped to E = 20 (2N = 204 <= -floquet_mf_dense_max: the
 # dense leading pairs) on 2 ranks, against the full dense analysis (-floquet_mf 0: every multiplier, SLEPc) and
 # against the matrix-free route on the same branch
 long20=(-options_file "$SRC/options/fep_long.opts" -lattice_cells 25 -cont_energy_max 20 -cont_checkpoint_seconds 0)
 run2 "${long20[@]}" -output lead20.h5 > lead20.txt
 run1 "${long20[@]}" -floquet_mf 0 -output dense20.h5 > dense20.txt
-run1 "${long20[@]}" -floquet_mf_dense_max 0 -output mf20.h5 > mf20.txt
+run1 "${long20[@]}" -floquet_mf_dense_max 0 -floquet_mf_which critical -output mf20.h5 > mf20.txt
 # Krylov-Schur on M (largest) with these settings called a spurious |mu| = 306.9 converged at E = 1.86
 # (benchmarks/README.md); the true-residual check must keep it from becoming an "unstable" verdict
 run1 "${long20[@]}" -cont_energy_max 2 -floquet_mf_dense_max 0 -floquet_mf_which largest -floquet_mf_eps_ncv 60 -floquet_mf_eps_max_it 30 -output largest.h5 > largest.txt
@@ -36,7 +37,7 @@ $PY "$CHECKS/long_nnm.py" branches
 # -cont_resume of -floquet_mf files written before the verdicts (no floquet_route, krein or instability;
 # stable = 1 meant only max |mu| <= 1 + tol): made from mf20.h5 by removing what the old files lacked
 $PY "$CHECKS/long_nnm.py" make_old_files
-run2 "${long20[@]}" -cont_energy_max 30 -floquet_mf_dense_max 0 -cont_resume old_mf.h5 -output resumed_mf.h5 > resumed_mf.txt
+run2 "${long20[@]}" -cont_energy_max 30 -floquet_mf_dense_max 0 -floquet_mf_which critical -cont_resume old_mf.h5 -output resumed_mf.h5 > resumed_mf.txt
 if run1 "${long20[@]}" -cont_energy_max 30 -cont_resume old_mf_noopt.h5 -output mixed.h5 > mixed.txt 2>&1; then echo "resume across routes not refused"; exit 1; fi
 grep -q "computed by the matrix-free route, this run would take the dense one" mixed.txt && test ! -e mixed.h5
 $PY "$CHECKS/long_nnm.py" old_file_resumed
