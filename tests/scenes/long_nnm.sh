@@ -28,6 +28,12 @@ run1 "${long20[@]}" -floquet_mf_dense_max 0 -floquet_mf_which critical -output m
 # Krylov-Schur on M (largest) with these settings called a spurious |mu| = 306.9 converged at E = 1.86
 # (benchmarks/README.md); the true-residual check must keep it from becoming an "unstable" verdict
 run1 "${long20[@]}" -cont_energy_max 2 -floquet_mf_dense_max 0 -floquet_mf_which largest -floquet_mf_eps_ncv 60 -floquet_mf_eps_max_it 30 -output largest.h5 > largest.txt
+# the localized route (-floquet_mf_which localized, fep_long.opts' own, forced at N = 402 by -floquet_mf_dense_max 0):
+# a verdict at every orbit, at 1 and 2 ranks
+loc=(-options_file "$SRC/options/fep_long.opts" -lattice_cells 100 -cont_energy_max 1 -cont_verbose 0 -cont_checkpoint_seconds 0 -floquet_mf_dense_max 0)
+run1 "${loc[@]}" -output loc1.h5 > loc1.txt
+run2 "${loc[@]}" -output loc2.h5 > loc2.txt
+$PY "$CHECKS/long_nnm.py" localized
 # -cont_resume on 2 ranks: the E <= 1 branch above, continued to E = 3 (with
 # the numerics it was computed with: a resume refuses others), without the
 # multipliers (-floquet 0: their options then do not count)

@@ -66,9 +66,9 @@ TEST_CASE("blocked tangent products equal s single products to rounding (s = 3, 
       PetscReal diff, mnorm, zdiff;
       CompareBlock(flow, lat, s, 3.3, beta, &diff, &mnorm, &zdiff);
       INFO("s = " << s << ", beta = " << beta << ": max |w_block - w_single| / |dz| = " << diff << ", |M| >= " << mnorm << ", |zT_block - zT| = " << zdiff);
-      REQUIRE(mnorm > 1);                // a nontrivial product (the test can fail)
-      REQUIRE(diff <= 1e-13 * mnorm);    // the same arithmetic per column: rounding at most
-      REQUIRE(zdiff <= 1e-13);           // and the same orbit
+      REQUIRE(mnorm > 1);             // a nontrivial product (the test can fail)
+      REQUIRE(diff <= 1e-13 * mnorm); // the same arithmetic per column: rounding at most
+      REQUIRE(zdiff <= 1e-13);        // and the same orbit
     }
 }
 

@@ -56,9 +56,15 @@ TEST_CASE("Krein map: band edges, localised modes and the open pair classes of t
     PetscInt k, mask;
   };
   const Case cases[] = {
-      {1.7, 1, 0}, {1.7, 2, kPairAO | kPairEA}, {1.7, 3, 0},                         // 3.4: AO, EA(2.2703)
-      {1.5, 1, 0}, {1.5, 2, kPairAO | kPairEA | kPairEO}, {1.5, 3, kPairEO},         // 3.0: EA(1.7321), EO(0.9197); 4.5: EO(2.2703)
-      {1.1, 2, kPairAA | kPairEA}, {1.1, 3, kPairAO | kPairEA}, {1.1, 4, kPairOO | kPairEO}, // 2.2, 3.3, 4.4
+      {1.7, 1, 0},
+      {1.7, 2, kPairAO | kPairEA},
+      {1.7, 3, 0}, // 3.4: AO, EA(2.2703)
+      {1.5, 1, 0},
+      {1.5, 2, kPairAO | kPairEA | kPairEO},
+      {1.5, 3, kPairEO}, // 3.0: EA(1.7321), EO(0.9197); 4.5: EO(2.2703)
+      {1.1, 2, kPairAA | kPairEA},
+      {1.1, 3, kPairAO | kPairEA},
+      {1.1, 4, kPairOO | kPairEO}, // 2.2, 3.3, 4.4
   };
   for (const Case &c : cases) {
     INFO("Omega " << c.omega << ", k " << c.k);
@@ -125,8 +131,8 @@ TEST_CASE("Krein map: the energy criterion flags the two energy folds of a folde
     if (f[i] & 1) at.push_back(i);
   REQUIRE(at.size() == 2);
   INFO("E extrema at E = " << b.energy[at[0]] << ", " << b.energy[at[1]]);
-  REQUIRE(b.energy[at[0]] > 50);  // the maximum (~66) first
-  REQUIRE(b.energy[at[1]] < 15);  // then the minimum (~8)
+  REQUIRE(b.energy[at[0]] > 50); // the maximum (~66) first
+  REQUIRE(b.energy[at[1]] < 15); // then the minimum (~8)
   const std::vector<PetscReal> d = EnergySlope(b.energy, W);
   REQUIRE(d[at[0] - 1] * d[at[0] + 1] < 0); // dE/dOmega changes sign across each
   REQUIRE(d[at[1] - 1] * d[at[1] + 1] < 0);

@@ -119,5 +119,25 @@ def old_file_resumed():
     print("resumed an old -floquet_mf file: %d orbits, all not decided" % len(R["energy"]))
 
 
+def localized():
+    """The localized route through the continuation (N = 402, E <= 1, 1 and 2 ranks): a verdict per orbit,
+    stable-to(delta) or unstable-localized confirmed on the undamped lattice, its bound |mu| - 1 and e-folding
+    time 1/ln|mu|; the same verdicts at 2 ranks."""
+    A = group("loc1.h5", "continuation/insulated")
+    B = group("loc2.h5", "continuation/insulated")
+    require(attr_str(A, "floquet_route") == "localized")
+    v, bound, efold, mm = A["verdict"][:], A["verdict_bound"][:], A["verdict_efold"][:], A["max_modulus"][:]
+    reasons = [r.decode() if isinstance(r, bytes) else str(r) for r in A["verdict_reason"][:]]
+    require(set(v.tolist()) <= {1, 3} and (v == 1).sum() >= 2 and (v == 3).sum() >= 5, v)   # the lowest orbits stable-to, E ~ 0.2-1 B-E
+    u = v == 1
+    require(np.allclose(bound[u], mm[u] - 1, rtol=1e-12) and np.allclose(efold[u], 1 / np.log(mm[u]), rtol=1e-12), bound[u])
+    require(all("confirmed on the undamped lattice" in r for r, x in zip(reasons, u) if x), reasons)
+    require(np.all(A["instability"][:][u] >= 2))   # localized: B-E or E-E
+    # stable-to(delta): delta is at least -floquet_tol (1e-4) and no more than 1e-3 (the issue's resolution)
+    require(np.all((bound[~u] >= 1e-4) & (bound[~u] <= 1e-3) & np.isinf(efold[~u])), bound[~u])
+    require(np.array_equal(v, B["verdict"][:]) and np.allclose(bound, B["verdict_bound"][:], rtol=1e-8, atol=1e-12), B["verdict"][:], B["verdict_bound"][:])
+    print("localized route: %d stable-to, %d unstable-localized (|mu| - 1 up to %.2e), the same at 2 ranks" % ((v == 3).sum(), u.sum(), bound[u].max()))
+
+
 if __name__ == "__main__":
     main(globals())
