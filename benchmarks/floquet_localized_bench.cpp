@@ -13,11 +13,17 @@
 //  confirm with -bench_confirm: for an unstable verdict of the first config,
 //         ConfirmLocalizedGrowth (the window norm) and ConfirmGrowth (the whole
 //         vector's norm) over -floquet_confirm_periods on the undamped lattice
+//  simulate with -bench_simulate K: for an unstable verdict of the first
+//         config, the orbit and the orbit plus 1e-8 of it along the
+//         eigenvector run side by side by direct simulation (-sim_ts_*) for K
+//         periods; the growth of their distance on the window's sites, fitted
+//         (stability/growth.hpp), against ln|mu|
 //  dense  with -bench_dense (point indices, -1 all): the dense route's leading
 //         pairs (FloquetLeadingDense, -floquet_mf_nev of them)
 // One line per point and method (bench: ...), to be read by a script.
 #include "core/log.hpp"
 #include "stability/floquet_localized.hpp"
+#include "stability/growth.hpp"
 #include "studies/nnm_setup.hpp"
 #include "timeint/ts_rkn.hpp"
 #include "timeint/ts_symsplit.hpp"
@@ -79,6 +85,10 @@ int main(int argc, char **argv)
     PetscCall(PetscOptionsGetIntArray(NULL, NULL, "-bench_dense", dense, &ndense, &has_dense));
     PetscCall(PetscOptionsGetBool(NULL, NULL, "-bench_check", &check, NULL));
     PetscCall(PetscOptionsGetBool(NULL, NULL, "-bench_confirm", &confirm, NULL));
+    PetscInt simulate = 0; // -bench_simulate K: the growth by direct simulation over K periods (unstable verdicts)
+    PetscCall(PetscOptionsGetInt(NULL, NULL, "-bench_simulate", &simulate, NULL));
+    SimulationOptions sim;
+    PetscCall(SimulationOptionsFromOptions(comm, &sim));
     char cfg[100][64], *cfgp[100];
     PetscInt ncfg = 100;
     for (PetscInt i = 0; i < 100; i++) cfgp[i] = cfg[i];
@@ -136,6 +146,20 @@ int main(int argc, char **argv)
           PetscCall(PetscPrintf(comm, "bench: confirm point %d E %.6g ln|mu| %.6e window_rate %.6e %s whole_rate %.6e %s periods %d seconds %.2f\n", (int)p,
                                 (double)b.energy[p], (double)std::log(std::hypot(v.mu_re, v.mu_im)), (double)cw.confirmed_rate, VerdictName(cw.code),
                                 (double)cf.confirmed_rate, VerdictName(cf.code), (int)vo.confirm_periods, Now() - t0));
+        }
+        if (simulate > 0 && &lo == &configs[0] && (v.code == Verdict::UnstableLocalized || v.code == Verdict::UnstableExtended)) {
+          // direct nonlinear simulation (-sim_ts_*): the orbit and the orbit plus 1e-8 of it along Re v, side by side, the
+          // distance measured on the window's sites (stability/growth.hpp)
+          const LocalizedRegion reg = MakeLocalizedRegion(N, nnm.lat.Params().InterfaceSite(), lo);
+          PetscInt win[2] = {-1, -1};
+          for (PetscInt s = 0; s < reg.Sites(); s++)
+            if (reg.InWindow(s)) win[0] = win[0] < 0 ? reg.lo + s : win[0], win[1] = reg.lo + s;
+          GrowthMeasurement g;
+          t0 = Now();
+          PetscCall(MeasureGrowth(nnm.fx, sim, o.z0, o.T, vr, simulate, 1e-8, &g, win));
+          PetscCall(PetscPrintf(comm, "bench: simulate point %d E %.6g ln|mu| %.6e window %d..%d rate %.6e ratio %.4f periods_fitted %d of %d seconds %.2f\n",
+                                (int)p, (double)b.energy[p], (double)std::log(std::hypot(v.mu_re, v.mu_im)), (int)win[0], (int)win[1], (double)g.rate,
+                                (double)(g.rate / std::log(std::hypot(v.mu_re, v.mu_im))), (int)g.fitted, (int)simulate, Now() - t0));
         }
       }
       if (check) {

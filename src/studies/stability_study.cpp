@@ -12,6 +12,7 @@
 #include "io/output.hpp"
 #include "orbits/continuation.hpp"
 #include "stability/floquet.hpp"
+#include "stability/growth.hpp"
 #include "stability/verdict.hpp"
 #include "studies/registry.hpp"
 #include "studies/study.hpp"
@@ -108,7 +109,7 @@ struct StabilityOptions {
   std::vector<PetscReal> omegas{std::sqrt(3.0), 1.8245, 2.1876, 2.2654};
   PetscReal eps = 0.01, corr_min = 0.9;
   PetscInt periods = 30000, sample_periods = 10, seed = 1;
-  PetscInt growth_periods = 0;      // > 0: measure the growth along the unstable eigenvector over this many periods (MeasureGrowth)
+  PetscInt growth_periods = 0;      // > 0: measure the growth along the unstable eigenvector over this many periods (stability/growth.hpp)
   PetscReal growth_eps = 1e-8;      // its perturbation, relative to the orbit's norm
 };
 
@@ -139,74 +140,6 @@ PetscErrorCode StabilityOptionsFromOptions(MPI_Comm comm, StabilityOptions *o)
   PetscCheck(o->sample_periods <= o->periods, comm, PETSC_ERR_USER,
              "-stability_sample_periods must lie in [1, -stability_periods], got %" PetscInt_FMT " with -stability_periods %" PetscInt_FMT, o->sample_periods,
              o->periods);
-  PetscFunctionReturn(0);
-}
-
-// The state at every sample (one per period) of a reference run, and then
-// the distance of another run's samples from them.
-class TwinDistance : public SampleSink {
-public:
-  explicit TwinDistance(PetscInt n_local) : n_(n_local) {}
-  PetscErrorCode Sample(PetscReal, Vec z, const EnergyParts &) override
-  {
-    const PetscScalar *a;
-    PetscFunctionBeginUser;
-    PetscCall(VecGetArrayRead(z, &a));
-    if (recording_) ref_.insert(ref_.end(), a, a + n_);
-    else {
-      const size_t k = dist_.size();
-      PetscReal d = 0;
-      for (PetscInt i = 0; i < n_ && (k + 1) * n_ <= ref_.size(); i++) d += (a[i] - ref_[k * n_ + i]) * (a[i] - ref_[k * n_ + i]);
-      dist_.push_back(d); // local sum of squares: reduced by the caller
-    }
-    PetscCall(VecRestoreArrayRead(z, &a));
-    PetscFunctionReturn(0);
-  }
-  void StopRecording() { recording_ = false; }
-  std::vector<PetscReal> dist_;
-
-private:
-  PetscInt n_;
-  bool recording_ = true;
-  std::vector<PetscReal> ref_;
-};
-
-// The growth along the unstable eigenvector v of the orbit z (period T), by
-// direct simulation with the study's integrator (-sim_ts_*): the orbit and
-// z + eps |z| v / |v| run side by side for -stability_growth_periods periods,
-// and ln of their distance at each period is fitted by least squares in the
-// periods before it reaches 1e-3 |z| (the linear regime). Compared with the
-// Floquet rate ln|mu|: the same number if the verdict is right.
-PetscErrorCode MeasureGrowth(const EffectList &fx, const SimulationOptions &sim, Vec z, PetscReal T, Vec v, const StabilityOptions &st, PetscReal *rate,
-                             PetscInt *fitted)
-{
-  OwnedVec zp;
-  PetscReal nz, nv;
-  PetscInt nl;
-  PetscFunctionBeginUser;
-  PetscCall(VecGetLocalSize(z, &nl));
-  PetscCall(VecNorm(z, NORM_2, &nz));
-  PetscCall(VecNorm(v, NORM_2, &nv));
-  PetscCall(VecDuplicate(z, zp.out()));
-  PetscCall(VecWAXPY(zp, st.growth_eps * nz / nv, v, z));
-  SimulationOptions run = sim;
-  run.t_final = st.growth_periods * T;
-  run.sample_dt = T;
-  TwinDistance twin(nl);
-  SimulationResult r;
-  PetscCall(Simulate(fx, run, z, &twin, &r));
-  twin.StopRecording();
-  PetscCall(Simulate(fx, run, zp, &twin, &r));
-  std::vector<PetscReal> d(twin.dist_.size());
-  PetscCall(MPIU_Allreduce(twin.dist_.data(), d.data(), (PetscMPIInt)d.size(), MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)z)));
-  PetscReal sx = 0, sy = 0, sxx = 0, sxy = 0;
-  PetscInt n = 0;
-  for (size_t k = 0; k < d.size() && std::sqrt(d[k]) < 1e-3 * nz; k++, n++) {
-    const PetscReal y = 0.5 * std::log(d[k]);
-    sx += k, sy += y, sxx += (PetscReal)k * k, sxy += k * y;
-  }
-  *fitted = n;
-  *rate = n > 2 ? (n * sxy - sx * sy) / (n * sxx - sx * sx) : NAN;
   PetscFunctionReturn(0);
 }
 
@@ -387,7 +320,9 @@ private:
       PetscCall(DenseVerdict(nnm_.flow, z_, T, nnm_.flow.FloquetBeta(beta), flo_, k->fr.stable, k->fr.max_modulus, {k->fr.worst_re, k->fr.worst_im},
                              k->fr.instability, vr, vi, &k->verdict));
       if (st_.growth_periods > 0 && !k->fr.stable) {
-        PetscCall(MeasureGrowth(nnm_.fx, sim_, z_, T, vr, st_, &k->growth_rate, &k->growth_fitted));
+        GrowthMeasurement g;
+        PetscCall(MeasureGrowth(nnm_.fx, sim_, z_, T, vr, st_.growth_periods, st_.growth_eps, &g));
+        k->growth_rate = g.rate, k->growth_fitted = g.fitted;
         PetscCall(PetscPrintf(comm_,
                               "nltopo stability: omega %.4f: growth along the unstable eigenvector by direct simulation: %.4e per period over %" PetscInt_FMT
                               " periods; Floquet ln|mu| = %.4e (ratio %.4f)\n",
