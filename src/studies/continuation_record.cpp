@@ -31,7 +31,7 @@ struct AttrValue {
 enum : unsigned {
   kRank0 = 1,     // resume: kept on rank 0 only (not broadcast)
   kStepState = 2, // written once there are points; resume: read if present (files of older versions lack it)
-  kInfOk = 4,     // resume: +-inf is a value a run writes (a verdict's bound or e-folding time)
+  kInfOk = 4,     // resume: +inf is a value a run writes (a verdict's bound or e-folding time)
 };
 
 // One field of the schema and where BranchRecord keeps it: a dataset (data,
@@ -223,7 +223,7 @@ size_t FirstInvalid(const std::vector<PetscReal> &x, bool nan_ok, bool count, bo
 {
   for (size_t i = 0; i < x.size(); i++) {
     if (nan_ok && std::isnan(x[i])) continue;
-    if (inf_ok && std::isinf(x[i])) continue;
+    if (inf_ok && std::isinf(x[i]) && x[i] > 0) continue; // (+inf only: no run writes -inf)
     if (!std::isfinite(x[i]) || (count && std::abs(x[i]) > (PetscReal)PETSC_MAX_INT)) return i;
   }
   return x.size();
