@@ -57,13 +57,21 @@ run_np 1 "${SW[@]}" -output ref_sw.h5 -options_left > /dev/null
 pair() {
   local out=$1 np1=$2 ref=$4 glob=$5 np2=$6 rc1=0 rc2=0
   local -n first=$3 second=$7
-  rm -f "$out"
-  run_np "$np1" "${first[@]}" -output "$out" -options_left > first.txt 2> first.err &
-  local pid=$!
-  wait_for "$glob"
-  local ranks
-  ranks=$(ranks_of "$pid")
-  [ "$(echo $ranks | wc -w)" -eq "$np1" ] || { echo "FAILED: not $np1 rank(s) of the first run found: '$ranks'"; exit 1; }
+  local pid ranks attempt
+  # The first run may end between its temporary appearing and the search for its ranks (a small,
+  # fast scene on an idle machine): then it is simply run again, up to 5 times.
+  for attempt in 1 2 3 4 5; do
+    rm -f "$out"
+    run_np "$np1" "${first[@]}" -output "$out" -options_left > first.txt 2> first.err &
+    pid=$!
+    wait_for "$glob"
+    ranks=$(ranks_of "$pid")
+    [ "$(echo $ranks | wc -w)" -eq "$np1" ] && break
+    kill -0 "$pid" 2> /dev/null && break # still running with another count of ranks: a failure, below
+    wait "$pid" || true
+    ranks=""
+  done
+  [ "$(echo $ranks | wc -w)" -eq "$np1" ] || { echo "FAILED: not $np1 rank(s) of the first run found in 5 attempts: '$ranks'"; exit 1; }
   kill -STOP $ranks
   run_np "$np2" "${second[@]}" -output "$out" -options_left > second.txt 2> second.err || rc2=$?
   kill -CONT $ranks
