@@ -1,5 +1,6 @@
 #include "stability/floquet_localized.hpp"
 #include "core/errors.hpp"
+#include "core/lapack.hpp"
 #include "core/log.hpp"
 #include "core/option_table.hpp"
 #include "effects/rhs.hpp"
@@ -66,16 +67,6 @@ LocalizedRegion MakeLocalizedRegion(PetscInt N, PetscInt iface, const LocalizedO
   return r;
 }
 
-extern "C" { // LAPACK (as in floquet_mf.cpp)
-void dgehrd_(const int *n, const int *ilo, const int *ihi, double *a, const int *lda, double *tau, double *work, const int *lwork, int *info);
-void dhseqr_(const char *job, const char *compz, const int *n, const int *ilo, const int *ihi, double *h, const int *ldh, double *wr, double *wi, double *z,
-             const int *ldz, double *work, const int *lwork, int *info, size_t, size_t);
-void dhsein_(const char *side, const char *eigsrc, const char *initv, int *select, const int *n, const double *h, const int *ldh, double *wr, const double *wi,
-             double *vl, const int *ldvl, double *vr, const int *ldvr, const int *mm, int *m, double *work, int *ifaill, int *ifailr, int *info, size_t, size_t,
-             size_t);
-void dormhr_(const char *side, const char *trans, const int *m, const int *n, const int *ilo, const int *ihi, const double *a, const int *lda,
-             const double *tau, double *c, const int *ldc, double *work, const int *lwork, int *info, size_t, size_t);
-}
 
 namespace {
 
@@ -494,60 +485,11 @@ PetscErrorCode ConfirmLocalizedGrowth(PeriodicFlow &flow, Vec z0, PetscReal T, P
 {
   const Lattice &lat = flow.Lat();
   const LocalizedRegion reg = MakeLocalizedRegion(lat.N(), lat.Params().InterfaceSite(), lo);
-  const PetscInt xs = lat.OwnedStart(), xm = lat.OwnedCount();
-  OwnedVec x, y, w, zT;
+  PetscInt window[2] = {-1, -1}; // the undamped sites (contiguous around the interface)
   PetscFunctionBeginUser;
-  if (v->code != Verdict::UnstableLocalized && v->code != Verdict::UnstableExtended) PetscFunctionReturn(0);
-  // |x|^2 + |y|^2 over the window's sites (u and v entries)
-  auto window_norm = [&](Vec a, Vec b, PetscReal *nrm) -> PetscErrorCode {
-    PetscReal sum = 0;
-    PetscFunctionBeginUser;
-    for (Vec q : {a, b}) {
-      if (!q) continue;
-      const PetscScalar *qa;
-      PetscCall(VecGetArrayRead(q, &qa));
-      for (PetscInt i = std::max(reg.lo, xs); i <= std::min(reg.hi, xs + xm - 1); i++)
-        if (reg.InWindow(i - reg.lo)) sum += qa[i - xs] * qa[i - xs] + qa[xm + i - xs] * qa[xm + i - xs];
-      PetscCall(VecRestoreArrayRead(q, &qa));
-    }
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPIU_REAL, MPI_SUM, lat.Comm()));
-    *nrm = std::sqrt(sum);
-    PetscFunctionReturn(0);
-  };
-  PetscCall(VecDuplicate(vr, x.out()));
-  PetscCall(VecDuplicate(vr, w.out()));
-  PetscCall(VecDuplicate(z0, zT.out()));
-  PetscCall(VecCopy(vr, x));
-  if (vi) {
-    PetscCall(VecDuplicate(vi, y.out()));
-    PetscCall(VecCopy(vi, y));
-  }
-  PetscReal n0 = 0, nk = 0;
-  PetscCall(window_norm(x, y, &n0));
-  for (PetscInt k = 0; k < o.confirm_periods; k++) {
-    PetscCall(flow.IntegrateWithTangent(z0, T, beta, x, 0, 0, zT, w));
-    PetscCall(VecCopy(w, x));
-    if (y) {
-      PetscCall(flow.IntegrateWithTangent(z0, T, beta, y, 0, 0, zT, w));
-      PetscCall(VecCopy(w, y));
-    }
-  }
-  PetscCall(window_norm(x, y, &nk));
-  const PetscReal rate = std::log(nk / n0) / o.confirm_periods, expect = std::log(std::hypot(v->mu_re, v->mu_im));
-  v->confirmed_rate = rate;
-  if (!(std::abs(rate - expect) <= o.confirm_rtol * expect)) {
-    std::ostringstream t;
-    t << VerdictName(v->code) << " not confirmed: over " << o.confirm_periods << " periods of the undamped lattice the eigenvector's window norm grew at "
-      << rate << " per period where ln|mu| = " << expect << " (-floquet_confirm_rtol " << o.confirm_rtol << "); " << v->reason;
-    v->reason = t.str();
-    v->code = Verdict::Unresolved;
-    v->efold = std::numeric_limits<PetscReal>::infinity();
-  } else {
-    std::ostringstream t;
-    t << v->reason << "; confirmed on the undamped lattice: the window norm grew at " << rate << " per period over " << o.confirm_periods
-      << " periods (ln|mu| = " << expect << ")";
-    v->reason = t.str();
-  }
+  for (PetscInt s = 0; s < reg.Sites(); s++)
+    if (reg.InWindow(s)) window[0] = window[0] < 0 ? reg.lo + s : window[0], window[1] = reg.lo + s;
+  PetscCall(ConfirmGrowth(flow, z0, T, beta, vr, vi, o, v, window));
   PetscFunctionReturn(0);
 }
 

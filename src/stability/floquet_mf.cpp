@@ -1,4 +1,5 @@
 #include "stability/floquet_mf.hpp"
+#include "core/lapack.hpp"
 #include "core/errors.hpp"
 #include "core/memory_guard.hpp"
 #include "core/option_table.hpp"
@@ -55,16 +56,6 @@ PetscInt MatrixFreeVerdict(const LeadingMultipliers &r, PetscReal tol)
   return kUndecided;
 }
 
-extern "C" { // LAPACK (Debian liblapack): Hessenberg reduction, eigenvectors of selected eigenvalues, Q applied
-void dgehrd_(const int *n, const int *ilo, const int *ihi, double *a, const int *lda, double *tau, double *work, const int *lwork, int *info);
-void dhseqr_(const char *job, const char *compz, const int *n, const int *ilo, const int *ihi, double *h, const int *ldh, double *wr, double *wi, double *z,
-             const int *ldz, double *work, const int *lwork, int *info, size_t, size_t);
-void dhsein_(const char *side, const char *eigsrc, const char *initv, int *select, const int *n, const double *h, const int *ldh, double *wr, const double *wi,
-             double *vl, const int *ldvl, double *vr, const int *ldvr, const int *mm, int *m, double *work, int *ifaill, int *ifailr, int *info, size_t, size_t,
-             size_t);
-void dormhr_(const char *side, const char *trans, const int *m, const int *n, const int *ilo, const int *ihi, const double *a, const int *lda,
-             const double *tau, double *c, const int *ldc, double *work, const int *lwork, int *info, size_t, size_t);
-}
 
 namespace {
 

@@ -52,7 +52,11 @@ OrbitVerdict UnstableVerdict(std::complex<PetscReal> mu, PetscInt cls, const std
 // orbit (z0, T, beta) and compares ln(|M^k v| / |v|) / k with ln|mu|. A
 // failure turns the verdict into unresolved, naming both rates. k and the
 // tolerance: -floquet_confirm_periods, -floquet_confirm_rtol. Collective.
-PetscErrorCode ConfirmGrowth(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, Vec vr, Vec vi, const FloquetOptions &o, OrbitVerdict *v);
+// window (optional): natural sites window[0]..window[1]; the norm is then
+// taken on their (u, v) entries only (a localized mode that radiates into the
+// band: the window holds the mode, the rest the outgoing wave).
+PetscErrorCode ConfirmGrowth(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, Vec vr, Vec vi, const FloquetOptions &o, OrbitVerdict *v,
+                             const PetscInt *window = nullptr);
 
 // The dense route's verdict (all 2N multipliers known): stable within
 // -floquet_tol, else unstable-* for the most unstable multiplier mu with its
