@@ -58,21 +58,25 @@ pair() {
   local out=$1 np1=$2 ref=$4 glob=$5 np2=$6 rc1=0 rc2=0
   local -n first=$3 second=$7
   local pid ranks attempt
-  # The first run may end between its temporary appearing and the search for its ranks (a small,
-  # fast scene on an idle machine): then it is simply run again, up to 5 times.
+  # The first run may end between its temporary appearing and the search for its ranks, or before
+  # they are stopped (a small, fast scene on an idle machine): then it is simply run again, up to 5 times.
   for attempt in 1 2 3 4 5; do
     rm -f "$out"
     run_np "$np1" "${first[@]}" -output "$out" -options_left > first.txt 2> first.err &
     pid=$!
     wait_for "$glob"
     ranks=$(ranks_of "$pid")
-    [ "$(echo $ranks | wc -w)" -eq "$np1" ] && break
-    kill -0 "$pid" 2> /dev/null && break # still running with another count of ranks: a failure, below
+    if [ "$(echo $ranks | wc -w)" -eq "$np1" ]; then
+      kill -STOP $ranks 2> /dev/null || true
+      compgen -G "$glob" > /dev/null && break # stopped while it writes: the overlap is forced
+      kill -CONT $ranks 2> /dev/null || true  # it ended before the stop: again
+    else
+      kill -0 "$pid" 2> /dev/null && break # still running with another count of ranks: a failure, below
+    fi
     wait "$pid" || true
     ranks=""
   done
   [ "$(echo $ranks | wc -w)" -eq "$np1" ] || { echo "FAILED: not $np1 rank(s) of the first run found in 5 attempts: '$ranks'"; exit 1; }
-  kill -STOP $ranks
   run_np "$np2" "${second[@]}" -output "$out" -options_left > second.txt 2> second.err || rc2=$?
   kill -CONT $ranks
   wait "$pid" || rc1=$?
