@@ -15,3 +15,15 @@ void dhsein_(const char *side, const char *eigsrc, const char *initv, int *selec
 void dormhr_(const char *side, const char *trans, const int *m, const int *n, const int *ilo, const int *ihi, const double *a, const int *lda,
              const double *tau, double *c, const int *ldc, double *work, const int *lwork, int *info, size_t, size_t);
 }
+
+// The exterior Floquet route (stability/floquet_exterior.cpp): the symmetric
+// tridiagonal eigenproblem of K (divide and conquer), the complex generalized
+// eigenproblem of its local linear problems, and the real matrix product.
+extern "C" {
+void dstevd_(const char *jobz, const int *n, double *d, double *e, double *z, const int *ldz, double *work, const int *lwork, int *iwork, const int *liwork,
+             int *info, size_t);
+void zggev_(const char *jobvl, const char *jobvr, const int *n, void *a, const int *lda, void *b, const int *ldb, void *alpha, void *beta, void *vl,
+            const int *ldvl, void *vr, const int *ldvr, void *work, const int *lwork, double *rwork, int *info, size_t, size_t);
+void dgemm_(const char *ta, const char *tb, const int *m, const int *n, const int *k, const double *alpha, const double *a, const int *lda, const double *b,
+            const int *ldb, const double *beta, double *c, const int *ldc, size_t, size_t);
+}

@@ -1,4 +1,6 @@
 #include "stability/floquet_localized.hpp"
+#include "stability/floquet_exterior.hpp"
+#include "stability/region_map.hpp"
 #include "core/errors.hpp"
 #include "core/lapack.hpp"
 #include "core/log.hpp"
@@ -30,7 +32,18 @@ static const auto &kLocalizedTable = DeclareOptionTable<LocalizedOptions>(
           .Bool(
               "check", &LocalizedOptions::check,
               "At every orbit, solve again with the window and the damping halved and doubled and raise delta to the largest change of the leading multiplier "
-              "(five times the cost)");
+              "(five times the cost)")
+          .Bool("exterior", &LocalizedOptions::exterior,
+                "Where M - M_lin fits in the region of -floquet_loc_exterior_cells, take the verdict from the exterior route: every multiplier of the "
+                "whole finite lattice beyond 1 + -floquet_tol / 10, from the window of M - M_lin and the linear modes (needs N <= 6000)")
+          .Int("exterior_cells", &LocalizedOptions::exterior_cells, Closed(4, 100000),
+               "Exterior route: cells on each side of the interface cell in the region where M - M_lin is integrated (its window must reach at most "
+               "half-way to the region's ends)")
+          .Real("exterior_tol", &LocalizedOptions::exterior_tol, Open(0, 1e-3),
+                "Exterior route: entries of M - M_lin below this times max |M| lie outside the window")
+          .Real("exterior_arc", &LocalizedOptions::exterior_arc, RightOpen(0, 1),
+                "Exterior route: the multipliers of the linear lattice within this distance of a scan point are kept exactly in its local problem, the "
+                "others linearized (scan points every half arc along the unit semicircle); 0: 10 pi / N (five mean pole spacings), at most 0.1");
     });
 
 PetscErrorCode LocalizedOptionsFromOptions(MPI_Comm comm, LocalizedOptions *o)
@@ -68,156 +81,18 @@ LocalizedRegion MakeLocalizedRegion(PetscInt N, PetscInt iface, const LocalizedO
 }
 
 
-namespace {
-
-// ---- the orbit: one integration on the whole lattice recording K_T on the region ----
-
-// The orbit's TS (the flow's type and scheme, -nnm_ts_*) whose acceleration
-// also records the tangent stiffness of the region's sites and bonds at every
-// evaluation: rec[e * 2n + s] = K_T(lo + s, lo + s), rec[e * 2n + n + s] =
-// K_T(lo + s, lo + s + 1), e the evaluation (0 at the start, then one after
-// every drift: FSAL).
-struct Recorder {
-  const EffectList *fx;
-  Rhs *rhs;
-  const LocalizedRegion *reg;
-  std::vector<PetscReal> rec, kd, kb;
-  PetscInt evals = 0, capacity = 0;
-};
-
-PetscErrorCode RecorderRhs(TS, PetscReal t, Vec z, Vec f, void *ctx)
-{
-  PetscFunctionBeginUser;
-  PetscCall(static_cast<Recorder *>(ctx)->rhs->Evaluate(t, z, f));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode RecorderAcceleration(TS, PetscReal t, Vec z, PetscScalar *a, void *ctx)
-{
-  Recorder &R = *static_cast<Recorder *>(ctx);
-  const Lattice &lat = R.fx->Lat();
-  const PetscInt xs = lat.OwnedStart(), xm = lat.OwnedCount(), n = R.reg->Sites(), lo = R.reg->lo, hi = R.reg->hi;
-  const PetscScalar *u;
-  Vec ul;
-  PetscFunctionBeginUser;
-  PetscCall(R.rhs->Acceleration(t, z, a));
-  PetscCheck(R.evals < R.capacity, lat.Comm(), PETSC_ERR_PLIB, "localized Floquet: more accelerations than the scheme's stages (%" PetscInt_FMT ")",
-             R.capacity);
-  PetscCall(lat.GetGhostedU(z, &ul, &u));
-  R.fx->Stiffness(u, R.kd.data() - xs, R.kb.data() + 1 - xs); // kd by owned site, kb by bond xs-1 .. xs+xm-1
-  PetscCall(lat.RestoreGhostedU(z, &ul, &u));
-  PetscReal *row = R.rec.data() + (size_t)R.evals * 2 * n;
-  for (PetscInt i = std::max(lo, xs); i <= std::min(hi, xs + xm - 1); i++) {
-    row[i - lo] = R.kd[i - xs];
-    if (i < hi) row[n + i - lo] = R.kb[i - xs + 1]; // bond (i, i + 1), owned with site i
-  }
-  R.evals++;
-  PetscFunctionReturn(0);
-}
-
-// K_T of the region at every stage of one period (every rank), and the scheme.
-PetscErrorCode RecordStiffness(PeriodicFlow &flow, Vec z0, PetscReal T, const LocalizedRegion &reg, std::vector<PetscReal> *rec, const symsplit::Scheme **sch)
-{
-  const Lattice &lat = flow.Lat();
-  const MPI_Comm comm = lat.Comm();
-  Rhs rhs(flow.Effects());
-  Recorder R{&flow.Effects(), &rhs, &reg, {}, {}, {}};
-  OwnedTS ts;
-  OwnedVec z;
-  const char *name;
-  PetscFunctionBeginUser;
-  PetscCheck(flow.Symplectic(), comm, PETSC_ERR_USER,
-             "-floquet_mf_which localized integrates the tangent map of the symplectic splitting: it needs -nnm_ts_type symsplit (the default)");
-  PetscCall(CreatePeriodTS(comm, TSSYMSPLIT, RecorderRhs, &R, ts.out()));
-  PetscCall(TSSetAcceleration(ts, RecorderAcceleration, &R));
-  PetscCall(TSSetFromOptions(ts));
-  PetscCall(TSSymSplitGetScheme(ts, &name));
-  *sch = nullptr;
-  for (const auto &s : symsplit::Schemes())
-    if (!std::strcmp(s.name, name)) *sch = &s;
-  PetscCheck(*sch, comm, PETSC_ERR_PLIB, "localized Floquet: unknown symsplit scheme %s", name);
-  const PetscInt n = reg.Sites(), steps = flow.Steps(), stages = (PetscInt)(*sch)->drift.size();
-  R.capacity = 1 + steps * stages;
-  R.rec.assign((size_t)R.capacity * 2 * n, 0.0);
-  R.kd.assign(lat.OwnedCount(), 0.0);
-  R.kb.assign(lat.OwnedCount() + 1, 0.0);
-  PetscCall(VecDuplicate(z0, z.out()));
-  PetscCall(VecCopy(z0, z));
-  PetscCall(SolvePeriod(ts, z, T, steps, "localized Floquet orbit"));
-  PetscCheck(R.evals == R.capacity, comm, PETSC_ERR_PLIB, "localized Floquet: %" PetscInt_FMT " accelerations, %" PetscInt_FMT " expected", R.evals,
-             R.capacity);
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, R.rec.data(), (PetscMPIInt)R.rec.size(), MPIU_REAL, MPI_SUM, comm)); // each entry has one owner
-  *rec = std::move(R.rec);
-  PetscFunctionReturn(0);
-}
-
-// ---- the damped region map, column by column ----
-
-// Columns c0 .. c0+m-1 of the damped region map (unit start vectors in region
-// layout), site-major q[s * m + j], p[s * m + j]: the splitting's kicks with
-// the recorded K_T, then exp(-c h) on p after every step.
-void DampedColumns(const LocalizedRegion &reg, const std::vector<PetscReal> &rec, const symsplit::Scheme &sch, PetscInt steps, PetscReal T, PetscInt c0,
-                   PetscInt m, std::vector<PetscReal> *q, std::vector<PetscReal> *p)
-{
-  const PetscInt n = reg.Sites(), stages = (PetscInt)sch.drift.size();
-  const PetscReal h = T / steps;
-  q->assign((size_t)n * m, 0.0), p->assign((size_t)n * m, 0.0);
-  for (PetscInt j = 0; j < m; j++) {
-    const PetscInt c = c0 + j;
-    if (c < n) (*q)[(size_t)c * m + j] = 1;
-    else (*p)[(size_t)(c - n) * m + j] = 1;
-  }
-  std::vector<PetscReal> fac(n);
-  for (PetscInt s = 0; s < n; s++) fac[s] = std::exp(-reg.c[s] * h);
-  PetscReal *Q = q->data(), *P = p->data();
-  auto kick = [&](PetscInt e, PetscReal bh) {
-    const PetscReal *kd = rec.data() + (size_t)e * 2 * n, *kb = kd + n;
-    for (PetscInt s = 0; s < n; s++) {
-      const PetscReal l = s > 0 ? kb[s - 1] : 0, d = kd[s], r = s < n - 1 ? kb[s] : 0;
-      const PetscReal *Ql = s > 0 ? Q + (s - 1) * m : Q, *Qs = Q + s * m, *Qr = s < n - 1 ? Q + (s + 1) * m : Q;
-      PetscReal *Ps = P + s * m;
-      for (PetscInt j = 0; j < m; j++) Ps[j] -= bh * (l * Ql[j] + d * Qs[j] + r * Qr[j]);
-    }
-  };
-  for (PetscInt st = 0; st < steps; st++) {
-    for (PetscInt k = 0; k < stages; k++) {
-      kick(st * stages + k, sch.kick[k] * h);
-      const PetscReal ch = sch.drift[k] * h;
-      for (size_t x = 0; x < q->size(); x++) Q[x] += ch * P[x];
-    }
-    kick((st + 1) * stages, sch.kick[stages] * h);
-    for (PetscInt s = 0; s < n; s++)
-      if (fac[s] != 1)
-        for (PetscInt j = 0; j < m; j++) P[s * m + j] *= fac[s];
-  }
-}
-
-} // namespace
-
 PetscErrorCode LocalizedMonodromy(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal, const LocalizedRegion &reg, std::vector<PetscReal> *a,
                                   std::vector<PetscReal> *f)
 {
   const Lattice &lat = flow.Lat();
   const MPI_Comm comm = lat.Comm();
   const PetscInt n = reg.Sites(), n2 = 2 * n;
-  PetscMPIInt rank, size;
-  std::vector<PetscReal> rec, q, p;
+  std::vector<PetscReal> rec;
   const symsplit::Scheme *sch;
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  PetscCallMPI(MPI_Comm_size(comm, &size));
   // beta: the multipliers are those of the free flow (beta = 0), as FloquetBeta takes them on the symplectic route
   PetscCall(RecordStiffness(flow, z0, T, reg, &rec, &sch));
-  const PetscInt c0 = n2 * rank / size, c1 = n2 * (rank + 1) / size, m = c1 - c0;
-  DampedColumns(reg, rec, *sch, flow.Steps(), T, c0, m, &q, &p);
-  PetscCall(PetscLogFlops(10.0 * n * m * flow.Steps() * (sch->drift.size() + 1)));
-  std::vector<PetscReal> mine((size_t)n2 * m); // column-major block
-  for (PetscInt j = 0; j < m; j++)
-    for (PetscInt s = 0; s < n; s++) mine[(size_t)j * n2 + s] = q[(size_t)s * m + j], mine[(size_t)j * n2 + n + s] = p[(size_t)s * m + j];
-  std::vector<int> counts(size), displs(size);
-  for (PetscMPIInt r = 0; r < size; r++) counts[r] = (int)(n2 * (n2 * (r + 1) / size - n2 * r / size)), displs[r] = (int)(n2 * (n2 * r / size));
-  a->assign(rank == 0 ? (size_t)n2 * n2 : 0, 0.0);
-  PetscCallMPI(MPI_Gatherv(mine.data(), (int)mine.size(), MPIU_REAL, a->data(), counts.data(), displs.data(), MPIU_REAL, 0, comm));
+  PetscCall(RegionMapOnRoot(comm, reg, rec, 2 * n, *sch, flow.Steps(), T, a));
   // f(z0) on the region, every rank
   OwnedVec fz;
   const PetscScalar *fa;
@@ -487,11 +362,64 @@ PetscErrorCode ConfirmLocalizedGrowth(PeriodicFlow &flow, Vec z0, PetscReal T, P
   const LocalizedRegion reg = MakeLocalizedRegion(lat.N(), lat.Params().InterfaceSite(), lo);
   PetscInt window[2] = {-1, -1}; // the undamped sites (contiguous around the interface)
   PetscFunctionBeginUser;
+  if (v->whole_lattice_vector) { // the exterior route's eigenvector of the finite lattice: it grows as a whole
+    PetscCall(ConfirmGrowth(flow, z0, T, beta, vr, vi, o, v));
+    PetscFunctionReturn(0);
+  }
   for (PetscInt s = 0; s < reg.Sites(); s++)
     if (reg.InWindow(s)) window[0] = window[0] < 0 ? reg.lo + s : window[0], window[1] = reg.lo + s;
   PetscCall(ConfirmGrowth(flow, z0, T, beta, vr, vi, o, v, window));
   PetscFunctionReturn(0);
 }
+
+namespace {
+
+// -floquet_loc_exterior: where M - M_lin fits in its region, the verdict and
+// the multipliers are the finite lattice's (the exterior route); the damped
+// route's answer (the long-lattice limit) stays in the reason. Elsewhere the
+// damped verdict stands, the reason saying why. Collective.
+PetscErrorCode ExteriorVerdict(PeriodicFlow &flow, Vec z0, PetscReal T, const FloquetOptions &fo, const LocalizedOptions &lo, PetscInt nev,
+                               const std::string &damped, LeadingMultipliers *r, OrbitVerdict *v, Vec vr, Vec vi)
+{
+  ExteriorResult ex;
+  OwnedVec xr, xi;
+  PetscFunctionBeginUser;
+  if (vr) PetscCall(VecDuplicate(vr, xr.out()));
+  if (vi) PetscCall(VecDuplicate(vi, xi.out()));
+  PetscCall(FloquetExterior(flow, z0, T, fo, lo, &ex, xr, xi));
+  r->products += 4 * ex.region_sites;
+  if (!ex.resolved) {
+    v->reason += "; exterior route not used: " + ex.why;
+    PetscFunctionReturn(0);
+  }
+  std::ostringstream head;
+  head << "exterior route (M - M_lin on " << ex.window_sites << " window sites of a " << ex.region_sites << "-site region, " << ex.centres
+       << " scan points on arcs of " << ex.arc << ", " << ex.solves << " local eigenproblems): ";
+  const std::string tail = "; the damped " + damped.substr(std::string("localized ").size());
+  r->re.assign(nev, NAN), r->im.assign(nev, NAN), r->resolution.assign(nev, fo.tol), r->krein.assign(nev, 0);
+  r->converged = std::min<PetscInt>(nev, (PetscInt)ex.mu.size());
+  for (PetscInt k = 0; k < r->converged; k++) r->re[k] = ex.mu[k].real(), r->im[k] = ex.mu[k].imag();
+  r->max_modulus = ex.mu.empty() ? 1 : std::abs(ex.mu[0]);
+  if (!ex.mu.empty() && std::abs(ex.mu[0]) > 1 + fo.tol) {
+    const PetscInt cls = Localisation(fo, ex.edge[0]);
+    head << "|mu| = " << std::abs(ex.mu[0]) << ", edge share " << ex.edge[0] << " (window part of v against y: " << ex.residual << ")";
+    *v = UnstableVerdict(ex.mu[0], cls, head.str() + tail);
+    v->whole_lattice_vector = true;
+    r->verdict = kUnstable, r->instability = cls;
+    if (vr) PetscCall(VecCopy(xr, vr));
+    if (vi) PetscCall(VecCopy(xi, vi));
+  } else {
+    head << "no multiplier of the " << flow.Lat().N() << "-site lattice beyond 1 + " << fo.tol;
+    if (!ex.mu.empty()) head << " (largest |mu| = " << std::abs(ex.mu[0]) << ")";
+    *v = StableToVerdict(fo.tol, head.str() + tail);
+    r->verdict = kUndecided, r->instability = 0;
+    if (vr) PetscCall(VecZeroEntries(vr));
+    if (vi) PetscCall(VecZeroEntries(vi));
+  }
+  PetscFunctionReturn(0);
+}
+
+} // namespace
 
 PetscErrorCode FloquetLocalized(PeriodicFlow &flow, Vec z0, PetscReal T, PetscReal beta, const FloquetOptions &fo, const LocalizedOptions &lo, PetscInt nev,
                                 LeadingMultipliers *r, OrbitVerdict *v, Vec vr, Vec vi)
@@ -571,6 +499,7 @@ PetscErrorCode FloquetLocalized(PeriodicFlow &flow, Vec z0, PetscReal T, PetscRe
     v->reason = head.str() + ": no damped multiplier beyond 1 + delta";
     r->instability = 0;
   }
+  if (lo.exterior) PetscCall(ExteriorVerdict(flow, z0, T, fo, lo, nev, head.str(), r, v, vr, vi));
   PetscCall(PetscLogEventEnd(ev, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

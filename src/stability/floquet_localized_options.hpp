@@ -12,6 +12,11 @@ struct LocalizedOptions {
   PetscReal damping = 1;          // c, per unit time (-floquet_loc_damping)
   PetscBool resolve = PETSC_TRUE; // -floquet_loc_resolve: solve again with the window halved, delta raised to the change of the leading |mu|
   PetscBool check = PETSC_FALSE;  // -floquet_loc_check: W and c halved and doubled at every orbit, delta raised to the change
+  // the exterior route (stability/floquet_exterior.hpp): the finite lattice's own multipliers where the orbit is localized
+  PetscBool exterior = PETSC_FALSE; // -floquet_loc_exterior
+  PetscInt exterior_cells = 60;     // -floquet_loc_exterior_cells: cells each side of the interface cell in the region where M - M_lin is integrated
+  PetscReal exterior_tol = 1e-12;   // -floquet_loc_exterior_tol: entries of M - M_lin below this times max |M| are outside the window
+  PetscReal exterior_arc = 0;       // -floquet_loc_exterior_arc: radius around each scan point within which the poles are kept exactly (0: 10 pi / N, at most 0.1)
 };
 PetscErrorCode LocalizedOptionsFromOptions(MPI_Comm comm, LocalizedOptions *o);
 

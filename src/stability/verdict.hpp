@@ -30,6 +30,7 @@ struct OrbitVerdict {
   PetscReal mu_re = 0, mu_im = 0; // unstable-*: the multiplier (|mu| > 1 member, upper half plane)
   PetscReal efold = std::numeric_limits<PetscReal>::infinity(); // unstable-*: e-folding time of the growth in periods, 1 / ln|mu|
   PetscReal confirmed_rate = 0;     // unstable-*: ln(|M^k v| / |v|) / k measured by ConfirmGrowth
+  bool whole_lattice_vector = false; // the localized route: its eigenvector is the whole finite lattice's (the exterior route), not the damped window's
   std::string reason;               // one line: how the route reached the verdict
 };
 

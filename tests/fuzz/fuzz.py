@@ -142,6 +142,8 @@ T = {
     "floquet_confirm_periods": ("int", 1, 5), "floquet_confirm_rtol": ("real", 0.01, 0.5),
     "floquet_loc_window": ("int", 1, 10), "floquet_loc_ramp": ("int", 1, 10), "floquet_loc_pad": ("int", -1, 3),
     "floquet_loc_damping": ("real", 0.1, 2.0), "floquet_loc_resolve": ("bool",), "floquet_loc_check": ("bool",),
+    "floquet_loc_exterior": ("bool",), "floquet_loc_exterior_cells": ("int", 4, 30), "floquet_loc_exterior_tol": ("real", 1e-14, 1e-8),
+    "floquet_loc_exterior_arc": ("real", 0.0, 0.5),
     "floquet_mf_deflate": ("bool",), "floquet_mf_dense_max": ("int", 0, 4096),
     "sim_dt_quartic_energy": ("real", 0.0, 10.0),
     "sweep_mcr_tol": ("real", 0.0, 0.1), "sweep_mcr_levels": ("int", 0, 2), "sweep_mcr_twins": ("int", 1, 3),

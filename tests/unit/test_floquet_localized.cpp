@@ -8,6 +8,7 @@
 #include "helpers.hpp"
 #include "nnm_fixture.hpp"
 #include "stability/floquet_hooks.hpp"
+#include "stability/floquet_exterior.hpp"
 #include "stability/floquet_localized.hpp"
 #include <algorithm>
 #include <cmath>
@@ -264,4 +265,76 @@ TEST_CASE("localized route on the insulated orbit with a B-E instability: dense,
   REQUIRE(v1.code == Verdict::StableTo);
   REQUIRE(v1.bound == fo.tol);
   REQUIRE(r1.max_modulus < 1 + 1e-9);
+}
+
+TEST_CASE("exterior route: the finite lattice's own multipliers from the window of M - M_lin, against the dense route", "[floquet][localized][exterior]")
+{
+  NnmFixture d;
+  LatticeParams p; // the paper's lattice, N = 102
+  PCHK(d.Setup(p));
+  EndOrbits orb;
+  ContinuationOptions co;
+  co.energy_max = 0.7; // the branch's last orbit: E = 0.819, a B-E quadruplet
+  co.verbose = PETSC_FALSE;
+  co.progress = 0;
+  Branch b;
+  PCHK(ContinueBranch(d.shoot, d.modes.Insulated(), 2 * PETSC_PI / d.modes.Named().insulated_omega, co, "insulated", &b, &orb));
+  // The orbit on N = 402 (75 rest cells added at each end): the region of M - M_lin (60 cells each side, 242 sites)
+  // is a truncation of this lattice, and its 804 x 804 dense monodromy is the truth.
+  LatticeParams pl = p;
+  pl.cells = 100;
+  LongFlow L;
+  PCHK(L.Setup(pl));
+  OwnedVec z, zT, vr, vi;
+  OwnedMat S;
+  PCHK(L.lat.CreateStateVector(z.out()));
+  PCHK(VecDuplicate(z, zT.out()));
+  PCHK(VecDuplicate(z, vr.out()));
+  PCHK(VecDuplicate(z, vi.out()));
+  Pad(d.lat, orb.last, L.lat, 75, z);
+  PCHK(L.flow.CreateSensitivityMatrix(S.out()));
+  PCHK(L.flow.IntegrateWithMonodromy(z, orb.T, 0.0, zT, S));
+  FloquetOptions fo;
+  fo.tol = 1e-4;
+  LeadingMultipliers dense;
+  PCHK(FloquetLeadingDense(L.lat, S, 2, fo, &dense));
+  const cplx mu_dense(dense.re[0], dense.im[0]);
+  INFO("N = 402 dense leading " << mu_dense << ", |mu| " << dense.max_modulus << ", class " << dense.instability);
+  REQUIRE(dense.max_modulus > 1 + 1e-3);
+
+  // the route through -floquet_loc_exterior (the damped route's window small, its answer kept in the reason only)
+  LocalizedOptions lo;
+  lo.exterior = PETSC_TRUE, lo.exterior_cells = 60, lo.window = 10, lo.ramp = 10, lo.resolve = PETSC_FALSE;
+  LeadingMultipliers r;
+  OrbitVerdict v;
+  PCHK(FloquetLocalized(L.flow, z, orb.T, 0.0, fo, lo, 3, &r, &v, vr, vi));
+  INFO(VerdictName(v.code) << ": " << v.reason);
+  REQUIRE(v.reason.find("exterior route (M - M_lin on ") == 0); // resolved: the window reaches at most half-way to the region's ends
+  REQUIRE(v.reason.find("-site region") != std::string::npos);
+  REQUIRE(r.converged >= 1);
+  const cplx mu(r.re[0], r.im[0]);
+  REQUIRE(std::abs(mu - mu_dense) < 1e-8); // the finite lattice's own quadruplet, not the damped route's long-lattice limit
+  // every root is a multiplier of the dense monodromy: the dense route's second pair, where it is beyond the circle
+  if (dense.re.size() > 1 && std::hypot(dense.re[1], dense.im[1]) > 1 + fo.tol / 10) {
+    REQUIRE(r.converged > 1);
+    REQUIRE(std::abs(cplx(r.re[1], r.im[1]) - cplx(dense.re[1], dense.im[1])) < 1e-8);
+  }
+  REQUIRE(v.code == Verdict::UnstableLocalized);
+  REQUIRE(v.cls == dense.instability);
+  REQUIRE(v.whole_lattice_vector);
+  // the whole lattice's eigenvector: M v = mu v, confirmed growing as |mu|^k over -floquet_confirm_periods
+  PCHK(ConfirmLocalizedGrowth(L.flow, z, orb.T, 0.0, vr, vi, lo, fo, &v));
+  INFO("confirmed rate " << v.confirmed_rate << " against ln|mu| " << std::log(std::abs(mu_dense)) << ": " << v.reason);
+  REQUIRE(v.code == Verdict::UnstableLocalized);
+  REQUIRE(v.confirmed_rate == Approx(std::log(std::abs(mu_dense))).epsilon(1e-3));
+
+  // the branch's first orbit (E = 1e-5) is stable: stable-to(-floquet_tol) on the exterior route
+  OwnedVec z1;
+  PCHK(VecDuplicate(z, z1.out()));
+  Pad(d.lat, orb.first, L.lat, 75, z1);
+  PCHK(FloquetLocalized(L.flow, z1, orb.T0, 0.0, fo, lo, 3, &r, &v, nullptr, nullptr));
+  INFO(v.reason);
+  REQUIRE(v.code == Verdict::StableTo);
+  REQUIRE(v.bound == fo.tol);
+  REQUIRE(v.reason.find("exterior route") == 0);
 }
