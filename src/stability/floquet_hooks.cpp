@@ -187,24 +187,30 @@ static PetscErrorCode PrintVerdicts(MPI_Comm comm, const std::string &label, con
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PrintFloquetSummary(MPI_Comm comm, const std::string &label, const FloquetColumns &f, PetscReal tol, const char *mf_route,
+const FloquetRouteTraits &FloquetRouteTraitsOf(FloquetRoute r)
+{
+  static const FloquetRouteTraits table[] = {
+      {"full", "", true, false},
+      {"dense", " (-floquet_mf, dense: 2N <= -floquet_mf_dense_max)", false, false},
+      {"localized", " (localized: the damped window's multipliers; stable means stable-to(delta), below)", false, false},
+      {"matrix-free", " (matrix-free, leading pairs)", false, true},
+  };
+  return table[(int)r];
+}
+
+PetscErrorCode PrintFloquetSummary(MPI_Comm comm, const std::string &label, const FloquetColumns &f, PetscReal tol, FloquetRoute route,
                                    const std::vector<PetscReal> *energy)
 {
-  const bool mf = mf_route != nullptr, dense = !mf || !std::strcmp(mf_route, "dense"), localized = mf && !std::strcmp(mf_route, "localized");
+  const FloquetRouteTraits &tr = FloquetRouteTraitsOf(route);
   PetscInt ns = 0, nu = 0;
   PetscFunctionBeginUser;
   for (PetscInt s : f.stable) ns += s == kStable, nu += s == kUndecided;
-  PetscCall(PetscPrintf(comm, "  [%s] Floquet%s: %" PetscInt_FMT " of %zu orbits stable (|mu| <= 1 + %g)", label.c_str(),
-                        !mf         ? ""
-                        : dense     ? " (-floquet_mf, dense: 2N <= -floquet_mf_dense_max)"
-                        : localized ? " (localized: the damped window's multipliers; stable means stable-to(delta), below)"
-                                    : " (matrix-free, leading pairs)",
-                        ns, f.stable.size(), (double)tol));
-  if (mf) {
-    if (!dense && !localized)
-      PetscCall(PetscPrintf(comm, ", %" PetscInt_FMT " not decided (a complex quadruplet cannot be excluded matrix-free), %" PetscInt_FMT " monodromy products",
-                            nu, f.products));
-  } else {
+  PetscCall(PetscPrintf(comm, "  [%s] Floquet%s: %" PetscInt_FMT " of %zu orbits stable (|mu| <= 1 + %g)", label.c_str(), tr.summary, ns, f.stable.size(),
+                        (double)tol));
+  if (tr.undecided)
+    PetscCall(PetscPrintf(comm, ", %" PetscInt_FMT " not decided (a complex quadruplet cannot be excluded matrix-free), %" PetscInt_FMT " monodromy products", nu,
+                          f.products));
+  if (tr.det_error) {
     PetscReal dmax = 0;
     for (PetscReal x : f.det_error) dmax = std::max(dmax, x); // NaN (resumed from an older file) ignored
     PetscCall(PetscPrintf(comm, ", max |det M - 1| = %.1e", (double)dmax));

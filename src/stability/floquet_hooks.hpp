@@ -53,12 +53,25 @@ private:
 // signatures and the leading instability's class; -1 and 0 matrix-free). The
 // `stable` column holds the route's verdict: only the dense route can say
 // "stable" (1); the matrix-free one says "unstable" (0) or "not decided" (-1).
+// The Floquet routes a continuation can take and what their summary says (a
+// trait table, FloquetRouteTraitsOf): the full dense analysis (-floquet), and
+// the -floquet_mf routes.
+enum class FloquetRoute { Full = 0, Dense = 1, Localized = 2, MatrixFree = 3 };
+struct FloquetRouteTraits {
+  const char *name;    // written as the route (the `route` attribute)
+  const char *summary; // after "Floquet" in the branch's summary line
+  bool det_error;      // the summary reports max |det M - 1| (all 2N multipliers known)
+  bool undecided;      // the summary counts the orbits it could not decide, and the products
+};
+const FloquetRouteTraits &FloquetRouteTraitsOf(FloquetRoute r);
+
 class FloquetMfHook : public PointHook {
 public:
   FloquetMfHook(PeriodicFlow &flow, const FloquetOptions &o, const FloquetMfOptions &mo) : flow_(flow), opt_(o), mopt_(mo) {}
   bool Dense() const { return 2 * flow_.Lat().N() <= mopt_.dense_max; }
   bool Localized() const { return !Dense() && mopt_.which == FloquetMfWhich::Localized; }
-  const char *Route() const { return Dense() ? "dense" : Localized() ? "localized" : "matrix-free"; }
+  FloquetRoute RouteKind() const { return Dense() ? FloquetRoute::Dense : Localized() ? FloquetRoute::Localized : FloquetRoute::MatrixFree; }
+  const char *Route() const { return FloquetRouteTraitsOf(RouteKind()).name; }
   // The route's line at the start of a run: what it computes and can say.
   PetscErrorCode Announce() const;
   PetscErrorCode Point(Vec z0, PetscReal T, PetscReal beta, Vec dz0) override;
@@ -81,11 +94,11 @@ private:
 
 // A branch's one-line Floquet summary: how many of its orbits are stable at
 // -floquet_tol tol, and the dense route's largest |det M - 1| or the
-// matrix-free route's undecided orbits and monodromy products. mf_route:
-// nullptr for -floquet, else the -floquet_mf hook's Route().
+// matrix-free route's undecided orbits and monodromy products, as the
+// route's traits say.
 // Then the verdicts: a count per verdict and a line per unstable or
 // unresolved orbit (at most 12; energy: the orbits' energies, optional).
-PetscErrorCode PrintFloquetSummary(MPI_Comm comm, const std::string &label, const FloquetColumns &f, PetscReal tol, const char *mf_route,
+PetscErrorCode PrintFloquetSummary(MPI_Comm comm, const std::string &label, const FloquetColumns &f, PetscReal tol, FloquetRoute route,
                                    const std::vector<PetscReal> *energy = nullptr);
 
 } // namespace nltopo

@@ -274,7 +274,7 @@ private:
     d.seconds = b1 - cur.b0;
     d.located = rec.located, d.events = std::move(rec.events);
     d.bif_tol = rec.bif_tol, d.bif_seconds = rec.bif_seconds, d.bif_probes = rec.bif_probes;
-    if (fk_ != FloquetKind::None) PetscCall(PrintFloquetSummary(comm_, label, d.f, flo_.tol, fk_ == FloquetKind::MatrixFree ? mf_hook_->Route() : nullptr, &d.b.energy));
+    if (fk_ != FloquetKind::None) PetscCall(PrintFloquetSummary(comm_, label, d.f, flo_.tol, fk_ == FloquetKind::MatrixFree ? mf_hook_->RouteKind() : FloquetRoute::Full, &d.b.energy));
     if (fk_ != FloquetKind::None && !d.b.energy.empty()) { // the Krein resonance map in one line
       const KreinMap km = ComputeKreinMap(krein_, d.omega, d.b.energy, d.b.period);
       PetscCall(PetscPrintf(comm_, "  [%s] %s\n", label.c_str(), KreinMapSummary(km, krein_.bands, d.b.energy, d.b.period).c_str()));

@@ -179,7 +179,7 @@ private:
     PetscCall(PetscTime(&t1));
     r.f = hook.c, r.seconds = t1 - t0;
     r.b.z0.clear(); // the orbits themselves are -study continuation's; only the columns are kept
-    PetscCall(PrintFloquetSummary(comm_, label + ", N = " + std::to_string(r.N), r.f, flo_.tol, hook.Route()));
+    PetscCall(PrintFloquetSummary(comm_, label + ", N = " + std::to_string(r.N), r.f, flo_.tol, hook.RouteKind()));
     runs_.push_back(std::move(r));
     PetscFunctionReturn(0);
   }
