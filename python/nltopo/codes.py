@@ -23,6 +23,9 @@ VERDICT = ("-1 not computed (resumed from a file written before verdicts); 0 sta
            "2 unstable-extended (the same, extended eigenvector); 3 stable-to (nothing beyond 1 + verdict_bound); "
            "4 unresolved (verdict_reason says why)")
 PREDICTABLE = "1 predictable; 0 unpredictable (twin statistics); -1 not checked (no -sweep_mcr_tol)"
+REGIME = ("0 regular (lyapunov x window below -sweep_lyapunov_efolds); 1 chaotic, the MCR statistically predictable (an ergodic average; "
+          "or not checked without -sweep_mcr_tol); 2 unpredictable (the twins spread beyond -sweep_mcr_tol); -1 not computed "
+          "(no -sweep_lyapunov, E* not reached, or failed)")
 SCALING_VERDICT = ("0 stable (no orbit of the window unstable at any N); 1 persists (p < -scaling_persist_exponent); 2 finite-size "
                    "(p >= it); 3 undetermined (fewer than two N with an unstable orbit, or the threshold within one standard error of p)")
 # the Krein resonance map (/continuation/<branch>/krein_map): open is a bitmask, the sum of its classes' bits
@@ -59,6 +62,8 @@ FORMAT0 = {
     ("/sweep", "predictable"): PREDICTABLE,
     ("/sweep", "done"): DONE,
     ("/sweep", "kcorr_computed"): YES_NO,
+    ("/sweep", "regime"): REGIME,  # (format 1 on)
+    ("/sweep", "lyapunov_computed"): YES_NO,
     ("/zak", "reached"): YES_NO,
     ("/zak", "done"): DONE,
     ("/perturb/<kind>", "done"): DONE,

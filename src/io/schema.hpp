@@ -46,6 +46,9 @@ constexpr const char *kVerdict = "-1 not computed (resumed from a file written b
                                   "eigenvector at the interface, confirmed by k-period integration); 2 unstable-extended (the same, extended eigenvector); "
                                   "3 stable-to (nothing beyond 1 + verdict_bound); 4 unresolved (verdict_reason says why)";
 constexpr const char *kPredictable = "1 predictable; 0 unpredictable (twin statistics); -1 not checked (no -sweep_mcr_tol)";
+constexpr const char *kRegime = "0 regular (lyapunov x window below -sweep_lyapunov_efolds); 1 chaotic, the MCR statistically predictable (an ergodic average; "
+                                "or not checked without -sweep_mcr_tol); 2 unpredictable (the twins spread beyond -sweep_mcr_tol); -1 not computed "
+                                "(no -sweep_lyapunov, E* not reached, or failed)";
 // The Krein resonance map (stability/krein_map.hpp): bits of a mask, a value is the sum of its open classes' bits.
 constexpr const char *kKreinPairs = "0 none; 1 AA (acoustic + acoustic); 2 AO (acoustic + optical); 4 OO (optical + optical); 8 EA (localised + acoustic); "
                                     "16 EO (localised + optical); 32 EE (localised + localised, crossed since the previous orbit)";

@@ -6,7 +6,8 @@ dotted and E = 12 dashed:
     kcorr = 0.7 contour (chaos, white) when the sweep computed it;
 (b) the MCR, points that never reached E* crossed out, points an
     accuracy-aware sweep (-sweep_mcr_tol) found unpredictable dotted (their MCR
-    is a twins' mean), and, when a continuation file is given, its NNM branches
+    is a twins' mean), with -sweep_lyapunov the chaotic points whose MCR is
+    predictable (regime 1) as white crosses, and, when a continuation file is given, its NNM branches
     (the frequency-energy plot) overlaid within the map, Floquet-unstable
     orbits in red;
 (c) the 0-1 test's kcorr (only when the sweep computed it).
@@ -93,6 +94,9 @@ def figure(run, s, branches=None, letters="abc"):
     unpredictable = done & (s.predictable == 0) if "predictable" in s else np.zeros_like(done)
     if unpredictable.any():
         ax[1].plot(ee[unpredictable], ww[unpredictable], ".", color="0.85", ms=2.5, label="unpredictable (twins' mean)")
+    chaotic = done & (s.regime == 1) if bool(s.get("lyapunov_computed", 0)) else np.zeros_like(done)
+    if chaotic.any():  # -sweep_lyapunov: chaotic, the MCR an ergodic average
+        ax[1].plot(ee[chaotic], ww[chaotic], "+", color="w", ms=4, mew=0.8, label="chaotic, MCR predictable (Lyapunov)")
     if branches is not None:  # the FEP, as plot_fep.py draws it: branch colours, unstable stretches by class
         for k, (name, g) in enumerate(branches.items()):
             m = int(g.get("period_multiple", 1))

@@ -22,10 +22,12 @@ const SweepRealField kRealMembers[] = {{"mcr", &SweepPoint::mcr, NanAllowed::IfF
                                        {"energy_final", &SweepPoint::energy_final, NanAllowed::IfFailed},
                                        {"seconds", &SweepPoint::seconds, NanAllowed::Never},
                                        {"mcr_error", &SweepPoint::mcr_error, NanAllowed::Always},
-                                       {"mcr_spread", &SweepPoint::mcr_spread, NanAllowed::Never}};
+                                       {"mcr_spread", &SweepPoint::mcr_spread, NanAllowed::Never},
+                                       {"lyapunov", &SweepPoint::lyapunov, NanAllowed::Always},
+                                       {"lyapunov_half", &SweepPoint::lyapunov_half, NanAllowed::Always}};
 const SweepIntField kIntMembers[] = {{"reached", &SweepPoint::reached}, {"rescalings", &SweepPoint::rescalings}, {"rhs_evals", &SweepPoint::rhs},
                                      {"steps", &SweepPoint::steps},     {"failed", &SweepPoint::failed},         {"predictable", &SweepPoint::predictable},
-                                     {"mcr_runs", &SweepPoint::runs}};
+                                     {"mcr_runs", &SweepPoint::runs},   {"regime", &SweepPoint::regime}};
 
 bool PerPoint(const Field &f) { return f.kind == FieldKind::Dataset && !std::strcmp(f.shape, "ne x no") && std::strcmp(f.name, "done"); }
 

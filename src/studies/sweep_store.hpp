@@ -25,6 +25,10 @@ struct SweepPoint {
   PetscInt reached = 0, rescalings = 0, rhs = 0, steps = 0;
   PetscInt failed = 0; // the run stopped with an error (e.g. diverged); its numbers are NaN
   PetscInt predictable = -1, runs = 1;
+  // -sweep_lyapunov: the maximal finite-time Lyapunov exponent over the MCR window and over its first half (NaN without),
+  // and the regime it and the twins give (codes::kRegime)
+  PetscReal lyapunov = std::numeric_limits<PetscReal>::quiet_NaN(), lyapunov_half = std::numeric_limits<PetscReal>::quiet_NaN();
+  PetscInt regime = -1;
 };
 
 // The per-point (ne x no) datasets of the /sweep schema (sweep_study.cpp) but

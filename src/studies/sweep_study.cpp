@@ -22,6 +22,7 @@
 #include "studies/registry.hpp"
 #include "studies/study.hpp"
 #include "studies/sweep_accuracy.hpp"
+#include "stability/lyapunov.hpp"
 #include "studies/sweep_store.hpp"
 #include "timeint/simulation.hpp"
 #include <algorithm>
@@ -44,6 +45,8 @@ struct SweepOptions {
   std::vector<PetscReal> omega_list, energy_list;
   std::vector<PetscReal> omega, energy;
   PetscBool resume = PETSC_FALSE, kcorr = PETSC_FALSE;
+  PetscBool lyapunov = PETSC_FALSE;                          // -sweep_lyapunov
+  PetscReal lyapunov_renorm = 10, lyapunov_efolds = 20;      // -sweep_lyapunov_renorm, -sweep_lyapunov_efolds
   PetscReal checkpoint = 5, progress = 10;
   // 0-1 test (-kcorr_*)
   PetscInt kcorr_nc = 32, kcorr_site_stride = 1; // 32 c values: the median is stable to ~0.02 on the test series (tests/unit)
@@ -73,6 +76,12 @@ const auto &kSweepTable = DeclareOptionTable<SweepOptions>("sweep_", "Sweep: gri
   t.Bool("resume", &SweepOptions::resume, "Continue the sweep stored in <output>.partial.h5 (or -output): compute only the points not done",
          OptionClass::Bookkeeping)
       .Bool("kcorr", &SweepOptions::kcorr, "Score every run with the 0-1 test for chaos (-kcorr_* options)")
+      .Bool("lyapunov", &SweepOptions::lyapunov,
+            "Give every point the maximal finite-time Lyapunov exponent of its free motion over [t_off, t_final] (Benettin's method on the tangent flow, "
+            "about the run's cost once more) and a regime: regular, chaotic or unpredictable")
+      .Real("lyapunov_renorm", &SweepOptions::lyapunov_renorm, LeftOpen(0, 1e6), "Time between the renormalisations of the tangent vector (-sweep_lyapunov)")
+      .Real("lyapunov_efolds", &SweepOptions::lyapunov_efolds, LeftOpen(0, 1e6),
+            "A point is chaotic when lyapunov x (t_final - t_off) reaches this many e-folds (regular motion grows polynomially: a few ln(window))")
       .Real("checkpoint", &SweepOptions::checkpoint, LeftOpen(0, 1e7), "Rewrite <output>.partial.h5 with the points done so far every this many wall seconds",
             OptionClass::Bookkeeping)
       .Real("progress", &SweepOptions::progress, Closed(0, 1e7), "Report progress every this many wall seconds (0: never)", OptionClass::Bookkeeping);
@@ -158,12 +167,32 @@ PetscErrorCode WriteSweep(const std::string &path, const SweepGrid &g, const Swe
   PetscCall(WriteAttr(w, grp, "kcorr_rms_fraction", so.kcorr_rms_fraction));
   PetscCall(WriteAttr(w, grp, "kcorr_record", so.kcorr_record));
   PetscCall(WriteAttr(w, grp, "kcorr_lags", so.kcorr_lags));
+  PetscCall(WriteAttr(w, grp, "lyapunov_computed", (PetscInt)so.lyapunov));
+  PetscCall(WriteAttr(w, grp, "lyapunov_renorm", so.lyapunov_renorm));
+  PetscCall(WriteAttr(w, grp, "lyapunov_efolds", so.lyapunov_efolds));
   PetscCall(WriteAttr(
       w, grp, "amplitude_rule",
       "linear Gaussian-burst energy = -force_amplitude_safety * E*; a run whose burst ends before E* is repeated with a larger S (x "
       "(1.2 E*/E_peak)^(1/p), p the log-log slope of the misses) up to -force_amplitude_retries times (docs/model.md, the amplitude rule); reached = 0 marks points that never reached E*"));
   PetscCall(out.Commit("sweep", wall, complete));
   PetscCall(PetscLogEventEnd(Log().output, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+// -sweep_lyapunov: the FTLE of the free motion from the cut-off state over
+// the MCR window, in the run's own (mean) step, and the point's regime
+// (codes::kRegime): unpredictable where the twins said so, else chaotic where
+// the tangent vector grew by -sweep_lyapunov_efolds e-folds, else regular.
+PetscErrorCode PointLyapunov(const Lattice &lat, const SimulationOptions &ps, const SweepOptions &so, const SimulationResult &r, SweepPoint *pt)
+{
+  LyapunovResult ly;
+  PetscFunctionBeginUser;
+  EffectList free_fx(lat);
+  PetscCall(BuildEffects(lat, NULL, &free_fx));
+  const PetscReal window = ps.t_final - r.t_off, dt = (ps.t_final - ps.t_start) / std::max<PetscInt>(1, r.steps);
+  PetscCall(FiniteTimeLyapunov(free_fx, r.z_off, window, so.lyapunov_renorm, dt, &ly));
+  pt->lyapunov = ly.exponent, pt->lyapunov_half = ly.half;
+  pt->regime = pt->predictable == 0 ? 2 : ly.exponent * window >= so.lyapunov_efolds ? 1 : 0;
   PetscFunctionReturn(0);
 }
 
@@ -179,6 +208,7 @@ PetscErrorCode ComputePoint(const Lattice &lat, const LinearModes &modes, const 
   SimulationOptions ps = sim;
   AfterCutoffSamples sink(lat.N());
   if (so.kcorr) ps.sample_dt = so.kcorr_sample_dt;
+  ps.keep_cutoff_state = so.lyapunov;
   SimulationResult r;
   PetscInt rescalings;
   PetscLogDouble p0, p1;
@@ -222,6 +252,7 @@ PetscErrorCode ComputePoint(const Lattice &lat, const LinearModes &modes, const 
   pt->mcr = r.mcr, pt->t_off = r.t_off, pt->nl_ratio = r.nl_ratio, pt->amplitude = burst.Amplitude(), pt->energy_final = r.energy_final;
   pt->reached = r.reached, pt->rescalings = rescalings, pt->steps = r.steps;
   if (so.mcr.tol > 0) PetscCall(RefineMcr(lat, burst, sim, so.mcr, r, pt)); // the scene's options, S as the rule left it
+  if (so.lyapunov && r.reached && r.z_off) PetscCall(PointLyapunov(lat, ps, so, r, pt));
   PetscCall(PetscTime(&p1));
   pt->seconds = p1 - p0;
   PetscFunctionReturn(0);
@@ -545,6 +576,10 @@ StudyContract SweepStudyContract()
                            {"seconds", D, R, "ne x no", "s", "wall time of the point"},
                            {"mcr_error", D, R, "ne x no", "1", "estimated relative MCR error (-sweep_mcr_tol)"},
                            {"mcr_spread", D, R, "ne x no", "1", "MCR spread over the twins where unpredictable, else 0"},
+                           {"lyapunov", D, R, "ne x no", "1/time",
+                            "maximal finite-time Lyapunov exponent of the free motion over [t_off, t_final] (Benettin, tangent flow; NaN without "
+                            "-sweep_lyapunov or where E* was not reached)"},
+                           {"lyapunov_half", D, R, "ne x no", "1/time", "the same over the window's first half (its convergence: |lyapunov - lyapunov_half|)"},
                            {"reached", D, I, "ne x no", "1", "1 if E* was reached", codes::kYesNo},
                            {"rescalings", D, I, "ne x no", "1", "amplitude repeats"},
                            {"rhs_evals", D, I, "ne x no", "1", "RHS evaluations of every attempt"},
@@ -552,6 +587,8 @@ StudyContract SweepStudyContract()
                            {"failed", D, I, "ne x no", "1", "1 if the run stopped with an error", codes::kYesNo},
                            {"predictable", D, I, "ne x no", "1", "1, 0, or -1 without -sweep_mcr_tol", codes::kPredictable},
                            {"mcr_runs", D, I, "ne x no", "1", "integrations spent on the point"},
+                           {"regime", D, I, "ne x no", "1", "regular, chaotic (predictable MCR) or unpredictable, from lyapunov, the twins and the window",
+                            codes::kRegime},
                            {"done", D, I, "ne x no", "1", "1 if the point is computed", codes::kDone},
                            {"points_done", A, I, "scalar", "1", "points computed so far"},
                            {"points_computed", A, I, "scalar", "1", "points computed by this invocation"},
@@ -562,6 +599,9 @@ StudyContract SweepStudyContract()
                            {"kcorr_rms_fraction", A, R, "scalar", "1", "-kcorr_rms_fraction"},
                            {"kcorr_record", A, R, "scalar", "time", "-kcorr_record"},
                            {"kcorr_lags", A, I, "scalar", "1", "-kcorr_lags"},
+                           {"lyapunov_computed", A, I, "scalar", "1", "1 with -sweep_lyapunov", codes::kYesNo},
+                           {"lyapunov_renorm", A, R, "scalar", "time", "-sweep_lyapunov_renorm"},
+                           {"lyapunov_efolds", A, R, "scalar", "1", "-sweep_lyapunov_efolds"},
                            {"amplitude_rule", A, S, "scalar", "1", "how S was chosen"},
                            {"force_eta", D, R, "N", "1", "forcing profile eta per site, the same at every point (S scales it)"},
                            {"insulated_mode", D, R, "N", "1", "linear insulated mode, the exponential profile's fit target (absent without one)"},

@@ -228,6 +228,7 @@ struct Run {
   const EffectList *fx;
   Rhs rhs;
   SimulationResult *r;
+  bool keep_state; // keep the state at the cut-off (SimulationOptions::keep_cutoff_state)
   PetscReal estar;
   bool event_mode = false, interpolate = true;
   bool locate_in_step = false;          // find the cut-off on the step's interpolant (fixed-step symsplit)
@@ -241,18 +242,24 @@ struct Run {
   ProgressLine progress;
 
   Run(const EffectList &e, const SimulationOptions &o, SampleSink *s, SimulationResult *res)
-      : lat(&e.Lat()), fx(&e), rhs(e), r(res), estar(e.Burst() ? e.Burst()->EnergyStar() : 0), crossing(e, estar), window(e), sampler(e, s, o),
+      : lat(&e.Lat()), fx(&e), rhs(e), r(res), keep_state(o.keep_cutoff_state), estar(e.Burst() ? e.Burst()->EnergyStar() : 0), crossing(e, estar), window(e), sampler(e, s, o),
         progress(e.Lat().Comm(), o.progress, o.t_final)
   {
   }
 
-  void CutOff(PetscReal t)
+  PetscErrorCode CutOff(PetscReal t, Vec z)
   {
+    PetscFunctionBeginUser;
+    if (keep_state) {
+      if (!r->z_off) PetscCall(VecDuplicate(z, r->z_off.out()));
+      PetscCall(VecCopy(z, r->z_off));
+    }
     rhs.DropForcing();
     r->t_off = t;
     r->reached = true;
     r->window_start = t;
     window.Restart(); // the window starts at t_off
+    PetscFunctionReturn(0);
   }
 };
 
@@ -283,7 +290,7 @@ PetscErrorCode CutOffAtStepEnd(TS ts, Run *run, PetscReal *t, Vec z, EnergyParts
     *t = t_off;
     *e = e_off;
   }
-  run->CutOff(*t);
+  PetscCall(run->CutOff(*t, z));
   PetscFunctionReturn(0);
 }
 
@@ -354,7 +361,7 @@ PetscErrorCode CutOffEvent(TS ts, PetscInt nev, PetscInt list[], PetscReal t, Ve
   Run *run = static_cast<Run *>(ctx);
   PetscFunctionBeginUser;
   if (run->rhs.Forcing()) {
-    run->CutOff(t);
+    PetscCall(run->CutOff(t, z));
     PetscCall(TSRestartStep(ts)); // FSAL schemes must not reuse a stage computed with the forcing on
   }
   PetscFunctionReturn(0);

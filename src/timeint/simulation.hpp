@@ -18,6 +18,7 @@ struct SimulationOptions {
   PetscReal dt_quartic_energy = 0; // fixed-step types: above this energy the step shrinks as (this / E)^(1/4) (0: off)
   PetscReal dt_scale = 1;          // fixed-step types: the step times this (set by code: the sweep's accuracy ladder)
   bool abort_if_missed = false;    // end the run at the end of the burst (t0 + 3 tau) if E* was not reached
+  bool keep_cutoff_state = false;  // keep the state at the cut-off in SimulationResult::z_off (set by code: the sweep's Lyapunov exponent)
 };
 PetscErrorCode SimulationOptionsFromOptions(MPI_Comm comm, SimulationOptions *o);
 
@@ -73,6 +74,7 @@ struct SimulationResult {
   PetscInt rhs_all_attempts = 0; // RHS evaluations of every attempt of SimulateForced (the work done)
   OwnedVec rms;                  // RMS displacement per site (SiteDM)
   OwnedVec z_final;              // final state
+  OwnedVec z_off;                // the state at the cut-off (SimulationOptions::keep_cutoff_state; NULL otherwise or if never cut off)
 };
 
 // A forced run under the amplitude rule (docs/model.md "The amplitude rule"): with S

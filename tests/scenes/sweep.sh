@@ -49,7 +49,8 @@ run1 -study simulate -options_file "$SRC/options/simulate.opts" -sim_t_final 100
 # The 0-1 test at two points of known character (sweep_quick.opts settings, -kcorr_record 1500):
 # the insulated mode forced at its linear frequency at E* = 1e-2 (a periodic, localised response)
 # and omega = 2.1 inside the optical band at E* = 200 (chaotic, docs/model.md "The 0-1 test for chaos").
-run1 -options_file "$SRC/options/sweep_quick.opts" -sweep_omega_list 1.7320508075688772,2.1 -sweep_energy_list 1e-2,200 -output kc.h5 > kc.txt
+# Also the finite-time Lyapunov exponent (-sweep_lyapunov) and the regime at those points.
+run1 -options_file "$SRC/options/sweep_quick.opts" -sweep_omega_list 1.7320508075688772,2.1 -sweep_energy_list 1e-2,200 -sweep_lyapunov -output kc.h5 > kc.txt
 
 $PY "$CHECKS/sweep.py" grid
 

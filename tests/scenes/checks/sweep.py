@@ -62,6 +62,16 @@ def grid():
     require(abs(kc["mcr"][0, 0] - 0.345) < 0.01, kc["mcr"][0, 0])   # ... and it is the localised mode (linear MCR 0.345)
     require(kc["kcorr"][1, 1] > 0.7, kc["kcorr"][:])         # omega = 2.1 (optical band 1.95-2.24) at E* = 200: chaotic
     print("kcorr: regular %.3f %.3f %.3f (< 0.3), chaotic %.3f %.3f (> 0.7)" % (k[0, 0], k[1, 0], kc["kcorr"][0, 0], k[3, 2], kc["kcorr"][1, 1]))
+    # -sweep_lyapunov at the same two points: the periodic response grows its tangent vector by less than e^1 over the
+    # window (lambda x window; regular motion: polynomially), the chaotic one by e^70 (lambda ~ 0.1 per unit time), converged
+    # to 10 % between the window's first half and the whole; regime 0 and 1 (chaotic; not checked for predictability)
+    lam, half, reg = kc["lyapunov"][:], kc["lyapunov_half"][:], kc["regime"][:]
+    window = 1000 - kc["t_off"][:]
+    require(abs(lam[0, 0] * window[0, 0]) < 1 and reg[0, 0] == 0, lam, reg)
+    require(lam[1, 1] * window[1, 1] > 40 and abs(lam[1, 1] - half[1, 1]) < 0.1 * lam[1, 1] and reg[1, 1] == 1, lam, half, reg)
+    require(kc.attrs["lyapunov_computed"] == 1 and (reg >= 0).all(), reg)
+    print("lyapunov x window: regular %.2f, chaotic %.1f (first half %.4f, whole %.4f)" % (lam[0, 0] * window[0, 0], lam[1, 1] * window[1, 1],
+                                                                                       half[1, 1], lam[1, 1]))
 
 
 def failed_points():

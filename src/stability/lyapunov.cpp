@@ -1,0 +1,75 @@
+#include "stability/lyapunov.hpp"
+#include "core/handle.hpp"
+#include "core/log.hpp"
+#include "orbits/flow.hpp"
+
+namespace nltopo {
+
+namespace {
+
+PetscErrorCode LyapunovEvent(PetscLogEvent *ev)
+{
+  static PetscLogEvent e = -1;
+  PetscFunctionBeginUser;
+  if (e < 0) PetscCall(PetscLogEventRegister("Lyapunov", Log().classid, &e));
+  *ev = e;
+  PetscFunctionReturn(0);
+}
+
+// A fixed start vector with weight on every site (positions and velocities),
+// unit norm: the same at every point of a sweep.
+PetscErrorCode StartVector(Vec v)
+{
+  PetscInt lo, hi;
+  PetscScalar *a;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetOwnershipRange(v, &lo, &hi));
+  PetscCall(VecGetArray(v, &a));
+  for (PetscInt i = lo; i < hi; i++) a[i - lo] = std::sin(0.7548776662466927 * (i + 1) + 0.3);
+  PetscCall(VecRestoreArray(v, &a));
+  PetscReal n;
+  PetscCall(VecNormalize(v, &n));
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode FiniteTimeLyapunov(const EffectList &fx, Vec z0, PetscReal window, PetscReal renorm, PetscReal dt, LyapunovResult *r)
+{
+  PetscLogEvent ev;
+  PetscFunctionBeginUser;
+  *r = LyapunovResult();
+  r->window = window;
+  if (!(window > 0)) PetscFunctionReturn(0);
+  PetscCall(LyapunovEvent(&ev));
+  PetscCall(PetscLogEventBegin(ev, 0, 0, 0, 0));
+  const PetscInt n = std::max<PetscInt>(1, (PetscInt)std::ceil(window / renorm - 1e-9));
+  const PetscReal tau = window / n;
+  FlowOptions fo;
+  fo.steps = std::max<PetscInt>(1, (PetscInt)std::ceil(tau / dt - 1e-9));
+  PeriodicFlow flow;
+  PetscCall(flow.Setup(fx, fo));
+  OwnedVec z, zT, v, w;
+  PetscCall(VecDuplicate(z0, z.out()));
+  PetscCall(VecDuplicate(z0, zT.out()));
+  PetscCall(VecDuplicate(z0, v.out()));
+  PetscCall(VecDuplicate(z0, w.out()));
+  PetscCall(VecCopy(z0, z));
+  PetscCall(StartVector(v));
+  PetscReal sum = 0;
+  for (PetscInt k = 0; k < n; k++) {
+    PetscReal g;
+    PetscCall(flow.IntegrateWithTangent(z, tau, 0.0, v, 0, 0, zT, w));
+    PetscCall(VecNorm(w, NORM_2, &g));
+    sum += std::log(g);
+    PetscCall(VecAXPBY(v, 1 / g, 0.0, w)); // renormalised
+    PetscCall(VecCopy(zT, z));
+    if (k + 1 == (n + 1) / 2) r->half = sum / (tau * (k + 1));
+  }
+  r->exponent = sum / window;
+  r->intervals = n;
+  PetscCall(PetscLogEventEnd(ev, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+} // namespace nltopo
