@@ -62,30 +62,21 @@ protected:
     PetscCheck(declaring_ || !o_.inputs.empty(), comm_, PETSC_ERR_USER, "-study merge needs -merge_inputs a.h5,b.h5,... (the shard files of one sweep)");
     PetscFunctionReturn(0);
   }
+  // The output path, then every input checked (rank 0), before the output file is opened.
   PetscErrorCode OutputPath(std::string *path) override
   {
     PetscFunctionBeginUser;
     PetscCall(Study::OutputPath(path));
     for (const std::string &in : o_.inputs) // the output is renamed into place: it must not replace an input
       PetscCheck(!SameFile(in, *path), comm_, PETSC_ERR_USER, "-output %s is one of -merge_inputs: merge into another file", path->c_str());
-    PetscFunctionReturn(0);
-  }
-  // Every input checked (rank 0), before anything is written.
-  PetscErrorCode Build() override
-  {
-    PetscErrorCode err = 0;
-    char msg[2048] = "";
-    PetscMPIInt rank;
-    PetscFunctionBeginUser;
-    PetscCallMPI(MPI_Comm_rank(comm_, &rank));
-    if (!rank) PetscCall(CaptureError([&]() { return CheckInputs(); }, &err, msg, sizeof msg));
-    PetscCall(FailTogether(comm_, err, msg));
+    PetscCall(OnRoot([&]() { return CheckInputs(); }));
     unsigned long dims[3] = {nrows_, ncols_, order_.size()};
     PetscCallMPI(MPI_Bcast(dims, 3, MPI_UNSIGNED_LONG, 0, comm_));
     nrows_ = dims[0], ncols_ = dims[1];
     order_.resize(dims[2]); // (rank 0's values; the others only count)
     PetscFunctionReturn(0);
   }
+  PetscErrorCode Build() override { return 0; }
   PetscErrorCode Solve() override { return 0; } // the work is the copy, in Write
   PetscErrorCode Write(PetscViewer v) override
   {
