@@ -14,6 +14,7 @@
 #include "core/signals.hpp"
 #include "core/work_queue.hpp"
 #include "diagnostics/zero_one.hpp"
+#include "io/input.hpp"
 #include "io/output.hpp"
 #include "io/run_options.hpp"
 #include "io/schema.hpp"
@@ -117,6 +118,32 @@ PetscErrorCode SweepOptionsFromOptions(MPI_Comm comm, SweepOptions *o)
   PetscCheck(o->kcorr_lags == 0 || o->kcorr_lags >= 3, comm, PETSC_ERR_USER, "-kcorr_lags must be 0 (all) or lie in [3, 100000], got %" PetscInt_FMT,
              o->kcorr_lags);
   PetscCall(RejectGivenOptions(comm, {"-force_omega", "-force_energy"}, "the sweep axes (-sweep_omega_*, -sweep_energy_*) per point"));
+  PetscFunctionReturn(0);
+}
+
+// -sweep_shard is bookkeeping, which the overwrite rule (io/run_options.hpp)
+// does not compare: a fresh run refuses, unless -output_overwrite, to replace
+// another shard's output of the same sweep, or a whole sweep by a shard.
+PetscErrorCode CheckShardOverwrite(MPI_Comm comm, const std::string &path, const SweepShard &s)
+{
+  PetscMPIInt rank;
+  PetscBool overwrite = PETSC_FALSE;
+  char msg[1024] = "";
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-output_overwrite", &overwrite, NULL));
+  std::string study;
+  long index = 0, count = 0;
+  if (!rank && !overwrite && ReadRootAttribute(path, "study", &study) && study == "sweep") {
+    ReadRootAttribute(path, "/sweep/shard_index", &index);
+    ReadRootAttribute(path, "/sweep/shard_count", &count);
+    auto name = [](long i, long n) { return n ? "shard " + std::to_string(i) + "/" + std::to_string(n) : std::string("the whole grid"); };
+    if (count != s.count || (count && index != s.index))
+      PetscCall(PetscSNPrintf(msg, sizeof msg, "-output %s holds %s of this sweep (this run: %s); choose another -output or give -output_overwrite",
+                              path.c_str(), name(index, count).c_str(), name(s.index, s.count).c_str()));
+  }
+  PetscCallMPI(MPI_Bcast(msg, sizeof msg, MPI_CHAR, 0, comm));
+  PetscCheck(!msg[0], comm, PETSC_ERR_FILE_WRITE, "%s", msg);
   PetscFunctionReturn(0);
 }
 
@@ -270,6 +297,7 @@ protected:
     PetscFunctionBeginUser;
     PetscCall(OutputPathFromOptions(
         comm_, name_, path, [&](const std::string &) { return (bool)so_.resume; }, "-sweep_resume"));
+    if (!so_.resume) PetscCall(CheckShardOverwrite(comm_, *path, so_.shard));
     if (!so_.resume) PetscFunctionReturn(0);
     if (!rank_) partial = !access(PartialPath(*path).c_str(), F_OK);
     PetscCallMPI(MPI_Bcast(&partial, 1, MPI_INT, 0, comm_));

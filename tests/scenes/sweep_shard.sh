@@ -34,6 +34,13 @@ expect_fail 1 "-merge_inputs undone.h5 is incomplete: 3 of its 4 points done" -s
 expect_fail 1 "-merge_inputs whole.h5 holds a whole sweep, not a shard" -study merge -merge_inputs shard0.h5,whole.h5
 expect_fail 1 "-sweep_shard 3/3: shard i of n needs 0 <= i < n" "${OPTS[@]}" -sweep_shard 3/3
 
+# -sweep_shard is bookkeeping (no option comparison), yet a fresh run does not replace another shard's output.
+cp shard0.h5 keep0.h5
+set +e; "$NLTOPO" "${OPTS[@]}" -sweep_shard 1/3 -output shard0.h5 > so.txt 2> se.txt; rc=$?; set -e
+[ $rc -ne 0 ] && [ "$(grep -c . se.txt)" -eq 1 ] && grep -q -- "-output shard0.h5 holds shard 0/3 of this sweep (this run: shard 1/3)" se.txt ||
+  { cat se.txt; echo "FAILED: another shard's output replaced"; exit 1; }
+cmp shard0.h5 keep0.h5
+
 # A lost shard is rerun alone (here at 1 rank, first at 2) and the map merged again.
 run1 "${OPTS[@]}" -sweep_shard 1/3 -output shard1b.h5 > shard1b.txt
 run1 -study merge -merge_inputs shard0.h5,shard1b.h5,shard2.h5 -output all2.h5 > merge2.txt
