@@ -113,7 +113,7 @@ private:
     PetscCallMPI(MPI_Bcast(s->data(), (PetscMPIInt)n, MPI_CHAR, 0, comm_));
     PetscFunctionReturn(0);
   }
-  // A /sweep attribute of the first input (or, path given, of any group of any input) written to the output's group, if the input has it.
+  // Attribute f of group `from` ("" the root) of input `in`, written to the output's `group` when the input has it.
   PetscErrorCode CopyAttribute(PetscViewer v, const std::string &in, const std::string &from, const char *group, const Field &f);
   // Rank 0 runs fn (reading the inputs); then every rank fails alike or goes on.
   template <typename Fn> PetscErrorCode OnRoot(Fn &&fn)
