@@ -41,8 +41,8 @@ set +e; "$NLTOPO" "${OPTS[@]}" -sweep_shard 1/3 -output shard0.h5 > so.txt 2> se
   { cat se.txt; echo "FAILED: another shard's output replaced"; exit 1; }
 cmp shard0.h5 keep0.h5
 
-# A lost shard is rerun alone (here at 1 rank, first at 2) and the map merged again.
+# A lost shard is rerun alone (here at 1 rank, first at 2) and the map merged again (at 2 ranks).
 run1 "${OPTS[@]}" -sweep_shard 1/3 -output shard1b.h5 > shard1b.txt
-run1 -study merge -merge_inputs shard0.h5,shard1b.h5,shard2.h5 -output all2.h5 > merge2.txt
+run2 -study merge -merge_inputs shard0.h5,shard1b.h5,shard2.h5 -output all2.h5 > merge2.txt  # the merge at 2 ranks
 $PY "$CHECKS/sweep_shard.py" merged all2.h5
 echo "sweep_shard scene OK"
