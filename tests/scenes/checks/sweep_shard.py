@@ -48,13 +48,26 @@ def merged(path):
     print("the Python reader reads %s as the whole sweep, and a shard's maps masked outside it" % path)
 
 
-def undone(src, dst):
-    """dst: a copy of the shard src with its first point marked not done (an incomplete shard)."""
+def undone(src, dst, partial="0"):
+    """dst: a copy of the shard src with its first point marked not done (an incomplete shard); with
+    partial 1 also complete = 0 (what an interrupted shard leaves at <output>.partial.h5)."""
     shutil.copyfile(src, dst)
     with h5py.File(dst, "r+") as f:
         d = f["sweep/done"][()]
         d[0] = 0
         f["sweep/done"][...] = d
+        if partial == "1":
+            f.attrs["complete"] = np.int32(0) if f.attrs["complete"].dtype == np.int32 else 0
+
+
+def resumed(path, ref):
+    """path, a shard resumed from an incomplete copy of ref, equals ref bit for bit (but the wall times),
+    one point computed again."""
+    with h5py.File(path, "r") as a, h5py.File(ref, "r") as b:
+        for k in b["sweep"]:
+            require(k in WALL or a["sweep"][k][()].tobytes() == b["sweep"][k][()].tobytes(), "dataset differs", k)
+        require(int(a["sweep"].attrs["points_computed"]) == 1 and int(a.attrs["complete"]) == 1)
+    print("%s: the shard resumed (1 point computed) = %s bit for bit" % (path, ref))
 
 
 if __name__ == "__main__":
