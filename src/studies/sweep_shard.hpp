@@ -21,7 +21,10 @@
 // the order in which a sweep hands them out), each go to the shard with the
 // least cost so far (the lowest index among equals): the longest-processing-
 // time rule, so the shards' costs differ by at most one point's cost. Costs
-// are integers (thousandths), so the split does not depend on rounding.
+// are rounded to integers (thousandths) and summed exactly, so the last bits
+// of pow on another machine do not change the split (short of a cost at
+// exactly half a thousandth); shards of different splits would be refused by
+// -study merge (a point in two shards, or in none).
 #include "lattice/params.hpp"
 #include <petscsys.h>
 #include <string>
