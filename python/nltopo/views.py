@@ -342,7 +342,11 @@ class Simulate(Group):
 
 
 class Sweep(Group):
-    """/sweep: maps (ne x no) over the axes energy (E*, rows) and omega (columns)."""
+    """/sweep: maps (ne x no) over the axes energy (E*, rows) and omega (columns). A merged map
+    (-study merge) reads like any sweep; a shard file (-sweep_shard i/n) holds only its points,
+    1-D in the order of `shard_points` (their grid indices), and `maps` places them on the grid."""
+
+    _NOT_MAPS = ("energy", "omega", "shard_points", "force_eta", "insulated_mode")
 
     @property
     def axes(self):
@@ -354,10 +358,29 @@ class Sweep(Group):
         return (len(self["energy"]), len(self["omega"]))
 
     @property
+    def shard(self):
+        """(i, n) of a shard file (-sweep_shard i/n); None for a whole map (a sweep or a merge)."""
+        if "shard_points" not in self._datasets:
+            return None
+        return int(self.attrs["shard_index"]), int(self.attrs["shard_count"])
+
+    @property
     def maps(self):
-        """{name: ne x no array} of every per-point map."""
-        return {n: self[n] for n in self._datasets
-                if n not in ("energy", "omega") and np.shape(self[n]) == self.shape}
+        """{name: ne x no array} of every per-point map; of a shard, masked arrays (numpy.ma)
+        with the points of the other shards masked."""
+        if self.shard is None:
+            return {n: self[n] for n in self._datasets
+                    if n not in self._NOT_MAPS and np.shape(self[n]) == self.shape}
+        pts = np.asarray(self["shard_points"])
+        out = {}
+        for n in self._datasets:
+            v = np.asarray(self[n])
+            if n in self._NOT_MAPS or v.shape != pts.shape:
+                continue
+            m = np.ma.masked_all(self.shape[0] * self.shape[1], dtype=v.dtype)
+            m[pts] = v
+            out[n] = m.reshape(self.shape)
+        return out
 
 
 class Linear(Group):

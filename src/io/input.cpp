@@ -168,4 +168,20 @@ bool ReadRootAttribute(const std::string &file, const char *name, long *value)
   return ok;
 }
 
+bool ReadRootAttribute(const std::string &file, const char *name, double *value)
+{
+  H5E_auto2_t func;
+  void *data;
+  H5Eget_auto2(H5E_DEFAULT, &func, &data);
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  hid_t f, a;
+  bool ok = false;
+  OpenRootAttribute(file, name, &f, &a);
+  if (a >= 0) ok = H5Aread(a, H5T_NATIVE_DOUBLE, value) >= 0;
+  if (a >= 0) H5Aclose(a);
+  if (f >= 0) H5Fclose(f);
+  H5Eset_auto2(H5E_DEFAULT, func, data);
+  return ok;
+}
+
 } // namespace nltopo

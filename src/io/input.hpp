@@ -20,5 +20,6 @@ bool HasDataset(const std::string &file, const char *dataset);
 // as HDF5 or has no such attribute.
 bool ReadRootAttribute(const std::string &file, const char *name, std::string *value);
 bool ReadRootAttribute(const std::string &file, const char *name, long *value);
+bool ReadRootAttribute(const std::string &file, const char *name, double *value);
 
 } // namespace nltopo

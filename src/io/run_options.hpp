@@ -9,7 +9,7 @@
 // (studies/registry.hpp: its own, e.g. -wp_, and its components', e.g.
 // -lattice_, -force_, -sim_, -nnm_, -cont_, -floquet, -linear_); within those,
 //  - bookkeeping is never compared: -cont_resume, -sweep_resume,
-//    -cont_checkpoint_seconds, -sweep_checkpoint, -sweep_progress,
+//    -cont_checkpoint_seconds, -sweep_checkpoint, -sweep_progress, -sweep_shard,
 //    -sim_progress, -cont_verbose, and every option whose name contains
 //    "monitor", "_view" or "converged_reason";
 //  - the extent of a run (how far it goes, what it stores) is compared for an

@@ -27,6 +27,9 @@ import nltopo_plot
 def load(sweep_path, fep_path=None):
     """(the sweep run, its /sweep, the continuation's branches or None)."""
     run = nltopo_plot.open_run(sweep_path)
+    if run.sweep.shard is not None:  # a shard holds some points only: the map is the merge of all
+        sys.exit("plot_sweep.py: %s is shard %d/%d of a sweep (-sweep_shard): plot the merge of its shards (-study merge)"
+                 % ((sweep_path,) + run.sweep.shard))
     return run, run.sweep, (nltopo_plot.open_run(fep_path).branches if fep_path else None)
 
 

@@ -29,8 +29,10 @@ namespace nltopo {
   X("perturb", Perturb, "-perturb_", "chiral and achiral spring-perturbation ensembles: insulated frequency and MCR along the insulated NNM")                  \
   X("workprecision", Workprecision, "-wp_",                                                                                                                    \
     "what accuracy costs for one forced run: integrator configurations timed and scored against a converged reference, and the predictability floor")          \
-  X("stability", Stability, "-stability_", "perturbed insulated-branch NNMs integrated for many periods: does the standing wave persist")                     \
-  X("floquet_scaling", FloquetScaling, "-scaling_", "one branch at several lattice sizes, dense Floquet: does an instability persist as N grows (envelope ~ N^-p)")
+  X("stability", Stability, "-stability_", "perturbed insulated-branch NNMs integrated for many periods: does the standing wave persist")                      \
+  X("floquet_scaling", FloquetScaling, "-scaling_",                                                                                                            \
+    "one branch at several lattice sizes, dense Floquet: does an instability persist as N grows (envelope ~ N^-p)")                                            \
+  X("merge", Merge, "-merge_", "joins the shard files of one sweep (-sweep_shard i/n) into its map")
 
 // What a study adds to the output contract, stated in its own file.
 struct StudyContract {

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <dirent.h>
+#include <numeric>
 
 namespace nltopo {
 
@@ -98,7 +99,7 @@ bool SweepPointValid(const SweepPoint &p, std::string *what)
 PetscInt SweepGrid::Done() const
 {
   PetscInt n = 0;
-  for (PetscInt d : done) n += d;
+  for (size_t k = 0; k < Count(); k++) n += done[At(k)];
   return n;
 }
 
@@ -110,10 +111,36 @@ void SweepGrid::Reset(const std::vector<PetscReal> &w, const std::vector<PetscRe
   done.assign(Size(), 0);
 }
 
+// The shard a sweep file holds (0 of 0: the whole grid), and whether it is this grid's; else *msg says how it differs.
+static PetscErrorCode CheckLoadedShard(const std::string &path, const SweepGrid &g, std::vector<size_t> *points, std::string *msg)
+{
+  long index = 0, count = 0;
+  char buf[512];
+  PetscFunctionBeginUser;
+  points->clear();
+  if (HasDataset(path, "/sweep/shard_points")) {
+    std::vector<PetscInt> p;
+    ReadRootAttribute(path, "/sweep/shard_index", &index);
+    ReadRootAttribute(path, "/sweep/shard_count", &count);
+    PetscCall(ReadInts(path, "/sweep/shard_points", &p));
+    points->assign(p.begin(), p.end());
+  }
+  const std::string now = g.shard.On() ? "-sweep_shard " + std::to_string(g.shard.index) + "/" + std::to_string(g.shard.count) : "the whole grid";
+  if (count == 0 && g.shard.On()) std::snprintf(buf, sizeof buf, "holds the whole grid (now %s)", now.c_str());
+  else if (count && (index != g.shard.index || count != g.shard.count))
+    std::snprintf(buf, sizeof buf, "holds shard %ld/%ld (now %s)", index, count, now.c_str());
+  else if (count && *points != g.points) std::snprintf(buf, sizeof buf, "holds other points than this nltopo's shard %ld/%ld (another split)", index, count);
+  else buf[0] = 0;
+  *msg = buf;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SweepGrid::Load(const std::string &path)
 {
   std::vector<PetscReal> w, e, v;
   std::vector<PetscInt> iv;
+  std::vector<size_t> stored; // the grid index of each stored value: a shard's points, or every point
+  std::string msg;
   PetscFunctionBeginUser;
   PetscCall(ReadDoubles(path, "/sweep/omega", &w));
   PetscCall(ReadDoubles(path, "/sweep/energy", &e));
@@ -123,27 +150,34 @@ PetscErrorCode SweepGrid::Load(const std::string &path)
   PetscCheck(w == omega && e == energy, PETSC_COMM_SELF, PETSC_ERR_USER,
              "-sweep_resume: the grid stored in %s (%zu x %zu) differs from the -sweep_* axes (%zu x %zu)", path.c_str(), e.size(), w.size(), energy.size(),
              omega.size());
+  PetscCall(CheckLoadedShard(path, *this, &stored, &msg));
+  PetscCheck(msg.empty(), PETSC_COMM_SELF, PETSC_ERR_USER, "-sweep_resume: %s %s", path.c_str(), msg.c_str());
+  if (!shard.On()) {
+    stored.resize(Size());
+    std::iota(stored.begin(), stored.end(), 0);
+  }
   auto doubles = [&](const char *name, PetscReal SweepPoint::*field) -> PetscErrorCode {
     PetscFunctionBeginUser;
     PetscCall(ReadDoubles(path, (std::string("/sweep/") + name).c_str(), &v));
-    PetscCheck(v.size() == Size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-sweep_resume: /sweep/%s in %s has the wrong size", name, path.c_str());
-    for (size_t i = 0; i < v.size(); i++) pts[i].*field = v[i];
+    PetscCheck(v.size() == stored.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-sweep_resume: /sweep/%s in %s has the wrong size", name, path.c_str());
+    for (size_t i = 0; i < v.size(); i++) pts[stored[i]].*field = v[i];
     PetscFunctionReturn(0);
   };
   auto ints = [&](const char *name, PetscInt SweepPoint::*field) -> PetscErrorCode {
     PetscFunctionBeginUser;
     PetscCall(ReadInts(path, (std::string("/sweep/") + name).c_str(), &iv));
-    PetscCheck(iv.size() == Size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-sweep_resume: /sweep/%s in %s has the wrong size", name, path.c_str());
-    for (size_t i = 0; i < iv.size(); i++) pts[i].*field = iv[i];
+    PetscCheck(iv.size() == stored.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-sweep_resume: /sweep/%s in %s has the wrong size", name, path.c_str());
+    for (size_t i = 0; i < iv.size(); i++) pts[stored[i]].*field = iv[i];
     PetscFunctionReturn(0);
   };
   for (const auto &f : SweepRealFields()) PetscCall(doubles(f.name, f.field));
   for (const auto &f : SweepIntFields()) PetscCall(ints(f.name, f.field));
-  PetscCall(ReadInts(path, "/sweep/done", &done));
-  PetscCheck(done.size() == Size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-sweep_resume: /sweep/done in %s has the wrong size", path.c_str());
+  PetscCall(ReadInts(path, "/sweep/done", &iv));
+  PetscCheck(iv.size() == stored.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-sweep_resume: /sweep/done in %s has the wrong size", path.c_str());
+  for (size_t i = 0; i < iv.size(); i++) done[stored[i]] = iv[i];
   // A point done holds what a sweep writes; one not done is computed again.
   const size_t no = omega.size();
-  for (size_t i = 0; i < Size(); i++) {
+  for (size_t i : stored) {
     std::string what;
     char at[96]; // (PETSc's %g would print 1 as "1.")
     std::snprintf(at, sizeof at, "E* = %g, omega = %g", (double)energy[i / no], (double)omega[i % no]);

@@ -6,6 +6,7 @@
 //    file + rename, so the HDF5 file is always complete) every few seconds and
 //    at the end, when the journals are removed;
 //  - -sweep_resume reads <output> and any journals left by a killed run.
+#include "studies/sweep_shard.hpp"
 #include <petscsys.h>
 #include <cstdio>
 #include <limits>
@@ -52,14 +53,23 @@ const std::vector<SweepIntField> &SweepIntFields();
 std::vector<std::string> SweepFieldsUnbound();
 
 // Rank 0's picture of the grid: energy rows x omega columns, row-major.
+// A shard (-sweep_shard) holds the whole grid in memory too, but computes,
+// counts and writes only its points.
 struct SweepGrid {
   std::vector<PetscReal> omega, energy;
   std::vector<SweepPoint> pts;
   std::vector<PetscInt> done;
+  SweepShard shard;           // !shard.On(): the whole grid
+  std::vector<size_t> points; // a shard's grid indices, ascending (studies/sweep_shard.hpp)
   size_t Size() const { return omega.size() * energy.size(); }
-  PetscInt Done() const;
+  // This run's points: the shard's, or the whole grid's; At(k) the grid index of the k-th.
+  size_t Count() const { return shard.On() ? points.size() : Size(); }
+  size_t At(size_t k) const { return shard.On() ? points[k] : k; }
+  PetscInt Done() const; // of this run's points
   void Reset(const std::vector<PetscReal> &w, const std::vector<PetscReal> &e);
-  // Loads a sweep file written by Write (resume); the axes must equal this grid's.
+  // Loads a sweep file written by Write (resume); the axes must equal this
+  // grid's, and so must the shard and its points (a shard file holds its
+  // points' values as 1-D datasets over /sweep/shard_points).
   PetscErrorCode Load(const std::string &path);
   // Merges every <path>.journal.* into the grid; *lines = points read.
   PetscErrorCode MergeJournals(const std::string &path, PetscInt *lines);

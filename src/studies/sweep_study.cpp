@@ -14,6 +14,7 @@
 #include "core/signals.hpp"
 #include "core/work_queue.hpp"
 #include "diagnostics/zero_one.hpp"
+#include "io/input.hpp"
 #include "io/output.hpp"
 #include "io/run_options.hpp"
 #include "io/schema.hpp"
@@ -21,8 +22,9 @@
 #include "studies/grid_axis.hpp"
 #include "studies/registry.hpp"
 #include "studies/study.hpp"
-#include "studies/sweep_accuracy.hpp"
 #include "stability/lyapunov.hpp"
+#include "studies/sweep_accuracy.hpp"
+#include "studies/sweep_shard.hpp"
 #include "studies/sweep_store.hpp"
 #include "timeint/simulation.hpp"
 #include <algorithm>
@@ -47,6 +49,8 @@ struct SweepOptions {
   PetscBool resume = PETSC_FALSE, kcorr = PETSC_FALSE;
   PetscBool lyapunov = PETSC_FALSE;                          // -sweep_lyapunov
   PetscReal lyapunov_renorm = 10, lyapunov_efolds = 20;      // -sweep_lyapunov_renorm, -sweep_lyapunov_efolds
+  std::string shard_text; // -sweep_shard i/n ("": the whole grid), parsed into shard
+  SweepShard shard;
   PetscReal checkpoint = 5, progress = 10;
   // 0-1 test (-kcorr_*)
   PetscInt kcorr_nc = 32, kcorr_site_stride = 1; // 32 c values: the median is stable to ~0.02 on the test series (tests/unit)
@@ -84,7 +88,12 @@ const auto &kSweepTable = DeclareOptionTable<SweepOptions>("sweep_", "Sweep: gri
             "A point is chaotic when lyapunov x (t_final - t_off) reaches this many e-folds (regular motion grows polynomially: a few ln(window))")
       .Real("checkpoint", &SweepOptions::checkpoint, LeftOpen(0, 1e7), "Rewrite <output>.partial.h5 with the points done so far every this many wall seconds",
             OptionClass::Bookkeeping)
-      .Real("progress", &SweepOptions::progress, Closed(0, 1e7), "Report progress every this many wall seconds (0: never)", OptionClass::Bookkeeping);
+      .Real("progress", &SweepOptions::progress, Closed(0, 1e7), "Report progress every this many wall seconds (0: never)", OptionClass::Bookkeeping)
+      .String("shard", &SweepOptions::shard_text,
+              "Compute share i of n of the grid (i/n, 0 <= i < n), split by a cost model; -study merge joins the n shard files "
+              "(docs/studies/sweep.md, shards and merge)",
+              OptionClass::Bookkeeping)
+      .Default("the whole grid");
 });
 
 const auto &kZeroOneTable = DeclareOptionTable<SweepOptions>("kcorr_", "0-1 test for chaos (with -sweep_kcorr)", [](OptionTable<SweepOptions> &t) {
@@ -109,6 +118,7 @@ PetscErrorCode SweepOptionsFromOptions(MPI_Comm comm, SweepOptions *o)
   PetscCall(kSweepTable.Read(comm, o, &set));
   PetscCall(GridAxisFromTable(comm, "sweep_", kSweepTable, set, *o, kOmegaAxis, &o->omega));
   PetscCall(GridAxisFromTable(comm, "sweep_", kSweepTable, set, *o, kEnergyAxis, &o->energy));
+  PetscCall(ParseSweepShard(comm, o->shard_text, o->omega.size() * o->energy.size(), &o->shard));
   PetscCall(McrAccuracyOptionsFromOptions(comm, &o->mcr));
   PetscCall(kZeroOneTable.Read(comm, o));
   // the record is kept as samples per tested site: at most 2e6 of them
@@ -120,15 +130,43 @@ PetscErrorCode SweepOptionsFromOptions(MPI_Comm comm, SweepOptions *o)
   PetscFunctionReturn(0);
 }
 
+// -sweep_shard is bookkeeping, which the overwrite rule (io/run_options.hpp)
+// does not compare: a fresh run refuses, unless -output_overwrite, to replace
+// another shard's output of the same sweep, or a whole sweep by a shard.
+PetscErrorCode CheckShardOverwrite(MPI_Comm comm, const std::string &path, const SweepShard &s)
+{
+  PetscMPIInt rank;
+  PetscBool overwrite = PETSC_FALSE;
+  char msg[1024] = "";
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-output_overwrite", &overwrite, NULL));
+  std::string study;
+  long index = 0, count = 0;
+  if (!rank && !overwrite && ReadRootAttribute(path, "study", &study) && study == "sweep") {
+    ReadRootAttribute(path, "/sweep/shard_index", &index);
+    ReadRootAttribute(path, "/sweep/shard_count", &count);
+    auto name = [](long i, long n) { return n ? "shard " + std::to_string(i) + "/" + std::to_string(n) : std::string("the whole grid"); };
+    if (count != s.count || (count && index != s.index))
+      PetscCall(PetscSNPrintf(msg, sizeof msg, "-output %s holds %s of this sweep (this run: %s); choose another -output or give -output_overwrite",
+                              path.c_str(), name(index, count).c_str(), name(s.index, s.count).c_str()));
+  }
+  PetscCallMPI(MPI_Bcast(msg, sizeof msg, MPI_CHAR, 0, comm));
+  PetscCheck(!msg[0], comm, PETSC_ERR_FILE_WRITE, "%s", msg);
+  PetscFunctionReturn(0);
+}
+
 // complete: false for the file a sweep keeps while it runs (and leaves when
 // interrupted) at <path>.partial.h5, true once every point is done: at path.
+// A shard (-sweep_shard) writes its points only: each per-point dataset 1-D
+// over them, in the order of /sweep/shard_points (their grid indices).
 PetscErrorCode WriteSweep(const std::string &path, const SweepGrid &g, const SweepOptions &so, PetscInt computed, PetscReal wall, bool complete)
 {
   OutputFile out;
-  const size_t n = g.Size();
+  const size_t n = g.Count();
   std::vector<PetscReal> v(n);
   std::vector<PetscInt> iv(n);
-  const PetscInt no = (PetscInt)g.omega.size();
+  const PetscInt no = g.shard.On() ? 1 : (PetscInt)g.omega.size(); // the per-point datasets' columns
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(Log().output, 0, 0, 0, 0));
   PetscCall(out.Open(PETSC_COMM_SELF, complete ? path : PartialPath(path)));
@@ -138,19 +176,25 @@ PetscErrorCode WriteSweep(const std::string &path, const SweepGrid &g, const Swe
   PetscCall(WriteArray(w, grp, "energy", g.energy));
   auto doubles = [&](const char *name, PetscReal SweepPoint::*field) -> PetscErrorCode {
     PetscFunctionBeginUser;
-    for (size_t i = 0; i < n; i++) v[i] = g.pts[i].*field;
+    for (size_t i = 0; i < n; i++) v[i] = g.pts[g.At(i)].*field;
     PetscCall(WriteArray(w, grp, name, v, no));
     PetscFunctionReturn(0);
   };
   auto ints = [&](const char *name, PetscInt SweepPoint::*field) -> PetscErrorCode {
     PetscFunctionBeginUser;
-    for (size_t i = 0; i < n; i++) iv[i] = g.pts[i].*field;
+    for (size_t i = 0; i < n; i++) iv[i] = g.pts[g.At(i)].*field;
     PetscCall(WriteIntArray(w, grp, name, iv, no));
     PetscFunctionReturn(0);
   };
   for (const auto &f : SweepRealFields()) PetscCall(doubles(f.name, f.field));
   for (const auto &f : SweepIntFields()) PetscCall(ints(f.name, f.field));
-  PetscCall(WriteIntArray(w, grp, "done", g.done, no));
+  for (size_t i = 0; i < n; i++) iv[i] = g.done[g.At(i)];
+  PetscCall(WriteIntArray(w, grp, "done", iv, no));
+  if (g.shard.On()) {
+    PetscCall(WriteIntArray(w, grp, "shard_points", std::vector<PetscInt>(g.points.begin(), g.points.end())));
+    PetscCall(WriteAttr(w, grp, "shard_index", g.shard.index));
+    PetscCall(WriteAttr(w, grp, "shard_count", g.shard.count));
+  }
   PetscCall(WriteBandEdges(w, grp, so.bands));
   PetscCall(WriteArray(w, grp, "force_eta", so.eta));
   if (!so.insulated.empty()) PetscCall(WriteArray(w, grp, "insulated_mode", so.insulated));
@@ -284,6 +328,7 @@ protected:
     PetscFunctionBeginUser;
     PetscCall(OutputPathFromOptions(
         comm_, name_, path, [&](const std::string &) { return (bool)so_.resume; }, "-sweep_resume"));
+    if (!so_.resume) PetscCall(CheckShardOverwrite(comm_, *path, so_.shard));
     if (!so_.resume) PetscFunctionReturn(0);
     if (!rank_) partial = !access(PartialPath(*path).c_str(), F_OK);
     PetscCallMPI(MPI_Bcast(&partial, 1, MPI_INT, 0, comm_));
@@ -307,15 +352,23 @@ protected:
     so_.exp_a = sc_.burst.ExponentialA(), so_.exp_b = sc_.burst.ExponentialB();
     if (sc_.modes.Insulated()) PetscCall(GatherVec(sc_.modes.Insulated(), true, &so_.insulated));
     zero_one_ = std::make_unique<const ZeroOneTest>(so_.kcorr_nc, (unsigned long)so_.kcorr_seed, so_.kcorr_lags);
+    // -sweep_shard: this run's points (every rank computes the same split)
+    double share = 1;
+    grid_.shard = so_.shard;
+    if (so_.shard.On()) grid_.points = SweepShardPoints(so_.energy, so_.omega.size(), SweepCostEnergy(sc_.lp, sc_.sim.dt_quartic_energy), so_.shard, &share);
     PetscCall(StartGrid());
 
     // The missing points, most expensive (highest E*, then highest omega) first.
     const size_t no = so_.omega.size(), ne = so_.energy.size();
-    for (size_t i = 0; i < grid_.Size(); i++)
-      if (!grid_.done[i]) todo_.push_back(i);
+    for (size_t k = 0; k < grid_.Count(); k++)
+      if (!grid_.done[grid_.At(k)]) todo_.push_back(grid_.At(k));
     std::stable_sort(todo_.begin(), todo_.end(), [&](size_t a, size_t b) { return a / no != b / no ? a / no > b / no : a % no > b % no; });
     PetscCall(PetscPrintf(comm_, "nltopo sweep: %zu omega x %zu E* = %zu points, %zu to compute on %d rank(s)%s, N = %" PetscInt_FMT ", t_final = %g\n", no, ne,
                           grid_.Size(), todo_.size(), size_, so_.kcorr ? ", with the 0-1 test" : "", sc_.lat.N(), (double)sc_.sim.t_final));
+    if (so_.shard.On())
+      PetscCall(PetscPrintf(
+          comm_, "  shard %" PetscInt_FMT " of %" PetscInt_FMT ": %zu of the %zu points, %.1f %% of the modelled cost (-study merge joins the shards)\n",
+          so_.shard.index, so_.shard.count, grid_.Count(), grid_.Size(), 100 * share));
     {
       PetscErrorCode jerr = 0;
       char jmsg[1024];
@@ -432,13 +485,14 @@ protected:
             PetscCall(grid_.MergeJournals(path_, &lines));
             if (so_.mcr.tol > 0) {
               PetscReal worst = 0;
-              for (size_t i = 0; i < grid_.Size(); i++)
-                if (grid_.done[i] && grid_.pts[i].predictable == 1 && grid_.pts[i].mcr_error <= so_.mcr.tol) worst = std::max(worst, grid_.pts[i].mcr_error);
+              for (size_t k = 0; k < grid_.Count(); k++)
+                if (const size_t i = grid_.At(k); grid_.done[i] && grid_.pts[i].predictable == 1 && grid_.pts[i].mcr_error <= so_.mcr.tol)
+                  worst = std::max(worst, grid_.pts[i].mcr_error);
               CostSetErrorEstimate(worst, "the largest mcr_error of the points converged to -sweep_mcr_tol (relative)");
             }
             PetscCall(PetscTime(&now));
             done_now = grid_.Done();
-            PetscCall(WriteSweep(path_, grid_, so_, total_computed, now - t_start_, done_now == (PetscInt)grid_.Size()));
+            PetscCall(WriteSweep(path_, grid_, so_, total_computed, now - t_start_, done_now == (PetscInt)grid_.Count()));
             PetscFunctionReturn(0);
           },
           &failed, fail_msg, sizeof(fail_msg)));
@@ -449,10 +503,10 @@ protected:
     }
     PetscCall(FailTogether(comm_, failed, fail_msg));
     PetscCallMPI(MPI_Bcast(&done_now, 1, MPIU_INT, 0, comm_));
-    PetscCheck(!sig || done_now == (PetscInt)grid_.Size(), comm_, PETSC_ERR_SIG,
+    PetscCheck(!sig || done_now == (PetscInt)grid_.Count(), comm_, PETSC_ERR_SIG,
                "interrupted by %s between sweep points (%" PetscInt_FMT " of %zu done, %" PetscInt_FMT
                " by this run); partial output %s (complete = 0); -sweep_resume continues it",
-               SignalName(sig), done_now, grid_.Size(), total_computed, PartialPath(path_).c_str());
+               SignalName(sig), done_now, grid_.Count(), total_computed, PartialPath(path_).c_str());
     PetscFunctionReturn(0);
   }
 
@@ -486,7 +540,7 @@ private:
         for (const std::string &f : JournalFiles(path_)) std::remove(f.c_str()); // merged (resume) or stale (fresh start)
         if (so_.resume)
           PetscCall(PetscPrintf(PETSC_COMM_SELF, "nltopo sweep: resuming %s: %" PetscInt_FMT " of %zu points done (%" PetscInt_FMT " from journals)\n",
-                                resume_from_.c_str(), grid_.Done(), grid_.Size(), merged));
+                                resume_from_.c_str(), grid_.Done(), grid_.Count(), merged));
       }
     }
     PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm_));
@@ -500,10 +554,10 @@ private:
   {
     PetscFunctionBeginUser;
     const PetscInt d = grid_.Done();
-    const double rate = (d - (PetscInt)(grid_.Size() - todo_.size())) / (now - t_loop_);
-    const double eta = rate > 0 ? (grid_.Size() - d) / rate : 0;
+    const double rate = (d - (PetscInt)(grid_.Count() - todo_.size())) / (now - t_loop_);
+    const double eta = rate > 0 ? (grid_.Count() - d) / rate : 0;
     PetscCall(PetscPrintf(PETSC_COMM_SELF, "%s  [sweep] %" PetscInt_FMT " / %zu points (%.1f %%), %.2f points/s, ETA %.0f s%s", tty_ ? "\r" : "", d,
-                          grid_.Size(), 100.0 * d / grid_.Size(), rate, eta, tty_ ? "   " : "\n"));
+                          grid_.Count(), 100.0 * d / grid_.Count(), rate, eta, tty_ ? "   " : "\n"));
     if (tty_) fflush(stdout);
     PetscFunctionReturn(0);
   }
@@ -512,14 +566,16 @@ private:
   {
     PetscInt missed = 0, nfailed = 0;
     PetscFunctionBeginUser;
-    for (size_t i = 0; i < grid_.Size(); i++) {
+    for (size_t k = 0; k < grid_.Count(); k++) {
+      const size_t i = grid_.At(k);
       missed += grid_.done[i] && !grid_.pts[i].reached && !grid_.pts[i].failed;
       nfailed += grid_.done[i] && grid_.pts[i].failed;
     }
     if (tty_) PetscCall(PetscPrintf(PETSC_COMM_SELF, "\n")); // end the updating progress line
     if (so_.mcr.tol > 0) {
       PetscInt unpredictable = 0, short_of_tol = 0, runs = 0;
-      for (size_t i = 0; i < grid_.Size(); i++) {
+      for (size_t k = 0; k < grid_.Count(); k++) {
+        const size_t i = grid_.At(k);
         if (!grid_.done[i] || grid_.pts[i].failed) continue;
         unpredictable += grid_.pts[i].predictable == 0;
         short_of_tol += grid_.pts[i].predictable == 1 && !(grid_.pts[i].mcr_error <= so_.mcr.tol);
@@ -536,9 +592,9 @@ private:
                           " point(s) never reached E* (reached = 0), %" PetscInt_FMT " failed (failed = 1)\n",
                           total_computed, (double)(now - t_loop_), total_computed / std::max(1e-9, (double)(now - t_loop_)), size_, missed, nfailed));
     // an interrupted sweep: the counts above are of the points done; the others are not computed (done = 0), not "missed"
-    if (grid_.Done() < (PetscInt)grid_.Size())
+    if (grid_.Done() < (PetscInt)grid_.Count())
       PetscCall(PetscPrintf(PETSC_COMM_SELF, "  partial result: %" PetscInt_FMT " of %zu points done (interrupted: done = 0 marks the others, complete = 0)\n",
-                            grid_.Done(), grid_.Size()));
+                            grid_.Done(), grid_.Count()));
     PetscCall(PetscPrintf(PETSC_COMM_SELF, "  wrote %s\n", path_.c_str()));
     PetscFunctionReturn(0);
   }
@@ -606,7 +662,14 @@ StudyContract SweepStudyContract()
                            {"force_eta", D, R, "N", "1", "forcing profile eta per site, the same at every point (S scales it)"},
                            {"insulated_mode", D, R, "N", "1", "linear insulated mode, the exponential profile's fit target (absent without one)"},
                            {"force_exp_a", A, R, "scalar", "1", "-force_profile exponential: fitted a of eta_n = a e^{b |n - m|} (-1)^{n/2}"},
-                           {"force_exp_b", A, R, "scalar", "1", "-force_profile exponential: fitted b (per site)"}})}}};
+                           {"force_exp_b", A, R, "scalar", "1", "-force_profile exponential: fitted b (per site)"}})},
+           {"/sweep",
+            "sweep_shard",
+            {{"shard_points", D, I, "npts", "1",
+              "grid index e * no + w (energy row e, omega column w) of each point of the shard, ascending; in a shard file every per-point "
+              "dataset (ne x no in a whole-grid file, done included) is 1-D over these points, in this order"},
+             {"shard_index", A, I, "scalar", "1", "i of -sweep_shard i/n"},
+             {"shard_count", A, I, "scalar", "1", "n of -sweep_shard i/n"}}}}};
 }
 
 std::unique_ptr<Study> CreateSweepStudy() { return std::make_unique<SweepStudy>(); }

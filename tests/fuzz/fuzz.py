@@ -109,6 +109,7 @@ T = {
     "sweep_energy_min": ("real", 1e-3, 1.0), "sweep_energy_max": ("real", 1e-3, 1.0), "sweep_energy_n": ("int", 1, 2),
     "sweep_energy_spacing": ("enum", 0, 0, ["linear", "log"]), "sweep_energy_list": ("reals", 1e-3, 1.0),
     "sweep_resume": ("bool",), "sweep_kcorr": ("bool",), "sweep_checkpoint": ("real", 0.1, 10.0), "sweep_progress": ("real", 0.0, 5.0),
+    "sweep_shard": ("enum", 0, 0, ["0/1", "0/2", "1/2"]), "merge_inputs": ("strings", 0, 0, ["no_such_file.h5", "no_such_file.h5,other.h5"]),
     "kcorr_nc": ("int", 1, 16), "kcorr_seed": ("int", 0, 1000), "kcorr_sample_dt": ("real", 0.0, 2.0),
     "kcorr_rms_fraction": ("real", 0.0, 1.0), "kcorr_record": ("real", 10.0, 100.0), "kcorr_lags": ("int", 3, 20),
     "kcorr_site_stride": ("int", 1, 5),
