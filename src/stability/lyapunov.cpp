@@ -17,15 +17,15 @@ PetscErrorCode LyapunovEvent(PetscLogEvent *ev)
 }
 
 // A fixed start vector with weight on every site (positions and velocities),
-// unit norm: the same at every point of a sweep.
-PetscErrorCode StartVector(Vec v)
+// unit norm: the same at every point of a sweep and on any number of ranks
+// (LyapunovStartValue of the natural state index).
+PetscErrorCode StartVector(const Lattice &lat, Vec v)
 {
-  PetscInt lo, hi;
+  const PetscInt N = lat.N(), xs = lat.OwnedStart(), xm = lat.OwnedCount();
   PetscScalar *a;
   PetscFunctionBeginUser;
-  PetscCall(VecGetOwnershipRange(v, &lo, &hi));
   PetscCall(VecGetArray(v, &a));
-  for (PetscInt i = lo; i < hi; i++) a[i - lo] = std::sin(0.7548776662466927 * (i + 1) + 0.3);
+  for (PetscInt i = xs; i < xs + xm; i++) a[i - xs] = LyapunovStartValue(i), a[xm + i - xs] = LyapunovStartValue(N + i); // [u owned | v owned]
   PetscCall(VecRestoreArray(v, &a));
   PetscReal n;
   PetscCall(VecNormalize(v, &n));
@@ -55,7 +55,7 @@ PetscErrorCode FiniteTimeLyapunov(const EffectList &fx, Vec z0, PetscReal window
   PetscCall(VecDuplicate(z0, v.out()));
   PetscCall(VecDuplicate(z0, w.out()));
   PetscCall(VecCopy(z0, z));
-  PetscCall(StartVector(v));
+  PetscCall(StartVector(fx.Lat(), v));
   PetscReal sum = 0;
   for (PetscInt k = 0; k < n; k++) {
     PetscReal g;

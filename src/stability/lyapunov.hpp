@@ -23,6 +23,10 @@ struct LyapunovResult {
   PetscInt intervals = 0;   // renormalisations
 };
 
+// The start vector's entry at natural state index k ([u_1..u_N, v_1..v_N]),
+// before normalisation.
+inline PetscReal LyapunovStartValue(PetscInt k) { return std::sin(0.7548776662466927 * (k + 1) + 0.3); }
+
 // fx: the free (conservative) effects of the lattice; z0: the state at the
 // window's start (not changed); each interval (window / ceil(window / renorm)
 // long) integrated in fixed steps of at most dt by the flow's scheme

@@ -47,6 +47,7 @@ struct SweepOptions {
   std::vector<PetscReal> omega_list, energy_list;
   std::vector<PetscReal> omega, energy;
   PetscBool resume = PETSC_FALSE, kcorr = PETSC_FALSE;
+  PetscInt group_size = 1;                                   // -sweep_group_size: ranks per point
   PetscBool lyapunov = PETSC_FALSE;                          // -sweep_lyapunov
   PetscReal lyapunov_renorm = 10, lyapunov_efolds = 20;      // -sweep_lyapunov_renorm, -sweep_lyapunov_efolds
   std::string shard_text; // -sweep_shard i/n ("": the whole grid), parsed into shard
@@ -80,6 +81,10 @@ const auto &kSweepTable = DeclareOptionTable<SweepOptions>("sweep_", "Sweep: gri
   t.Bool("resume", &SweepOptions::resume, "Continue the sweep stored in <output>.partial.h5 (or -output): compute only the points not done",
          OptionClass::Bookkeeping)
       .Bool("kcorr", &SweepOptions::kcorr, "Score every run with the 0-1 test for chaos (-kcorr_* options)")
+      .Int("group_size", &SweepOptions::group_size, Closed(1, 1000000),
+           "Ranks per point: each point's lattice distributed over a group of this many consecutive ranks (PetscSubcomm), the groups drawing points "
+           "from one queue (long lattices); it must divide the number of ranks",
+           OptionClass::Bookkeeping)
       .Bool("lyapunov", &SweepOptions::lyapunov,
             "Give every point the maximal finite-time Lyapunov exponent of its free motion over [t_off, t_final] (Benettin's method on the tangent flow, "
             "about the run's cost once more) and a regime: regular, chaotic or unpredictable")
@@ -305,6 +310,9 @@ PetscErrorCode ComputePoint(const Lattice &lat, const LinearModes &modes, const 
 // Rank 0 writes the file itself: it merges every rank's journal into it
 // (checkpoints while the sweep runs, the final file at the end).
 class SweepStudy : public Study {
+public:
+  ~SweepStudy() override { PetscSubcommDestroy(&subcomm_); } // the lattice (sc_) on its child is destroyed first: members in reverse order
+
 protected:
   PetscErrorCode ReadOptions() override
   {
@@ -317,10 +325,28 @@ protected:
     PetscCall(sc_.ReadOptions(comm_, declaring_, false, ForcedScene::Modes::Always, "a sweep needs a forcing"));
     if (!declaring_) PetscCall(CheckMcrAccuracyIntegrator(comm_, so_.mcr));
     PetscCall(sc_.ReadModeOptions(comm_, declaring_));
+    if (!declaring_) PetscCall(MakeGroups());
+    PetscFunctionReturn(0);
+  }
+  // -sweep_group_size g: the ranks in groups of g consecutive ones (PetscSubcomm), each group one point at a time
+  PetscErrorCode MakeGroups()
+  {
+    PetscFunctionBeginUser;
+    const PetscInt g = so_.group_size;
+    PetscCheck(size_ % g == 0, comm_, PETSC_ERR_USER, "-sweep_group_size %" PetscInt_FMT " must divide the number of ranks (%d)", g, size_);
+    PetscCheck(g == 1 || !so_.kcorr, comm_, PETSC_ERR_USER,
+               "-sweep_kcorr needs -sweep_group_size 1 (the 0-1 test reads every site's record on one rank); got -sweep_group_size %" PetscInt_FMT, g);
+    if (g > 1) {
+      PetscCall(PetscSubcommCreate(comm_, &subcomm_));
+      PetscCall(PetscSubcommSetNumber(subcomm_, (PetscInt)(size_ / g)));
+      PetscCall(PetscSubcommSetType(subcomm_, PETSC_SUBCOMM_CONTIGUOUS));
+      group_ = PetscSubcommChild(subcomm_);
+    }
+    PetscCallMPI(MPI_Comm_rank(group_, &grank_));
     PetscFunctionReturn(0);
   }
   PetscErrorCode DeclareSolvers(MPI_Comm comm) override { return ForcedScene::DeclareSolvers(comm); }
-  PetscErrorCode CheckResources() override { return sc_.CheckResources(PETSC_COMM_SELF); } // every rank its own lattice
+  PetscErrorCode CheckResources() override { return sc_.CheckResources(group_); } // every group its own lattice
   // -sweep_resume continues -output's partial output, or -output itself (no -output_overwrite needed).
   PetscErrorCode OutputPath(std::string *path) override
   {
@@ -340,9 +366,9 @@ protected:
   PetscErrorCode Build() override
   {
     PetscFunctionBeginUser;
-    // Every rank integrates whole runs on its own copy of the lattice.
+    // Every group (a rank, or -sweep_group_size ranks) integrates whole runs on its own copy of the lattice.
     // The forcing at the default omega and E*: its profile does not depend on them.
-    PetscCall(sc_.Build(PETSC_COMM_SELF, ForcedScene::Upto::Burst));
+    PetscCall(sc_.Build(group_, ForcedScene::Upto::Burst));
     // The lattice's frequencies (linear 1.0..2.24 at the defaults, higher when
     // hardened) then map to c = omega dt inside the test's range (pi/5, 4 pi/5).
     if (so_.kcorr_sample_dt == 0) so_.kcorr_sample_dt = PETSC_PI / (2 * std::sqrt(sc_.lp.KHat()));
@@ -363,8 +389,9 @@ protected:
     for (size_t k = 0; k < grid_.Count(); k++)
       if (!grid_.done[grid_.At(k)]) todo_.push_back(grid_.At(k));
     std::stable_sort(todo_.begin(), todo_.end(), [&](size_t a, size_t b) { return a / no != b / no ? a / no > b / no : a % no > b % no; });
-    PetscCall(PetscPrintf(comm_, "nltopo sweep: %zu omega x %zu E* = %zu points, %zu to compute on %d rank(s)%s, N = %" PetscInt_FMT ", t_final = %g\n", no, ne,
-                          grid_.Size(), todo_.size(), size_, so_.kcorr ? ", with the 0-1 test" : "", sc_.lat.N(), (double)sc_.sim.t_final));
+    PetscCall(PetscPrintf(comm_, "nltopo sweep: %zu omega x %zu E* = %zu points, %zu to compute on %d rank(s)%s%s, N = %" PetscInt_FMT ", t_final = %g\n", no, ne,
+                          grid_.Size(), todo_.size(), size_, so_.group_size > 1 ? (" in groups of " + std::to_string(so_.group_size)).c_str() : "",
+                          so_.kcorr ? ", with the 0-1 test" : "", sc_.lat.N(), (double)sc_.sim.t_final));
     if (so_.shard.On())
       PetscCall(PetscPrintf(
           comm_, "  shard %" PetscInt_FMT " of %" PetscInt_FMT ": %zu of the %zu points, %.1f %% of the modelled cost (-study merge joins the shards)\n",
@@ -397,25 +424,33 @@ protected:
     // the others stop after their current point. Then all ranks meet below.
     PetscErrorCode failed = 0;
     char fail_msg[1024] = "";
+    const bool grouped = so_.group_size > 1, leader = grank_ == 0;
     for (;;) {
-      if (StopSignalLocal()) {
-        PetscCall(queue_.Stop());
+      int stop = StopSignalLocal();
+      if (grouped) PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &stop, 1, MPI_INT, MPI_MAX, group_)); // a group stops as one
+      if (stop) {
+        if (leader) PetscCall(queue_.Stop());
         break;
       }
-      PetscCallAbort(PETSC_COMM_WORLD, queue_.Next(&item)); // MPI itself failing: nothing to save
+      if (leader) PetscCallAbort(PETSC_COMM_WORLD, queue_.Next(&item)); // MPI itself failing: nothing to save
+      if (grouped) PetscCallMPI(MPI_Bcast(&item, 1, MPIU_INT, 0, group_));
       if (item < 0) break;
       const size_t idx = todo_[item];
       SweepPoint pt;
       PetscErrorCode ierr = 0;
-      char msg[1024];
+      char msg[1024] = "";
       PetscCall(
           CaptureError([&]() { return ComputePoint(sc_.lat, sc_.modes, sc_.fo, sc_.sim, so_, *zero_one_, so_.omega[idx % no], so_.energy[idx / no], &pt); },
                        &ierr, msg, sizeof(msg)));
+      if (grouped) { // the group's members agree on the point's outcome (the leader's message)
+        PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ierr, 1, MPI_INT, MPI_MAX, group_));
+        PetscCallMPI(MPI_Bcast(msg, sizeof msg, MPI_CHAR, 0, group_));
+      }
       if (IsInterrupt(ierr)) {
-        PetscCall(queue_.Stop());
+        if (leader) PetscCall(queue_.Stop());
         break;
       }
-      if (ierr) { // one failed run (e.g. a diverging integration) is flagged; the sweep goes on
+      if (ierr && leader) { // one failed run (e.g. a diverging integration) is flagged; the sweep goes on
         std::fprintf(stderr, "nltopo: warning: sweep point E* = %g, omega = %g failed (flagged failed = 1): %s\n", (double)so_.energy[idx / no],
                      (double)so_.omega[idx % no], msg);
         const PetscReal nan = std::numeric_limits<PetscReal>::quiet_NaN();
@@ -423,12 +458,13 @@ protected:
         pt.mcr = pt.t_off = pt.kcorr = pt.nl_ratio = pt.amplitude = pt.energy_final = nan;
         pt.failed = 1;
       }
-      PetscCall(CaptureError([&]() { return journal_.Append(idx, pt); }, &failed, fail_msg, sizeof(fail_msg)));
+      if (leader) PetscCall(CaptureError([&]() { return journal_.Append(idx, pt); }, &failed, fail_msg, sizeof(fail_msg)));
+      if (grouped) PetscCallMPI(MPI_Bcast(&failed, 1, MPI_INT, 0, group_));
       if (failed) { // a rank that cannot journal stops every rank
-        PetscCall(queue_.Stop());
+        if (leader) PetscCall(queue_.Stop());
         break;
       }
-      computed_++;
+      computed_ += leader;
       if (!rank_) { // rank 0 merges what every rank journaled: checkpoint file and progress
         PetscCall(PetscTime(&now));
         const bool ck = now - t_last_ck >= so_.checkpoint, pr = so_.progress > 0 && (tty_ || now - t_last_pr >= so_.progress);
@@ -442,10 +478,7 @@ protected:
                 PetscFunctionReturn(0);
               },
               &failed, fail_msg, sizeof(fail_msg)));
-          if (failed) {
-            PetscCall(queue_.Stop());
-            break;
-          }
+          if (failed) PetscCall(queue_.Stop()); // rank 0's group stops below, the others after their point
           if (ck) t_last_ck = now;
           if (pr && (tty_ ? now - t_last_pr >= 0.5 : true)) {
             PetscCall(PrintProgress(now));
@@ -453,6 +486,8 @@ protected:
           }
         }
       }
+      if (grouped) PetscCallMPI(MPI_Bcast(&failed, 1, MPI_INT, 0, group_)); // rank 0's checkpoint failed: its group stops with it
+      if (failed) break;
     }
     journal_.Close();
     PetscCallMPI(MPI_Barrier(comm_)); // every journal is complete
@@ -602,6 +637,9 @@ private:
   ForcedScene sc_; // its lattice on PETSC_COMM_SELF, the forcing at the default omega and E*
   SweepOptions so_;
   PetscMPIInt rank_ = 0, size_ = 1;
+  PetscSubcomm subcomm_ = nullptr;   // -sweep_group_size > 1: the groups
+  MPI_Comm group_ = PETSC_COMM_SELF; // this rank's group (its lattice's communicator)
+  PetscMPIInt grank_ = 0;            // rank in the group: 0 draws the points and journals them
   std::unique_ptr<const ZeroOneTest> zero_one_;
   SweepGrid grid_;
   std::string resume_from_;  // -sweep_resume: <output>.partial.h5 if there is one, else -output

@@ -76,6 +76,16 @@ $PY "$CHECKS/sweep.py" failed_points
 # loses energy within the bounds of the simulate scene (checks/sweep.py damped).
 run2 -study sweep -sweep_omega_list 1.6,1.9 -sweep_energy_list 0.1,1 -sweep_kcorr 0 -lattice_damping 0.01 -output damped.h5 > damped.txt
 $PY "$CHECKS/sweep.py" damped
+# Rank groups (-sweep_group_size 2 on 2 ranks: each point's lattice distributed over both) give the
+# 1-rank map to rounding, the Lyapunov exponent included; refused where they cannot work.
+GOPTS=(-study sweep -sweep_omega_list 1.7320508075688772,2.1 -sweep_energy_list 1e-2 -sweep_kcorr 0 -sweep_lyapunov)
+run1 "${GOPTS[@]}" -output grp1.h5 > grp1.txt
+run2 "${GOPTS[@]}" -sweep_group_size 2 -output grp2.h5 | tee grp2.txt
+grep -q "on 2 rank(s) in groups of 2" grp2.txt
+$PY "$CHECKS/sweep.py" groups
+expect_fail "-sweep_group_size 3 must divide the number of ranks (1)" "${GOPTS[@]}" -sweep_group_size 3 -output bad3.h5
+set +e; "$MPIEXEC" -n 2 "$NLTOPO" "${GOPTS[@]}" -sweep_kcorr -sweep_group_size 2 -output bad4.h5 > so.txt 2> se.txt; rc=$?; set -e
+[ $rc -ne 0 ] && grep -q -- "-sweep_kcorr needs -sweep_group_size 1" se.txt && [ ! -e bad4.h5 ] || { cat se.txt; echo "FAILED: kcorr with groups"; exit 1; }
 $PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_sweep.py" full1.h5 map.png
 # Issue 34, class 9: an interrupted sweep says on stdout that its counts cover the points done.
 "$NLTOPO" -options_file "$SRC/options/sweep_quick.opts" -sweep_omega_n 40 -sweep_energy_n 10 -sweep_progress 0 -output si.h5 > si.txt 2> si.err &

@@ -73,13 +73,11 @@ TEST_CASE("finite-time Lyapunov exponent: the separation rate of a twin orbit", 
   fo.steps = (PetscInt)std::lround(T / dt);
   PeriodicFlow flow;
   PCHK(flow.Setup(fx, fo));
-  { // the start vector: the route's, rebuilt (unit norm, sin(0.7548776662466927 (i + 1) + 0.3) over the global state index)
-    PetscInt lo, hi;
-    PetscScalar *a;
-    PCHK(VecGetOwnershipRange(z2, &lo, &hi));
-    PCHK(VecGetArray(z2, &a));
-    for (PetscInt i = lo; i < hi; i++) a[i - lo] = std::sin(0.7548776662466927 * (i + 1) + 0.3);
-    PCHK(VecRestoreArray(z2, &a));
+  { // the start vector: the route's (LyapunovStartValue of the natural state index, unit norm)
+    const PetscInt N = lat.N();
+    std::vector<PetscReal> u(N), v(N);
+    for (PetscInt i = 0; i < N; i++) u[i] = LyapunovStartValue(i), v[i] = LyapunovStartValue(N + i);
+    SetState(lat, u, v, z2);
     PetscReal nv;
     PCHK(VecNormalize(z2, &nv));
     PCHK(VecAYPX(z2, eps, z)); // z2 = z + eps v
