@@ -244,6 +244,14 @@ class Branch(Group):
         return self["multipliers_re"] + 1j * self["multipliers_im"]
 
     @property
+    def krein_map(self):
+        """The Krein resonance map of the branch (/continuation/<branch>/krein_map, written with
+        -floquet): per orbit where opposite-signature collisions can occur from the linear dispersion."""
+        if "krein_map" not in self._subgroups:
+            raise missing(self._run, self._path + "/krein_map")
+        return Group(self._run, self._path + "/krein_map")
+
+    @property
     def located(self):
         """Whether the branch's bifurcations were located (a bifurcations group)."""
         return "bifurcations" in self._subgroups
@@ -347,6 +355,12 @@ class Sweep(Group):
     1-D in the order of `shard_points` (their grid indices), and `maps` places them on the grid."""
 
     _NOT_MAPS = ("energy", "omega", "shard_points", "force_eta", "insulated_mode")
+
+    @property
+    def regime_name(self):
+        """`regime` decoded per point (-sweep_lyapunov): "regular", "chaotic, the MCR statistically
+        predictable", "unpredictable" or "not computed"."""
+        return self.decode("regime")
 
     @property
     def axes(self):

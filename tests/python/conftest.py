@@ -33,7 +33,7 @@ RUNS = {
     # the matrix-free leading multipliers: stable "not decided", instability "not computed"
     "fep_mf": ("fep.opts", ["-cont_branch", "insulated", "-lattice_cells", "5", "-cont_energy_max", "1e-3", "-cont_verbose", "0",
                             "-floquet_mf", "-floquet_mf_dense_max", "0"]),
-    "sweep": ("sweep_quick.opts", ["-lattice_cells", "5", "-sweep_omega_n", "3", "-sweep_energy_n", "2"] + BURST),
+    "sweep": ("sweep_quick.opts", ["-lattice_cells", "5", "-sweep_omega_n", "3", "-sweep_energy_n", "2", "-sweep_lyapunov"] + BURST),
     "zak": ("zak.opts", ["-lattice_cells", "11", "-zak_energy_list", "0.01,0.1"] + BURST),
     "perturb": ("perturb.opts", ["-lattice_cells", "5", "-perturb_delta_list", "0,0.05", "-perturb_ensemble", "2",
                                  "-perturb_energy_list", "0.1"] + BURST),

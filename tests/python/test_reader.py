@@ -229,6 +229,14 @@ def test_branch_floquet_and_stability_verdicts(runs):
     assert all("confirmed" in s for s, u in zip(b.verdict_reason, unstable) if u)
 
 
+def test_krein_map(runs):
+    b = runs["fep"].continuation.branches["insulated"]
+    k = b.krein_map
+    assert len(k.keys()) > 0 and k.path.endswith("/insulated/krein_map")
+    with pytest.raises(nltopo.MissingError):
+        runs["fep_plain"].continuation.branches[next(iter(runs["fep_plain"].continuation.branches))].krein_map
+
+
 def test_events_decoded(runs):
     b = runs["fep"].branches["insulated"]
     ev = b.events
@@ -397,6 +405,10 @@ def test_sweep(runs):
     assert all(m.shape == w.shape for m in w.maps.values())
     assert np.all(w.done == 1) and w.points_done == 6
     assert set(np.unique(w.decode("reached"))) <= {"yes", "no"}
+    # -sweep_lyapunov: the exponent at every point reached, the regime decoded from the file's codes
+    assert np.all(np.isfinite(w.lyapunov[w.reached == 1])) and w.lyapunov_computed == 1
+    names = set(ncodes.short(m) for m in w.codes("regime").values())
+    assert set(np.unique(w.regime_name)) <= names and "regular" in names
 
 
 def test_zak(runs):
