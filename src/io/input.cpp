@@ -152,7 +152,9 @@ bool ReadRootAttribute(const std::string &file, const char *name, std::string *v
   return ok;
 }
 
-bool ReadRootAttribute(const std::string &file, const char *name, long *value)
+namespace {
+// A root attribute read as the HDF5 native type `type` into *value, HDF5's own error printing off.
+bool ReadRootAttributeAs(const std::string &file, const char *name, hid_t type, void *value)
 {
   H5E_auto2_t func;
   void *data;
@@ -161,27 +163,16 @@ bool ReadRootAttribute(const std::string &file, const char *name, long *value)
   hid_t f, a;
   bool ok = false;
   OpenRootAttribute(file, name, &f, &a);
-  if (a >= 0) ok = H5Aread(a, H5T_NATIVE_LONG, value) >= 0;
+  if (a >= 0) ok = H5Aread(a, type, value) >= 0;
   if (a >= 0) H5Aclose(a);
   if (f >= 0) H5Fclose(f);
   H5Eset_auto2(H5E_DEFAULT, func, data);
   return ok;
 }
+} // namespace
 
-bool ReadRootAttribute(const std::string &file, const char *name, double *value)
-{
-  H5E_auto2_t func;
-  void *data;
-  H5Eget_auto2(H5E_DEFAULT, &func, &data);
-  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-  hid_t f, a;
-  bool ok = false;
-  OpenRootAttribute(file, name, &f, &a);
-  if (a >= 0) ok = H5Aread(a, H5T_NATIVE_DOUBLE, value) >= 0;
-  if (a >= 0) H5Aclose(a);
-  if (f >= 0) H5Fclose(f);
-  H5Eset_auto2(H5E_DEFAULT, func, data);
-  return ok;
-}
+bool ReadRootAttribute(const std::string &file, const char *name, long *value) { return ReadRootAttributeAs(file, name, H5T_NATIVE_LONG, value); }
+
+bool ReadRootAttribute(const std::string &file, const char *name, double *value) { return ReadRootAttributeAs(file, name, H5T_NATIVE_DOUBLE, value); }
 
 } // namespace nltopo
