@@ -49,8 +49,8 @@ def corrupt(source, group_name, *changes):
             d[...] = a
 
 
-SWEEP_REALS = ["mcr", "t_off", "kcorr", "nl_ratio", "amplitude", "energy_final", "seconds", "mcr_error", "mcr_spread"]
-SWEEP_INTS = ["reached", "rescalings", "rhs_evals", "steps", "failed", "predictable", "mcr_runs"]
+SWEEP_REALS = ["mcr", "t_off", "kcorr", "nl_ratio", "amplitude", "energy_final", "seconds", "mcr_error", "mcr_spread", "lyapunov", "lyapunov_half"]
+SWEEP_INTS = ["reached", "rescalings", "rhs_evals", "steps", "failed", "predictable", "mcr_runs", "regime"]
 
 
 def journal(source, *changes):
