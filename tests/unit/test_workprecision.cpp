@@ -157,8 +157,12 @@ PetscReal Rel(PetscReal a, PetscReal b) { return std::abs(a - b) / std::abs(b); 
 
 } // namespace
 
-TEST_CASE("work-precision on a linear lattice: the reported errors are the errors against the exact modal solution", "[workprecision]")
+TEST_CASE("work-precision on a linear lattice: the reported errors are the errors against the exact modal solution", "[workprecision][once]")
 {
+  // [once]: the study's distributed path (twins, reference, collective norms) runs at 2 ranks in
+  // scene_workprecision (tests/scenes/workprecision.sh: wp2.h5 at 2 ranks, whose errors checks/workprecision.py
+  // requires equal to the 1-rank run's); at 2 ranks this 102-site lattice pays a message latency per
+  // step for the same numbers.
   LatticeParams p;
   p.Gamma = 0; // linear: modal superposition is exact
   Lattice lat;
@@ -237,8 +241,8 @@ TEST_CASE("work-precision on a linear lattice: the reported errors are the error
 TEST_CASE("predictability floor: below 1e-8 for a regular run (E* = 1), above 1e-2 for a chaotic one (E* = 100, omega = 2)", "[workprecision][once]")
 {
   // [once]: the study's distributed path (twins, reference, collective norms) runs at 2 ranks in
-  // "work-precision on a linear lattice" above; this case checks the physics of the floor, and at
-  // 2 ranks a 102-site lattice pays a message latency per step for the same numbers.
+  // scene_workprecision (as for "work-precision on a linear lattice" above); this case checks the physics
+  // of the floor, and at 2 ranks a 102-site lattice pays a message latency per step for the same numbers.
   LatticeParams p;
   Lattice lat;
   PCHK(lat.Setup(PETSC_COMM_WORLD, p));
