@@ -27,16 +27,18 @@ bp=$(cat bp_index.txt)
 # N = 22 lattice; the next period doubling, its end, lies at 2.531442): the checks below find the families of
 # the branch point and of the first onset by index, and the resume's bit-for-bit comparison with the run named
 # by index shows that both select the same events and give the same families.
-run1 -options_file "$SRC/options/fep.opts" $small -cont_switch insulated:bp@2.418,insulated_bp${bp}_plus:pd@2.527 -output pd.h5 > pd.txt
+# (to E = 150: past the branch point at E 74, the period doubling at E 95 and the doubled family's loop, E 95-134)
+small150="-cont_branch insulated -lattice_cells 5 -cont_energy_max 150 -cont_verbose 0"
+run1 -options_file "$SRC/options/fep.opts" $small150 -cont_switch insulated:bp@2.418,insulated_bp${bp}_plus:pd@2.527 -output pd.h5 > pd.txt
 $PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_fep.py" pd.h5 pd.png
 $PY "$CHECKS/bifurcations.py" switching "$bp" pd.h5
 pd=$($PY "$CHECKS/bifurcations.py" first_period_doubling "$bp" pd.h5)
 $PY "$CHECKS/bifurcations.py" period_doubling "$bp" "$pd"
-# -cont_resume recreates the switched families: the same run stopped at E = 150 (every branch,
-# the doubled family closed below it) and resumed to 300 equals the run to 300 bit for bit
+# -cont_resume recreates the switched families: the same run stopped at E = 100 (every branch stopped part-way,
+# the doubled family inside its loop) and resumed to 150 equals the run to 150 bit for bit
 sw2="-cont_switch insulated:$bp,insulated_bp${bp}_plus:$pd"
-small150="-cont_branch insulated -lattice_cells 5 -cont_energy_max 150 -cont_verbose 0"
-run1 -options_file "$SRC/options/fep.opts" $small150 $sw2 -output r150.h5 > r150.txt
-run1 -options_file "$SRC/options/fep.opts" $small $sw2 -cont_resume r150.h5 -output r300.h5 > r300.txt
-grep -q "\[insulated_bp${bp}_plus_pd$pd\] -cont_resume r150.h5: [0-9]* points of the family born at the period doubling" r300.txt
-$PY "$CHECKS/bifurcations.py" resumed_families
+small100="-cont_branch insulated -lattice_cells 5 -cont_energy_max 100 -cont_verbose 0"
+run1 -options_file "$SRC/options/fep.opts" $small100 $sw2 -output r100.h5 > r100.txt
+run1 -options_file "$SRC/options/fep.opts" $small150 $sw2 -cont_resume r100.h5 -output r150.h5 > r150.txt
+grep -q "\[insulated_bp${bp}_plus_pd$pd\] -cont_resume r100.h5: [0-9]* points of the family born at the period doubling" r150.txt
+$PY "$CHECKS/bifurcations.py" resumed_families pd.h5 r150.h5 r100.h5

@@ -182,15 +182,14 @@ def period_doubling(bp, pd):
     print("period doubling switching OK:", n, "points from omega", e["omega"][pd], "(", D.attrs["stop_reason"].decode(), ")")
 
 
-def resumed_families():
-    """The switched families stopped at E = 150 and resumed to 300 (r300.h5) equal the run to 300 (pd.h5)
-    bit for bit, the branches that reached 150 resumed, not recomputed."""
-    A, B, H = (group(f, "continuation") for f in ("pd.h5", "r300.h5", "r150.h5"))
+def resumed_families(full, resumed, stopped):
+    """The switched families stopped part-way (stopped) and resumed (resumed) equal the run without a stop (full)
+    bit for bit, every family resumed, not recomputed whole (the doubled one too, stopped inside its loop)."""
+    A, B, H = (group(f, "continuation") for f in (full, resumed, stopped))
     require(sorted(A.keys()) == sorted(B.keys()) and len(A.keys()) == 4, list(A.keys()), list(B.keys()))
     for n in A.keys():
         a, b = A[n], B[n]
-        if n != "insulated" and "_pd" not in n:
-            require(H[n]["energy"].shape[0] < a["energy"].shape[0], n)   # resumed, not recomputed whole
+        require(n in H and 1 < H[n]["energy"].shape[0] < a["energy"].shape[0], n)   # resumed, not recomputed whole
         for k in ("energy", "omega", "z0", "multipliers_re", "multipliers_im", "bifurcations/omega", "bifurcations/kind"):
             require(np.array_equal(a[k][:], b[k][:]), n, k)
         for k in ("parent", "period_multiple", "stop_reason"):
