@@ -28,9 +28,10 @@ run1 "${long20[@]}" -floquet_mf_dense_max 0 -floquet_mf_which critical -output m
 # Krylov-Schur on M (largest) with these settings called a spurious |mu| = 306.9 converged at E = 1.86
 # (benchmarks/README.md); the true-residual check must keep it from becoming an "unstable" verdict
 run1 "${long20[@]}" -cont_energy_max 2 -floquet_mf_dense_max 0 -floquet_mf_which largest -floquet_mf_eps_ncv 60 -floquet_mf_eps_max_it 30 -output largest.h5 > largest.txt
-# the localized route (-floquet_mf_which localized, fep_long.opts' own, forced at N = 402 by -floquet_mf_dense_max 0):
-# a verdict at every orbit, at 1 and 2 ranks
-loc=(-options_file "$SRC/options/fep_long.opts" -lattice_cells 100 -cont_energy_max 1 -cont_verbose 0 -cont_checkpoint_seconds 0 -floquet_mf_dense_max 0)
+# the localized route (-floquet_mf_which localized, fep_long.opts' own, forced at N = 202 by -floquet_mf_dense_max 0):
+# a verdict at every orbit, at 1 and 2 ranks (N = 202, not 402: the same verdicts at every orbit, in half the time;
+# the route's N-independence is benchmarks/README.md "Issue 35", its dense agreement unit_tests "[localized]")
+loc=(-options_file "$SRC/options/fep_long.opts" -lattice_cells 50 -cont_energy_max 1 -cont_verbose 0 -cont_checkpoint_seconds 0 -floquet_mf_dense_max 0)
 run1 "${loc[@]}" -output loc1.h5 > loc1.txt
 run2 "${loc[@]}" -output loc2.h5 > loc2.txt
 $PY "$CHECKS/long_nnm.py" localized
@@ -43,7 +44,8 @@ $PY "$CHECKS/long_nnm.py" branches
 # -cont_resume of -floquet_mf files written before the verdicts (no floquet_route, krein or instability;
 # stable = 1 meant only max |mu| <= 1 + tol): made from mf20.h5 by removing what the old files lacked
 $PY "$CHECKS/long_nnm.py" make_old_files
-run2 "${long20[@]}" -cont_energy_max 30 -floquet_mf_dense_max 0 -floquet_mf_which critical -cont_resume old_mf.h5 -output resumed_mf.h5 > resumed_mf.txt
+# (at 1 rank: what is read is the old file's columns; a resume at 2 ranks is resumed.h5's above)
+run1 "${long20[@]}" -cont_energy_max 30 -floquet_mf_dense_max 0 -floquet_mf_which critical -cont_resume old_mf.h5 -output resumed_mf.h5 > resumed_mf.txt
 if run1 "${long20[@]}" -cont_energy_max 30 -cont_resume old_mf_noopt.h5 -output mixed.h5 > mixed.txt 2>&1; then echo "resume across routes not refused"; exit 1; fi
 grep -q "computed by the matrix-free route, this run would take the dense one" mixed.txt && test ! -e mixed.h5
 $PY "$CHECKS/long_nnm.py" old_file_resumed

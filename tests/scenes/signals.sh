@@ -14,9 +14,10 @@ LIMIT=180 # seconds for any one run
 M2=("$MPIEXEC" -q -n 2)
 
 # wait_limited <pid>: RC = its exit status; kills it (and fails) if it outlives LIMIT
+# (tail -s 0.05: it looks every 50 ms whether the process is gone, not every second)
 wait_limited() {
   local pid=$1
-  if ! timeout "$LIMIT" tail --pid="$pid" -f /dev/null; then
+  if ! timeout "$LIMIT" tail -s 0.05 --pid="$pid" -f /dev/null; then
     kill -KILL "$pid" 2> /dev/null || true
     echo "FAILED: process $pid still running after $LIMIT s" >&2
     exit 1

@@ -31,8 +31,11 @@ struct VerdictCapture : public PointHook {
 };
 } // namespace
 
-TEST_CASE("verdicts: stable on the dimers' stable family, unstable-extended and confirmed past their pitchfork", "[floquet][verdict]")
+TEST_CASE("verdicts: stable on the dimers' stable family, unstable-extended and confirmed past their pitchfork", "[floquet][verdict][once]")
 {
+  // [once]: at 2 ranks the same continuation of the upper family through the real hook (Floquet,
+  // verdict, class and confirmation of every orbit) runs in "ConfirmGrowth accepts ..." below, which
+  // checks its last orbit's verdict columns; here the same code at 2 ranks only repeats the physics.
   CoupledDimers d;
   PCHK(d.Setup());
   const auto &w = d.modes.Omega();
@@ -78,6 +81,10 @@ TEST_CASE("ConfirmGrowth accepts the unstable eigenvector and refuses another ve
   VerdictCapture cap(d.flow, o);
   PCHK(d.Continue(3, std::sqrt(lam_hi + 3 * kappa), &cap));
   REQUIRE(!cap.hook.c.stable.back());
+  // the hook's verdict of that orbit (the 2-rank check of "verdicts: ..." above): unstable-extended, B-B, confirmed
+  REQUIRE(cap.hook.c.verdict.back() == (PetscInt)Verdict::UnstableExtended);
+  REQUIRE(cap.hook.c.instability.back() == 1);
+  REQUIRE(cap.hook.c.verdict_reason.back().find("confirmed") != std::string::npos);
   // the last orbit's monodromy and its most unstable eigenvector
   OwnedMat S;
   OwnedVec zT, vr, vi, other;

@@ -7,20 +7,19 @@ import numpy as np
 from scene_check import attr_str, group, main, multipliers, rel, require
 
 
-def events():
-    """The events of the insulated branch of options/fep.opts against its stored Floquet data, the Krein rule
-    and the resonances; the E-E branch point at omega 2.418248; 1 = 2 ranks on N = 22; passes and resonances
-    found apart from the changes of stability. Writes the branch point's index to bp_index.txt."""
-    def load(fn):
-        b = group(fn, "continuation/insulated")
-        return b, b["bifurcations"]
-    b, e = load("paper.h5")
+def event_rules(fn):
+    """The events of the insulated branch in fn against its stored Floquet data, the Krein rule and the
+    resonances: each located to tol between the two points it is reported after; one E-E branch point, where the
+    stored points turn unstable. Returns (events, omega and index of the branch point)."""
+    b = group(fn, "continuation/insulated")
+    e = b["bifurcations"]
     tol = e.attrs["tol"]
     require(tol == 1e-7 and e.attrs["probes"] > 0)
     n = e["kind"].shape[0]
+    N2 = b["z0"].shape[1]   # 2N
     for k in ("kind", "energy", "omega", "s", "multiplier_re", "multiplier_im", "direction", "point", "instability", "omega_bracket"):
         require(e[k].shape == (n,), k)
-    require(e["krein"].shape == (n, 2) and e["resonance"].shape == (n, 2) and e["vector"].shape == (n, 204) and e["kind"].dtype.kind == "i")
+    require(e["krein"].shape == (n, 2) and e["resonance"].shape == (n, 2) and e["vector"].shape == (n, N2) and e["kind"].dtype.kind == "i")
     w, kind, d, pt = e["omega"][:], e["kind"][:], e["direction"][:], e["point"][:]
     require(np.all(e["omega_bracket"][:] <= tol))
     require(np.all(np.diff(e["s"][:]) >= 0))   # in the order of the branch
@@ -49,21 +48,44 @@ def events():
                 require(np.abs(np.angle(m) - th).min() < 0.1, i, j)
         else:
             require(tuple(e["resonance"][i]) == (0, 0))
-    # the weak B-E collisions of omega 1.7-1.9 (paper: B-E instabilities below the optical band)
-    be = [(w[i], d[i]) for i in range(n) if kind[i] == 5 and e["instability"][i] == 2 and 1.7 < w[i] < 1.9]
-    require(len(be) >= 4, be)
     # the real E-E instability: one branch point, located to tol, where the stored points turn unstable
     bp = [i for i in range(n) if kind[i] == 2]
     require(len(bp) == 1, bp)
-    # the 1:3 internal resonance of the edge pair below the branch point (omega 2.0275, E 34)
-    res = [i for i in range(n) if kind[i] == 6 and abs(w[i] - 2.027498) < 1e-5]
-    require(len(res) == 1 and tuple(e["resonance"][res[0]]) == (1, 3) and e["instability"][res[0]] == 3, res)
     i = bp[0]
-    require(d[i] == 1 and e["instability"][i] == 3 and abs(w[i] - 2.418248) < 1e-5, w[i])
+    require(d[i] == 1 and e["instability"][i] == 3)
     require(abs(e["multiplier_re"][i] - 1) < 1e-3 and e["multiplier_im"][i] == 0)
     before, after = mu[pt[i]], mu[pt[i] + 1]
     require(np.abs(before).max() < 1 + 1e-6)                                  # stable before
     require(np.any((np.abs(after.imag) < 1e-12) & (after.real > 1.1)))        # a real pair beyond
+    return e, w[i], i
+
+
+def paper():
+    """The events of the insulated branch of options/fep.opts (N = 102; the long test bifurcations_paper): the
+    rules of event_rules, the weak B-E collisions of omega 1.7-1.9, the 1:3 resonance at omega 2.0275 and the E-E
+    branch point at omega 2.418248."""
+    e, wbp, _ = event_rules("paper.h5")
+    n, w, kind = e["kind"].shape[0], e["omega"][:], e["kind"][:]
+    # the weak B-E collisions of omega 1.7-1.9 (paper: B-E instabilities below the optical band)
+    be = [(w[i], e["direction"][i]) for i in range(n) if kind[i] == 5 and e["instability"][i] == 2 and 1.7 < w[i] < 1.9]
+    require(len(be) >= 4, be)
+    # the 1:3 internal resonance of the edge pair below the branch point (omega 2.0275, E 34)
+    res = [i for i in range(n) if kind[i] == 6 and abs(w[i] - 2.027498) < 1e-5]
+    require(len(res) == 1 and tuple(e["resonance"][res[0]]) == (1, 3) and e["instability"][res[0]] == 3, res)
+    require(abs(wbp - 2.418248) < 1e-5, wbp)
+    print("bifurcations of the paper lattice OK:", n, "events, E-E branch point at omega", wbp)
+
+
+def events():
+    """The events of the insulated branch of the N = 22 lattice (s1.h5) by the rules of event_rules (the branch
+    point at omega 2.418267); 1 = 2 ranks; passes and resonances found apart from the changes of stability.
+    Writes the branch point's index to bp_index.txt. (The paper's N = 102 branch: paper(), the long test.)"""
+    e, wbp, ibp = event_rules("s1.h5")
+    require(abs(wbp - 2.418267) < 1e-5, wbp)
+    tol = e.attrs["tol"]
+    def load(fn):
+        b = group(fn, "continuation/insulated")
+        return b, b["bifurcations"]
     # 1 and 2 ranks: the same events on the small lattice
     (_, e1), (_, e2) = load("s1.h5"), load("s2.h5")
     k1, k2 = e1["kind"][:], e2["kind"][:]
@@ -87,15 +109,15 @@ def events():
         below = [((np.abs(np.abs(m) - 1) < 1e-6) & (m.imag > 0) & (np.angle(m) < th)).sum() for m in (mu1[j], mu1[j + 1])]
         same = [k for k in np.flatnonzero(k1 == 6) if e1["point"][k] == j and tuple(e1["resonance"][k]) == (p, q)]
         require(abs(below[1] - below[0]) >= len(same), r, below, same)   # (crossings no harmonic drives count too)
-    print("bifurcations scene OK:", n, "events, E-E branch point at omega", w[i])
-    open("bp_index.txt", "w").write(str(int([k for k in range(len(k1)) if k1[k] == 2][0])))
+    print("bifurcations scene OK:", len(k1), "events on N = 22, E-E branch point at omega", wbp)
+    open("bp_index.txt", "w").write(str(int(ibp)))
 
 
-def switching(bp):
-    """-cont_switch at the branch point bp of the small lattice: the two families born there start at the
+def switching(bp, fn):
+    """-cont_switch at the branch point bp of the small lattice (in fn): the two families born there start at the
     located point, carry the parent and are time-reversal images of each other."""
     bp = int(bp)
-    C = group("sw.h5", "continuation")
+    C = group(fn, "continuation")
     P, e = C["insulated"], C["insulated/bifurcations"]
     N = P["z0"].shape[1] // 2
     for side in ("plus", "minus"):
@@ -123,17 +145,12 @@ def switching(bp):
     print("branch switching OK:", pl["energy"].shape[0], "points on each side from omega", pl["omega"][0])
 
 
-def first_period_doubling(bp):
-    """Print the index of the first period doubling (onset) on the _plus family switched onto at bp."""
-    e = group("sw.h5", f"continuation/insulated_bp{bp}_plus/bifurcations")
+def first_period_doubling(bp, fn):
+    """Print the index of the first period doubling (onset) on the _plus family switched onto at bp (in fn)."""
+    e = group(fn, f"continuation/insulated_bp{bp}_plus/bifurcations")
     k = [i for i in range(e["kind"].shape[0]) if e["kind"][i] == 3 and e["direction"][i] == 1]
     require(k, "no period doubling on the switched family")
     print(k[0])
-
-
-def event_omega(branch, index):
-    """Print the omega of event index of branch in sw.h5, to 9 digits."""
-    print("%.9g" % group("sw.h5", f"continuation/{branch}/bifurcations/omega")[int(index)])
 
 
 def period_doubling(bp, pd):
@@ -165,15 +182,14 @@ def period_doubling(bp, pd):
     print("period doubling switching OK:", n, "points from omega", e["omega"][pd], "(", D.attrs["stop_reason"].decode(), ")")
 
 
-def resumed_families():
-    """The switched families stopped at E = 150 and resumed to 300 (r300.h5) equal the run to 300 (pd.h5)
-    bit for bit, the branches that reached 150 resumed, not recomputed."""
-    A, B, H = (group(f, "continuation") for f in ("pd.h5", "r300.h5", "r150.h5"))
+def resumed_families(full, resumed, stopped):
+    """The switched families stopped part-way (stopped) and resumed (resumed) equal the run without a stop (full)
+    bit for bit, every family resumed, not recomputed whole (the doubled one too, stopped inside its loop)."""
+    A, B, H = (group(f, "continuation") for f in (full, resumed, stopped))
     require(sorted(A.keys()) == sorted(B.keys()) and len(A.keys()) == 4, list(A.keys()), list(B.keys()))
     for n in A.keys():
         a, b = A[n], B[n]
-        if n != "insulated" and "_pd" not in n:
-            require(H[n]["energy"].shape[0] < a["energy"].shape[0], n)   # resumed, not recomputed whole
+        require(n in H and 1 < H[n]["energy"].shape[0] < a["energy"].shape[0], n)   # resumed, not recomputed whole
         for k in ("energy", "omega", "z0", "multipliers_re", "multipliers_im", "bifurcations/omega", "bifurcations/kind"):
             require(np.array_equal(a[k][:], b[k][:]), n, k)
         for k in ("parent", "period_multiple", "stop_reason"):

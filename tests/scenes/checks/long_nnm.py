@@ -120,7 +120,7 @@ def old_file_resumed():
 
 
 def localized():
-    """The localized route through the continuation (N = 402, E <= 1, 1 and 2 ranks): a verdict per orbit,
+    """The localized route through the continuation (N = 202, E <= 1, 1 and 2 ranks): a verdict per orbit,
     stable-to(delta) or unstable-localized confirmed on the undamped lattice, its bound |mu| - 1 and e-folding
     time 1/ln|mu|; the same verdicts at 2 ranks."""
     A = group("loc1.h5", "continuation/insulated")
