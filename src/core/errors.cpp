@@ -1,4 +1,5 @@
 #include "core/errors.hpp"
+#include "core/option_table.hpp"
 #include <cctype>
 #include <cstdio>
 #include <string>
@@ -16,21 +17,27 @@ static std::string g_output_path;
 void SetOutputContext(const char *path) { g_output_path = path ? path : ""; }
 
 // The option (-name value) whose value is the word w (case-insensitive), "" if none or several.
-static std::string OptionWithValue(const std::string &w)
+// The option given with value w ("-name w"). Where several hold w, those of
+// the type that failed to parse (a table's type: wanted), else all of them
+// ("-a 2 or -b 2"); "" when none does.
+static std::string OptionWithValue(const std::string &w, std::initializer_list<OptionType> wanted = {})
 {
   char *all = NULL;
-  std::string found;
-  int hits = 0;
-  if (w.empty() || PetscOptionsGetAll(NULL, &all) || !all) return found;
-  std::vector<std::string> tok;
+  if (w.empty() || PetscOptionsGetAll(NULL, &all) || !all) return "";
+  std::vector<std::string> tok, hits, typed;
   for (char *t = std::strtok(all, " "); t; t = std::strtok(NULL, " ")) tok.emplace_back(t);
   PetscFree(all);
   for (size_t i = 0; i + 1 < tok.size(); i++)
     if (tok[i][0] == '-' && std::isalpha((unsigned char)tok[i][1]) && !strcasecmp(tok[i + 1].c_str(), w.c_str())) {
-      found = tok[i] + " " + tok[i + 1];
-      hits++;
+      hits.push_back(tok[i] + " " + tok[i + 1]);
+      const OptionInfo *row = FindOption(tok[i]);
+      for (OptionType t : wanted)
+        if (row && row->type == t) typed.push_back(hits.back());
     }
-  return hits == 1 ? found : std::string();
+  const std::vector<std::string> &pick = hits.size() > 1 && !typed.empty() ? typed : hits;
+  std::string out;
+  for (const std::string &h : pick) out += (out.empty() ? "" : " or ") + h;
+  return out;
 }
 
 // A word of the message after the marker, e.g. "Input string abc has ..." -> "abc".
@@ -75,13 +82,14 @@ PetscErrorCode OneLineErrorHandler(MPI_Comm comm, int line, const char *fun, con
   // A value PETSc cannot parse: name the option that holds it (its messages name only the value).
   static const struct {
     const char *fun, *marker, *what;
-  } parse[] = {{"PetscOptionsStringToReal", "Input string", "not a real number"},
-               {"PetscOptionsStringToScalar", "Input string", "not a number"},
-               {"PetscOptionsStringToInt", "Input string", "not an integer"},
-               {"PetscOptionsStringToBool", "Unknown logical value:", "not a boolean (true/false, yes/no, 1/0)"}};
+    std::initializer_list<OptionType> types; // the tables' types whose values this parser reads
+  } parse[] = {{"PetscOptionsStringToReal", "Input string", "not a real number", {OptionType::Real, OptionType::RealList}},
+               {"PetscOptionsStringToScalar", "Input string", "not a number", {OptionType::Real, OptionType::RealList}},
+               {"PetscOptionsStringToInt", "Input string", "not an integer", {OptionType::Int}},
+               {"PetscOptionsStringToBool", "Unknown logical value:", "not a boolean (true/false, yes/no, 1/0)", {OptionType::Bool}}};
   for (const auto &q : parse)
     if (fun && !std::strcmp(fun, q.fun)) {
-      const std::string v = WordAfter(mess, q.marker), opt = OptionWithValue(v);
+      const std::string v = WordAfter(mess, q.marker), opt = OptionWithValue(v, q.types);
       std::fprintf(stderr, "nltopo: error: %s: %s\n", opt.empty() ? ("'" + v + "'").c_str() : opt.c_str(), q.what);
       std::fflush(stderr);
       return n;
