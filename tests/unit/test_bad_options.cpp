@@ -89,6 +89,7 @@ const std::vector<BadCase> &OptionCases()
       // the same value held by two options: the one of the type that failed (fuzz seed 3275416688), else both
       {"nltopo: error: -sweep_resume 2: not a boolean", W + "-sweep_resume 2"}, // W holds -sweep_omega_n 2
       {"-sweep_energy_list a or -sweep_omega_list a: not a real number", W + "-sweep_omega_list a -sweep_energy_list a"},
+      {"-sweep_lyapunov (the tangent flow of the free lattice after the cut-off) needs a conservative lattice; -lattice_damping 0.01", W + "-sweep_lyapunov -lattice_damping 0.01"},
       {"-sim_ts_type foo", S + "-sim_ts_type foo"},
       {"-kcorr_record must lie in (0, 1e6], got inf", W + "-sweep_kcorr -kcorr_record inf"},
       {"-floquet_tol must lie in (0, 1), got inf", C + "-floquet -floquet_tol inf"},
