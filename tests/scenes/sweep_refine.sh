@@ -15,6 +15,8 @@ $PY "$CHECKS/sweep_refine.py" level l0.h5 l1.h5 0.265 0.3 3
 $PY "$CHECKS/sweep_refine.py" base l1.h5 l0.h5
 run2 "${OPTS[@]}" -sweep_refine_mcr 0.05 -sweep_refine_max_points 8 -sweep_refine_from l1.h5 -output l2.h5 | tee l2.txt
 $PY "$CHECKS/sweep_refine.py" level l1.h5 l2.h5 0.05 0.3 1 8
+$PY "$SRC/tests/scenes/plot_check.py" "$SRC/src/plots/plot_sweep.py" l2.h5 refined.png
+$PY "$CHECKS/sweep_refine.py" plot l2.h5 "$SRC"
 
 # Refusals: one line naming the option and file, a non-zero exit, no output.
 expect_fail() { # expect_fail <pattern> nltopo args... (-output bad.h5)

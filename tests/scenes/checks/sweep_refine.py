@@ -163,5 +163,25 @@ def same(path, ref):
     print("%s: the level resumed (%d points computed again) = %s bit for bit" % (path, n, ref))
 
 
+def plot(path, src):
+    """src/plots/plot_sweep.py draws the level path from its samples: panel (a) the MCR on a triangulation
+    of every sample (its values the file's), the samples marked by level with the counts of the file."""
+    sys.path.insert(0, os.path.join(src, "src", "plots"))
+    sys.path.insert(0, os.path.join(src, "python"))
+    import plot_sweep
+    import nltopo
+    run = nltopo.Run(path)
+    r = run.sweep.refined
+    fig = plot_sweep.refined_figure(run, run.sweep)
+    a = fig.axes[0]
+    mesh = [c for c in a.collections if hasattr(c, "get_array") and c.get_array() is not None][0]
+    require(np.array_equal(np.sort(np.asarray(mesh.get_array())), np.sort(np.asarray(r["mcr"]))), "the map is not the samples' MCR")
+    labels = [t.get_text() for t in a.get_legend().get_texts()]
+    lev = np.asarray(r["level"])
+    want = ["level %d (%d points)" % (k, (lev == k).sum()) for k in range(lev.max() + 1)]
+    require(labels[:len(want)] == want, labels, want)
+    print("%s: plot_sweep.py draws the MCR of its %d samples triangulated, marked %s" % (path, len(lev), "; ".join(want)))
+
+
 if __name__ == "__main__":
     main(globals())
