@@ -64,6 +64,11 @@ FORMAT0 = {
     ("/sweep", "kcorr_computed"): YES_NO,
     ("/sweep", "regime"): REGIME,  # (format 1 on)
     ("/sweep", "lyapunov_computed"): YES_NO,
+    ("/sweep/refined", "reached"): YES_NO,  # -sweep_refine_from
+    ("/sweep/refined", "failed"): YES_NO,
+    ("/sweep/refined", "predictable"): PREDICTABLE,
+    ("/sweep/refined", "done"): DONE,
+    ("/sweep/refined", "regime"): REGIME,
     ("/zak", "reached"): YES_NO,
     ("/zak", "done"): DONE,
     ("/perturb/<kind>", "done"): DONE,

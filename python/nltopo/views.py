@@ -396,6 +396,27 @@ class Sweep(Group):
             out[n] = m.reshape(self.shape)
         return out
 
+    @property
+    def refined(self):
+        """/sweep/refined of an adaptive refinement level (-sweep_refine_from): every point so far as
+        scattered samples, 1-D arrays omega, energy, level (quadtree depth at which the point was
+        added), omega_index, energy_index (fine lattice), done and every per-point score (mcr, kcorr,
+        nl_ratio, predictable, ...); None for a grid. The base grid's points are also in `maps`."""
+        if "_refined" not in self._cache:
+            has = "refined" in self._subgroups
+            self._cache["_refined"] = Group(self._run, self._path + "/refined") if has else None
+        return self._cache["_refined"]
+
+    def triangulation(self, log_energy=True):
+        """A matplotlib.tri.Triangulation of the refined samples in (omega, log10 E*) (E* itself with
+        log_energy False), or None for a grid."""
+        r = self.refined
+        if r is None:
+            return None
+        import matplotlib.tri as mtri
+        e = np.asarray(r["energy"])
+        return mtri.Triangulation(np.asarray(r["omega"]), np.log10(e) if log_energy else e)
+
 
 class Linear(Group):
     """/linear: omega (ascending), modes (row j: mode j), insulated mode;

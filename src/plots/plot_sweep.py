@@ -13,6 +13,10 @@ dotted and E = 12 dashed:
 (c) the 0-1 test's kcorr (only when the sweep computed it).
 -letters gives the panels' letters in order ("_": none), e.g. "_c" for the
 paper's Fig. 8, whose only map, (c), is the MCR (default "abc").
+A refinement level (-sweep_refine_from: /sweep/refined) is drawn from its
+scattered samples instead, triangulated in (log E*, omega): (a) the MCR
+(linear on each triangle) with the samples marked by their level and the
+unpredictable ones dotted, (b) the energy ratio.
 usage: plot_sweep.py sweep.h5 [fep.h5] [out.png] [-letters abc]"""
 import sys
 import matplotlib
@@ -44,7 +48,8 @@ def main(argv=None):
         p.error("no .h5 file given")
     out = outs[0] if outs else h5[0].replace(".h5", "") + "_map.png"
     run, s, branches = load(h5[0], h5[1] if len(h5) > 1 else None)
-    figure(run, s, branches, a.letters).savefig(out, dpi=120)
+    fig = figure(run, s, branches, a.letters) if s.refined is None else refined_figure(run, s, a.letters)
+    fig.savefig(out, dpi=120)
     print("wrote", out)
 
 
@@ -131,6 +136,57 @@ def figure(run, s, branches=None, letters="abc"):
         fig.colorbar(pk, ax=ax[2], label="kcorr (0-1 test, max over sites)")
         decorate(ax[2])
         ax[2].set_title(f"{tag[2]}0-1 test for chaos (1: chaotic)", fontsize=10)
+    fig.tight_layout()
+    return fig
+
+
+LEVEL_MARKERS = "os^vD<>p*h"
+LEVEL_COLOURS = ["w", "r", "orange", "m", "c", "k"]
+
+
+def refined_figure(run, s, letters="ab"):
+    """A refinement level's samples: the MCR and the energy ratio on the triangulation in (log E*, omega)."""
+    import matplotlib.tri as mtri
+    letters = (letters + "__")[:2]
+    tag = ["" if c == "_" else f"({c}) " for c in letters]
+    r = s.refined
+    E, w, level = np.asarray(r["energy"]), np.asarray(r["omega"]), np.asarray(r["level"])
+    ok = np.asarray(r["done"]).astype(bool) & np.isfinite(np.asarray(r["mcr"]))
+    E, w, level = E[ok], w[ok], level[ok]
+    mcr, ratio = np.asarray(r["mcr"])[ok], np.asarray(r["nl_ratio"])[ok]
+    unpredictable = np.asarray(r["predictable"])[ok] == 0
+    x = np.log10(E)  # the triangles' corners in (log10 E*, omega), where the map is linear on each
+    tri = mtri.Triangulation(x, w)
+    bands = nltopo_plot.bands(s)
+    fig, ax = plt.subplots(1, 2, figsize=(13.2, 5.4))
+
+    def decorate(a):
+        for lo, hi in bands:
+            if w.min() <= lo <= w.max():
+                a.axhline(lo, color="0.6", lw=0.6, ls=":")
+            if w.min() <= hi <= w.max():
+                a.axhline(hi, color="0.6", lw=0.6, ls=":")
+        a.set(xlim=(x.min(), x.max()), ylim=(w.min(), w.max()), xlabel="log10 E* (energy at the cut-off)", ylabel=r"$\omega_{ext}$ (rad/time)")
+
+    pc = ax[0].tripcolor(tri, mcr, shading="gouraud", cmap="viridis", vmin=0, vmax=np.nanmax(mcr))
+    fig.colorbar(pc, ax=ax[0], label="MCR (linear on the triangles)")
+    for k in range(int(level.max()) + 1):
+        at = level == k
+        if at.any():
+            ax[0].plot(x[at], w[at], LEVEL_MARKERS[k % len(LEVEL_MARKERS)], ms=max(1.5, 4 - 0.6 * k), mfc="none", mec=LEVEL_COLOURS[k % len(LEVEL_COLOURS)], mew=0.6,
+                       label=f"level {k} ({at.sum()} points)")
+    if unpredictable.any():
+        ax[0].plot(x[unpredictable], w[unpredictable], ".", color="0.85", ms=2.5, label="unpredictable (twins' mean)")
+    decorate(ax[0])
+    ax[0].legend(fontsize=7, loc="upper left", framealpha=0.8, facecolor="0.5")
+    ax[0].set_title(f"{tag[0]}MCR, {ok.sum()} samples to depth {int(r['depth'])} ({run.options.get('force_profile', 'site')} forcing)", fontsize=10)
+    pos = ratio > 0
+    if pos.all():
+        pr = ax[1].tripcolor(tri, np.log10(ratio), shading="gouraud", cmap="cividis")
+        fig.colorbar(pr, ax=ax[1], label="log10 (nonlinear / linear potential energy)")
+    ax[1].plot(x, w, ".", color="k", ms=1, label="_samples")
+    decorate(ax[1])
+    ax[1].set_title(f"{tag[1]}energy ratio", fontsize=10)
     fig.tight_layout()
     return fig
 

@@ -135,7 +135,7 @@ static PetscErrorCode CheckLoadedShard(const std::string &path, const SweepGrid 
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SweepGrid::Load(const std::string &path)
+PetscErrorCode SweepGrid::Load(const std::string &path, const char *opt)
 {
   std::vector<PetscReal> w, e, v;
   std::vector<PetscInt> iv;
@@ -146,12 +146,12 @@ PetscErrorCode SweepGrid::Load(const std::string &path)
   PetscCall(ReadDoubles(path, "/sweep/energy", &e));
   for (const auto &[axis, x] : {std::make_pair("omega", &w), std::make_pair("energy", &e)})
     PetscCheck(std::all_of(x->begin(), x->end(), [](PetscReal a) { return std::isfinite(a); }), PETSC_COMM_SELF, PETSC_ERR_USER,
-               "-sweep_resume: /sweep/%s in %s holds a value that is not finite, which no sweep writes (a damaged file?)", axis, path.c_str());
+               "%s: /sweep/%s in %s holds a value that is not finite, which no sweep writes (a damaged file?)", opt, axis, path.c_str());
   PetscCheck(w == omega && e == energy, PETSC_COMM_SELF, PETSC_ERR_USER,
-             "-sweep_resume: the grid stored in %s (%zu x %zu) differs from the -sweep_* axes (%zu x %zu)", path.c_str(), e.size(), w.size(), energy.size(),
+             "%s: the grid stored in %s (%zu x %zu) differs from the -sweep_* axes (%zu x %zu)", opt, path.c_str(), e.size(), w.size(), energy.size(),
              omega.size());
   PetscCall(CheckLoadedShard(path, *this, &stored, &msg));
-  PetscCheck(msg.empty(), PETSC_COMM_SELF, PETSC_ERR_USER, "-sweep_resume: %s %s", path.c_str(), msg.c_str());
+  PetscCheck(msg.empty(), PETSC_COMM_SELF, PETSC_ERR_USER, "%s: %s %s", opt, path.c_str(), msg.c_str());
   if (!shard.On()) {
     stored.resize(Size());
     std::iota(stored.begin(), stored.end(), 0);
@@ -159,21 +159,21 @@ PetscErrorCode SweepGrid::Load(const std::string &path)
   auto doubles = [&](const char *name, PetscReal SweepPoint::*field) -> PetscErrorCode {
     PetscFunctionBeginUser;
     PetscCall(ReadDoubles(path, (std::string("/sweep/") + name).c_str(), &v));
-    PetscCheck(v.size() == stored.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-sweep_resume: /sweep/%s in %s has the wrong size", name, path.c_str());
+    PetscCheck(v.size() == stored.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s: /sweep/%s in %s has the wrong size", opt, name, path.c_str());
     for (size_t i = 0; i < v.size(); i++) pts[stored[i]].*field = v[i];
     PetscFunctionReturn(0);
   };
   auto ints = [&](const char *name, PetscInt SweepPoint::*field) -> PetscErrorCode {
     PetscFunctionBeginUser;
     PetscCall(ReadInts(path, (std::string("/sweep/") + name).c_str(), &iv));
-    PetscCheck(iv.size() == stored.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-sweep_resume: /sweep/%s in %s has the wrong size", name, path.c_str());
+    PetscCheck(iv.size() == stored.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s: /sweep/%s in %s has the wrong size", opt, name, path.c_str());
     for (size_t i = 0; i < iv.size(); i++) pts[stored[i]].*field = iv[i];
     PetscFunctionReturn(0);
   };
   for (const auto &f : SweepRealFields()) PetscCall(doubles(f.name, f.field));
   for (const auto &f : SweepIntFields()) PetscCall(ints(f.name, f.field));
   PetscCall(ReadInts(path, "/sweep/done", &iv));
-  PetscCheck(iv.size() == stored.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-sweep_resume: /sweep/done in %s has the wrong size", path.c_str());
+  PetscCheck(iv.size() == stored.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s: /sweep/done in %s has the wrong size", opt, path.c_str());
   for (size_t i = 0; i < iv.size(); i++) done[stored[i]] = iv[i];
   // A point done holds what a sweep writes; one not done is computed again.
   const size_t no = omega.size();
@@ -182,9 +182,9 @@ PetscErrorCode SweepGrid::Load(const std::string &path)
     char at[96]; // (PETSc's %g would print 1 as "1.")
     std::snprintf(at, sizeof at, "E* = %g, omega = %g", (double)energy[i / no], (double)omega[i % no]);
     PetscCheck(done[i] == 0 || done[i] == 1, PETSC_COMM_SELF, PETSC_ERR_USER,
-               "-sweep_resume: /sweep/done in %s holds %" PetscInt_FMT " at %s, not 0 or 1 (a damaged file?)", path.c_str(), done[i], at);
+               "%s: /sweep/done in %s holds %" PetscInt_FMT " at %s, not 0 or 1 (a damaged file?)", opt, path.c_str(), done[i], at);
     PetscCheck(!done[i] || SweepPointValid(pts[i], &what), PETSC_COMM_SELF, PETSC_ERR_USER,
-               "-sweep_resume: %s holds %s at %s, which no sweep writes (a damaged file?)", path.c_str(), what.c_str(), at);
+               "%s: %s holds %s at %s, which no sweep writes (a damaged file?)", opt, path.c_str(), what.c_str(), at);
   }
   PetscFunctionReturn(0);
 }

@@ -60,17 +60,20 @@ struct SweepGrid {
   std::vector<SweepPoint> pts;
   std::vector<PetscInt> done;
   SweepShard shard;           // !shard.On(): the whole grid
-  std::vector<size_t> points; // a shard's grid indices, ascending (studies/sweep_shard.hpp)
+  std::vector<size_t> points; // a shard's grid indices, ascending (studies/sweep_shard.hpp), or a refinement's (scattered)
+  bool scattered = false;     // -sweep_refine_from: the grid is a refinement's fine lattice, its points the samples (studies/sweep_refine.hpp)
   size_t Size() const { return omega.size() * energy.size(); }
-  // This run's points: the shard's, or the whole grid's; At(k) the grid index of the k-th.
-  size_t Count() const { return shard.On() ? points.size() : Size(); }
-  size_t At(size_t k) const { return shard.On() ? points[k] : k; }
+  // This run's points: the shard's, the refinement's, or the whole grid's; At(k) the grid index of the k-th.
+  bool Subset() const { return shard.On() || scattered; }
+  size_t Count() const { return Subset() ? points.size() : Size(); }
+  size_t At(size_t k) const { return Subset() ? points[k] : k; }
   PetscInt Done() const; // of this run's points
   void Reset(const std::vector<PetscReal> &w, const std::vector<PetscReal> &e);
   // Loads a sweep file written by Write (resume); the axes must equal this
   // grid's, and so must the shard and its points (a shard file holds its
   // points' values as 1-D datasets over /sweep/shard_points).
-  PetscErrorCode Load(const std::string &path);
+  // opt names the option in messages (-sweep_refine_from loads a base grid).
+  PetscErrorCode Load(const std::string &path, const char *opt = "-sweep_resume");
   // Merges every <path>.journal.* into the grid; *lines = points read.
   PetscErrorCode MergeJournals(const std::string &path, PetscInt *lines);
 };

@@ -24,11 +24,13 @@
 #include "studies/study.hpp"
 #include "stability/lyapunov.hpp"
 #include "studies/sweep_accuracy.hpp"
+#include "studies/sweep_refine.hpp"
 #include "studies/sweep_shard.hpp"
 #include "studies/sweep_store.hpp"
 #include "timeint/simulation.hpp"
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -47,11 +49,18 @@ struct SweepOptions {
   std::vector<PetscReal> omega_list, energy_list;
   std::vector<PetscReal> omega, energy;
   PetscBool resume = PETSC_FALSE, kcorr = PETSC_FALSE;
-  PetscInt group_size = 1;                                   // -sweep_group_size: ranks per point
-  PetscBool lyapunov = PETSC_FALSE;                          // -sweep_lyapunov
-  PetscReal lyapunov_renorm = 10, lyapunov_efolds = 20;      // -sweep_lyapunov_renorm, -sweep_lyapunov_efolds
-  std::string shard_text; // -sweep_shard i/n ("": the whole grid), parsed into shard
+  PetscInt group_size = 1;                              // -sweep_group_size: ranks per point
+  PetscBool lyapunov = PETSC_FALSE;                     // -sweep_lyapunov
+  PetscReal lyapunov_renorm = 10, lyapunov_efolds = 20; // -sweep_lyapunov_renorm, -sweep_lyapunov_efolds
+  std::string shard_text;                               // -sweep_shard i/n ("": the whole grid), parsed into shard
   SweepShard shard;
+  // -sweep_refine_*: a refinement level (studies/sweep_refine.hpp); then omega, energy above are the fine lattice's axes
+  std::string refine_from;
+  PetscReal refine_mcr = 0.02, refine_kcorr = 0.3, refine_ratio = 1.0;
+  PetscInt refine_max_points = 0;
+  std::vector<PetscReal> base_omega, base_energy; // the base grid's axes (the -sweep_* axes)
+  RefineLattice lattice;
+  RefineSelection selection;
   PetscReal checkpoint = 5, progress = 10;
   // 0-1 test (-kcorr_*)
   PetscInt kcorr_nc = 32, kcorr_site_stride = 1; // 32 c values: the median is stable to ~0.02 on the test series (tests/unit)
@@ -98,7 +107,22 @@ const auto &kSweepTable = DeclareOptionTable<SweepOptions>("sweep_", "Sweep: gri
               "Compute share i of n of the grid (i/n, 0 <= i < n), split by a cost model; -study merge joins the n shard files "
               "(docs/studies/sweep.md, shards and merge)",
               OptionClass::Bookkeeping)
-      .Default("the whole grid");
+      .Default("the whole grid")
+      .String("refine_from", &SweepOptions::refine_from,
+              "Compute one adaptive refinement level: read this complete sweep file (a grid, a merged shard set or a previous level) and compute the "
+              "edge midpoints and centres of its (omega, log E*) quadtree leaves whose corners' scores differ by more than the -sweep_refine_* "
+              "thresholds; the output holds every point under /sweep/refined (docs/studies/sweep.md, adaptive refinement)",
+              OptionClass::Bookkeeping)
+      .Default("no refinement")
+      .Real("refine_mcr", &SweepOptions::refine_mcr, LeftOpen(0, 1e6),
+            "Refine a cell whose corners' MCRs differ by more than this (absolute) and by more than their twins' mcr_spread (the noise floor)",
+            OptionClass::Bookkeeping)
+      .Real("refine_kcorr", &SweepOptions::refine_kcorr, LeftOpen(0, 1e6),
+            "Refine a cell whose corners' 0-1 test K differ by more than this (with -sweep_kcorr)", OptionClass::Bookkeeping)
+      .Real("refine_ratio", &SweepOptions::refine_ratio, LeftOpen(0, 1e6), "Refine a cell whose corners' ln(nl_ratio) differ by more than this (relative)",
+            OptionClass::Bookkeeping)
+      .Int("refine_max_points", &SweepOptions::refine_max_points, Closed(0, PETSC_MAX_INT),
+           "At most this many new points: the cells with the largest differences (relative to their thresholds) first (0: no cap)", OptionClass::Bookkeeping);
 });
 
 const auto &kZeroOneTable = DeclareOptionTable<SweepOptions>("kcorr_", "0-1 test for chaos (with -sweep_kcorr)", [](OptionTable<SweepOptions> &t) {
@@ -125,6 +149,9 @@ PetscErrorCode SweepOptionsFromOptions(MPI_Comm comm, SweepOptions *o)
   PetscCall(GridAxisFromTable(comm, "sweep_", kSweepTable, set, *o, kEnergyAxis, &o->energy));
   PetscCall(ParseSweepShard(comm, o->shard_text, o->omega.size() * o->energy.size(), &o->shard));
   PetscCall(McrAccuracyOptionsFromOptions(comm, &o->mcr));
+  PetscCheck(o->refine_from.empty() || !o->shard.On(), comm, PETSC_ERR_USER,
+             "-sweep_refine_from %s with -sweep_shard %s: a refinement level runs as one job (on any number of ranks), not as shards", o->refine_from.c_str(),
+             o->shard_text.c_str());
   PetscCall(kZeroOneTable.Read(comm, o));
   // the record is kept as samples per tested site: at most 2e6 of them
   PetscCheck(o->kcorr_sample_dt == 0 || o->kcorr_record / o->kcorr_sample_dt <= 2e6, comm, PETSC_ERR_USER,
@@ -168,33 +195,54 @@ PetscErrorCode CheckShardOverwrite(MPI_Comm comm, const std::string &path, const
 PetscErrorCode WriteSweep(const std::string &path, const SweepGrid &g, const SweepOptions &so, PetscInt computed, PetscReal wall, bool complete)
 {
   OutputFile out;
-  const size_t n = g.Count();
+  // the points of the per-point datasets: this run's (a shard's: 1-D), or, for a refinement level, the base grid's (its points on the fine lattice)
+  std::vector<size_t> at;
+  if (g.scattered) {
+    const size_t s = (size_t)1 << so.lattice.depth;
+    for (size_t e = 0; e < so.base_energy.size(); e++)
+      for (size_t o = 0; o < so.base_omega.size(); o++) at.push_back(so.lattice.Index(s * e, s * o));
+  } else
+    for (size_t k = 0; k < g.Count(); k++) at.push_back(g.At(k));
+  const size_t n = at.size();
   std::vector<PetscReal> v(n);
   std::vector<PetscInt> iv(n);
-  const PetscInt no = g.shard.On() ? 1 : (PetscInt)g.omega.size(); // the per-point datasets' columns
+  const PetscInt no = g.shard.On() ? 1 : (PetscInt)(g.scattered ? so.base_omega.size() : g.omega.size()); // the per-point datasets' columns
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(Log().output, 0, 0, 0, 0));
   PetscCall(out.Open(PETSC_COMM_SELF, complete ? path : PartialPath(path)));
   PetscViewer w = out.Viewer();
   const char *grp = "/sweep";
-  PetscCall(WriteArray(w, grp, "omega", g.omega));
-  PetscCall(WriteArray(w, grp, "energy", g.energy));
+  PetscCall(WriteArray(w, grp, "omega", g.scattered ? so.base_omega : g.omega));
+  PetscCall(WriteArray(w, grp, "energy", g.scattered ? so.base_energy : g.energy));
   auto doubles = [&](const char *name, PetscReal SweepPoint::*field) -> PetscErrorCode {
     PetscFunctionBeginUser;
-    for (size_t i = 0; i < n; i++) v[i] = g.pts[g.At(i)].*field;
+    for (size_t i = 0; i < n; i++) v[i] = g.pts[at[i]].*field;
     PetscCall(WriteArray(w, grp, name, v, no));
     PetscFunctionReturn(0);
   };
   auto ints = [&](const char *name, PetscInt SweepPoint::*field) -> PetscErrorCode {
     PetscFunctionBeginUser;
-    for (size_t i = 0; i < n; i++) iv[i] = g.pts[g.At(i)].*field;
+    for (size_t i = 0; i < n; i++) iv[i] = g.pts[at[i]].*field;
     PetscCall(WriteIntArray(w, grp, name, iv, no));
     PetscFunctionReturn(0);
   };
   for (const auto &f : SweepRealFields()) PetscCall(doubles(f.name, f.field));
   for (const auto &f : SweepIntFields()) PetscCall(ints(f.name, f.field));
-  for (size_t i = 0; i < n; i++) iv[i] = g.done[g.At(i)];
+  for (size_t i = 0; i < n; i++) iv[i] = g.done[at[i]];
   PetscCall(WriteIntArray(w, grp, "done", iv, no));
+  if (g.scattered) {
+    PetscCall(WriteRefinedSamples(w, g, so.lattice));
+    const char *rg = "/sweep/refined";
+    PetscCall(WriteAttr(w, rg, "points_new", (PetscInt)so.selection.points.size()));
+    PetscCall(WriteAttr(w, rg, "leaves", (PetscInt)so.selection.leaves));
+    PetscCall(WriteAttr(w, rg, "cells_over", (PetscInt)so.selection.over));
+    PetscCall(WriteAttr(w, rg, "cells_refined", (PetscInt)so.selection.refined));
+    PetscCall(WriteAttr(w, rg, "refine_mcr", so.refine_mcr));
+    PetscCall(WriteAttr(w, rg, "refine_kcorr", so.refine_kcorr));
+    PetscCall(WriteAttr(w, rg, "refine_ratio", so.refine_ratio));
+    PetscCall(WriteAttr(w, rg, "refine_max_points", so.refine_max_points));
+    PetscCall(WriteAttr(w, rg, "refine_from", so.refine_from.c_str()));
+  }
   if (g.shard.On()) {
     PetscCall(WriteIntArray(w, grp, "shard_points", std::vector<PetscInt>(g.points.begin(), g.points.end())));
     PetscCall(WriteAttr(w, grp, "shard_index", g.shard.index));
@@ -354,6 +402,8 @@ protected:
     PetscFunctionBeginUser;
     PetscCall(OutputPathFromOptions(
         comm_, name_, path, [&](const std::string &) { return (bool)so_.resume; }, "-sweep_resume"));
+    PetscCheck(so_.refine_from.empty() || !SameFile(so_.refine_from, *path), comm_, PETSC_ERR_USER,
+               "-sweep_refine_from %s is -output: a refinement level writes a new file", so_.refine_from.c_str());
     if (!so_.resume) PetscCall(CheckShardOverwrite(comm_, *path, so_.shard));
     if (!so_.resume) PetscFunctionReturn(0);
     if (!rank_) partial = !access(PartialPath(*path).c_str(), F_OK);
@@ -387,16 +437,22 @@ protected:
     double share = 1;
     grid_.shard = so_.shard;
     if (so_.shard.On()) grid_.points = SweepShardPoints(so_.energy, so_.omega.size(), SweepCostEnergy(sc_.lp, sc_.sim.dt_quartic_energy), so_.shard, &share);
-    PetscCall(StartGrid());
+    if (so_.refine_from.empty()) PetscCall(StartGrid());
+    else PetscCall(StartRefinedGrid());
 
     // The missing points, most expensive (highest E*, then highest omega) first.
     const size_t no = so_.omega.size(), ne = so_.energy.size();
     for (size_t k = 0; k < grid_.Count(); k++)
       if (!grid_.done[grid_.At(k)]) todo_.push_back(grid_.At(k));
     std::stable_sort(todo_.begin(), todo_.end(), [&](size_t a, size_t b) { return a / no != b / no ? a / no > b / no : a % no > b % no; });
-    PetscCall(PetscPrintf(comm_, "nltopo sweep: %zu omega x %zu E* = %zu points, %zu to compute on %d rank(s)%s%s, N = %" PetscInt_FMT ", t_final = %g\n", no, ne,
-                          grid_.Size(), todo_.size(), size_, so_.group_size > 1 ? (" in groups of " + std::to_string(so_.group_size)).c_str() : "",
-                          so_.kcorr ? ", with the 0-1 test" : "", sc_.lat.N(), (double)sc_.sim.t_final));
+    if (grid_.scattered) // a refinement level: its points on the fine lattice
+      PetscCall(PetscPrintf(
+          comm_, "nltopo sweep: %zu points on a lattice of %zu omega x %zu E*, %zu to compute on %d rank(s)%s, N = %" PetscInt_FMT ", t_final = %g\n",
+          grid_.Count(), no, ne, todo_.size(), size_, so_.kcorr ? ", with the 0-1 test" : "", sc_.lat.N(), (double)sc_.sim.t_final));
+    else
+      PetscCall(PetscPrintf(comm_, "nltopo sweep: %zu omega x %zu E* = %zu points, %zu to compute on %d rank(s)%s%s, N = %" PetscInt_FMT ", t_final = %g\n", no,
+                            ne, grid_.Size(), todo_.size(), size_, so_.group_size > 1 ? (" in groups of " + std::to_string(so_.group_size)).c_str() : "",
+                            so_.kcorr ? ", with the 0-1 test" : "", sc_.lat.N(), (double)sc_.sim.t_final));
     if (so_.shard.On())
       PetscCall(PetscPrintf(
           comm_, "  shard %" PetscInt_FMT " of %" PetscInt_FMT ": %zu of the %zu points, %.1f %% of the modelled cost (-study merge joins the shards)\n",
@@ -589,6 +645,75 @@ private:
     PetscCallMPI(MPI_Bcast(grid_.done.data(), (PetscMPIInt)grid_.Size(), MPIU_INT, 0, comm_));
     PetscFunctionReturn(0);
   }
+  // -sweep_refine_from: rank 0 loads the previous level, selects the leaves to
+  // refine and (-sweep_resume) the points already done, and writes the file;
+  // every rank gets the fine lattice, the level's points and their done flags.
+  PetscErrorCode StartRefinedGrid()
+  {
+    int err = 0;
+    char msg[1024] = "";
+    PetscInt depth = 0, npts = 0;
+    PetscFunctionBeginUser;
+    so_.base_omega = so_.omega, so_.base_energy = so_.energy;
+    const bool log_e = so_.energy_spacing == AxisSpacing::Log;
+    if (!rank_) {
+      const std::string problem = RefineSourceProblem(so_.refine_from);
+      PetscErrorCode ierr = 0;
+      PetscInt merged = 0;
+      if (!problem.empty()) {
+        err = 1;
+        PetscCall(PetscStrncpy(msg, problem.c_str(), sizeof msg));
+      } else
+        PetscCall(CaptureError(
+            [&]() -> PetscErrorCode {
+              PetscFunctionBeginUser;
+              PetscCall(LoadRefineSource(so_.refine_from, so_.base_omega, so_.base_energy, log_e, &grid_, &so_.lattice));
+              const SweepRefineOptions ro{so_.refine_from, so_.refine_mcr, so_.refine_kcorr, so_.refine_ratio, so_.refine_max_points};
+              so_.selection = SelectRefinement(grid_, so_.lattice, ro, so_.kcorr);
+              std::vector<size_t> all(grid_.points.size() + so_.selection.points.size());
+              std::merge(grid_.points.begin(), grid_.points.end(), so_.selection.points.begin(), so_.selection.points.end(), all.begin());
+              grid_.points = all;
+              PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                                    "nltopo sweep: refinement depth %" PetscInt_FMT " from %s: %zu points, %zu leaves, %zu over the thresholds, %zu refined "
+                                    "(MCR %" PetscInt_FMT ", K %" PetscInt_FMT ", nl_ratio %" PetscInt_FMT ", predictability %" PetscInt_FMT
+                                    "): %zu new points\n",
+                                    so_.lattice.depth, so_.refine_from.c_str(), all.size() - so_.selection.points.size(), so_.selection.leaves,
+                                    so_.selection.over, so_.selection.refined, so_.selection.by_mcr, so_.selection.by_kcorr, so_.selection.by_ratio,
+                                    so_.selection.by_predictable, so_.selection.points.size()));
+              if (so_.resume) {
+                PetscCheck(!access(resume_from_.c_str(), F_OK), PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "-sweep_resume: no sweep file %s or %s to resume",
+                           PartialPath(path_).c_str(), path_.c_str());
+                PetscCall(LoadRefinedPartial(resume_from_, so_.lattice, &grid_));
+                PetscCall(grid_.MergeJournals(path_, &merged));
+              }
+              PetscCall(WriteSweep(path_, grid_, so_, 0, 0, false)); // the file exists (and is valid) from the start
+              PetscFunctionReturn(0);
+            },
+            &ierr, msg, sizeof(msg)));
+      if (ierr) err = 1;
+      else if (!err)
+        for (const std::string &f : JournalFiles(path_)) std::remove(f.c_str()); // merged (resume) or stale (fresh start)
+      depth = so_.lattice.depth, npts = (PetscInt)grid_.points.size();
+    }
+    PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm_));
+    PetscCallMPI(MPI_Bcast(msg, sizeof(msg), MPI_CHAR, 0, comm_));
+    PetscCheck(!err, comm_, PETSC_ERR_USER, "%s", msg);
+    PetscCallMPI(MPI_Bcast(&depth, 1, MPIU_INT, 0, comm_));
+    PetscCallMPI(MPI_Bcast(&npts, 1, MPIU_INT, 0, comm_));
+    if (rank_) {
+      so_.lattice.depth = depth;
+      grid_.Reset(RefinedAxis(so_.base_omega, false, depth), RefinedAxis(so_.base_energy, log_e, depth));
+      grid_.scattered = true;
+      so_.lattice.no = grid_.omega.size(), so_.lattice.ne = grid_.energy.size();
+    }
+    std::vector<PetscInt> p(npts);
+    if (!rank_) std::copy(grid_.points.begin(), grid_.points.end(), p.begin());
+    PetscCallMPI(MPI_Bcast(p.data(), (PetscMPIInt)npts, MPIU_INT, 0, comm_));
+    grid_.points.assign(p.begin(), p.end());
+    PetscCallMPI(MPI_Bcast(grid_.done.data(), (PetscMPIInt)grid_.Size(), MPIU_INT, 0, comm_));
+    so_.omega = grid_.omega, so_.energy = grid_.energy; // the points' axes (ComputePoint)
+    PetscFunctionReturn(0);
+  }
   // Rank 0: points done (from the merged journals), rate and ETA.
   PetscErrorCode PrintProgress(PetscLogDouble now) const
   {
@@ -661,51 +786,73 @@ private:
 StudyContract SweepStudyContract()
 {
   using namespace schema_names;
+  const std::vector<Field> sweep = WithBandEdges(
+      {{"omega", D, R, "no", "rad/time", "forcing frequencies"},
+       {"energy", D, R, "ne", "energy", "target energies E*"},
+       // per point, in the order of the journal (studies/sweep_store.cpp): reals, then ints
+       {"mcr", D, R, "ne x no", "1", "MCR"},
+       {"t_off", D, R, "ne x no", "time", "cut-off time (-1: never)"},
+       {"kcorr", D, R, "ne x no", "1", "0-1 test K (NaN without -sweep_kcorr)"},
+       {"nl_ratio", D, R, "ne x no", "1", "nonlinear / linear energy"},
+       {"amplitude", D, R, "ne x no", "force", "forcing amplitude S"},
+       {"energy_final", D, R, "ne x no", "energy", "energy at the end"},
+       {"seconds", D, R, "ne x no", "s", "wall time of the point"},
+       {"mcr_error", D, R, "ne x no", "1", "estimated relative MCR error (-sweep_mcr_tol)"},
+       {"mcr_spread", D, R, "ne x no", "1", "MCR spread over the twins where unpredictable, else 0"},
+       {"lyapunov", D, R, "ne x no", "1/time",
+        "maximal finite-time Lyapunov exponent of the free motion over [t_off, t_final] (Benettin, tangent flow; NaN without "
+        "-sweep_lyapunov or where E* was not reached)"},
+       {"lyapunov_half", D, R, "ne x no", "1/time", "the same over the window's first half (its convergence: |lyapunov - lyapunov_half|)"},
+       {"reached", D, I, "ne x no", "1", "1 if E* was reached", codes::kYesNo},
+       {"rescalings", D, I, "ne x no", "1", "amplitude repeats"},
+       {"rhs_evals", D, I, "ne x no", "1", "RHS evaluations of every attempt"},
+       {"steps", D, I, "ne x no", "1", "accepted steps"},
+       {"failed", D, I, "ne x no", "1", "1 if the run stopped with an error", codes::kYesNo},
+       {"predictable", D, I, "ne x no", "1", "1, 0, or -1 without -sweep_mcr_tol", codes::kPredictable},
+       {"mcr_runs", D, I, "ne x no", "1", "integrations spent on the point"},
+       {"regime", D, I, "ne x no", "1", "regular, chaotic (predictable MCR) or unpredictable, from lyapunov, the twins and the window", codes::kRegime},
+       {"done", D, I, "ne x no", "1", "1 if the point is computed", codes::kDone},
+       {"points_done", A, I, "scalar", "1", "points computed so far"},
+       {"points_computed", A, I, "scalar", "1", "points computed by this invocation"},
+       {"kcorr_computed", A, I, "scalar", "1", "1 with -sweep_kcorr", codes::kYesNo},
+       {"mcr_tol", A, R, "scalar", "1", "-sweep_mcr_tol (0: off)"},
+       {"kcorr_nc", A, I, "scalar", "1", "-kcorr_nc"},
+       {"kcorr_sample_dt", A, R, "scalar", "time", "-kcorr_sample_dt"},
+       {"kcorr_rms_fraction", A, R, "scalar", "1", "-kcorr_rms_fraction"},
+       {"kcorr_record", A, R, "scalar", "time", "-kcorr_record"},
+       {"kcorr_lags", A, I, "scalar", "1", "-kcorr_lags"},
+       {"lyapunov_computed", A, I, "scalar", "1", "1 with -sweep_lyapunov", codes::kYesNo},
+       {"lyapunov_renorm", A, R, "scalar", "time", "-sweep_lyapunov_renorm"},
+       {"lyapunov_efolds", A, R, "scalar", "1", "-sweep_lyapunov_efolds"},
+       {"amplitude_rule", A, S, "scalar", "1", "how S was chosen"},
+       {"force_eta", D, R, "N", "1", "forcing profile eta per site, the same at every point (S scales it)"},
+       {"insulated_mode", D, R, "N", "1", "linear insulated mode, the exponential profile's fit target (absent without one)"},
+       {"force_exp_a", A, R, "scalar", "1", "-force_profile exponential: fitted a of eta_n = a e^{b |n - m|} (-1)^{n/2}"},
+       {"force_exp_b", A, R, "scalar", "1", "-force_profile exponential: fitted b (per site)"}});
+  // -sweep_refine_from: every point so far as scattered samples, each per-point field of the grid 1-D over them
+  std::vector<Field> refined = {
+      {"omega", D, R, "ns", "rad/time", "forcing frequency of each sample"},
+      {"energy", D, R, "ns", "energy", "target energy E* of each sample"},
+      {"level", D, I, "ns", "1", "quadtree depth at which the sample was added (0: the base grid)"},
+      {"omega_index", D, I, "ns", "1", "omega column on the fine lattice (the base omega axis with interval midpoints inserted depth times)"},
+      {"energy_index", D, I, "ns", "1", "E* row on the fine lattice (midpoints geometric on a log axis)"},
+      {"done", D, I, "ns", "1", "1 if the sample is computed", codes::kDone}};
+  for (const Field &f : sweep)
+    if (f.kind == D && !std::strcmp(f.shape, "ne x no") && std::strcmp(f.name, "done"))
+      refined.push_back({f.name, D, f.type, "ns", f.units, f.meaning, f.codes});
+  refined.insert(refined.end(), {{"depth", A, I, "scalar", "1", "depth of the fine lattice: the deepest level"},
+                                 {"points_new", A, I, "scalar", "1", "samples this level added"},
+                                 {"leaves", A, I, "scalar", "1", "quadtree leaves examined"},
+                                 {"cells_over", A, I, "scalar", "1", "leaves whose corners differ beyond a threshold"},
+                                 {"cells_refined", A, I, "scalar", "1", "leaves refined (-sweep_refine_max_points may stop short of cells_over)"},
+                                 {"refine_mcr", A, R, "scalar", "1", "-sweep_refine_mcr"},
+                                 {"refine_kcorr", A, R, "scalar", "1", "-sweep_refine_kcorr"},
+                                 {"refine_ratio", A, R, "scalar", "1", "-sweep_refine_ratio"},
+                                 {"refine_max_points", A, I, "scalar", "1", "-sweep_refine_max_points (0: no cap)"},
+                                 {"refine_from", A, S, "scalar", "1", "-sweep_refine_from: the previous level's file"}});
   return {WithPrefixes({ForcedScene::OptionPrefixes(), {"-sweep_", "-kcorr_"}}),
-          {{"/sweep", "",
-            WithBandEdges({{"omega", D, R, "no", "rad/time", "forcing frequencies"},
-                           {"energy", D, R, "ne", "energy", "target energies E*"},
-                           // per point, in the order of the journal (studies/sweep_store.cpp): reals, then ints
-                           {"mcr", D, R, "ne x no", "1", "MCR"},
-                           {"t_off", D, R, "ne x no", "time", "cut-off time (-1: never)"},
-                           {"kcorr", D, R, "ne x no", "1", "0-1 test K (NaN without -sweep_kcorr)"},
-                           {"nl_ratio", D, R, "ne x no", "1", "nonlinear / linear energy"},
-                           {"amplitude", D, R, "ne x no", "force", "forcing amplitude S"},
-                           {"energy_final", D, R, "ne x no", "energy", "energy at the end"},
-                           {"seconds", D, R, "ne x no", "s", "wall time of the point"},
-                           {"mcr_error", D, R, "ne x no", "1", "estimated relative MCR error (-sweep_mcr_tol)"},
-                           {"mcr_spread", D, R, "ne x no", "1", "MCR spread over the twins where unpredictable, else 0"},
-                           {"lyapunov", D, R, "ne x no", "1/time",
-                            "maximal finite-time Lyapunov exponent of the free motion over [t_off, t_final] (Benettin, tangent flow; NaN without "
-                            "-sweep_lyapunov or where E* was not reached)"},
-                           {"lyapunov_half", D, R, "ne x no", "1/time", "the same over the window's first half (its convergence: |lyapunov - lyapunov_half|)"},
-                           {"reached", D, I, "ne x no", "1", "1 if E* was reached", codes::kYesNo},
-                           {"rescalings", D, I, "ne x no", "1", "amplitude repeats"},
-                           {"rhs_evals", D, I, "ne x no", "1", "RHS evaluations of every attempt"},
-                           {"steps", D, I, "ne x no", "1", "accepted steps"},
-                           {"failed", D, I, "ne x no", "1", "1 if the run stopped with an error", codes::kYesNo},
-                           {"predictable", D, I, "ne x no", "1", "1, 0, or -1 without -sweep_mcr_tol", codes::kPredictable},
-                           {"mcr_runs", D, I, "ne x no", "1", "integrations spent on the point"},
-                           {"regime", D, I, "ne x no", "1", "regular, chaotic (predictable MCR) or unpredictable, from lyapunov, the twins and the window",
-                            codes::kRegime},
-                           {"done", D, I, "ne x no", "1", "1 if the point is computed", codes::kDone},
-                           {"points_done", A, I, "scalar", "1", "points computed so far"},
-                           {"points_computed", A, I, "scalar", "1", "points computed by this invocation"},
-                           {"kcorr_computed", A, I, "scalar", "1", "1 with -sweep_kcorr", codes::kYesNo},
-                           {"mcr_tol", A, R, "scalar", "1", "-sweep_mcr_tol (0: off)"},
-                           {"kcorr_nc", A, I, "scalar", "1", "-kcorr_nc"},
-                           {"kcorr_sample_dt", A, R, "scalar", "time", "-kcorr_sample_dt"},
-                           {"kcorr_rms_fraction", A, R, "scalar", "1", "-kcorr_rms_fraction"},
-                           {"kcorr_record", A, R, "scalar", "time", "-kcorr_record"},
-                           {"kcorr_lags", A, I, "scalar", "1", "-kcorr_lags"},
-                           {"lyapunov_computed", A, I, "scalar", "1", "1 with -sweep_lyapunov", codes::kYesNo},
-                           {"lyapunov_renorm", A, R, "scalar", "time", "-sweep_lyapunov_renorm"},
-                           {"lyapunov_efolds", A, R, "scalar", "1", "-sweep_lyapunov_efolds"},
-                           {"amplitude_rule", A, S, "scalar", "1", "how S was chosen"},
-                           {"force_eta", D, R, "N", "1", "forcing profile eta per site, the same at every point (S scales it)"},
-                           {"insulated_mode", D, R, "N", "1", "linear insulated mode, the exponential profile's fit target (absent without one)"},
-                           {"force_exp_a", A, R, "scalar", "1", "-force_profile exponential: fitted a of eta_n = a e^{b |n - m|} (-1)^{n/2}"},
-                           {"force_exp_b", A, R, "scalar", "1", "-force_profile exponential: fitted b (per site)"}})},
+          {{"/sweep", "", sweep},
+           {"/sweep/refined", "", refined},
            {"/sweep",
             "sweep_shard",
             {{"shard_points", D, I, "npts", "1",

@@ -150,6 +150,8 @@ T = {
     "sweep_mcr_tol": ("real", 0.0, 0.1), "sweep_mcr_levels": ("int", 0, 2), "sweep_mcr_twins": ("int", 1, 3),
     "sweep_mcr_twin_eps": ("real", 1e-12, 1e-6),
     "sweep_group_size": ("int", 1, 2), "sweep_lyapunov": ("bool",), "sweep_lyapunov_renorm": ("real", 1.0, 50.0), "sweep_lyapunov_efolds": ("real", 1.0, 50.0),
+    "sweep_refine_from": ("path",), "sweep_refine_mcr": ("real", 1e-3, 0.5), "sweep_refine_kcorr": ("real", 0.01, 1.0),
+    "sweep_refine_ratio": ("real", 0.1, 5.0), "sweep_refine_max_points": ("int", 0, 20),
     "wp_configs": ("strings", 0, 0, [" -sim_ts_type symsplit -sim_ts_dt 0.2", " -sim_ts_type rk -sim_ts_rtol 1e-6 -sim_ts_atol 1e-6",
                                       " -sim_ts_type rkn -sim_ts_rtol 1e-6 -sim_ts_atol 1e-6"]),
     "wp_reference": ("strings", 0, 0, [" -sim_ts_type rkn -sim_ts_rkn_scheme dep1210", " -sim_ts_type rkn -sim_ts_rkn_scheme dep86"]),

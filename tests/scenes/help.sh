@@ -24,7 +24,7 @@ for opt in -linear_dense_max -linear_nev -linear_target_offset -linear_nq -linea
 done
 "$NLTOPO" -help -study sweep -sweep_omega_n 1 -sweep_energy_n 1 -sim_t_final 1 -output h3.h5 > help_sweep.txt
 for opt in -sweep_omega_min -sweep_omega_max -sweep_omega_n -sweep_omega_spacing -sweep_omega_list -sweep_energy_min -sweep_energy_max \
-           -sweep_energy_n -sweep_resume -sweep_kcorr -sweep_checkpoint -sweep_progress -sweep_shard -kcorr_nc -kcorr_seed -kcorr_sample_dt -kcorr_record \
+           -sweep_energy_n -sweep_resume -sweep_kcorr -sweep_checkpoint -sweep_progress -sweep_shard -sweep_refine_from -sweep_refine_mcr -sweep_refine_max_points -kcorr_nc -kcorr_seed -kcorr_sample_dt -kcorr_record \
            -kcorr_lags -kcorr_rms_fraction -kcorr_site_stride -lattice_perturbation -lattice_delta -lattice_seed; do
   grep -qE -- "$opt[ :]" help_sweep.txt || { echo "missing in -help: $opt"; exit 1; }
 done
