@@ -419,10 +419,14 @@ protected:
     // Every group (a rank, or -sweep_group_size ranks) integrates whole runs on its own copy of the lattice.
     // The forcing at the default omega and E*: its profile does not depend on them.
     PetscCall(sc_.Build(group_, ForcedScene::Upto::Burst));
-    if (so_.lyapunov) { // the exponent follows the tangent flow of the free, conservative lattice
+    if (so_.lyapunov) { // the exponent follows the tangent flow of the free, conservative lattice (every group alike: one line)
       EffectList free_fx(sc_.lat);
+      PetscErrorCode code = 0;
+      char msg[512] = "";
       PetscCall(BuildEffects(sc_.lat, NULL, &free_fx));
-      PetscCall(free_fx.RequireConservative("-sweep_lyapunov (the tangent flow of the free lattice after the cut-off)"));
+      PetscCall(CaptureError([&]() { return free_fx.RequireConservative("-sweep_lyapunov (the tangent flow of the free lattice after the cut-off)"); }, &code,
+                             msg, sizeof msg));
+      PetscCall(FailTogether(comm_, code, msg));
     }
     // The lattice's frequencies (linear 1.0..2.24 at the defaults, higher when
     // hardened) then map to c = omega dt inside the test's range (pi/5, 4 pi/5).
