@@ -13,6 +13,7 @@
 //
 //   ./build/benchmarks/block_tangents -lattice_cells 2500 -bench_s 8 -bench_repeats 5
 // Any rank count (the products are distributed like nltopo's).
+#include "bench_clock.hpp"
 #include "core/handle.hpp"
 #include "core/log.hpp"
 #include "effects/effect.hpp"
@@ -27,13 +28,6 @@
 using namespace nltopo;
 
 namespace {
-
-double Now()
-{
-  PetscLogDouble t;
-  PetscTime(&t);
-  return t;
-}
 
 double Median(std::vector<double> x)
 {

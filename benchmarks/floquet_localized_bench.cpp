@@ -21,6 +21,7 @@
 //  dense  with -bench_dense (point indices, -1 all): the dense route's leading
 //         pairs (FloquetLeadingDense, -floquet_mf_nev of them)
 // One line per point and method (bench: ...), to be read by a script.
+#include "bench_clock.hpp"
 #include "core/log.hpp"
 #include "stability/floquet_localized.hpp"
 #include "stability/growth.hpp"
@@ -34,13 +35,6 @@
 using namespace nltopo;
 
 namespace {
-
-double Now()
-{
-  PetscLogDouble t;
-  PetscTime(&t);
-  return t;
-}
 
 struct Orbit {
   OwnedVec z0;

@@ -26,6 +26,7 @@
 //          with SLEPc's error)
 // One line per point and method (bench: ...), to be read by a script.
 // Serial (1 rank): the window part reads the state layout [u | v].
+#include "bench_clock.hpp"
 #include "core/handle.hpp"
 #include "stability/floquet.hpp"
 #include "stability/floquet_mf.hpp"
@@ -45,13 +46,6 @@
 using namespace nltopo;
 
 namespace {
-
-double Now()
-{
-  PetscLogDouble t;
-  PetscTime(&t);
-  return t;
-}
 
 struct Orbit {
   OwnedVec z0, dz0;

@@ -1,4 +1,6 @@
 #include "core/log.hpp"
+#include <map>
+#include <string>
 
 namespace nltopo {
 
@@ -30,5 +32,19 @@ PetscErrorCode LogRegister()
 }
 
 const LogEvents &Log() { return g_log; }
+
+PetscErrorCode NamedLogEvent(const char *name, PetscLogEvent *ev)
+{
+  static std::map<std::string, PetscLogEvent> events;
+  PetscFunctionBeginUser;
+  auto it = events.find(name);
+  if (it == events.end()) {
+    PetscLogEvent e;
+    PetscCall(PetscLogEventRegister(name, Log().classid, &e));
+    it = events.emplace(name, e).first;
+  }
+  *ev = it->second;
+  PetscFunctionReturn(0);
+}
 
 } // namespace nltopo

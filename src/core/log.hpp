@@ -16,5 +16,8 @@ struct LogEvents {
 // Registers on first call; later calls return the same ids.
 const LogEvents &Log();
 PetscErrorCode LogRegister();
+// The event of a kernel outside LogEvents (a Floquet route, the Lyapunov
+// exponent, ...), registered under name on its first use: one id per name.
+PetscErrorCode NamedLogEvent(const char *name, PetscLogEvent *ev);
 
 } // namespace nltopo

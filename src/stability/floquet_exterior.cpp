@@ -417,15 +417,6 @@ PetscErrorCode ScatterWhole(const Lattice &lat, const std::vector<cplx> &v, Vec 
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ExteriorEvent(PetscLogEvent *ev)
-{
-  static PetscLogEvent e = -1;
-  PetscFunctionBeginUser;
-  if (e < 0) PetscCall(PetscLogEventRegister("FloquetExterior", Log().classid, &e));
-  *ev = e;
-  PetscFunctionReturn(0);
-}
-
 } // namespace
 
 PetscErrorCode FloquetExterior(PeriodicFlow &flow, Vec z0, PetscReal T, const FloquetOptions &fo, const LocalizedOptions &lo, ExteriorResult *r, Vec vr,
@@ -441,7 +432,7 @@ PetscErrorCode FloquetExterior(PeriodicFlow &flow, Vec z0, PetscReal T, const Fl
              "-floquet_loc_exterior keeps the linear modes of the whole lattice on rank 0: N = %" PetscInt_FMT " sites is beyond %" PetscInt_FMT
              " (-lattice_cells at most 1499, or -floquet_loc_exterior 0)",
              N, kExteriorMaxSites);
-  PetscCall(ExteriorEvent(&ev));
+  PetscCall(NamedLogEvent("FloquetExterior", &ev));
   PetscCall(PetscLogEventBegin(ev, 0, 0, 0, 0));
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   LocalizedRegion reg;

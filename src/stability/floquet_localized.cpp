@@ -53,16 +53,6 @@ PetscErrorCode LocalizedOptionsFromOptions(MPI_Comm comm, LocalizedOptions *o)
   PetscFunctionReturn(0);
 }
 
-// The route's -log_view event (registered on first use).
-static PetscErrorCode LocalizedEvent(PetscLogEvent *ev)
-{
-  static PetscLogEvent e = -1;
-  PetscFunctionBeginUser;
-  if (e < 0) PetscCall(PetscLogEventRegister("FloquetLocal", Log().classid, &e));
-  *ev = e;
-  PetscFunctionReturn(0);
-}
-
 LocalizedRegion MakeLocalizedRegion(PetscInt N, PetscInt iface, const LocalizedOptions &o)
 {
   LocalizedRegion r;
@@ -430,7 +420,7 @@ PetscErrorCode FloquetLocalized(PeriodicFlow &flow, Vec z0, PetscReal T, PetscRe
   char msg[256] = "";
   PetscLogEvent ev;
   PetscFunctionBeginUser;
-  PetscCall(LocalizedEvent(&ev));
+  PetscCall(NamedLogEvent("FloquetLocal", &ev));
   PetscCall(PetscLogEventBegin(ev, 0, 0, 0, 0));
   PetscCheck(lat.Params().layout == Layout::Interface, lat.Comm(), PETSC_ERR_USER,
              "-floquet_mf_which localized damps the tangent equations outside a window around the interface: it needs -lattice_layout interface");

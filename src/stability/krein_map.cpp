@@ -44,9 +44,9 @@ PetscErrorCode KreinSpectrumSetup(const Lattice &lat, KreinSpectrum *s)
   const MPI_Comm comm = lat.Comm();
   const PetscInt N = lat.N(), xs = lat.OwnedStart(), xm = lat.OwnedCount();
   PetscMPIInt size;
-  static PetscLogEvent event = -1; // "KreinMap" in -log_view: the map's only cost beyond O(1) per orbit
+  PetscLogEvent event; // "KreinMap" in -log_view: the map's only cost beyond O(1) per orbit
   PetscFunctionBeginUser;
-  if (event < 0) PetscCall(PetscLogEventRegister("KreinMap", Log().classid, &event));
+  PetscCall(NamedLogEvent("KreinMap", &event));
   PetscCall(PetscLogEventBegin(event, 0, 0, 0, 0));
   s->bands = InfiniteBandEdges(lat.Params());
   // K on every rank: the diagonal and the bonds (K(i, i+1) = -k_i; the sign does not enter the count)

@@ -7,15 +7,6 @@ namespace nltopo {
 
 namespace {
 
-PetscErrorCode LyapunovEvent(PetscLogEvent *ev)
-{
-  static PetscLogEvent e = -1;
-  PetscFunctionBeginUser;
-  if (e < 0) PetscCall(PetscLogEventRegister("Lyapunov", Log().classid, &e));
-  *ev = e;
-  PetscFunctionReturn(0);
-}
-
 // A fixed start vector with weight on every site (positions and velocities),
 // unit norm: the same at every point of a sweep and on any number of ranks
 // (LyapunovStartValue of the natural state index).
@@ -41,7 +32,7 @@ PetscErrorCode FiniteTimeLyapunov(const EffectList &fx, Vec z0, PetscReal window
   *r = LyapunovResult();
   r->window = window;
   if (!(window > 0)) PetscFunctionReturn(0);
-  PetscCall(LyapunovEvent(&ev));
+  PetscCall(NamedLogEvent("Lyapunov", &ev));
   PetscCall(PetscLogEventBegin(ev, 0, 0, 0, 0));
   const PetscInt n = std::max<PetscInt>(1, (PetscInt)std::ceil(window / renorm - 1e-9));
   const PetscReal tau = window / n;
