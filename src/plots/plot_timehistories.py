@@ -84,7 +84,7 @@ def figure(runs, sites=None, window=250.0):
         t_off = float(S.t_off)
         t0 = t_off if t_off >= 0 else max(t[0], t[-1] - window)
         sel = (t >= t0) & (t <= t0 + window)
-        after = " after the cut-off" if t_off >= 0 else " (E* never reached: the last samples)"
+        after = f" (from the cut-off at {t_off:.1f})" if t_off >= 0 else " (E* never reached: the last samples)"
         lim = nltopo_plot.space_time(fig, ax[r, 0], t, u, sel)
         ax[r, 0].set(xlabel="t" + after, ylabel="site")
         ax[r, 0].set_title(rf"E* = {S.energy_star:g}, $\omega_{{ext}}$ = {S.omega_ext:.4f}: u(t) of every site (colours clipped at $\pm${lim:.2g})", fontsize=9)

@@ -24,6 +24,7 @@ const SweepRealField kRealMembers[] = {{"mcr", &SweepPoint::mcr, NanAllowed::IfF
                                        {"seconds", &SweepPoint::seconds, NanAllowed::Never},
                                        {"mcr_error", &SweepPoint::mcr_error, NanAllowed::Always},
                                        {"mcr_spread", &SweepPoint::mcr_spread, NanAllowed::Never},
+                                       {"mcr_dt", &SweepPoint::mcr_dt, NanAllowed::Always},
                                        {"lyapunov", &SweepPoint::lyapunov, NanAllowed::Always},
                                        {"lyapunov_half", &SweepPoint::lyapunov_half, NanAllowed::Always}};
 const SweepIntField kIntMembers[] = {{"reached", &SweepPoint::reached}, {"rescalings", &SweepPoint::rescalings}, {"rhs_evals", &SweepPoint::rhs},

@@ -26,6 +26,7 @@ struct SweepPoint {
   PetscInt reached = 0, rescalings = 0, rhs = 0, steps = 0;
   PetscInt failed = 0; // the run stopped with an error (e.g. diverged); its numbers are NaN
   PetscInt predictable = -1, runs = 1;
+  PetscReal mcr_dt = std::numeric_limits<PetscReal>::quiet_NaN(); // the step of the run(s) behind mcr (NaN without -sweep_mcr_tol)
   // -sweep_lyapunov: the maximal finite-time Lyapunov exponent over the MCR window and over its first half (NaN without),
   // and the regime it and the twins give (codes::kRegime)
   PetscReal lyapunov = std::numeric_limits<PetscReal>::quiet_NaN(), lyapunov_half = std::numeric_limits<PetscReal>::quiet_NaN();

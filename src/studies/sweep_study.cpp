@@ -259,6 +259,8 @@ PetscErrorCode WriteSweep(const std::string &path, const SweepGrid &g, const Swe
   PetscCall(WriteAttr(w, grp, "points_computed", computed)); // by this invocation (a resume computes only the missing ones)
   PetscCall(WriteAttr(w, grp, "kcorr_computed", (PetscInt)so.kcorr));
   PetscCall(WriteAttr(w, grp, "mcr_tol", so.mcr.tol)); // 0: the scene's own integration, one run per point
+  PetscCall(WriteAttr(w, grp, "mcr_dt_phase", so.mcr.dt_phase));
+  PetscCall(WriteAttr(w, grp, "mcr_dt_energy", so.mcr.dt_energy));
   PetscCall(WriteAttr(w, grp, "kcorr_nc", so.kcorr_nc));
   PetscCall(WriteAttr(w, grp, "kcorr_sample_dt", so.kcorr_sample_dt));
   PetscCall(WriteAttr(w, grp, "kcorr_rms_fraction", so.kcorr_rms_fraction));
@@ -302,7 +304,8 @@ PetscErrorCode ComputePoint(const Lattice &lat, const LinearModes &modes, const 
   pf.omega = omega;
   pf.energy = energy;
   ToneBurst burst;
-  SimulationOptions ps = sim;
+  const SimulationOptions first = McrFirstRunOptions(so.mcr, sim, omega, energy, so.bands.optical_top); // -sweep_mcr_dt_phase: the step rule
+  SimulationOptions ps = first;
   AfterCutoffSamples sink(lat.N());
   if (so.kcorr) ps.sample_dt = so.kcorr_sample_dt;
   ps.keep_cutoff_state = so.lyapunov;
@@ -348,7 +351,11 @@ PetscErrorCode ComputePoint(const Lattice &lat, const LinearModes &modes, const 
   }
   pt->mcr = r.mcr, pt->t_off = r.t_off, pt->nl_ratio = r.nl_ratio, pt->amplitude = burst.Amplitude(), pt->energy_final = r.energy_final;
   pt->reached = r.reached, pt->rescalings = rescalings, pt->steps = r.steps;
-  if (so.mcr.tol > 0) PetscCall(RefineMcr(lat, burst, sim, so.mcr, r, pt)); // the scene's options, S as the rule left it
+  if (so.mcr.tol > 0) { // the first run's options, S as the amplitude rule left it
+    PetscReal scene_dt;
+    PetscCall(SimulationGivenStep(&scene_dt));
+    PetscCall(RefineMcr(lat, burst, first, McrFirstStep(first, scene_dt, energy), so.mcr, r, pt));
+  }
   if (so.lyapunov && r.reached && r.z_off) PetscCall(PointLyapunov(lat, ps, so, r, pt));
   PetscCall(PetscTime(&p1));
   pt->seconds = p1 - p0;
@@ -803,6 +810,9 @@ StudyContract SweepStudyContract()
        {"seconds", D, R, "ne x no", "s", "wall time of the point"},
        {"mcr_error", D, R, "ne x no", "1", "estimated relative MCR error (-sweep_mcr_tol)"},
        {"mcr_spread", D, R, "ne x no", "1", "MCR spread over the twins where unpredictable, else 0"},
+       {"mcr_dt", D, R, "ne x no", "time",
+        "-sweep_mcr_tol: the step of the run behind mcr (the finest where the step was halved), or of the twins where unpredictable (NaN "
+        "without)"},
        {"lyapunov", D, R, "ne x no", "1/time",
         "maximal finite-time Lyapunov exponent of the free motion over [t_off, t_final] (Benettin, tangent flow; NaN without "
         "-sweep_lyapunov or where E* was not reached)"},
@@ -820,6 +830,8 @@ StudyContract SweepStudyContract()
        {"points_computed", A, I, "scalar", "1", "points computed by this invocation"},
        {"kcorr_computed", A, I, "scalar", "1", "1 with -sweep_kcorr", codes::kYesNo},
        {"mcr_tol", A, R, "scalar", "1", "-sweep_mcr_tol (0: off)"},
+       {"mcr_dt_phase", A, R, "scalar", "rad", "-sweep_mcr_dt_phase: the step rule's phase per step at tolerance 1e-3 (0: the scene's step)"},
+       {"mcr_dt_energy", A, R, "scalar", "energy", "-sweep_mcr_dt_energy (0: the scene's -sim_dt_quartic_energy)"},
        {"kcorr_nc", A, I, "scalar", "1", "-kcorr_nc"},
        {"kcorr_sample_dt", A, R, "scalar", "time", "-kcorr_sample_dt"},
        {"kcorr_rms_fraction", A, R, "scalar", "1", "-kcorr_rms_fraction"},

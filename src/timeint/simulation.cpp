@@ -38,6 +38,17 @@ PetscErrorCode SimulationOptionsFromOptions(MPI_Comm comm, SimulationOptions *o)
   PetscFunctionReturn(0);
 }
 
+// The initial step of every run (-sim_ts_dt overrides it).
+static const PetscReal kInitialStep = 0.01;
+
+PetscErrorCode SimulationGivenStep(PetscReal *dt)
+{
+  PetscFunctionBeginUser;
+  *dt = kInitialStep;
+  PetscCall(PetscOptionsGetReal(NULL, NULL, "-sim_ts_dt", dt, NULL));
+  PetscFunctionReturn(0);
+}
+
 namespace {
 
 // The energy of the TS solution z at (t, step), computed once: the event
@@ -444,7 +455,7 @@ PetscErrorCode CreateRunTS(const EffectList &fx, const SimulationOptions &o, Run
   PetscCall(TSSetExactFinalTime(*ts, TS_EXACTFINALTIME_MATCHSTEP));
   PetscCall(TSSetMaxTime(*ts, o.t_final));
   PetscCall(TSSetMaxSteps(*ts, PETSC_MAX_INT));
-  PetscCall(TSSetTimeStep(*ts, 0.01)); // initial step; -sim_ts_dt overrides (the fixed step of basicsymplectic)
+  PetscCall(TSSetTimeStep(*ts, kInitialStep)); // -sim_ts_dt overrides (the fixed step of basicsymplectic)
   PetscCall(TSSetErrorIfStepFails(*ts, PETSC_FALSE));
   PetscCall(TSSetPostStep(*ts, PostStep));
   PetscCall(TSSetFromOptions(*ts));
@@ -501,13 +512,14 @@ PetscErrorCode SetFixedStep(const EffectList &fx, const SimulationOptions &o, Ru
       if (E > o.dt_quartic_energy) scale *= std::pow(o.dt_quartic_energy / E, 0.25);
     }
     PetscCall(TSGetTimeStep(ts, &dt));
+    if (o.dt_base > 0) dt = o.dt_base;
     // a step so short that the run could never end (a tiny -sim_dt_quartic_energy) is refused, not run
     const double steps = (double)(o.t_final - o.t_start) / (dt * scale);
     PetscCheck(std::isfinite(steps) && steps <= kMaxFixedSteps, comm, PETSC_ERR_USER,
                "-sim_ts_dt %g, scaled by %g (-sim_dt_quartic_energy %g), needs %.3g steps for -sim_t_final %g: more than %.0e; raise "
                "-sim_ts_dt or -sim_dt_quartic_energy",
                (double)dt, (double)scale, (double)o.dt_quartic_energy, steps, (double)o.t_final, kMaxFixedSteps);
-    if (scale != 1) PetscCall(TSSetTimeStep(ts, dt * scale));
+    if (scale != 1 || o.dt_base > 0) PetscCall(TSSetTimeStep(ts, dt * scale));
   }
   if (splitting) {
     // Fixed step, shortened to divide the run into equal steps; the cut-off is

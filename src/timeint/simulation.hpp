@@ -17,10 +17,14 @@ struct SimulationOptions {
   PetscReal progress = 10;         // wall seconds between progress lines (0: none)
   PetscReal dt_quartic_energy = 0; // fixed-step types: above this energy the step shrinks as (this / E)^(1/4) (0: off)
   PetscReal dt_scale = 1;          // fixed-step types: the step times this (set by code: the sweep's accuracy ladder)
+  PetscReal dt_base = 0;           // fixed-step types: this step in place of -sim_ts_dt (set by code: the sweep's step rule; 0: -sim_ts_dt)
   bool abort_if_missed = false;    // end the run at the end of the burst (t0 + 3 tau) if E* was not reached
   bool keep_cutoff_state = false;  // keep the state at the cut-off in SimulationResult::z_off (set by code: the sweep's Lyapunov exponent)
 };
 PetscErrorCode SimulationOptionsFromOptions(MPI_Comm comm, SimulationOptions *o);
+// The step -sim_ts_dt gives (the initial step Simulate sets when it is not given):
+// a fixed-step type's step before dt_base, dt_scale and the quartic shrinking.
+PetscErrorCode SimulationGivenStep(PetscReal *dt);
 
 // Receives the state at every sample time (t = 0, dt_s, 2 dt_s, ...).
 class SampleSink {

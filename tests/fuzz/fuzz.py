@@ -148,7 +148,7 @@ T = {
     "floquet_mf_deflate": ("bool",), "floquet_mf_dense_max": ("int", 0, 4096),
     "sim_dt_quartic_energy": ("real", 0.0, 10.0),
     "sweep_mcr_tol": ("real", 0.0, 0.1), "sweep_mcr_levels": ("int", 0, 2), "sweep_mcr_twins": ("int", 1, 3),
-    "sweep_mcr_twin_eps": ("real", 1e-12, 1e-6),
+    "sweep_mcr_twin_eps": ("real", 1e-12, 1e-6), "sweep_mcr_dt_phase": ("real", 0.0, 1.0), "sweep_mcr_dt_energy": ("real", 0.0, 100.0),
     "sweep_group_size": ("int", 1, 2), "sweep_lyapunov": ("bool",), "sweep_lyapunov_renorm": ("real", 1.0, 50.0), "sweep_lyapunov_efolds": ("real", 1.0, 50.0),
     "sweep_refine_from": ("path",), "sweep_refine_mcr": ("real", 1e-3, 0.5), "sweep_refine_kcorr": ("real", 0.01, 1.0),
     "sweep_refine_ratio": ("real", 0.1, 5.0), "sweep_refine_max_points": ("int", 0, 20),

@@ -101,7 +101,7 @@ TEST_CASE("the continuation record and the sweep's fields bind their schemas exa
   CHECK(cols.size() == schema.size());
   CHECK(ContinuationVariants(FloquetKind::MatrixFree).size() == 2);
   CHECK(SweepFieldsUnbound().empty());
-  CHECK(SweepRealFields().size() == 11); // with lyapunov, lyapunov_half (-sweep_lyapunov)
+  CHECK(SweepRealFields().size() == 12); // with mcr_dt (-sweep_mcr_tol), lyapunov, lyapunov_half (-sweep_lyapunov)
   CHECK(SweepIntFields().size() == 8); // with regime
   CHECK(std::string(SweepRealFields()[0].name) == "mcr"); // the journal's first value
 }

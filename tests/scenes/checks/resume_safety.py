@@ -49,7 +49,7 @@ def corrupt(source, group_name, *changes):
             d[...] = a
 
 
-SWEEP_REALS = ["mcr", "t_off", "kcorr", "nl_ratio", "amplitude", "energy_final", "seconds", "mcr_error", "mcr_spread", "lyapunov", "lyapunov_half"]
+SWEEP_REALS = ["mcr", "t_off", "kcorr", "nl_ratio", "amplitude", "energy_final", "seconds", "mcr_error", "mcr_spread", "mcr_dt", "lyapunov", "lyapunov_half"]
 SWEEP_INTS = ["reached", "rescalings", "rhs_evals", "steps", "failed", "predictable", "mcr_runs", "regime"]
 
 
