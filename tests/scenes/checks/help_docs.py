@@ -4,7 +4,8 @@
 Every relative markdown link ([text](target) and ![alt](target)) outside code in
 README.md and docs/**/*.md must name an existing file (or directory) of the
 source tree, and its #anchor, if any, a heading of the target page (GitHub's
-slugs); README.md must link every page under docs/."""
+slugs); README.md must link every page under docs/ and name every script of
+src/plots/ (issue 33: the README lists every plot script)."""
 import glob
 import os
 import re
@@ -12,9 +13,6 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from scene_check import main, require
 
-# Temporary (issue 33 merge): pages that other branches of the issue add. A link
-# to one of them may not resolve yet on this branch; the lead empties this list
-# after the merge.
 LINK = re.compile(r"!?\[(?:[^\]\[]|\[[^\]]*\])*\]\(([^)\s]+)(?:\s+\"[^\"]*\")?\)")
 
 
@@ -67,7 +65,12 @@ def links(src):
     unlinked = sorted(docs - readme_targets)
     require(not unlinked, "docs pages README.md does not link", unlinked)
     require(n >= 100, "fewer links than expected: is the link pattern still right?", n)
-    print("docs links OK: %d relative links in %d pages, every docs page linked from README.md" % (n, len(pages)))
+    readme = open(os.path.join(src, "README.md"), encoding="utf-8").read()
+    scripts = sorted(os.path.relpath(p, src) for p in glob.glob(os.path.join(src, "src", "plots", "*.py")))
+    unnamed = [s for s in scripts if "`%s`" % s not in readme]
+    require(not unnamed, "plot scripts README.md does not list", unnamed)
+    print("docs links OK: %d relative links in %d pages, every docs page linked from README.md, its %d plot scripts listed"
+          % (n, len(pages), len(scripts)))
 
 
 if __name__ == "__main__":
