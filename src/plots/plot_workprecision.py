@@ -11,6 +11,7 @@ import re
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
+from matplotlib.transforms import Bbox
 import numpy as np
 import nltopo_plot
 
@@ -55,13 +56,18 @@ def accuracy_labels(g):
 
 
 def label_points(ax, xs, ys, labels, colour):
-    """Each point's label beside it: right of the point, or left where the
-    right one would overlap a label already placed (display boxes)."""
+    """Each point's label beside it: right of the point, or left, below or
+    above where that one would overlap a label already placed, the legend or
+    a marker of any curve (display boxes)."""
     fig = ax.figure
     r = fig.canvas.get_renderer()
     placed = [t.get_window_extent(r) for t in ax.texts if t.get_gid() == "point_label"]
     if ax.get_legend() is not None:
         placed.append(ax.get_legend().get_window_extent(r))
+    for line in ax.lines:  # every marker, as a box of its size
+        half = line.get_markersize() * fig.dpi / 72 / 2
+        for px, py in ax.transData.transform(np.column_stack([line.get_xdata(), line.get_ydata()])):
+            placed.append(Bbox.from_extents(px - half, py - half, px + half, py + half))
     for x, y, lab in zip(xs, ys, labels):
         for dx, dy, ha in ((5, 3, "left"), (-5, 3, "right"), (5, -9, "left"), (-5, -9, "right"), (5, 10, "left"), (-5, 10, "right")):
             t = ax.annotate(lab, (x, y), xytext=(dx, dy), textcoords="offset points", fontsize=6, ha=ha, color=colour, gid="point_label")

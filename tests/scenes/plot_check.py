@@ -32,7 +32,7 @@ every panel (every axes but colorbars) against four rules:
    row (a text with gid "event_row <n>") for each number and no other.
 7. point labels (the work-precision points): every text with gid
    "point_label" stands beside a point of a line of its panel, no two of
-   them overlap, and with --point-labels every point of every labelled
+   them overlap, none covers a marker, and with --point-labels every point of every labelled
    marker line of every panel has one.
 A panel with its axes turned off (a table, a note) is checked only for
 holding text. Options before the script name what a figure must show:
@@ -289,9 +289,16 @@ def check_point_labels(ax, name, every):
             raise PlotCheckError(f"panel '{name}': the label '{t.get_text()}' stands beside no point of the panel's lines (rule 7, point labels)")
     if labels:
         r = ax.figure.canvas.get_renderer()
-        pair = _overlaps([list(t.get_window_extent(r).extents) for t in labels])
+        boxes = [t.get_window_extent(r) for t in labels]
+        pair = _overlaps([list(b.extents) for b in boxes])
         if pair is not None:
             raise PlotCheckError(f"panel '{name}': the labels '{labels[pair[0]].get_text()}' and '{labels[pair[1]].get_text()}' overlap (rule 7, point labels)")
+        for l, p in pts:  # nor does a label cover a marker
+            half = l.get_markersize() * ax.figure.dpi / 72 / 2
+            for (px, py), xy in zip(ax.transData.transform(p), p):
+                for t, b in zip(labels, boxes):
+                    if b.x0 < px + half and px - half < b.x1 and b.y0 < py + half and py - half < b.y1:
+                        raise PlotCheckError(f"panel '{name}': the label '{t.get_text()}' covers the marker at {tuple(xy)} of '{l.get_label()}' (rule 7, point labels)")
     return len(labels)
 
 

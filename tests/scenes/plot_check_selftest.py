@@ -137,6 +137,13 @@ ax.annotate("tol 1e-6", (1e-6, 0.1), xytext=(5, 3), textcoords="offset points", 
 ax.annotate("tol 1e-8", (1.1e-6, 0.1), xytext=(5, 3), textcoords="offset points", gid="point_label")
 ax.set(xlabel="error", ylabel="wall", xlim=(1e-9, 1e-3))
 """, "overlap (rule 7"),
+    "point_label_covers_marker": ("""
+fig, ax = plt.subplots()
+ax.loglog([1e-6, 1e-8], [0.1, 0.3], "o-", label="rk 5dp")
+ax.annotate("tol 1e-6", (1e-6, 0.1), xytext=(0, 0), textcoords="offset points", gid="point_label")
+ax.annotate("tol 1e-8", (1e-8, 0.3), xytext=(5, 3), textcoords="offset points", gid="point_label")
+ax.set(xlabel="error", ylabel="wall", xlim=(1e-9, 1e-3))
+""", "covers the marker at (1e-06, 0.1) of 'rk 5dp' (rule 7"),
     "point_label_off_the_points": ("""
 fig, ax = plt.subplots()
 ax.loglog([1e-6, 1e-8], [0.1, 0.3], "o-", label="rk 5dp")
