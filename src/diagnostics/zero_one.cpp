@@ -1,6 +1,7 @@
 #include "diagnostics/zero_one.hpp"
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <random>
 
 namespace nltopo {
@@ -96,20 +97,28 @@ void TwiceCos(PetscReal c, PetscInt mmax, PetscReal *w)
   }
 }
 
-// The batched kernel (ScoreSites) scores kLanes sites at once: a V holds one
-// value of each lane (GCC/Clang vector extension; SSE2 on x86-64), and every
-// loop below does LagCorrelations' and Score's arithmetic lane by lane and in
-// their order, so that its K are Score's bit for bit; what it changes is which
-// sums run side by side (independent accumulators, lanes, lags, frequencies).
-typedef PetscReal V __attribute__((vector_size(16)));
-constexpr PetscInt kLanes = sizeof(V) / sizeof(PetscReal), kLagBlock = 3, kFreqBlock = 4;
+// The batched kernel (ScoreSites) scores Lanes<V>() sites at once: a V holds
+// one value of each lane (GCC/Clang vector extension), and every loop below
+// does LagCorrelations' and Score's arithmetic lane by lane and in their order,
+// so that its K are Score's bit for bit; what it changes is which sums run side
+// by side (lanes, lags, frequencies). Two lane widths: two (SSE2 on x86-64,
+// any target), four under target("avx") where the CPU has it (AVX has no
+// fused multiply-add: the same roundings).
+typedef PetscReal V2 __attribute__((vector_size(16)));
+#if defined(__x86_64__) && defined(__GNUC__)
+#define NLTOPO_ZERO_ONE_AVX 1
+typedef PetscReal V4 __attribute__((vector_size(32)));
+#endif
+template <class V> constexpr PetscInt Lanes() { return sizeof(V) / sizeof(PetscReal); }
+constexpr PetscInt kLagBlock = 3, kFreqBlock = 4;
+#define NLTOPO_INLINE inline __attribute__((always_inline)) // into the wrappers of each lane width
 
 // LagCorrelations' partial sums beyond the head: for d < mmax, the lagged
 // products y_k = x_k x_{k+d} from k = a = mmax - d + 1 on go to four sums t_i
 // (k = a + 4q + i, q < Q = (len - a + 1) / 4), the left-over k <= len to t0, and
 // T[d] = (t0 + t1) + (t2 + t3). Indexed by u = k + d, the term goes to
 // t_{(u - mmax - 1) mod 4} whatever d: kLagBlock lags share one pass over u.
-void BlockPartialSums(const V *x, PetscInt len, PetscInt mmax, V *T)
+template <class V> NLTOPO_INLINE void BlockPartialSums(const V *x, PetscInt len, PetscInt mmax, V *T)
 {
   const PetscInt u0 = mmax + 1;
   for (PetscInt d0 = 0; d0 < mmax; d0 += kLagBlock) {
@@ -136,13 +145,12 @@ void BlockPartialSums(const V *x, PetscInt len, PetscInt mmax, V *T)
   }
 }
 
-// LagCorrelations for the lanes of x, given BlockPartialSums' T: C[li * mmax + d] = C_{lag[li]}(d).
-// The head and tail chains of one d run side by side.
-void BlockLagCorrelations(const V *x, PetscInt len, const std::vector<PetscInt> &lag, PetscInt mmax, const V *T, std::vector<V> &C, std::vector<V> &work)
+// LagCorrelations for the lanes of x, given BlockPartialSums' T: C[li * mmax + d] = C_{lag[li]}(d)
+// (work: 4 (mmax + 1)). The head and tail chains of one d run side by side.
+template <class V> NLTOPO_INLINE void BlockLagCorrelations(const V *x, PetscInt len, const PetscInt *lag, PetscInt nl, PetscInt mmax, const V *T, V *C, V *work)
 {
-  C.assign(lag.size() * mmax, V{});
-  work.resize(4 * (mmax + 1));
-  V *head = work.data(), *head_w = head + mmax + 1, *tail = head_w + mmax + 1, *tail_w = tail + mmax + 1;
+  for (PetscInt i = 0; i < nl * mmax; i++) C[i] = V{};
+  V *head = work, *head_w = head + mmax + 1, *tail = head_w + mmax + 1, *tail_w = tail + mmax + 1;
   for (PetscInt d = 0; d < mmax; d++) {
     V h = {}, hw = {}, t = {}, tw = {};
     head[0] = head_w[0] = tail[0] = tail_w[0] = h;
@@ -157,7 +165,7 @@ void BlockLagCorrelations(const V *x, PetscInt len, const std::vector<PetscInt> 
       }
     }
     const V total = head[mmax - d] + T[d];
-    for (size_t li = 0; li < lag.size(); li++) {
+    for (PetscInt li = 0; li < nl; li++) {
       const PetscInt w = lag[li] - d; // m - d
       if (w <= 0) continue;
       C[li * mmax + d] = head_w[w] + (PetscReal)w * (total - head[w]) + ((PetscReal)w * tail[w - 1] - tail_w[w - 1]);
@@ -213,54 +221,92 @@ PetscReal ZeroOneTest::Score(const PetscReal *phi, PetscInt n, PetscInt stride) 
   return Median(K);
 }
 
-// Score for blocks of kLanes sites (the last block zero padded).
-void ZeroOneTest::ScoreSites(const PetscReal *samples, PetscInt n, PetscInt N, const std::vector<PetscInt> &sites, std::vector<PetscReal> &K) const
+namespace {
+// One ScoreSites call: the record, the lags, what depends on c alone, and
+// scratch for ScoreBlocks at the widest lanes (aligned to 64 bytes).
+struct BlockProblem {
+  const PetscReal *samples;
+  PetscInt n, N, len, mmax, nl, nc, ncpad;
+  const PetscInt *sites, *lag;
+  size_t nsites;
+  const PetscReal *cosd, *osc, *osc1; // 2 cos(d c) [ci * mmax + d] (zero rows pad nc to ncpad), 1 - cos(m c), 1 - cos(c)
+  PetscReal *scratch;
+  PetscReal *K;
+};
+
+// ScoreBlocks' scratch, in units of V (whatever its lanes).
+size_t ScratchSize(const BlockProblem &p) { return (size_t)p.n + p.mmax + p.nl * p.mmax + 4 * (p.mmax + 1) + p.ncpad * p.nl + p.ncpad * p.mmax; }
+
+template <class V> NLTOPO_INLINE void ScoreBlocks(const BlockProblem &p)
 {
-  const PetscInt ncut = n / 10, len = n - ncut;
-  const std::vector<PetscInt> lag = Lags(n);
-  const PetscInt mmax = *std::max_element(lag.begin(), lag.end()), nl = (PetscInt)lag.size(), nc = (PetscInt)c_.size();
-  const PetscInt ncpad = (nc + kFreqBlock - 1) / kFreqBlock * kFreqBlock;
-  // What depends on c alone: 2 cos(d c) in every lane (zero rows pad nc), 1 - cos(m c) and 1 - cos(c).
-  std::vector<V> cosd(ncpad * mmax, V{});
-  std::vector<PetscReal> w(mmax), osc(nc * nl), osc1(nc);
-  for (PetscInt ci = 0; ci < nc; ci++) {
-    TwiceCos(c_[ci], mmax, w.data());
-    for (PetscInt dd = 0; dd < mmax; dd++) cosd[ci * mmax + dd] = V{} + w[dd];
-    for (PetscInt li = 0; li < nl; li++) osc[ci * nl + li] = 1 - std::cos(lag[li] * c_[ci]);
-    osc1[ci] = 1 - std::cos(c_[ci]);
-  }
-  std::vector<V> x(n), T(mmax), C, work, S(ncpad * nl);
+  constexpr PetscInt L = Lanes<V>();
+  const PetscInt n = p.n, N = p.N, len = p.len, mmax = p.mmax, nl = p.nl, nc = p.nc, ncpad = p.ncpad;
+  V *x = reinterpret_cast<V *>(p.scratch), *T = x + n, *C = T + mmax, *work = C + nl * mmax, *S = work + 4 * (mmax + 1), *cosv = S + ncpad * nl;
+  for (PetscInt i = 0; i < ncpad * mmax; i++) cosv[i] = V{} + p.cosd[i]; // in every lane
   std::vector<PetscReal> D(nl), Kc(nc);
-  K.assign(sites.size(), 0.0);
-  for (size_t b = 0; b < sites.size(); b += kLanes) {
-    const PetscInt nb = std::min((PetscInt)(sites.size() - b), kLanes);
+  const std::vector<PetscInt> lag(p.lag, p.lag + nl);
+  for (size_t b = 0; b < p.nsites; b += L) {
+    const PetscInt nb = std::min((PetscInt)(p.nsites - b), L);
     V mean = {};
     for (PetscInt j = 0; j < n; j++) {
-      for (PetscInt s = 0; s < kLanes; s++) x[j][s] = s < nb ? samples[j * N + sites[b + s]] : 0;
+      for (PetscInt s = 0; s < L; s++) x[j][s] = s < nb ? p.samples[(size_t)j * N + p.sites[b + s]] : 0;
       mean += x[j];
     }
     mean /= (PetscReal)n;
-    BlockPartialSums(x.data(), len, mmax, T.data());
-    BlockLagCorrelations(x.data(), len, lag, mmax, T.data(), C, work);
+    BlockPartialSums(x, len, mmax, T);
+    BlockLagCorrelations(x, len, p.lag, nl, mmax, T, C, work);
     // S_c(m) = C_m(0) + sum_{d=1}^{m-1} 2 cos(d c) C_m(d), kFreqBlock c side by side.
     for (PetscInt li = 0; li < nl; li++) {
-      const V *Cm = C.data() + li * mmax;
+      const V *Cm = C + li * mmax;
       for (PetscInt c0 = 0; c0 < ncpad; c0 += kFreqBlock) {
         V acc[kFreqBlock];
         for (PetscInt j = 0; j < kFreqBlock; j++) acc[j] = Cm[0];
-        for (PetscInt dd = 1; dd < lag[li]; dd++)
-          for (PetscInt j = 0; j < kFreqBlock; j++) acc[j] += cosd[(c0 + j) * mmax + dd] * Cm[dd];
+        for (PetscInt dd = 1; dd < p.lag[li]; dd++)
+          for (PetscInt j = 0; j < kFreqBlock; j++) acc[j] += cosv[(c0 + j) * mmax + dd] * Cm[dd];
         for (PetscInt j = 0; j < kFreqBlock; j++) S[(c0 + j) * nl + li] = acc[j];
       }
     }
     for (PetscInt s = 0; s < nb; s++) {
       for (PetscInt ci = 0; ci < nc; ci++) {
-        for (PetscInt li = 0; li < nl; li++) D[li] = S[ci * nl + li][s] / len - mean[s] * mean[s] * osc[ci * nl + li] / osc1[ci];
+        for (PetscInt li = 0; li < nl; li++) D[li] = S[ci * nl + li][s] / len - mean[s] * mean[s] * p.osc[ci * nl + li] / p.osc1[ci];
         Kc[ci] = Correlation(lag, D);
       }
-      K[b + s] = Median(Kc);
+      p.K[b + s] = Median(Kc);
     }
   }
+}
+
+void ScoreBlocks2(const BlockProblem &p) { ScoreBlocks<V2>(p); }
+#if defined(NLTOPO_ZERO_ONE_AVX)
+__attribute__((target("avx"))) void ScoreBlocks4(const BlockProblem &p) { ScoreBlocks<V4>(p); }
+#endif
+} // namespace
+
+// Score for blocks of sites (the last block zero padded).
+void ZeroOneTest::ScoreSites(const PetscReal *samples, PetscInt n, PetscInt N, const std::vector<PetscInt> &sites, std::vector<PetscReal> &K, bool wide) const
+{
+  const std::vector<PetscInt> lag = Lags(n);
+  BlockProblem p;
+  p.samples = samples, p.n = n, p.N = N, p.len = n - n / 10, p.sites = sites.data(), p.nsites = sites.size(), p.lag = lag.data();
+  p.mmax = *std::max_element(lag.begin(), lag.end()), p.nl = (PetscInt)lag.size(), p.nc = (PetscInt)c_.size();
+  p.ncpad = (p.nc + kFreqBlock - 1) / kFreqBlock * kFreqBlock;
+  std::vector<PetscReal> cosd(p.ncpad * p.mmax, 0.0), osc(p.nc * p.nl), osc1(p.nc);
+  for (PetscInt ci = 0; ci < p.nc; ci++) {
+    TwiceCos(c_[ci], p.mmax, cosd.data() + ci * p.mmax);
+    for (PetscInt li = 0; li < p.nl; li++) osc[ci * p.nl + li] = 1 - std::cos(lag[li] * c_[ci]);
+    osc1[ci] = 1 - std::cos(c_[ci]);
+  }
+  p.cosd = cosd.data(), p.osc = osc.data(), p.osc1 = osc1.data();
+  std::vector<PetscReal> scratch(4 * ScratchSize(p) + 8);
+  p.scratch = reinterpret_cast<PetscReal *>((reinterpret_cast<uintptr_t>(scratch.data()) + 63) & ~(uintptr_t)63);
+  K.assign(sites.size(), 0.0);
+  p.K = K.data();
+#if defined(NLTOPO_ZERO_ONE_AVX)
+  static const bool avx = __builtin_cpu_supports("avx");
+  if (wide && avx) return ScoreBlocks4(p);
+#endif
+  (void)wide;
+  ScoreBlocks2(p);
 }
 
 PetscReal ZeroOneTest::ScoreMax(const PetscReal *samples, PetscInt n, PetscInt N, const std::vector<PetscInt> &sites) const

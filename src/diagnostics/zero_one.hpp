@@ -26,11 +26,12 @@ public:
   PetscReal Score(const PetscReal *phi, PetscInt n, PetscInt stride = 1) const;
   // K of each of the given sites of a record of n samples of N sites, row-major
   // (samples[j * N + s], the sweep's AfterCutoffSamples): K[i] equals
-  // Score(samples + sites[i], n, N) up to rounding (the sums run in another
-  // order). The sites are scored in blocks, the inner loops running across a
-  // block's sites, and what does not depend on the site (the cos(d c) tables,
-  // the oscillatory term) is computed once per call. n must be >= 20.
-  void ScoreSites(const PetscReal *samples, PetscInt n, PetscInt N, const std::vector<PetscInt> &sites, std::vector<PetscReal> &K) const;
+  // Score(samples + sites[i], n, N), the same sums in the same order. The sites
+  // are scored in blocks, the inner loops running across a block's sites, and
+  // what does not depend on the site (the cos(d c) tables, the oscillatory
+  // term) is computed once per call. n must be >= 20.
+  // wide: blocks of four sites where the CPU has AVX, else (and with false) of two.
+  void ScoreSites(const PetscReal *samples, PetscInt n, PetscInt N, const std::vector<PetscInt> &sites, std::vector<PetscReal> &K, bool wide = true) const;
   // The largest K over the sites (ScoreSites); -1, the lowest K, if sites is empty.
   PetscReal ScoreMax(const PetscReal *samples, PetscInt n, PetscInt N, const std::vector<PetscInt> &sites) const;
   const std::vector<PetscReal> &Frequencies() const { return c_; }

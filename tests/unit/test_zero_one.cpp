@@ -142,16 +142,18 @@ TEST_CASE("0-1 test: sites scored in blocks equal Score per site", "[diagnostics
     for (PetscInt lags : {20, 0}) {
       const ZeroOneTest test(13, 5, lags); // 13 frequencies: not a multiple of the frequency block
       for (const std::vector<PetscInt> &sites : {std::vector<PetscInt>{0, 1, 2, 3, 4, 5, 6, 7, 8}, std::vector<PetscInt>{8, 2, 5}, std::vector<PetscInt>{5}}) {
-        std::vector<PetscReal> K;
-        test.ScoreSites(x.data(), n, N, sites, K);
-        REQUIRE(K.size() == sites.size());
-        PetscReal kmax = -1;
-        for (size_t i = 0; i < sites.size(); i++) {
-          const PetscReal k = test.Score(x.data() + sites[i], n, N);
-          INFO("n " << n << ", lags " << lags << ", site " << sites[i] << ": blocked " << K[i] << ", Score " << k);
-          REQUIRE(std::abs(K[i] - k) <= 1e-12);
-          kmax = std::max(kmax, k);
+        for (bool wide : {true, false}) { // four lanes (where the CPU has AVX) and two
+          std::vector<PetscReal> K;
+          test.ScoreSites(x.data(), n, N, sites, K, wide);
+          REQUIRE(K.size() == sites.size());
+          for (size_t i = 0; i < sites.size(); i++) {
+            const PetscReal k = test.Score(x.data() + sites[i], n, N);
+            INFO("n " << n << ", lags " << lags << ", wide " << wide << ", site " << sites[i] << ": blocked " << K[i] << ", Score " << k);
+            REQUIRE(std::abs(K[i] - k) <= 1e-12);
+          }
         }
+        PetscReal kmax = -1;
+        for (PetscInt s : sites) kmax = std::max(kmax, test.Score(x.data() + s, n, N));
         REQUIRE(std::abs(test.ScoreMax(x.data(), n, N, sites) - kmax) <= 1e-12);
       }
       REQUIRE(test.ScoreMax(x.data(), n, N, {}) == -1);
