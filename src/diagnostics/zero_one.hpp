@@ -24,9 +24,22 @@ public:
   ZeroOneTest(PetscInt nc, unsigned long seed, PetscInt lags = 0);
   // K of phi[0], phi[stride], ..., phi[(n-1) stride]. n must be >= 20.
   PetscReal Score(const PetscReal *phi, PetscInt n, PetscInt stride = 1) const;
+  // K of each of the given sites of a record of n samples of N sites, row-major
+  // (samples[j * N + s], the sweep's AfterCutoffSamples): K[i] equals
+  // Score(samples + sites[i], n, N), the same sums in the same order. The sites
+  // are scored in blocks, the inner loops running across a block's sites, and
+  // what does not depend on the site (the cos(d c) tables, the oscillatory
+  // term) is computed once per call. n must be >= 20.
+  // wide: blocks of four sites where the CPU has AVX, else (and with false) of two.
+  void ScoreSites(const PetscReal *samples, PetscInt n, PetscInt N, const std::vector<PetscInt> &sites, std::vector<PetscReal> &K, bool wide = true) const;
+  // The largest K over the sites (ScoreSites); -1, the lowest K, if sites is empty.
+  PetscReal ScoreMax(const PetscReal *samples, PetscInt n, PetscInt N, const std::vector<PetscInt> &sites) const;
   const std::vector<PetscReal> &Frequencies() const { return c_; }
 
 private:
+  // The lags m at which D(m) is evaluated for a series of n samples (ascending).
+  std::vector<PetscInt> Lags(PetscInt n) const;
+
   std::vector<PetscReal> c_;
   PetscInt lags_;
 };

@@ -118,3 +118,58 @@ TEST_CASE("0-1 test: the lag-correlation sums equal the direct definition", "[di
     }
   }
 }
+
+TEST_CASE("0-1 test: sites scored in blocks equal Score per site", "[diagnostics][serial]")
+{
+  // A samples-by-sites record (row-major, as the sweep's sink holds it): random
+  // sites, a periodic one with a mean, a logistic-map one (chaotic) and a
+  // quiet drift; an odd number of sites so that the last block is padded.
+  const PetscInt N = 9;
+  unsigned long r = 987654321;
+  auto uniform = [&r]() {
+    r = r * 6364136223846793005UL + 1442695040888963407UL;
+    return (double)(r >> 11) / 9007199254740992.0;
+  };
+  for (PetscInt n : {20, 37, 1654}) { // the shortest record, a few lags only, the sweep's record
+    std::vector<PetscReal> x(n * N);
+    PetscReal l = 0.3141592;
+    for (PetscInt j = 0; j < n; j++) {
+      for (PetscInt s = 0; s < N; s++) x[j * N + s] = uniform() - 0.5;
+      x[j * N + 2] = 0.4 + std::cos(0.9 * j);
+      x[j * N + 5] = l, l = 4 * l * (1 - l);
+      x[j * N + 7] = 1e-6 * (1 + 1e-3 * j) + 1e-9 * std::sin(2.1 * j);
+    }
+    for (PetscInt lags : {20, 0}) {
+      const ZeroOneTest test(13, 5, lags); // 13 frequencies: not a multiple of the frequency block
+      for (const std::vector<PetscInt> &sites : {std::vector<PetscInt>{0, 1, 2, 3, 4, 5, 6, 7, 8}, std::vector<PetscInt>{8, 2, 5}, std::vector<PetscInt>{5}}) {
+        for (bool wide : {true, false}) { // four lanes (where the CPU has AVX) and two
+          std::vector<PetscReal> K;
+          test.ScoreSites(x.data(), n, N, sites, K, wide);
+          REQUIRE(K.size() == sites.size());
+          for (size_t i = 0; i < sites.size(); i++) {
+            const PetscReal k = test.Score(x.data() + sites[i], n, N);
+            INFO("n " << n << ", lags " << lags << ", wide " << wide << ", site " << sites[i] << ": blocked " << K[i] << ", Score " << k);
+            REQUIRE(std::abs(K[i] - k) <= 1e-12);
+          }
+        }
+        PetscReal kmax = -1;
+        for (PetscInt s : sites) kmax = std::max(kmax, test.Score(x.data() + s, n, N));
+        REQUIRE(std::abs(test.ScoreMax(x.data(), n, N, sites) - kmax) <= 1e-12);
+      }
+      REQUIRE(test.ScoreMax(x.data(), n, N, {}) == -1);
+    }
+  }
+  // The known characters survive batching: the logistic site reads chaotic, the periodic one regular.
+  const PetscInt n = 1654;
+  std::vector<PetscReal> y(2 * n);
+  y[1] = 0.3141592;
+  for (PetscInt j = 0; j < n; j++) {
+    y[2 * j] = 0.4 + std::cos(0.9 * j);
+    if (j) y[2 * j + 1] = 4 * y[2 * j - 1] * (1 - y[2 * j - 1]);
+  }
+  std::vector<PetscReal> K;
+  ZeroOneTest(32, 3, 20).ScoreSites(y.data(), n, 2, {0, 1}, K);
+  INFO("periodic K = " << K[0] << ", logistic K = " << K[1]);
+  REQUIRE(std::abs(K[0]) < 0.1);
+  REQUIRE(K[1] > 0.9);
+}
