@@ -1,0 +1,143 @@
+// Two-parameter continuation of located events (stability/codim2.hpp, issue 37)
+// against exact truth: -lattice_cubic is degenerate. With u = lambda w the
+// equations of motion at Gamma are those at Gamma lambda^2 for w, and E maps
+// to E / lambda^2 at the same omega and multipliers (the fixed-step discrete
+// map too: it is equivariant under the scaling). So every event curve in
+// (E, Gamma) is E Gamma = const at constant omega.
+#include "branch_record.hpp"
+#include "core/gather.hpp"
+#include "helpers.hpp"
+#include "nnm_fixture.hpp"
+#include "stability/bifurcation_locator.hpp"
+#include "stability/codim2.hpp"
+#include <cmath>
+
+using namespace nltopo;
+using namespace nltopo::test;
+
+namespace {
+
+// The energy maximum (fold, direction +1) of mode 0 of the N = 6 interface
+// lattice at Gamma (its E rises to ~66 x 0.5 / Gamma at omega 0.96852, then
+// falls: test_bifurcations.cpp), located to 1e-9 in omega; with its orbit.
+struct FoldOfMode0 {
+  NnmFixture nf;
+  BifurcationLocator loc;
+  std::vector<BifurcationEvent> ev;
+  PetscInt index = -1;
+  PetscErrorCode Locate(PetscReal Gamma)
+  {
+    LatticeParams p;
+    PetscFunctionBeginUser;
+    p.cells = 1, p.Gamma = Gamma;
+    PetscCall(nf.Setup(p));
+    ContinuationOptions co;
+    co.verbose = PETSC_FALSE;
+    co.energy_max = 1e3;
+    co.omega_max = 0.9692; // just past the fold (omega 0.96852, the same at every Gamma)
+    Record rec(nf.flow);
+    Branch b;
+    PetscCall(nf.Continue(0, co, &b, &rec));
+    PetscCall(LocateRecorded(loc, nf.shoot, b, rec, "mode0", &ev));
+    for (size_t k = 0; k < ev.size(); k++)
+      if (ev[k].kind == EventKind::Fold && ev[k].direction > 0 && index < 0) index = (PetscInt)k;
+    PetscFunctionReturn(0);
+  }
+  // The located fold's orbit, as -cont_codim2 starts from it.
+  PetscErrorCode Start(Codim2Start *s)
+  {
+    OwnedVec X, z;
+    bool found;
+    PetscFunctionBeginUser;
+    PetscCall(nf.shoot.CreateUnknowns(X.out()));
+    PetscCall(nf.lat.CreateStateVector(z.out()));
+    const BifurcationEvent &e = ev[index];
+    PetscCall(loc.OrbitAt(e.point, e.sigma, X, &found));
+    PetscCheck(found, PETSC_COMM_WORLD, PETSC_ERR_NOT_CONVERGED, "the fold's orbit was not found again");
+    PetscCall(nf.shoot.Unpack(X, z, &s->period, &s->beta));
+    s->omega = 2 * PETSC_PI / s->period;
+    s->z0.clear();
+    PetscCall(AppendStateRow(nf.lat, z, &s->z0));
+    PetscCall(BroadcastFromRoot(PETSC_COMM_WORLD, MPIU_REAL, &s->z0));
+    PetscFunctionReturn(0);
+  }
+};
+
+} // namespace
+
+TEST_CASE("codim-2: the energy fold continued in -lattice_cubic lies on E Gamma = const at constant omega, through the one-parameter runs' folds",
+          "[codim2]")
+{
+  FoldOfMode0 f;
+  PCHK(f.Locate(0.5));
+  REQUIRE(f.index >= 0);
+  const BifurcationEvent &e = f.ev[f.index];
+  Codim2Start start;
+  PCHK(f.Start(&start));
+  Codim2Options o;
+  o.parameter = Codim2Parameter::Cubic;
+  o.pmin = 0.3, o.pmax = 0.8;
+  o.step = 0.05, o.step_max = 0.15;
+  o.verbose = PETSC_FALSE;
+  LatticeParams p;
+  p.cells = 1, p.Gamma = 0.5;
+  Codim2Curve c;
+  PCHK(ContinueCodim2(PETSC_COMM_WORLD, p, FlowOptions(), ShootingOptions(), FloquetOptions(), 1, o, e, f.index, start, "mode0", &c));
+  const size_t n = c.p.size();
+  INFO("curve " << c.name << ": " << n << " points, p " << c.p.front() << " .. " << c.p.back() << ", " << c.solves << " orbits, " << c.stop_reason);
+  REQUIRE(c.name == "fold" + std::to_string(f.index));
+  REQUIRE(n >= 6);
+  // it spans the range asked for, on both sides of the event, in order of p
+  REQUIRE(c.p.front() < 0.36);
+  REQUIRE(c.p.back() > 0.7);
+  REQUIRE(c.p[c.event_point] == 0.5);
+  for (size_t k = 1; k < n; k++) REQUIRE(c.p[k] > c.p[k - 1]);
+  // the event itself: the located fold, to the one-parameter run's bracket
+  REQUIRE(std::abs(c.omega[c.event_point] - e.omega) <= 1e-8);
+  REQUIRE(std::abs(c.energy[c.event_point] - e.energy) <= 1e-8 * e.energy);
+  // E Gamma and omega constant along the whole curve
+  const PetscReal EG = c.energy[c.event_point] * c.p[c.event_point], w = c.omega[c.event_point];
+  PetscReal worst_eg = 0, worst_w = 0;
+  for (size_t k = 0; k < n; k++) {
+    worst_eg = std::max(worst_eg, std::abs(c.energy[k] * c.p[k] / EG - 1));
+    worst_w = std::max(worst_w, std::abs(c.omega[k] / w - 1));
+    REQUIRE(std::abs(c.test[k]) <= 1e-6); // d ln E / d ln omega, 0 on the curve
+    // at a fold the multiplier +1 is fourfold: the trivial pair and the pair passing +1
+    for (PetscInt j = 0; j < Codim2Curve::kMultipliers; j++)
+      REQUIRE(std::hypot(c.mu_re[k * Codim2Curve::kMultipliers + j] - 1, c.mu_im[k * Codim2Curve::kMultipliers + j]) <= 1e-2);
+  }
+  INFO("worst |E Gamma / (E Gamma)* - 1| " << worst_eg << ", worst |omega / omega* - 1| " << worst_w);
+  PCHK(PetscPrintf(PETSC_COMM_WORLD, "  codim2 fold in -lattice_cubic: %zu points, Gamma %.4g .. %.4g, max |E Gamma / (E Gamma)* - 1| = %.1e, max |omega / omega* - 1| = %.1e\n", n,
+                   (double)c.p.front(), (double)c.p.back(), (double)worst_eg, (double)worst_w));
+  REQUIRE(worst_eg <= 1e-8);
+  REQUIRE(worst_w <= 1e-8);
+  // an independent one-parameter run at the curve's last p locates the same fold there
+  FoldOfMode0 g;
+  PCHK(g.Locate(c.p[n - 1]));
+  REQUIRE(g.index >= 0);
+  const BifurcationEvent &h = g.ev[g.index];
+  INFO("one-parameter fold at Gamma " << c.p[n - 1] << ": omega " << h.omega << ", E " << h.energy << "; the curve's " << c.omega[n - 1] << ", "
+                                      << c.energy[n - 1]);
+  REQUIRE(std::abs(h.omega - c.omega[n - 1]) <= 1e-6);
+  REQUIRE(std::abs(h.energy - c.energy[n - 1]) <= 1e-5 * h.energy);
+  PCHK(PetscPrintf(PETSC_COMM_WORLD, "  one-parameter fold at Gamma %.6g: |omega - curve's| = %.1e, |E / curve's - 1| = %.1e\n", (double)c.p[n - 1],
+                   (double)std::abs(h.omega - c.omega[n - 1]), (double)std::abs(h.energy / c.energy[n - 1] - 1)));
+}
+
+TEST_CASE("codim-2: -cont_codim2 items are parsed, and the kinds not implemented yet refused", "[codim2][serial]")
+{
+  Codim2Spec s;
+  PCHK(ParseCodim2Spec(PETSC_COMM_SELF, "insulated:fold@1.9", &s));
+  REQUIRE(s.branch == "insulated");
+  REQUIRE(s.kind == EventKind::Fold);
+  REQUIRE(s.omega == 1.9);
+  PCHK(ParseCodim2Spec(PETSC_COMM_SELF, "mode0:1@2.5", &s));
+  REQUIRE(s.branch == "mode0");
+  REQUIRE(s.kind == EventKind::Fold);
+  PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
+  for (const char *bad : {"insulated", "insulated:fold", "insulated:fold@", "insulated:fold@-1", ":fold@2", "insulated:fold@x", "insulated:kink@2"})
+    REQUIRE(ParseCodim2Spec(PETSC_COMM_SELF, bad, &s) == PETSC_ERR_USER);
+  for (const char *todo : {"insulated:pd@2", "insulated:3@2", "insulated:bp@2.4", "insulated:hamiltonian_hopf@1.8"})
+    REQUIRE(ParseCodim2Spec(PETSC_COMM_SELF, todo, &s) == PETSC_ERR_SUP);
+  PetscPopErrorHandler();
+}
