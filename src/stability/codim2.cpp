@@ -79,6 +79,8 @@ static const auto &kCodim2Table = DeclareOptionTable<Codim2Options>("cont_", "Tw
       .Real("codim2_step_max", &C::step_max, Open(0, 10), "-cont_codim2: the largest step along the curve (scaled plane)")
       .Int("codim2_max_points", &C::max_points, Closed(1, 100000), "-cont_codim2: points of the curve on each side of the event", OptionClass::Extent)
       .Real("codim2_tol", &C::tol, Open(0, 1e-3), "-cont_codim2: the corrector has converged when its step in the scaled plane is below this")
+      .Real("codim2_test_tol", &C::test_tol, Open(0, 1),
+            "-cont_codim2: and the kind's test function (fold: d ln E / d ln omega, dimensionless) is at most this in modulus there")
       .Bool("codim2_verbose", &C::verbose, "-cont_codim2: print one line per point of the curve", OptionClass::Bookkeeping);
 });
 
@@ -100,7 +102,7 @@ PetscErrorCode ParseCodim2Spec(MPI_Comm comm, const std::string &item, Codim2Spe
              "-cont_codim2 %s: expected <branch>:<kind>@<omega> (kind fold or 1, branch_point or 2, period_doubling or 3, hamiltonian_hopf or 5; "
              "omega > 0), e.g. insulated:fold@1.9",
              item.c_str());
-  PetscCheck(k->implemented, comm, PETSC_ERR_SUP, "-cont_codim2 %s: the two-parameter continuation of a %s (kind %d) is not implemented yet; of a fold (1) it is",
+  PetscCheck(k->implemented, comm, PETSC_ERR_USER, "-cont_codim2 %s: the two-parameter continuation of a %s (kind %d) is not implemented yet; of a fold (1) it is",
              item.c_str(), EventKindName(k->kind), (int)k->kind);
   s->text = item, s->branch = item.substr(0, colon), s->kind = k->kind;
   PetscFunctionReturn(0);
@@ -313,7 +315,7 @@ PetscErrorCode Codim2Walk::Correct(const PetscReal ypred[2], const PetscReal tau
     y[0] += d0, y[1] += d1;
     if (std::hypot(d0, d1) <= o_.tol) {
       PetscCall(Evaluate(y[0], y[1], cur, x)); // the orbit at the converged point
-      *ok = x->ok;
+      *ok = x->ok && std::abs(x->g) <= o_.test_tol; // (a tiny step from a garbage gradient is no convergence)
       PetscFunctionReturn(0);
     }
   }
