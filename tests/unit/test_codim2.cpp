@@ -28,13 +28,19 @@ struct FoldOfMode0 {
   PetscErrorCode Locate(PetscReal Gamma)
   {
     LatticeParams p;
-    PetscFunctionBeginUser;
     p.cells = 1, p.Gamma = Gamma;
+    return Locate(p, 0.9692, 0.2); // just past the fold (omega 0.96852, the same at every Gamma)
+  }
+  // at any lattice of one cell, continued up to omega_max with steps of at most max_change
+  PetscErrorCode Locate(const LatticeParams &p, PetscReal omega_max, PetscReal max_change)
+  {
+    PetscFunctionBeginUser;
     PetscCall(nf.Setup(p));
     ContinuationOptions co;
     co.verbose = PETSC_FALSE;
     co.energy_max = 1e3;
-    co.omega_max = 0.9692; // just past the fold (omega 0.96852, the same at every Gamma)
+    co.omega_max = omega_max;
+    co.max_change = max_change;
     Record rec(nf.flow);
     Branch b;
     PetscCall(nf.Continue(0, co, &b, &rec));
@@ -122,6 +128,45 @@ TEST_CASE("codim-2: the energy fold continued in -lattice_cubic lies on E Gamma 
   REQUIRE(std::abs(h.energy - c.energy[n - 1]) <= 1e-5 * h.energy);
   PCHK(PetscPrintf(PETSC_COMM_WORLD, "  one-parameter fold at Gamma %.6g: |omega - curve's| = %.1e, |E / curve's - 1| = %.1e\n", (double)c.p[n - 1],
                    (double)std::abs(h.omega - c.omega[n - 1]), (double)std::abs(h.energy / c.energy[n - 1] - 1)));
+}
+
+TEST_CASE("codim-2: the energy fold continued in -lattice_gamma passes through the folds of independent one-parameter runs at its ends",
+          "[codim2][once]")
+{
+  // [once]: the distributed path (the lattice rebuilt at each p, the bordered solve) runs at 2 ranks in the
+  // -lattice_cubic case above; at 2 ranks on a lattice of 6 sites this one costs ~20 times its serial time.
+  // not degenerate: omega and E Gamma change along this curve (at gamma 0.4 omega 0.96852, E 65.8; at 0.45 about 0.9427, 40.9)
+  FoldOfMode0 f;
+  PCHK(f.Locate(0.5));
+  REQUIRE(f.index >= 0);
+  Codim2Start start;
+  PCHK(f.Start(&start));
+  Codim2Options o;
+  o.parameter = Codim2Parameter::Gamma;
+  o.pmin = 0.36, o.pmax = 0.45;
+  o.verbose = PETSC_FALSE;
+  LatticeParams p;
+  p.cells = 1, p.Gamma = 0.5;
+  Codim2Curve c;
+  PCHK(ContinueCodim2(PETSC_COMM_WORLD, p, FlowOptions(), ShootingOptions(), FloquetOptions(), 1, o, f.ev[f.index], f.index, start, "mode0", &c));
+  const size_t n = c.p.size();
+  REQUIRE(n >= 4);
+  REQUIRE(c.p[c.event_point] == 0.4);
+  REQUIRE(c.omega.front() > c.omega.back() + 0.02); // the fold moves down in omega as gamma grows
+  for (size_t k : {(size_t)0, n - 1}) {
+    FoldOfMode0 g;
+    LatticeParams q;
+    q.cells = 1, q.Gamma = 0.5, q.gamma = c.p[k];
+    PCHK(g.Locate(q, c.omega[k] + 7e-4, 0.05)); // just past the fold, as at gamma 0.4; steps that do not cut it (at
+                                                // gamma 0.31 the default 0.2 steps over a pair of folds the curve finds)
+    REQUIRE(g.index >= 0);
+    const BifurcationEvent &h = g.ev[g.index];
+    INFO("gamma " << c.p[k] << ": one-parameter fold at omega " << h.omega << ", E " << h.energy << "; the curve's " << c.omega[k] << ", " << c.energy[k]);
+    REQUIRE(std::abs(h.omega - c.omega[k]) <= 1e-6);
+    REQUIRE(std::abs(h.energy - c.energy[k]) <= 1e-5 * h.energy);
+    PCHK(PetscPrintf(PETSC_COMM_WORLD, "  codim2 fold in -lattice_gamma at %.6g: |omega - one-parameter fold's| = %.1e, |E / its - 1| = %.1e\n", (double)c.p[k],
+                     (double)std::abs(h.omega - c.omega[k]), (double)std::abs(h.energy / c.energy[k] - 1)));
+  }
 }
 
 TEST_CASE("codim-2: -cont_codim2 items are parsed, and the kinds not implemented yet refused", "[codim2][serial]")
