@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <complex>
 #include <cstdlib>
 #include <memory>
 
@@ -52,7 +53,7 @@ struct Codim2KindName {
 const Codim2KindName kCodim2Kinds[] = {{"fold", "fold", EventKind::Fold, true},
                                        {"branch_point", "bp", EventKind::BranchPoint, false},
                                        {"period_doubling", "pd", EventKind::PeriodDoubling, false},
-                                       {"hamiltonian_hopf", "hh", EventKind::HamiltonianHopf, false}};
+                                       {"hamiltonian_hopf", "hh", EventKind::HamiltonianHopf, true}};
 
 const Codim2KindName *KindOf(EventKind k)
 {
@@ -67,7 +68,7 @@ static const auto &kCodim2Table = DeclareOptionTable<Codim2Options>("cont_", "Tw
   using C = Codim2Options;
   t.String("codim2", &C::spec,
            "Follow a located event of a branch in (E, p), p = -cont_codim2_parameter: <branch>:<kind>@<omega>, the event of that kind nearest omega "
-           "(kind fold or 1; branch_point, period_doubling, hamiltonian_hopf (2, 3, 5) are not implemented yet); needs -cont_bifurcations")
+           "(kind fold or 1, hamiltonian_hopf or 5; branch_point, period_doubling (2, 3) are not implemented yet); needs -cont_bifurcations")
       .Default("none")
       .Enum("codim2_parameter", &C::parameter, kParameterNames, 3,
             "The second parameter of -cont_codim2: the lattice option lattice_gamma, lattice_k or lattice_cubic (degenerate: its curves are E Gamma = "
@@ -102,7 +103,8 @@ PetscErrorCode ParseCodim2Spec(MPI_Comm comm, const std::string &item, Codim2Spe
              "-cont_codim2 %s: expected <branch>:<kind>@<omega> (kind fold or 1, branch_point or 2, period_doubling or 3, hamiltonian_hopf or 5; "
              "omega > 0), e.g. insulated:fold@1.9",
              item.c_str());
-  PetscCheck(k->implemented, comm, PETSC_ERR_USER, "-cont_codim2 %s: the two-parameter continuation of a %s (kind %d) is not implemented yet; of a fold (1) it is",
+  PetscCheck(k->implemented, comm, PETSC_ERR_USER,
+             "-cont_codim2 %s: the two-parameter continuation of a %s (kind %d) is not implemented yet; of a fold (1) and a Hamiltonian-Hopf onset (5) it is",
              item.c_str(), EventKindName(k->kind), (int)k->kind);
   s->text = item, s->branch = item.substr(0, colon), s->kind = k->kind;
   PetscFunctionReturn(0);
@@ -165,6 +167,7 @@ struct Codim2Stack {
 struct Codim2Sample {
   bool ok = false;
   PetscReal omega = 0, p = 0, energy = 0, period = 0, beta = 0, g = NAN;
+  PetscReal bmid = 0; // kind 5: the middle of the two colliding pairs' b
   std::vector<PetscReal> z0; // natural order, every rank
 };
 
@@ -175,19 +178,21 @@ public:
       : comm_(comm), base_(base), fo_(fo), so_(so), flo_(flo), multiple_(multiple), o_(o), name_(name), c_(c)
   {
   }
-  PetscErrorCode Run(const Codim2Start &start);
+  PetscErrorCode Run(const Codim2Start &start, const BifurcationEvent &e);
 
 private:
   PetscErrorCode StackAt(PetscReal p, Codim2Stack **s);
   PetscErrorCode Evaluate(PetscReal a, PetscReal b, const Codim2Sample &guess, Codim2Sample *x);
   PetscErrorCode FoldTest(Codim2Stack &s, Codim2Sample *x);
+  PetscErrorCode HopfTest(Codim2Stack &s, Codim2Sample *x);
+  bool ByEnergy() const { return c_->kind != EventKind::Fold; } // the orbit's coordinate q: E, or omega at a fold
   PetscErrorCode Gradient(const Codim2Sample &x, PetscReal grad[2], bool *ok);
   PetscErrorCode Correct(const PetscReal ypred[2], const PetscReal tau[2], const Codim2Sample &from, Codim2Sample *x, PetscReal grad[2], PetscInt *its,
                          bool *ok);
   PetscErrorCode FirstPoint(const Codim2Start &start, Codim2Sample *x, PetscReal grad[2]);
   PetscErrorCode Walk(const Codim2Sample &x0, const PetscReal grad0[2], PetscInt dir, std::vector<Codim2Sample> *pts, std::string *why);
   PetscErrorCode Record(const Codim2Sample &x);
-  PetscReal A(const Codim2Sample &x) const { return x.omega / q0_; }
+  PetscReal A(const Codim2Sample &x) const { return (ByEnergy() ? x.energy : x.omega) / q0_; }
   PetscReal B(const Codim2Sample &x) const { return x.p / p0_; }
 
   MPI_Comm comm_;
@@ -199,7 +204,8 @@ private:
   const Codim2Options &o_;
   const char *name_;
   Codim2Curve *c_;
-  PetscReal q0_ = 1, p0_ = 1; // scales of the plane: the event's omega and p (1 if p = 0)
+  PetscReal q0_ = 1, p0_ = 1; // scales of the plane: the event's q and p (1 if p = 0)
+  PetscReal bstar_ = 0;       // kind 5: where the two colliding pairs' b = (mu + 1/mu)/2 meet (followed along the curve)
   std::vector<std::unique_ptr<Codim2Stack>> stacks_; // the lattices of the last two values of p (a gradient alternates between them)
   static constexpr PetscReal kH = 1e-6;               // finite-difference step of grad g in the scaled plane
   static constexpr PetscInt kMaxIts = 10;             // corrector iterations
@@ -249,6 +255,32 @@ PetscErrorCode Codim2Walk::FoldTest(Codim2Stack &s, Codim2Sample *x)
   PetscFunctionReturn(0);
 }
 
+// Kind 5: B = (M + M^-1)/2 has b = (mu + 1/mu)/2 for each pair; a pair on the
+// circle gives a real b = cos(theta) in [-1, 1], a quadruplet's two upper members
+// give b and conj(b). The two colliding pairs are the two values of b nearest
+// b* (where they meet), and g = Re (b1 - b2)^2 is the discriminant of B on
+// their 4-dim invariant subspace (B is 2 x 2 on one vector per pair): > 0 on
+// the circle side, < 0 for the quadruplet, 0 at the non-semisimple double b,
+// and smooth through it (the locator's G is its square-root-free form in angles).
+PetscErrorCode Codim2Walk::HopfTest(Codim2Stack &s, Codim2Sample *x)
+{
+  using C = std::complex<PetscReal>;
+  FloquetResult r;
+  std::vector<C> b;
+  PetscFunctionBeginUser;
+  PetscCall(s.flow.IntegrateWithMonodromy(s.z, x->period, s.flow.FloquetBeta(x->beta), s.zT, s.S));
+  PetscCall(FloquetAnalysis(s.lat, s.S, flo_, &r));
+  for (PetscInt j : NontrivialIndices(r.re.data(), r.im.data(), (PetscInt)r.re.size())) {
+    const C mu(r.re[j], r.im[j]);
+    if (r.im[j] > flo_.tol * std::abs(mu)) b.push_back(0.5 * (mu + 1.0 / mu)); // upper members (a real pair: a branch point or period doubling, not these)
+  }
+  std::sort(b.begin(), b.end(), [&](const C &u, const C &v) { return std::abs(u - bstar_) < std::abs(v - bstar_); });
+  if (b.size() < 2) PetscFunctionReturn(0); // g stays NaN: no two pairs to collide
+  x->g = std::real((b[0] - b[1]) * (b[0] - b[1]));
+  x->bmid = 0.5 * std::real(b[0] + b[1]);
+  PetscFunctionReturn(0);
+}
+
 // The orbit at the scaled point (a, b) = (omega / q0, p / p0), from guess's orbit, and g there.
 PetscErrorCode Codim2Walk::Evaluate(PetscReal a, PetscReal b, const Codim2Sample &guess, Codim2Sample *x)
 {
@@ -258,22 +290,25 @@ PetscErrorCode Codim2Walk::Evaluate(PetscReal a, PetscReal b, const Codim2Sample
   EnergyParts en;
   PetscFunctionBeginUser;
   *x = Codim2Sample();
-  x->omega = a * q0_, x->p = b * p0_;
-  x->period = 2 * PETSC_PI / x->omega;
-  if (!InParameterRange(c_->parameter, x->p) || !(x->omega > 0)) PetscFunctionReturn(0);
+  x->p = b * p0_;
+  if (ByEnergy()) x->energy = a * q0_, x->period = guess.period;
+  else x->omega = a * q0_, x->period = 2 * PETSC_PI / x->omega;
+  if (!InParameterRange(c_->parameter, x->p) || !(a > 0)) PetscFunctionReturn(0);
   PetscCall(StackAt(x->p, &s));
   PetscCall(StateFromRow(s->lat, guess.z0.data(), s->z));
   PetscCall(s->shoot.Pack(s->z, x->period, guess.beta, s->X));
-  PetscCall(s->shoot.SetPeriodConstraint(s->z, x->period));
+  if (ByEnergy()) PetscCall(s->shoot.SetEnergyConstraint(s->z, x->energy)); // (the start solver: the SVD pseudo-inverse)
+  else PetscCall(s->shoot.SetPeriodConstraint(s->z, x->period));
   PetscCall(s->shoot.Solve(s->X, &ok, &its));
   c_->solves++;
   if (!ok) PetscFunctionReturn(0);
   PetscCall(s->shoot.Unpack(s->X, s->z, &x->period, &x->beta));
   PetscCall(s->flow.Effects().Energy(s->z, &en));
-  x->energy = en.Total();
+  x->energy = en.Total(), x->omega = 2 * PETSC_PI / x->period;
   PetscCall(AppendStateRow(s->lat, s->z, &x->z0));
   PetscCall(BroadcastFromRoot(comm_, MPIU_REAL, &x->z0));
-  PetscCall(FoldTest(*s, x));
+  if (ByEnergy()) PetscCall(HopfTest(*s, x));
+  else PetscCall(FoldTest(*s, x));
   x->ok = std::isfinite(x->g);
   PetscFunctionReturn(0);
 }
@@ -330,7 +365,7 @@ PetscErrorCode Codim2Walk::FirstPoint(const Codim2Start &start, Codim2Sample *x,
   bool ok;
   const PetscReal none[2] = {0, 0};
   PetscFunctionBeginUser;
-  s0.ok = true, s0.omega = start.omega, s0.p = Codim2ParameterValue(base_, c_->parameter), s0.period = start.period, s0.beta = start.beta, s0.z0 = start.z0;
+  s0.ok = true, s0.omega = start.omega, s0.energy = start.energy, s0.p = Codim2ParameterValue(base_, c_->parameter), s0.period = start.period, s0.beta = start.beta, s0.z0 = start.z0;
   const PetscReal y[2] = {A(s0), B(s0)};
   PetscCall(Correct(y, none, s0, x, grad, &its, &ok));
   PetscCheck(ok, comm_, PETSC_ERR_NOT_CONVERGED,
@@ -345,6 +380,7 @@ PetscErrorCode Codim2Walk::Walk(const Codim2Sample &x0, const PetscReal grad0[2]
 {
   Codim2Sample x = x0;
   PetscReal grad[2] = {grad0[0], grad0[1]}, tau[2];
+  bstar_ = x0.bmid;
   PetscReal ds = o_.step;
   PetscFunctionBeginUser;
   const PetscReal n0 = std::hypot(grad[0], grad[1]);
@@ -378,6 +414,7 @@ PetscErrorCode Codim2Walk::Walk(const Codim2Sample &x0, const PetscReal grad0[2]
     if (nt[0] * tau[0] + nt[1] * tau[1] < 0) nt[0] = -nt[0], nt[1] = -nt[1];
     tau[0] = nt[0], tau[1] = nt[1];
     x = nx;
+    bstar_ = x.bmid; // the collision moves along the curve
     pts->push_back(x);
     if (o_.verbose)
       PetscCall(PetscPrintf(comm_, "  [%s codim2 %s] %+d %3zu  %s %.8g  E = %-11.6g omega = %.9f  g %.1e  corrector %" PetscInt_FMT "  ds %.3g\n", name_,
@@ -398,10 +435,16 @@ PetscErrorCode Codim2Walk::Record(const Codim2Sample &x)
   PetscCall(StateFromRow(s->lat, x.z0.data(), s->z));
   PetscCall(s->flow.IntegrateWithMonodromy(s->z, x.period, s->flow.FloquetBeta(x.beta), s->zT, s->S));
   PetscCall(FloquetAnalysis(s->lat, s->S, flo_, &r));
+  // nearest the critical point: +1 (fold), -1 (period doubling), or in b = (mu + 1/mu)/2 to the colliding pairs' (Hamiltonian-Hopf)
+  using C = std::complex<PetscReal>;
   const PetscReal crit = c_->kind == EventKind::PeriodDoubling ? -1 : 1;
+  auto dist = [&](PetscInt i) {
+    const C mu(r.re[i], r.im[i]);
+    return ByEnergy() ? std::abs(0.5 * (mu + 1.0 / mu) - x.bmid) : std::abs(mu - crit);
+  };
   std::vector<PetscInt> idx(r.re.size());
   for (size_t k = 0; k < idx.size(); k++) idx[k] = (PetscInt)k;
-  std::sort(idx.begin(), idx.end(), [&](PetscInt i, PetscInt j) { return std::hypot(r.re[i] - crit, r.im[i]) < std::hypot(r.re[j] - crit, r.im[j]); });
+  std::sort(idx.begin(), idx.end(), [&](PetscInt i, PetscInt j) { return dist(i) < dist(j); });
   PetscReal mm = 0;
   for (size_t k = 0; k < r.re.size(); k++) mm = std::max(mm, std::hypot(r.re[k], r.im[k]));
   c_->p.push_back(x.p), c_->energy.push_back(x.energy), c_->omega.push_back(x.omega), c_->period.push_back(x.period), c_->test.push_back(x.g);
@@ -413,19 +456,21 @@ PetscErrorCode Codim2Walk::Record(const Codim2Sample &x)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Codim2Walk::Run(const Codim2Start &start)
+PetscErrorCode Codim2Walk::Run(const Codim2Start &start, const BifurcationEvent &e)
 {
   Codim2Sample x0;
   PetscReal grad0[2];
   std::vector<Codim2Sample> down, up;
   std::string why_down, why_up;
   PetscFunctionBeginUser;
-  q0_ = start.omega;
+  q0_ = ByEnergy() ? start.energy : start.omega;
+  bstar_ = std::real(0.5 * (std::complex<PetscReal>(e.mu_re, e.mu_im) + 1.0 / std::complex<PetscReal>(e.mu_re, e.mu_im)));
   const PetscReal pe = Codim2ParameterValue(base_, c_->parameter);
   p0_ = pe != 0 ? std::abs(pe) : 1;
   PetscCheck(pe >= o_.pmin && pe <= o_.pmax, comm_, PETSC_ERR_USER, "-cont_codim2 %s: the run's %s %g lies outside [-cont_codim2_min %g, -cont_codim2_max %g]",
              o_.spec.c_str(), Codim2ParameterOption(c_->parameter), (double)pe, (double)o_.pmin, (double)o_.pmax);
   PetscCall(FirstPoint(start, &x0, grad0));
+  if (!ByEnergy()) x0.bmid = 1; // (a fold: at +1)
   PetscCall(PetscPrintf(comm_, "  [%s codim2 %s] the %s at %s %g: omega %.9f, E %.8g (test function %.1e); following it in %s\n", name_, c_->name.c_str(),
                         EventKindName(c_->kind), Codim2ParameterOption(c_->parameter), (double)x0.p, (double)x0.omega, (double)x0.energy, (double)x0.g,
                         Codim2ParameterOption(c_->parameter)));
@@ -464,7 +509,7 @@ PetscErrorCode ContinueCodim2(MPI_Comm comm, const LatticeParams &base, const Fl
   curve->name = std::string(k->tag) + std::to_string(event);
   {
     Codim2Walk walk(comm, base, fo, so, flo, period_multiple, o, name, curve);
-    PetscCall(walk.Run(start));
+    PetscCall(walk.Run(start, e));
   }
   PetscCall(PetscTime(&t1));
   curve->seconds = t1 - t0;

@@ -13,7 +13,9 @@
 // differences), predictor, Newton corrector on [g; tau . (y - y_pred)].
 //
 // Implemented: kind 1, the energy fold, g = d ln E / d ln omega along the
-// family at fixed p, q = omega (at a fold E does not fix the orbit, omega does).
+// family at fixed p, q = omega (at a fold E does not fix the orbit, omega does);
+// kind 5, the Hamiltonian-Hopf onset, g = the discriminant (b1 - b2)^2 of the
+// two colliding pairs' b = (mu + 1/mu)/2, q = E.
 #include "orbits/shooting.hpp"
 #include "stability/bifurcations.hpp"
 #include "stability/floquet.hpp"
@@ -35,7 +37,7 @@ struct Codim2Options {
   PetscReal step = 0.02;             // first step, in the scaled plane (q / q0, p / p0)
   PetscReal step_min = 1e-6, step_max = 0.1;
   PetscInt max_points = 60; // per direction from the event
-  PetscReal tol = 1e-10;    // corrector: the last Newton step in the scaled plane
+  PetscReal tol = 1e-10;     // corrector: the last Newton step in the scaled plane
   PetscReal test_tol = 1e-6; // and |g| at the converged point
   PetscBool verbose = PETSC_TRUE;
 };
@@ -69,7 +71,7 @@ struct Codim2Curve {
 // The orbit of an event: z0 in natural order [u, v] (every rank), T, beta.
 struct Codim2Start {
   std::vector<PetscReal> z0;
-  PetscReal period = 0, beta = 0, omega = 0;
+  PetscReal period = 0, beta = 0, omega = 0, energy = 0;
 };
 
 // Follows the curve of event e (index event of its branch, orbit start, on

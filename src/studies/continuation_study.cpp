@@ -326,6 +326,9 @@ private:
                c2spec_.text.c_str(), k, (double)e.omega);
     PetscCall(nnm_.shoot.Unpack(X, z, &st.period, &st.beta));
     st.omega = 2 * PETSC_PI / st.period;
+    EnergyParts en;
+    PetscCall(nnm_.flow.Effects().Energy(z, &en));
+    st.energy = en.Total();
     PetscCall(AppendStateRow(nnm_.lat, z, &st.z0));
     PetscCall(BroadcastFromRoot(comm_, MPIU_REAL, &st.z0));
     PetscCall(ContinueCodim2(comm_, nnm_.lp, nnm_.fo, nnm_.so, flo_, nnm_.flow.PeriodMultiple(), c2o_, e, k, st, label.c_str(), &c));
