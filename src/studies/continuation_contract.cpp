@@ -114,9 +114,11 @@ StudyContract ContinuationStudyContract()
          {"energy", D, R, "npts", "energy", "energy of the orbit at the event"},
          {"omega", D, R, "npts", "rad/time", "frequency of the orbit at the event"},
          {"period", D, R, "npts", "time", "period of the orbit at the event"},
-         {"test", D, R, "npts", "1", "the kind's test function there, 0 on the curve (fold: d ln E / d ln omega along the family at fixed p)"},
+         {"test", D, R, "npts", "1", "the kind's test function there, 0 on the curve (fold: d ln E / d ln omega along the family at fixed p; Hamiltonian-Hopf: (b1 - b2)^2 of the "
+          "colliding pairs' b = (mu + 1/mu)/2)"},
          {"multipliers_re", D, R, "npts x 4", "1",
-          "the four Floquet multipliers nearest the kind's critical point (+1 for a fold or branch point, -1 for a period doubling), nearest first; real part"},
+          "the four Floquet multipliers nearest the kind's critical point (+1 for a fold or branch point, -1 for a period doubling; Hamiltonian-Hopf: the "
+          "colliding pairs, nearest in b = (mu + 1/mu)/2), nearest first; real part"},
          {"multipliers_im", D, R, "npts x 4", "1", "the same multipliers, imaginary part"},
          {"max_modulus", D, R, "npts", "1", "largest |mu| of the orbit"},
          {"parameter", A, S, "scalar", "1", "the second parameter's option: -lattice_gamma, -lattice_k or -lattice_cubic (-cont_codim2_parameter)"},
