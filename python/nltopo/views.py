@@ -318,7 +318,7 @@ class Branch(Group):
 class Codim2Curve(Group):
     """/continuation/<branch>/codim2/<curve>: a located event followed in (E, p) (-cont_codim2).
 
-    Arrays p (increasing), energy, omega, period, test (the kind's test function, 0 on the
+    Arrays p (along the curve: the side where p first decreases, reversed, then the other), energy, omega, period, test (the kind's test function, 0 on the
     curve), max_modulus; `multipliers` (complex, npts x 4, nearest the kind's critical point);
     attributes parameter (the option, e.g. "-lattice_gamma"), kind (`kind_name` decoded), event
     (its row in the branch's bifurcations), event_point (the curve's row at the event), stop_reason."""

@@ -110,7 +110,8 @@ StudyContract ContinuationStudyContract()
        {"/continuation/<branch>/codim2/<curve>",
         "",
         {{"p", D, R, "npts", "the parameter's: 1 (-lattice_gamma), stiffness (-lattice_k), stiffness/displacement^2 (-lattice_cubic)",
-          "the second parameter (the option the attribute parameter names) at each point of the curve, increasing"},
+          "the second parameter (the option the attribute parameter names) at each point, in order along the curve: the side where p first "
+          "decreases (reversed), the event (row event_point), the side where it first increases (monotone unless the curve turns in p)"},
          {"energy", D, R, "npts", "energy", "energy of the orbit at the event"},
          {"omega", D, R, "npts", "rad/time", "frequency of the orbit at the event"},
          {"period", D, R, "npts", "time", "period of the orbit at the event"},
@@ -125,7 +126,7 @@ StudyContract ContinuationStudyContract()
          {"kind", A, I, "scalar", "1", "the kind of event the curve continues, in the codes of /bifurcations kind", codes::kEventKind},
          {"event", A, I, "scalar", "1", "the event's row in /continuation/<branch>/bifurcations"},
          {"event_point", A, I, "scalar", "1", "the row of the curve at the event itself (the run's own p)"},
-         {"stop_reason", A, S, "scalar", "1", "why the curve ended on each side of the event"},
+         {"stop_reason", A, S, "scalar", "1", "why the curve ended on each side of the event (p decreasing: ...; p increasing: ...)"},
          {"solves", A, I, "scalar", "1", "orbits solved to follow the curve"},
          {"seconds", A, R, "scalar", "s", "wall time of the curve"}}},
        // the Krein resonance map (issue 35 item 4, stability/krein_map.hpp): written with -floquet (either route)
