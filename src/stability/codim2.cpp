@@ -81,7 +81,8 @@ static const auto &kCodim2Table = DeclareOptionTable<Codim2Options>("cont_", "Tw
       .Int("codim2_max_points", &C::max_points, Closed(1, 100000), "-cont_codim2: points of the curve on each side of the event", OptionClass::Extent)
       .Real("codim2_tol", &C::tol, Open(0, 1e-3), "-cont_codim2: the corrector has converged when its step in the scaled plane is below this")
       .Real("codim2_test_tol", &C::test_tol, Open(0, 1),
-            "-cont_codim2: and the kind's test function (fold: d ln E / d ln omega, dimensionless) is at most this in modulus there")
+            "-cont_codim2: and the kind's test function g there is at most this times |grad g| (its first-order distance to the curve in the scaled "
+            "plane)")
       .Bool("codim2_verbose", &C::verbose, "-cont_codim2: print one line per point of the curve", OptionClass::Bookkeeping);
 });
 
@@ -209,6 +210,7 @@ private:
   std::vector<std::unique_ptr<Codim2Stack>> stacks_; // the lattices of the last two values of p (a gradient alternates between them)
   static constexpr PetscReal kH = 1e-6;               // finite-difference step of grad g in the scaled plane
   static constexpr PetscInt kMaxIts = 10;             // corrector iterations
+  static constexpr PetscReal kNoise = 1e-5;           // the largest |g| a converged point may have
 };
 
 PetscErrorCode Codim2Walk::StackAt(PetscReal p, Codim2Stack **s)
@@ -350,7 +352,11 @@ PetscErrorCode Codim2Walk::Correct(const PetscReal ypred[2], const PetscReal tau
     y[0] += d0, y[1] += d1;
     if (std::hypot(d0, d1) <= o_.tol) {
       PetscCall(Evaluate(y[0], y[1], cur, x)); // the orbit at the converged point
-      *ok = x->ok && std::abs(x->g) <= o_.test_tol; // (a tiny step from a garbage gradient is no convergence)
+      // and g's first-order distance to its zero set is small (a tiny step from a
+      // garbage gradient is no convergence; g itself is only as exact as the orbit)
+      // (both kinds' g are dimensionless and O(1) off the curve: kNoise bounds it
+      // where the orbit solves are too imprecise for the gradient, near E -> 0)
+      *ok = x->ok && std::abs(x->g) <= o_.test_tol * std::hypot(grad[0], grad[1]) && std::abs(x->g) <= kNoise;
       PetscFunctionReturn(0);
     }
   }

@@ -38,7 +38,7 @@ struct Codim2Options {
   PetscReal step_min = 1e-6, step_max = 0.1;
   PetscInt max_points = 60; // per direction from the event
   PetscReal tol = 1e-10;     // corrector: the last Newton step in the scaled plane
-  PetscReal test_tol = 1e-6; // and |g| at the converged point
+  PetscReal test_tol = 1e-7; // and |g| / |grad g| at the converged point (the distance to the curve, scaled plane)
   PetscBool verbose = PETSC_TRUE;
 };
 

@@ -136,7 +136,7 @@ T = {
     "cont_codim2_parameter": ("enum", 0, 0, ["lattice_gamma", "lattice_k", "lattice_cubic"]),
     "cont_codim2_min": ("real", -1.0, 0.4), "cont_codim2_max": ("real", 0.4, 2.0), "cont_codim2_step": ("real", 1e-3, 0.1),
     "cont_codim2_step_min": ("real", 1e-8, 1e-4), "cont_codim2_step_max": ("real", 0.05, 0.5), "cont_codim2_max_points": ("int", 1, 5),
-    "cont_codim2_tol": ("real", 1e-12, 1e-6), "cont_codim2_test_tol": ("real", 1e-9, 1e-3), "cont_codim2_verbose": ("bool",),
+    "cont_codim2_tol": ("real", 1e-12, 1e-6), "cont_codim2_test_tol": ("real", 1e-9, 1e-4), "cont_codim2_verbose": ("bool",),
     "cont_branch": ("strings", 0, 0, ["insulated", "interface", "acoustic_top", "optical_bottom", "optical_top", "mode3", "7"]),
     "nnm_steps_per_period": ("int", 8, 64), "nnm_monodromy": ("enum", 0, 0, ["variational", "tsforward"]),
     "nnm_jacobian": ("enum", 0, 0, ["dense", "mf"]), "nnm_start_dense_max": ("int", 0, 100),
