@@ -168,7 +168,7 @@ struct Codim2Stack {
 struct Codim2Sample {
   bool ok = false;
   PetscReal omega = 0, p = 0, energy = 0, period = 0, beta = 0, g = NAN;
-  PetscReal bmid = 0; // kind 5: the middle of the two colliding pairs' b
+  PetscReal bmid = 0;        // kind 5: the middle of the two colliding pairs' b
   std::vector<PetscReal> z0; // natural order, every rank
 };
 
@@ -205,12 +205,12 @@ private:
   const Codim2Options &o_;
   const char *name_;
   Codim2Curve *c_;
-  PetscReal q0_ = 1, p0_ = 1; // scales of the plane: the event's q and p (1 if p = 0)
-  PetscReal bstar_ = 0;       // kind 5: where the two colliding pairs' b = (mu + 1/mu)/2 meet (followed along the curve)
+  PetscReal q0_ = 1, p0_ = 1;                        // scales of the plane: the event's q and p (1 if p = 0)
+  PetscReal bstar_ = 0;                              // kind 5: where the two colliding pairs' b = (mu + 1/mu)/2 meet (followed along the curve)
   std::vector<std::unique_ptr<Codim2Stack>> stacks_; // the lattices of the last two values of p (a gradient alternates between them)
-  static constexpr PetscReal kH = 1e-6;               // finite-difference step of grad g in the scaled plane
-  static constexpr PetscInt kMaxIts = 10;             // corrector iterations
-  static constexpr PetscReal kNoise = 1e-5;           // the largest |g| a converged point may have
+  static constexpr PetscReal kH = 1e-6;              // finite-difference step of grad g in the scaled plane
+  static constexpr PetscInt kMaxIts = 10;            // corrector iterations
+  static constexpr PetscReal kNoise = 1e-5;          // the largest |g| a converged point may have
 };
 
 PetscErrorCode Codim2Walk::StackAt(PetscReal p, Codim2Stack **s)
@@ -371,12 +371,12 @@ PetscErrorCode Codim2Walk::FirstPoint(const Codim2Start &start, Codim2Sample *x,
   bool ok;
   const PetscReal none[2] = {0, 0};
   PetscFunctionBeginUser;
-  s0.ok = true, s0.omega = start.omega, s0.energy = start.energy, s0.p = Codim2ParameterValue(base_, c_->parameter), s0.period = start.period, s0.beta = start.beta, s0.z0 = start.z0;
+  s0.ok = true, s0.omega = start.omega, s0.energy = start.energy, s0.p = Codim2ParameterValue(base_, c_->parameter), s0.period = start.period,
+  s0.beta = start.beta, s0.z0 = start.z0;
   const PetscReal y[2] = {A(s0), B(s0)};
   PetscCall(Correct(y, none, s0, x, grad, &its, &ok));
   PetscCheck(ok, comm_, PETSC_ERR_NOT_CONVERGED,
-             "-cont_codim2 %s: the event's orbit (omega %g, %s %g) was not found again with the test function at zero (%" PetscInt_FMT
-             " corrector iterations)",
+             "-cont_codim2 %s: the event's orbit (omega %g, %s %g) was not found again with the test function at zero (%" PetscInt_FMT " corrector iterations)",
              o_.spec.c_str(), (double)start.omega, Codim2ParameterOption(c_->parameter), (double)s0.p, its);
   PetscFunctionReturn(0);
 }
@@ -504,7 +504,8 @@ PetscErrorCode ContinueCodim2(MPI_Comm comm, const LatticeParams &base, const Fl
   PetscFunctionBeginUser;
   const Codim2KindName *k = KindOf(e.kind);
   PetscCheck(k && k->implemented, comm, PETSC_ERR_SUP, "-cont_codim2: the two-parameter continuation of a %s is not implemented yet", EventKindName(e.kind));
-  PetscCheck(so.jacobian == ShootingJacobian::Dense, comm, PETSC_ERR_SUP, "-cont_codim2 needs -nnm_jacobian dense (its test function factors the shooting Jacobian)");
+  PetscCheck(so.jacobian == ShootingJacobian::Dense, comm, PETSC_ERR_SUP,
+             "-cont_codim2 needs -nnm_jacobian dense (its test function factors the shooting Jacobian)");
   PetscCheck(start.z0.size() == (size_t)(2 * base.N()), comm, PETSC_ERR_PLIB, "-cont_codim2: the event's orbit has %zu values for 2N = %" PetscInt_FMT,
              start.z0.size(), 2 * base.N());
   if (!ev) PetscCall(NamedLogEvent("Codim2", &ev));

@@ -36,7 +36,7 @@ struct Codim2Options {
   PetscReal pmin = -1e6, pmax = 1e6; // bounds of p (the parameter's own range applies too)
   PetscReal step = 0.02;             // first step, in the scaled plane (q / q0, p / p0)
   PetscReal step_min = 1e-6, step_max = 0.1;
-  PetscInt max_points = 60; // per direction from the event
+  PetscInt max_points = 60;  // per direction from the event
   PetscReal tol = 1e-10;     // corrector: the last Newton step in the scaled plane
   PetscReal test_tol = 1e-7; // and |g| / |grad g| at the converged point (the distance to the curve, scaled plane)
   PetscBool verbose = PETSC_TRUE;
@@ -60,9 +60,9 @@ struct Codim2Curve {
   EventKind kind = EventKind::Fold;
   PetscInt event = 0;
   Codim2Parameter parameter = Codim2Parameter::Gamma;
-  static constexpr PetscInt kMultipliers = 4; // written per point: the multipliers nearest the kind's critical point
+  static constexpr PetscInt kMultipliers = 4;                                       // written per point: the multipliers nearest the kind's critical point
   std::vector<PetscReal> p, energy, omega, period, test, max_modulus, mu_re, mu_im; // mu: npts x kMultipliers
-  PetscInt event_point = 0; // the row of the event itself
+  PetscInt event_point = 0;                                                         // the row of the event itself
   std::string stop_reason;
   PetscInt solves = 0; // orbits solved
   PetscReal seconds = 0;

@@ -325,12 +325,12 @@ PetscErrorCode WriteCodim2Curve(PetscViewer v, const std::string &label, const C
       else SETERRQ(comm, PETSC_ERR_PLIB, "attribute %s/%s of the output schema has no value in studies/continuation_record.cpp", gc, fd.name);
       continue;
     }
-    const std::vector<PetscReal> *x = n == "p"             ? &c.p
-                                      : n == "energy"      ? &c.energy
-                                      : n == "omega"       ? &c.omega
-                                      : n == "period"      ? &c.period
-                                      : n == "test"        ? &c.test
-                                      : n == "max_modulus" ? &c.max_modulus
+    const std::vector<PetscReal> *x = n == "p"                ? &c.p
+                                      : n == "energy"         ? &c.energy
+                                      : n == "omega"          ? &c.omega
+                                      : n == "period"         ? &c.period
+                                      : n == "test"           ? &c.test
+                                      : n == "max_modulus"    ? &c.max_modulus
                                       : n == "multipliers_re" ? &c.mu_re
                                       : n == "multipliers_im" ? &c.mu_im
                                                               : nullptr;

@@ -301,8 +301,9 @@ private:
     PetscCheck(nnm_.so.jacobian == ShootingJacobian::Dense, comm_, PETSC_ERR_USER,
                "-cont_codim2 needs -nnm_jacobian dense (its test function factors the shooting Jacobian)");
     const PetscReal p = Codim2ParameterValue(nnm_.lp, c2o_.parameter);
-    PetscCheck(p >= c2o_.pmin && p <= c2o_.pmax, comm_, PETSC_ERR_USER, "-cont_codim2 %s: the run's %s %g lies outside [-cont_codim2_min %g, -cont_codim2_max %g]",
-               c2spec_.text.c_str(), Codim2ParameterOption(c2o_.parameter), (double)p, (double)c2o_.pmin, (double)c2o_.pmax);
+    PetscCheck(p >= c2o_.pmin && p <= c2o_.pmax, comm_, PETSC_ERR_USER,
+               "-cont_codim2 %s: the run's %s %g lies outside [-cont_codim2_min %g, -cont_codim2_max %g]", c2spec_.text.c_str(),
+               Codim2ParameterOption(c2o_.parameter), (double)p, (double)c2o_.pmin, (double)c2o_.pmax);
     PetscFunctionReturn(0);
   }
   // -cont_codim2: the curve of the asked event of the branch just done (given as

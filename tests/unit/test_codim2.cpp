@@ -83,8 +83,7 @@ struct FoldOfMode0 {
 
 } // namespace
 
-TEST_CASE("codim-2: the energy fold continued in -lattice_cubic lies on E Gamma = const at constant omega, through the one-parameter runs' folds",
-          "[codim2]")
+TEST_CASE("codim-2: the energy fold continued in -lattice_cubic lies on E Gamma = const at constant omega, through the one-parameter runs' folds", "[codim2]")
 {
   FoldOfMode0 f;
   PCHK(f.Locate(0.5));
@@ -125,8 +124,9 @@ TEST_CASE("codim-2: the energy fold continued in -lattice_cubic lies on E Gamma 
       REQUIRE(std::hypot(c.mu_re[k * Codim2Curve::kMultipliers + j] - 1, c.mu_im[k * Codim2Curve::kMultipliers + j]) <= 1e-2);
   }
   INFO("worst |E Gamma / (E Gamma)* - 1| " << worst_eg << ", worst |omega / omega* - 1| " << worst_w);
-  PCHK(PetscPrintf(PETSC_COMM_WORLD, "  codim2 fold in -lattice_cubic: %zu points, Gamma %.4g .. %.4g, max |E Gamma / (E Gamma)* - 1| = %.1e, max |omega / omega* - 1| = %.1e\n", n,
-                   (double)c.p.front(), (double)c.p.back(), (double)worst_eg, (double)worst_w));
+  PCHK(PetscPrintf(PETSC_COMM_WORLD,
+                   "  codim2 fold in -lattice_cubic: %zu points, Gamma %.4g .. %.4g, max |E Gamma / (E Gamma)* - 1| = %.1e, max |omega / omega* - 1| = %.1e\n",
+                   n, (double)c.p.front(), (double)c.p.back(), (double)worst_eg, (double)worst_w));
   REQUIRE(worst_eg <= 1e-8);
   REQUIRE(worst_w <= 1e-8);
   // an independent one-parameter run at the curve's last p locates the same fold there
@@ -187,8 +187,10 @@ TEST_CASE("codim-2: a Hamiltonian-Hopf onset continued in -lattice_cubic lies on
       REQUIRE(std::abs(std::abs(std::atan2(im, re)) - std::atan2(e.mu_im, e.mu_re)) <= 1e-3);
     }
   }
-  PCHK(PetscPrintf(PETSC_COMM_WORLD, "  codim2 Hamiltonian-Hopf in -lattice_cubic: %zu points, Gamma %.4g .. %.4g, max |E Gamma / (E Gamma)* - 1| = %.1e, max |omega / omega* - 1| = %.1e\n",
-                   n, (double)c.p.front(), (double)c.p.back(), (double)worst_eg, (double)worst_w));
+  PCHK(PetscPrintf(
+      PETSC_COMM_WORLD,
+      "  codim2 Hamiltonian-Hopf in -lattice_cubic: %zu points, Gamma %.4g .. %.4g, max |E Gamma / (E Gamma)* - 1| = %.1e, max |omega / omega* - 1| = %.1e\n",
+      n, (double)c.p.front(), (double)c.p.back(), (double)worst_eg, (double)worst_w));
   REQUIRE(worst_eg <= 1e-8);
   REQUIRE(worst_w <= 1e-8);
   FoldOfMode0 g;
@@ -201,15 +203,15 @@ TEST_CASE("codim-2: a Hamiltonian-Hopf onset continued in -lattice_cubic lies on
   REQUIRE(hi >= 0);
   const BifurcationEvent &h = g.ev[hi];
   REQUIRE(h.direction == e.direction);
-  INFO("one-parameter onset at Gamma " << c.p[n - 1] << ": omega " << h.omega << ", E " << h.energy << "; the curve's " << c.omega[n - 1] << ", " << c.energy[n - 1]);
+  INFO("one-parameter onset at Gamma " << c.p[n - 1] << ": omega " << h.omega << ", E " << h.energy << "; the curve's " << c.omega[n - 1] << ", "
+                                       << c.energy[n - 1]);
   REQUIRE(std::abs(h.omega - c.omega[n - 1]) <= 1e-6);
   REQUIRE(std::abs(h.energy - c.energy[n - 1]) <= 1e-5 * h.energy);
   PCHK(PetscPrintf(PETSC_COMM_WORLD, "  one-parameter onset at Gamma %.6g: |omega - curve's| = %.1e, |E / curve's - 1| = %.1e\n", (double)c.p[n - 1],
                    (double)std::abs(h.omega - c.omega[n - 1]), (double)std::abs(h.energy / c.energy[n - 1] - 1)));
 }
 
-TEST_CASE("codim-2: the energy fold continued in -lattice_gamma passes through the folds of independent one-parameter runs at its ends",
-          "[codim2][once]")
+TEST_CASE("codim-2: the energy fold continued in -lattice_gamma passes through the folds of independent one-parameter runs at its ends", "[codim2][once]")
 {
   // [once]: the distributed path (the lattice rebuilt at each p, the bordered solve) runs at 2 ranks in the
   // -lattice_cubic case above; at 2 ranks on a lattice of 6 sites this one costs ~20 times its serial time.
