@@ -10,8 +10,8 @@ Reads format_version 0 (files without the attribute) and 1; refuses a newer one.
 """
 from .codes import parse as parse_codes
 from .run import FORMAT_VERSION, Run, open
-from .views import (Branch, Continuation, Event, Group, Linear, MissingError, NltopoError, Perturb, Simulate, Stability,
+from .views import (Branch, Codim2Curve, Continuation, Event, Group, Linear, MissingError, NltopoError, Perturb, Simulate, Stability,
                     StabilityCase, Sweep, Workprecision, Zak)
 
-__all__ = ["open", "Run", "FORMAT_VERSION", "NltopoError", "MissingError", "Group", "Branch", "Event", "Continuation",
+__all__ = ["open", "Run", "FORMAT_VERSION", "NltopoError", "MissingError", "Group", "Branch", "Codim2Curve", "Event", "Continuation",
            "Linear", "Simulate", "Sweep", "Zak", "Perturb", "Stability", "StabilityCase", "Workprecision", "parse_codes"]

@@ -44,6 +44,7 @@ FORMAT0 = {
     ("/continuation/<branch>", "krein"): KREIN,
     ("/continuation/<branch>", "verdict"): VERDICT,  # (format 1 on; listed so the table knows every code)
     ("/continuation/<branch>", "reached_energy_max"): YES_NO,
+    ("/continuation/<branch>/codim2/<curve>", "kind"): EVENT_KIND,
     ("/continuation/<branch>/bifurcations", "kind"): EVENT_KIND,
     ("/continuation/<branch>/bifurcations", "direction"): DIRECTION,
     ("/continuation/<branch>/bifurcations", "instability"): INSTABILITY,

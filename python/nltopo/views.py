@@ -30,6 +30,8 @@ GROUP_WRITERS = [
     ("/linear/bloch", "-study linear"),
     ("/linear", "-study linear"),
     ("/simulate", "-study simulate"),
+    ("/continuation/<branch>/codim2/<curve>", "-study continuation with -cont_codim2 (a located event followed in (E, p))"),
+    ("/continuation/<branch>/codim2", "-study continuation with -cont_codim2 (a located event followed in (E, p))"),
     ("/continuation/<branch>/bifurcations", "-study continuation with -floquet (dense route) and -cont_bifurcations (on with -floquet)"),
     ("/continuation/<branch>", "-study continuation (-cont_branch names the branches)"),
     ("/continuation", "-study continuation"),
@@ -264,6 +266,14 @@ class Branch(Group):
         return self._cache["_bif"]
 
     @property
+    def codim2(self):
+        """The -cont_codim2 curves of its events: dict curve name (e.g. "fold5") -> Codim2Curve ({} without)."""
+        if "codim2" not in self._subgroups:
+            return {}
+        g = self._run.file[self._path + "/codim2"]
+        return {n: Codim2Curve(self._run, self._path + "/codim2/" + n) for n in g.keys()}
+
+    @property
     def stable_name(self):
         """`stable` decoded: "stable", "unstable", "not decided" per point."""
         return self.decode("stable")
@@ -303,6 +313,27 @@ class Branch(Group):
                              vector=b["vector"][i], kind_meaning=kinds.get(k, "")))
         self._cache["_events"] = out
         return out
+
+
+class Codim2Curve(Group):
+    """/continuation/<branch>/codim2/<curve>: a located event followed in (E, p) (-cont_codim2).
+
+    Arrays p (along the curve: the side where p first decreases, reversed, then the other), energy, omega, period, test (the kind's test function, 0 on the
+    curve), max_modulus; `multipliers` (complex, npts x 4, nearest the kind's critical point);
+    attributes parameter (the option, e.g. "-lattice_gamma"), kind (`kind_name` decoded), event
+    (its row in the branch's bifurcations), event_point (the curve's row at the event), stop_reason."""
+
+    def __init__(self, run, path):
+        super().__init__(run, path)
+        self.name = self._path.rsplit("/", 1)[-1]
+
+    @property
+    def multipliers(self):
+        return self["multipliers_re"] + 1j * self["multipliers_im"]
+
+    @property
+    def kind_name(self):
+        return self.decode("kind")
 
 
 class Continuation(Group):

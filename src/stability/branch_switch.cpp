@@ -29,7 +29,15 @@ struct SwitchKindName {
 const SwitchKindName kSwitchKinds[] = {{"branch_point", "bp", EventKind::BranchPoint}, {"period_doubling", "pd", EventKind::PeriodDoubling}};
 
 const char *KindTag(EventKind k) { return k == EventKind::PeriodDoubling ? "pd" : "bp"; }
-const char *KindPlural(EventKind k) { return k == EventKind::PeriodDoubling ? "period doublings" : "branch points"; }
+const char *KindPlural(EventKind k)
+{
+  switch (k) {
+  case EventKind::Fold: return "energy folds";
+  case EventKind::PeriodDoubling: return "period doublings";
+  case EventKind::HamiltonianHopf: return "Hamiltonian-Hopf events";
+  default: return "branch points";
+  }
+}
 // The label suffix of the family on side sign: none at a period doubling (one family).
 const char *SideSuffix(EventKind k, PetscInt sign) { return k == EventKind::PeriodDoubling ? "" : sign > 0 ? "_plus" : "_minus"; }
 bool AllDigits(const std::string &s)
@@ -188,19 +196,28 @@ PetscErrorCode SelectSwitchEvent(MPI_Comm comm, const SwitchSpec &s, const std::
     *index = s.index;
     PetscFunctionReturn(0);
   }
+  PetscCall(SelectEventNearest(comm, "-cont_switch", s.text, s.kind, s.omega, ev, label, index));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SelectEventNearest(MPI_Comm comm, const char *option, const std::string &text, EventKind kind, PetscReal omega,
+                                  const std::vector<BifurcationEvent> &ev, const std::string &label, PetscInt *index)
+{
+  PetscFunctionBeginUser;
   PetscInt best = -1, next = -1; // the nearest event of the kind and the one after it
-  const auto dist = [&](PetscInt i) { return std::abs(ev[i].omega - s.omega); };
+  const auto dist = [&](PetscInt i) { return std::abs(ev[i].omega - omega); };
   for (PetscInt i = 0; i < (PetscInt)ev.size(); i++) {
-    if (ev[i].kind != s.kind) continue;
+    if (ev[i].kind != kind) continue;
     if (best < 0 || dist(i) < dist(best)) next = best, best = i;
     else if (next < 0 || dist(i) < dist(next)) next = i;
   }
-  PetscCheck(best >= 0, comm, PETSC_ERR_USER, "-cont_switch %s: branch %s has no %s among its %zu located events", s.text.c_str(), label.c_str(),
-             KindPlural(s.kind), ev.size());
+  PetscCheck(best >= 0, comm, PETSC_ERR_USER, "%s %s: branch %s has no %s among its %zu located events", option, text.c_str(), label.c_str(), KindPlural(kind),
+             ev.size());
   PetscCheck(next < 0 || dist(next) > 2 * dist(best), comm, PETSC_ERR_USER,
-             "-cont_switch %s: ambiguous: the %s of branch %s at omega %.9g (event %" PetscInt_FMT ") and %.9g (event %" PetscInt_FMT
-             ") are about as near (the nearest must be less than half as far as the next); give omega nearer one of them, or the index",
-             s.text.c_str(), KindPlural(s.kind), label.c_str(), (double)ev[best].omega, best, (double)ev[next].omega, next);
+             "%s %s: ambiguous: the %s of branch %s at omega %.9g (event %" PetscInt_FMT ") and %.9g (event %" PetscInt_FMT
+             ") are about as near (the nearest must be less than half as far as the next); give omega nearer one of them%s",
+             option, text.c_str(), KindPlural(kind), label.c_str(), (double)ev[best].omega, best, (double)ev[next].omega, next,
+             std::string(option) == "-cont_switch" ? ", or the index" : "");
   *index = best;
   PetscFunctionReturn(0);
 }

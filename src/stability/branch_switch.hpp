@@ -54,6 +54,9 @@ PetscErrorCode CheckSwitchParents(MPI_Comm comm, const std::vector<SwitchSpec> &
 // the next one of that kind. None, out of range or ambiguous: one line
 // naming -cont_switch and the item.
 PetscErrorCode SelectSwitchEvent(MPI_Comm comm, const SwitchSpec &s, const std::vector<BifurcationEvent> &ev, const std::string &label, PetscInt *index);
+// The by-kind rule of SelectSwitchEvent for any option (-cont_switch, -cont_codim2; text: the item as given).
+PetscErrorCode SelectEventNearest(MPI_Comm comm, const char *option, const std::string &text, EventKind kind, PetscReal omega,
+                                  const std::vector<BifurcationEvent> &ev, const std::string &label, PetscInt *index);
 
 // -cont_switch (ParseSwitchSpecs) and -cont_switch_step; check: each item on
 // a branch that will be continued (CheckSwitchParents; among: whether a branch

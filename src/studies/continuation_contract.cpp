@@ -106,6 +106,29 @@ StudyContract ContinuationStudyContract()
          // issue 35: the leading eigenvector's extent (dense route; NaN matrix-free)
          {"leading_participation", D, R, "npts", "sites", kLeadingParticipation},
          {"leading_edge_share", D, R, "npts", "1", kLeadingEdgeShare}}},
+       // -cont_codim2 (issue 37, stability/codim2.hpp): an event followed in (E, p)
+       {"/continuation/<branch>/codim2/<curve>",
+        "",
+        {{"p", D, R, "npts", "the parameter's: 1 (-lattice_gamma), stiffness (-lattice_k), stiffness/displacement^2 (-lattice_cubic)",
+          "the second parameter (the option the attribute parameter names) at each point, in order along the curve: the side where p first "
+          "decreases (reversed), the event (row event_point), the side where it first increases (monotone unless the curve turns in p)"},
+         {"energy", D, R, "npts", "energy", "energy of the orbit at the event"},
+         {"omega", D, R, "npts", "rad/time", "frequency of the orbit at the event"},
+         {"period", D, R, "npts", "time", "period of the orbit at the event"},
+         {"test", D, R, "npts", "1", "the kind's test function there, 0 on the curve (fold: d ln E / d ln omega along the family at fixed p; Hamiltonian-Hopf: (b1 - b2)^2 of the "
+          "colliding pairs' b = (mu + 1/mu)/2)"},
+         {"multipliers_re", D, R, "npts x 4", "1",
+          "the four Floquet multipliers nearest the kind's critical point (+1 for a fold or branch point, -1 for a period doubling; Hamiltonian-Hopf: the "
+          "colliding pairs, nearest in b = (mu + 1/mu)/2), nearest first; real part"},
+         {"multipliers_im", D, R, "npts x 4", "1", "the same multipliers, imaginary part"},
+         {"max_modulus", D, R, "npts", "1", "largest |mu| of the orbit"},
+         {"parameter", A, S, "scalar", "1", "the second parameter's option: -lattice_gamma, -lattice_k or -lattice_cubic (-cont_codim2_parameter)"},
+         {"kind", A, I, "scalar", "1", "the kind of event the curve continues, in the codes of /bifurcations kind", codes::kEventKind},
+         {"event", A, I, "scalar", "1", "the event's row in /continuation/<branch>/bifurcations"},
+         {"event_point", A, I, "scalar", "1", "the row of the curve at the event itself (the run's own p)"},
+         {"stop_reason", A, S, "scalar", "1", "why the curve ended on each side of the event (p decreasing: ...; p increasing: ...)"},
+         {"solves", A, I, "scalar", "1", "orbits solved to follow the curve"},
+         {"seconds", A, R, "scalar", "s", "wall time of the curve"}}},
        // the Krein resonance map (issue 35 item 4, stability/krein_map.hpp): written with -floquet (either route)
        {"/continuation/<branch>/krein_map",
         "",

@@ -302,6 +302,45 @@ std::vector<std::string> ContinuationColumnNames()
   return n;
 }
 
+// /continuation/<branch>/codim2/<curve> (-cont_codim2): each field of its schema from the curve.
+PetscErrorCode WriteCodim2Curve(PetscViewer v, const std::string &label, const Codim2Curve &c)
+{
+  MPI_Comm comm = PetscObjectComm((PetscObject)v);
+  const std::string g = "/continuation/" + label + "/codim2/" + c.name;
+  const char *gc = g.c_str();
+  const Schema *s = FindSchema("/continuation/<branch>/codim2/<curve>");
+  const PetscInt np = (PetscInt)c.p.size();
+  PetscFunctionBeginUser;
+  PetscCheck(s, comm, PETSC_ERR_PLIB, "output schema has no /continuation/<branch>/codim2/<curve>");
+  for (const Field &fd : s->fields) {
+    const std::string n = fd.name;
+    if (fd.kind == FieldKind::Attribute) {
+      if (n == "parameter") PetscCall(WriteAttr(v, gc, fd.name, Codim2ParameterOption(c.parameter)));
+      else if (n == "kind") PetscCall(WriteAttr(v, gc, fd.name, (PetscInt)c.kind));
+      else if (n == "event") PetscCall(WriteAttr(v, gc, fd.name, c.event));
+      else if (n == "event_point") PetscCall(WriteAttr(v, gc, fd.name, c.event_point));
+      else if (n == "stop_reason") PetscCall(WriteAttr(v, gc, fd.name, c.stop_reason.c_str()));
+      else if (n == "solves") PetscCall(WriteAttr(v, gc, fd.name, c.solves));
+      else if (n == "seconds") PetscCall(WriteAttr(v, gc, fd.name, c.seconds));
+      else SETERRQ(comm, PETSC_ERR_PLIB, "attribute %s/%s of the output schema has no value in studies/continuation_record.cpp", gc, fd.name);
+      continue;
+    }
+    const std::vector<PetscReal> *x = n == "p"                ? &c.p
+                                      : n == "energy"         ? &c.energy
+                                      : n == "omega"          ? &c.omega
+                                      : n == "period"         ? &c.period
+                                      : n == "test"           ? &c.test
+                                      : n == "max_modulus"    ? &c.max_modulus
+                                      : n == "multipliers_re" ? &c.mu_re
+                                      : n == "multipliers_im" ? &c.mu_im
+                                                              : nullptr;
+    PetscCheck(x, comm, PETSC_ERR_PLIB, "dataset %s/%s of the output schema has no column in studies/continuation_record.cpp", gc, fd.name);
+    if (n.rfind("multipliers", 0) == 0) PetscCall(WriteArrayND(v, gc, fd.name, *x, {np, Codim2Curve::kMultipliers}));
+    else PetscCall(WriteArray(v, gc, fd.name, *x));
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode WriteRecord(PetscViewer v, const BranchRecord &r, FloquetKind fk, PetscInt n2, PetscInt nev)
 {
   const std::string g = "/continuation/" + r.label;
@@ -333,6 +372,7 @@ PetscErrorCode WriteRecord(PetscViewer v, const BranchRecord &r, FloquetKind fk,
     }
   }
   if (r.located) PetscCall(WriteEvents(v, r, n2));
+  for (const Codim2Curve &c : r.codim2) PetscCall(WriteCodim2Curve(v, r.label, c));
   if (r.krein && fk != FloquetKind::None && np > 0) PetscCall(WriteKreinMap(v, r));
   PetscFunctionReturn(0);
 }

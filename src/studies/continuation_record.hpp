@@ -4,6 +4,7 @@
 // to the fields of the group's schema (io/schema.cpp).
 #include "orbits/continuation.hpp"
 #include "stability/bifurcations.hpp"
+#include "stability/codim2.hpp"
 #include "stability/floquet_hooks.hpp" // FloquetColumns
 #include "stability/krein_map.hpp"
 #include <string>
@@ -26,6 +27,8 @@ struct BranchRecord {
   std::vector<BifurcationEvent> events;
   PetscReal bif_tol = 0, bif_seconds = 0;
   PetscInt bif_probes = 0;
+  // -cont_codim2: the curves of its events in (E, p) (/continuation/<branch>/codim2/<curve>)
+  std::vector<Codim2Curve> codim2;
   // the linear frequencies of the Krein resonance map (written with -floquet when set; the study's, outlives the record)
   const KreinSpectrum *krein = nullptr;
 };

@@ -12,6 +12,7 @@
 #include "orbits/continuation.hpp"
 #include "stability/bifurcation_locator.hpp"
 #include "stability/branch_switch.hpp"
+#include "stability/codim2.hpp"
 #include "stability/floquet_hooks.hpp"
 #include "studies/checkpoint_hook.hpp"
 #include "studies/continuation_choices.hpp"
@@ -61,6 +62,8 @@ protected:
         comm_, !declaring_, [&](const std::string &b) { return AmongBranches(b); }, &switches_, &switch_step_));
     PetscCheck(switches_.empty() || declaring_ || bo_.enabled, comm_, PETSC_ERR_USER,
                "-cont_switch needs -cont_bifurcations (on with -floquet): the branch points and period doublings are its events");
+    PetscCall(Codim2OptionsFromOptions(comm_, &c2o_, &c2spec_));
+    if (!declaring_ && c2spec_.Given()) PetscCall(CheckCodim2());
     if (!declaring_ && ch_.resume)
       PetscCall(CheckResumeOptions(comm_, ch_.resume_file, name_, "-cont_resume")); // the same physics and numerics, or one line naming the first difference
     PetscFunctionReturn(0);
@@ -215,6 +218,9 @@ private:
     PetscCall(ic);
     PetscCall(PetscTime(&b1));
     PetscCall(Finish(cur, b1, cur.b.energy.size() - kept)); // seconds and costs cover this run's points
+    const PetscErrorCode i2 = Codim2From(name, cur.label);
+    if (IsInterrupt(i2)) PetscCall(Interrupted(LiveBranch{cur.label, "", 0, Branch()}, "while following its -cont_codim2 curve"));
+    PetscCall(i2);
     PetscCall(SwitchFrom(name, cur.label));
     PetscFunctionReturn(0);
   }
@@ -281,6 +287,53 @@ private:
     }
     PetscCall(
         PetscPrintf(comm_, "  [%s] %.2f s, %.3f s per new point\n", label.c_str(), (double)(b1 - cur.b0), (double)(b1 - cur.b0) / std::max<size_t>(nnew, 1)));
+    PetscFunctionReturn(0);
+  }
+
+  // -cont_codim2 before anything is computed: a located event (-cont_bifurcations) of a
+  // -cont_branch entry, the dense shooting Jacobian, the run's p within the bounds.
+  PetscErrorCode CheckCodim2()
+  {
+    PetscFunctionBeginUser;
+    PetscCheck(bo_.enabled, comm_, PETSC_ERR_USER, "-cont_codim2 needs -cont_bifurcations (on with -floquet): it continues a located event");
+    PetscCheck(AmongBranches(c2spec_.branch), comm_, PETSC_ERR_USER, "-cont_codim2 %s: no branch %s among -cont_branch", c2spec_.text.c_str(),
+               c2spec_.branch.c_str());
+    PetscCheck(nnm_.so.jacobian == ShootingJacobian::Dense, comm_, PETSC_ERR_USER,
+               "-cont_codim2 needs -nnm_jacobian dense (its test function factors the shooting Jacobian)");
+    const PetscReal p = Codim2ParameterValue(nnm_.lp, c2o_.parameter);
+    PetscCheck(p >= c2o_.pmin && p <= c2o_.pmax, comm_, PETSC_ERR_USER,
+               "-cont_codim2 %s: the run's %s %g lies outside [-cont_codim2_min %g, -cont_codim2_max %g]", c2spec_.text.c_str(),
+               Codim2ParameterOption(c2o_.parameter), (double)p, (double)c2o_.pmin, (double)c2o_.pmax);
+    PetscFunctionReturn(0);
+  }
+  // -cont_codim2: the curve of the asked event of the branch just done (given as
+  // name, recorded as label) into its record, while the locator holds the branch.
+  PetscErrorCode Codim2From(const std::string &name, const std::string &label)
+  {
+    PetscInt k;
+    OwnedVec X, z;
+    bool found;
+    Codim2Start st;
+    Codim2Curve c;
+    PetscFunctionBeginUser;
+    if (!c2spec_.Given() || !SwitchNames(c2spec_.branch, name)) PetscFunctionReturn(0);
+    BranchRecord &d = done_.back();
+    PetscCall(SelectEventNearest(comm_, "-cont_codim2", c2spec_.text, c2spec_.kind, c2spec_.omega, d.events, label, &k));
+    const BifurcationEvent e = d.events[k];
+    PetscCall(nnm_.shoot.CreateUnknowns(X.out()));
+    PetscCall(nnm_.lat.CreateStateVector(z.out()));
+    PetscCall(locator_.OrbitAt(e.point, e.sigma, X, &found));
+    PetscCheck(found, comm_, PETSC_ERR_NOT_CONVERGED, "-cont_codim2 %s: the orbit of event %" PetscInt_FMT " (omega %g) was not found again",
+               c2spec_.text.c_str(), k, (double)e.omega);
+    PetscCall(nnm_.shoot.Unpack(X, z, &st.period, &st.beta));
+    st.omega = 2 * PETSC_PI / st.period;
+    EnergyParts en;
+    PetscCall(nnm_.flow.Effects().Energy(z, &en));
+    st.energy = en.Total();
+    PetscCall(AppendStateRow(nnm_.lat, z, &st.z0));
+    PetscCall(BroadcastFromRoot(comm_, MPIU_REAL, &st.z0));
+    PetscCall(ContinueCodim2(comm_, nnm_.lp, nnm_.fo, nnm_.so, flo_, nnm_.flow.PeriodMultiple(), c2o_, e, k, st, label.c_str(), &c));
+    d.codim2.push_back(std::move(c));
     PetscFunctionReturn(0);
   }
 
@@ -358,6 +411,8 @@ private:
 
   std::vector<SwitchSpec> switches_; // -cont_switch
   PetscReal switch_step_ = 0.02;
+  Codim2Options c2o_; // -cont_codim2_*
+  Codim2Spec c2spec_;
 
   NnmSetup nnm_;
   StudyChoices ch_;

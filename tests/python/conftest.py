@@ -28,6 +28,10 @@ RUNS = {
     "simulate_stride": ("simulate.opts", ["-lattice_cells", "5", "-sim_progress", "0", "-sim_store_u_stride", "3"] + BURST),
     # -floquet and bifurcation location along the insulated branch: Hamiltonian-Hopf, Krein, branch point, resonances
     "fep": ("fep.opts", ["-cont_branch", "insulated", "-lattice_cells", "5", "-cont_energy_max", "300", "-cont_verbose", "0"]),
+    # -cont_codim2: the energy maximum of mode 0 of the 1-cell lattice (N = 6) followed in -lattice_cubic (E Gamma = const)
+    "codim2": (None, ["-study", "continuation", "-lattice_cells", "1", "-cont_branch", "0", "-floquet", "-cont_energy_max", "1000",
+                      "-cont_omega_max", "0.9692", "-cont_verbose", "0", "-cont_codim2", "0:fold@0.9685", "-cont_codim2_parameter", "lattice_cubic",
+                      "-cont_codim2_min", "0.3", "-cont_codim2_max", "0.8", "-cont_codim2_verbose", "0"]),
     # the five branches without Floquet multipliers, to low energy
     "fep_plain": ("fep.opts", ["-lattice_cells", "5", "-floquet", "0", "-cont_energy_max", "1e-2", "-cont_verbose", "0"]),
     # the matrix-free leading multipliers: stable "not decided", instability "not computed"
@@ -46,7 +50,7 @@ RUNS = {
                                              "-wp_configs", WP_CONFIGS] + BURST),
 }
 
-STUDY = {"linear": "linear", "simulate": "simulate", "simulate_stride": "simulate", "fep": "continuation",
+STUDY = {"linear": "linear", "simulate": "simulate", "simulate_stride": "simulate", "fep": "continuation", "codim2": "continuation",
          "fep_plain": "continuation", "fep_mf": "continuation", "sweep": "sweep", "zak": "zak", "perturb": "perturb", "stability": "stability",
          "floquet_scaling": "floquet_scaling", "workprecision": "workprecision"}
 

@@ -266,6 +266,22 @@ def test_events_decoded(runs):
     assert all(e.krein[0] == -e.krein[1] for e in ev if e.kind == 5)
 
 
+def test_codim2_curve(runs):
+    b = runs["codim2"].branches["mode0"]
+    assert len(b.codim2) == 1 and b.groups.count("codim2") == 1
+    c = next(iter(b.codim2.values()))
+    ev = b.events[c.event]
+    assert c.name == f"fold{c.event}" and c.kind == 1 and c.kind_name == "energy fold" and ev.kind == 1
+    assert c.parameter == "-lattice_cubic"
+    assert np.all(np.diff(c.p) > 0) and c.p[0] < 0.35 and c.p[-1] > 0.75 and c.p[c.event_point] == 0.5
+    # the event itself, and E Gamma, omega constant along the curve (the exact degeneracy of -lattice_cubic)
+    assert abs(c.omega[c.event_point] - ev.omega) <= ev.omega_bracket  # (the run's -cont_bif_tol)
+    assert np.allclose(c.energy * c.p, c.energy[c.event_point] * 0.5, rtol=1e-10, atol=0)
+    assert np.allclose(c.omega, c.omega[c.event_point], rtol=1e-10, atol=0)
+    assert c.multipliers.shape == (len(c.p), 4) and np.all(np.abs(c.multipliers - 1) < 1e-2)
+    assert runs["fep"].branches["insulated"].codim2 == {}
+
+
 def test_branches_without_floquet(runs):
     r = runs["fep_plain"]
     linear = runs["linear"].linear  # the same lattice

@@ -35,7 +35,8 @@ done
 "$NLTOPO" -help -study continuation -lattice_cells 5 -lattice_layout interface -nnm_jacobian mf -floquet -floquet_mf -cont_energy_max 1e-4 -cont_max_points 2 -output h5.h5 > help_cont.txt
 for opt in -nnm_jacobian -nnm_mf_pc -nnm_mf_pc_parametric_weight -nnm_orbit_rtol -nnm_start_dense_max -floquet -floquet_mf -floquet_mf_nev -floquet_mf_which -floquet_mf_circle_tol -floquet_mf_deflate -floquet_mf_dense_max -floquet_tol \
            -cont_energy_max -cont_max_change -cont_mcr_min -cont_checkpoint_seconds -cont_resume -cont_bifurcations -cont_bif_tol -cont_bif_max_probes \
-           -cont_bif_angle_tol -cont_bif_bulk -cont_bif_passes -cont_bif_resonance_order -cont_switch -cont_switch_step; do
+           -cont_bif_angle_tol -cont_bif_bulk -cont_bif_passes -cont_bif_resonance_order -cont_switch -cont_switch_step \
+           -cont_codim2 -cont_codim2_parameter -cont_codim2_min -cont_codim2_max -cont_codim2_step -cont_codim2_max_points; do
   grep -qE -- "$opt[ :]" help_cont.txt || { echo "missing in -help: $opt"; exit 1; }
 done
 # nltopo alone prints usage (every study, where the docs are), writes nothing and exits 0

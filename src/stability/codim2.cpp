@@ -1,0 +1,527 @@
+#include "stability/codim2.hpp"
+#include "core/gather.hpp"
+#include "core/log.hpp"
+#include "core/option_table.hpp"
+#include "effects/effect.hpp"
+#include "orbits/continuation.hpp"
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <complex>
+#include <cstdlib>
+#include <memory>
+
+namespace nltopo {
+
+static const char *const kParameterNames[] = {"lattice_gamma", "lattice_k", "lattice_cubic"};
+
+const char *Codim2ParameterOption(Codim2Parameter p)
+{
+  static const char *const dashed[] = {"-lattice_gamma", "-lattice_k", "-lattice_cubic"};
+  return dashed[(int)p];
+}
+
+PetscReal Codim2ParameterValue(const LatticeParams &lp, Codim2Parameter p)
+{
+  return p == Codim2Parameter::Gamma ? lp.gamma : p == Codim2Parameter::K ? lp.k : lp.Gamma;
+}
+
+void SetCodim2Parameter(LatticeParams *lp, Codim2Parameter p, PetscReal value)
+{
+  if (p == Codim2Parameter::Gamma) lp->gamma = value;
+  else if (p == Codim2Parameter::K) lp->k = value;
+  else lp->Gamma = value;
+}
+
+namespace {
+
+// The range the lattice options themselves allow (lattice/params.cpp, effects' -lattice_cubic).
+bool InParameterRange(Codim2Parameter p, PetscReal v)
+{
+  if (!std::isfinite(v)) return false;
+  if (p == Codim2Parameter::Gamma) return v > -1 && v < 1;
+  if (p == Codim2Parameter::K) return v >= 1e-6 && v <= 1e6;
+  return std::abs(v) <= 1e6;
+}
+
+// The kinds -cont_codim2 names, by the names (and codes) of /bifurcations "kind"; implemented: whether the curve can be followed yet.
+struct Codim2KindName {
+  const char *name, *tag;
+  EventKind kind;
+  bool implemented;
+};
+const Codim2KindName kCodim2Kinds[] = {{"fold", "fold", EventKind::Fold, true},
+                                       {"branch_point", "bp", EventKind::BranchPoint, false},
+                                       {"period_doubling", "pd", EventKind::PeriodDoubling, false},
+                                       {"hamiltonian_hopf", "hh", EventKind::HamiltonianHopf, true}};
+
+const Codim2KindName *KindOf(EventKind k)
+{
+  for (const Codim2KindName &n : kCodim2Kinds)
+    if (n.kind == k) return &n;
+  return nullptr;
+}
+
+} // namespace
+
+static const auto &kCodim2Table = DeclareOptionTable<Codim2Options>("cont_", "Two-parameter continuation of events", [](OptionTable<Codim2Options> &t) {
+  using C = Codim2Options;
+  t.String("codim2", &C::spec,
+           "Follow a located event of a branch in (E, p), p = -cont_codim2_parameter: <branch>:<kind>@<omega>, the event of that kind nearest omega "
+           "(kind fold or 1, hamiltonian_hopf or 5; branch_point, period_doubling (2, 3) are not implemented yet); needs -cont_bifurcations")
+      .Default("none")
+      .Enum("codim2_parameter", &C::parameter, kParameterNames, 3,
+            "The second parameter of -cont_codim2: the lattice option lattice_gamma, lattice_k or lattice_cubic (degenerate: its curves are E Gamma = "
+            "const, a test)")
+      .Real("codim2_min", &C::pmin, Closed(-1e6, 1e6), "-cont_codim2: the curve stops where p falls below this", OptionClass::Extent)
+      .Real("codim2_max", &C::pmax, Closed(-1e6, 1e6), "-cont_codim2: the curve stops where p exceeds this", OptionClass::Extent)
+      .Real("codim2_step", &C::step, Open(0, 1), "-cont_codim2: the first step along the curve, in the scaled plane (q / q0, p / p0) of the event's q0, p0")
+      .Real("codim2_step_min", &C::step_min, Open(0, 1), "-cont_codim2: the curve stops when the step falls below this (step collapse)")
+      .Real("codim2_step_max", &C::step_max, Open(0, 10), "-cont_codim2: the largest step along the curve (scaled plane)")
+      .Int("codim2_max_points", &C::max_points, Closed(1, 100000), "-cont_codim2: points of the curve on each side of the event", OptionClass::Extent)
+      .Real("codim2_tol", &C::tol, Open(0, 1e-3), "-cont_codim2: the corrector has converged when its step in the scaled plane is below this")
+      .Real("codim2_test_tol", &C::test_tol, Open(0, 1),
+            "-cont_codim2: and the kind's test function g there is at most this times |grad g| (its first-order distance to the curve in the scaled "
+            "plane)")
+      .Bool("codim2_verbose", &C::verbose, "-cont_codim2: print one line per point of the curve", OptionClass::Bookkeeping);
+});
+
+PetscErrorCode ParseCodim2Spec(MPI_Comm comm, const std::string &item, Codim2Spec *s)
+{
+  PetscFunctionBeginUser;
+  *s = Codim2Spec();
+  const size_t colon = item.rfind(':');
+  const std::string what = colon == std::string::npos ? "" : item.substr(colon + 1);
+  const size_t at = what.find('@');
+  const std::string kind = what.substr(0, at), w = at == std::string::npos ? "" : what.substr(at + 1);
+  char *end = nullptr;
+  s->omega = std::strtod(w.c_str(), &end);
+  bool ok = colon != std::string::npos && colon > 0 && at != std::string::npos && !w.empty() && end && !*end && std::isfinite(s->omega) && s->omega > 0;
+  const Codim2KindName *k = nullptr;
+  for (const Codim2KindName &n : kCodim2Kinds)
+    if (kind == n.name || kind == n.tag || kind == std::to_string((int)n.kind)) k = &n;
+  PetscCheck(ok && k, comm, PETSC_ERR_USER,
+             "-cont_codim2 %s: expected <branch>:<kind>@<omega> (kind fold or 1, branch_point or 2, period_doubling or 3, hamiltonian_hopf or 5; "
+             "omega > 0), e.g. insulated:fold@1.9",
+             item.c_str());
+  PetscCheck(k->implemented, comm, PETSC_ERR_USER,
+             "-cont_codim2 %s: the two-parameter continuation of a %s (kind %d) is not implemented yet; of a fold (1) and a Hamiltonian-Hopf onset (5) it is",
+             item.c_str(), EventKindName(k->kind), (int)k->kind);
+  s->text = item, s->branch = item.substr(0, colon), s->kind = k->kind;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Codim2OptionsFromOptions(MPI_Comm comm, Codim2Options *o, Codim2Spec *s)
+{
+  PetscFunctionBeginUser;
+  PetscCall(kCodim2Table.Read(comm, o));
+  PetscCheck(o->pmin < o->pmax, comm, PETSC_ERR_USER, "-cont_codim2_min and -cont_codim2_max must satisfy min < max, got %g and %g", (double)o->pmin,
+             (double)o->pmax);
+  PetscCheck(o->step_min <= o->step && o->step <= o->step_max, comm, PETSC_ERR_USER,
+             "-cont_codim2_step %g must lie in [-cont_codim2_step_min %g, -cont_codim2_step_max %g]", (double)o->step, (double)o->step_min,
+             (double)o->step_max);
+  *s = Codim2Spec();
+  if (!o->spec.empty()) PetscCall(ParseCodim2Spec(comm, o->spec, s));
+  PetscFunctionReturn(0);
+}
+
+namespace {
+
+using OwnedKsp = Owned<KSP, KSPDestroy>;
+
+// The orbit solver on the lattice at one value of p: what NnmSetup builds, without the linear modes.
+struct Codim2Stack {
+  Lattice lat;
+  EffectList fx{lat};
+  PeriodicFlow flow;
+  Shooting shoot;
+  OwnedKsp ksp; // the bordered tangent solve (LU of the assembled shooting Jacobian)
+  OwnedVec z, zT, g, tz, X, t, e;
+  OwnedMat S;
+  PetscReal p = 0;
+
+  PetscErrorCode Build(MPI_Comm comm, const LatticeParams &lp, const FlowOptions &fo, const ShootingOptions &so, PetscInt multiple)
+  {
+    PC pc;
+    PetscFunctionBeginUser;
+    PetscCall(lat.Setup(comm, lp));
+    PetscCall(BuildEffects(lat, nullptr, &fx));
+    PetscCall(flow.Setup(fx, fo));
+    flow.SetPeriodMultiple(multiple);
+    PetscCall(shoot.Setup(flow, so));
+    PetscCall(lat.CreateStateVector(z.out()));
+    for (OwnedVec *v : {&zT, &g, &tz}) PetscCall(VecDuplicate(z, v->out()));
+    PetscCall(shoot.CreateUnknowns(X.out()));
+    PetscCall(VecDuplicate(X, t.out()));
+    PetscCall(VecDuplicate(X, e.out()));
+    PetscCall(flow.CreateSensitivityMatrix(S.out()));
+    PetscCall(KSPCreate(comm, ksp.out()));
+    PetscCall(KSPSetType(ksp, KSPPREONLY));
+    PetscCall(KSPGetPC(ksp, &pc));
+    PetscCall(PCSetType(pc, PCLU));
+    PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS)); // pivoting: the bordered matrix has zero diagonal entries
+    PetscFunctionReturn(0);
+  }
+};
+
+// One evaluation of the test function: the orbit at (q, p) and g there.
+struct Codim2Sample {
+  bool ok = false;
+  PetscReal omega = 0, p = 0, energy = 0, period = 0, beta = 0, g = NAN;
+  PetscReal bmid = 0;        // kind 5: the middle of the two colliding pairs' b
+  std::vector<PetscReal> z0; // natural order, every rank
+};
+
+class Codim2Walk {
+public:
+  Codim2Walk(MPI_Comm comm, const LatticeParams &base, const FlowOptions &fo, const ShootingOptions &so, const FloquetOptions &flo, PetscInt multiple,
+             const Codim2Options &o, const char *name, Codim2Curve *c)
+      : comm_(comm), base_(base), fo_(fo), so_(so), flo_(flo), multiple_(multiple), o_(o), name_(name), c_(c)
+  {
+  }
+  PetscErrorCode Run(const Codim2Start &start, const BifurcationEvent &e);
+
+private:
+  PetscErrorCode StackAt(PetscReal p, Codim2Stack **s);
+  PetscErrorCode Evaluate(PetscReal a, PetscReal b, const Codim2Sample &guess, Codim2Sample *x);
+  PetscErrorCode FoldTest(Codim2Stack &s, Codim2Sample *x);
+  PetscErrorCode HopfTest(Codim2Stack &s, Codim2Sample *x);
+  bool ByEnergy() const { return c_->kind != EventKind::Fold; } // the orbit's coordinate q: E, or omega at a fold
+  PetscErrorCode Gradient(const Codim2Sample &x, PetscReal grad[2], bool *ok);
+  PetscErrorCode Correct(const PetscReal ypred[2], const PetscReal tau[2], const Codim2Sample &from, Codim2Sample *x, PetscReal grad[2], PetscInt *its,
+                         bool *ok);
+  PetscErrorCode FirstPoint(const Codim2Start &start, Codim2Sample *x, PetscReal grad[2]);
+  PetscErrorCode Walk(const Codim2Sample &x0, const PetscReal grad0[2], PetscInt dir, std::vector<Codim2Sample> *pts, std::string *why);
+  PetscErrorCode Record(const Codim2Sample &x);
+  PetscReal A(const Codim2Sample &x) const { return (ByEnergy() ? x.energy : x.omega) / q0_; }
+  PetscReal B(const Codim2Sample &x) const { return x.p / p0_; }
+
+  MPI_Comm comm_;
+  LatticeParams base_;
+  FlowOptions fo_;
+  ShootingOptions so_;
+  FloquetOptions flo_;
+  PetscInt multiple_;
+  const Codim2Options &o_;
+  const char *name_;
+  Codim2Curve *c_;
+  PetscReal q0_ = 1, p0_ = 1;                        // scales of the plane: the event's q and p (1 if p = 0)
+  PetscReal bstar_ = 0;                              // kind 5: where the two colliding pairs' b = (mu + 1/mu)/2 meet (followed along the curve)
+  std::vector<std::unique_ptr<Codim2Stack>> stacks_; // the lattices of the last two values of p (a gradient alternates between them)
+  static constexpr PetscReal kH = 1e-6;              // finite-difference step of grad g in the scaled plane
+  static constexpr PetscInt kMaxIts = 10;            // corrector iterations
+  static constexpr PetscReal kNoise = 1e-5;          // the largest |g| a converged point may have
+};
+
+PetscErrorCode Codim2Walk::StackAt(PetscReal p, Codim2Stack **s)
+{
+  PetscFunctionBeginUser;
+  for (auto &k : stacks_)
+    if (k->p == p) {
+      *s = k.get();
+      PetscFunctionReturn(0);
+    }
+  if (stacks_.size() >= 2) stacks_.erase(stacks_.begin());
+  LatticeParams lp = base_;
+  SetCodim2Parameter(&lp, c_->parameter, p);
+  auto k = std::make_unique<Codim2Stack>();
+  PetscCall(k->Build(comm_, lp, fo_, so_, multiple_));
+  k->p = p;
+  *s = k.get();
+  stacks_.push_back(std::move(k));
+  PetscFunctionReturn(0);
+}
+
+// Kind 1: g = d ln E / d ln omega = -(T / E) dE/dT along the family at fixed p,
+// from the family tangent t at fixed T: the assembled shooting Jacobian with the
+// period row e_T (SetPeriodConstraint) solves J t = e_last, so t_T = 1 and
+// dE/dT = grad E . t_z, exactly at the orbit (not the last Newton iterate's Jacobian).
+PetscErrorCode Codim2Walk::FoldTest(Codim2Stack &s, Codim2Sample *x)
+{
+  PetscReal dT, db, dE;
+  PetscInt lo, hi;
+  const PetscInt last = 2 * s.lat.N() + 1;
+  PetscFunctionBeginUser;
+  PetscCall(s.shoot.Jacobian(s.X, s.shoot.Operator()));
+  PetscCall(KSPSetOperators(s.ksp, s.shoot.Operator(), s.shoot.Operator()));
+  PetscCall(VecZeroEntries(s.e));
+  PetscCall(VecGetOwnershipRange(s.e, &lo, &hi));
+  if (last >= lo && last < hi) PetscCall(VecSetValue(s.e, last, 1.0, INSERT_VALUES));
+  PetscCall(VecAssemblyBegin(s.e));
+  PetscCall(VecAssemblyEnd(s.e));
+  PetscCall(KSPSolve(s.ksp, s.e, s.t));
+  PetscCall(s.shoot.Unpack(s.t, s.tz, &dT, &db));
+  PetscCall(s.flow.GradEnergy(s.z, s.g));
+  PetscCall(VecDot(s.g, s.tz, &dE));
+  x->g = -(x->period / x->energy) * dE / dT;
+  PetscFunctionReturn(0);
+}
+
+// Kind 5: B = (M + M^-1)/2 has b = (mu + 1/mu)/2 for each pair; a pair on the
+// circle gives a real b = cos(theta) in [-1, 1], a quadruplet's two upper members
+// give b and conj(b). The two colliding pairs are the two values of b nearest
+// b* (where they meet), and g = Re (b1 - b2)^2 is the discriminant of B on
+// their 4-dim invariant subspace (B is 2 x 2 on one vector per pair): > 0 on
+// the circle side, < 0 for the quadruplet, 0 at the non-semisimple double b,
+// and smooth through it (the locator's G is its square-root-free form in angles).
+PetscErrorCode Codim2Walk::HopfTest(Codim2Stack &s, Codim2Sample *x)
+{
+  using C = std::complex<PetscReal>;
+  FloquetResult r;
+  std::vector<C> b;
+  PetscFunctionBeginUser;
+  PetscCall(s.flow.IntegrateWithMonodromy(s.z, x->period, s.flow.FloquetBeta(x->beta), s.zT, s.S));
+  PetscCall(FloquetAnalysis(s.lat, s.S, flo_, &r));
+  for (PetscInt j : NontrivialIndices(r.re.data(), r.im.data(), (PetscInt)r.re.size())) {
+    const C mu(r.re[j], r.im[j]);
+    if (r.im[j] > flo_.tol * std::abs(mu)) b.push_back(0.5 * (mu + 1.0 / mu)); // upper members (a real pair: a branch point or period doubling, not these)
+  }
+  std::sort(b.begin(), b.end(), [&](const C &u, const C &v) { return std::abs(u - bstar_) < std::abs(v - bstar_); });
+  if (b.size() < 2) PetscFunctionReturn(0); // g stays NaN: no two pairs to collide
+  x->g = std::real((b[0] - b[1]) * (b[0] - b[1]));
+  x->bmid = 0.5 * std::real(b[0] + b[1]);
+  PetscFunctionReturn(0);
+}
+
+// The orbit at the scaled point (a, b) = (omega / q0, p / p0), from guess's orbit, and g there.
+PetscErrorCode Codim2Walk::Evaluate(PetscReal a, PetscReal b, const Codim2Sample &guess, Codim2Sample *x)
+{
+  Codim2Stack *s;
+  PetscInt its;
+  bool ok;
+  EnergyParts en;
+  PetscFunctionBeginUser;
+  *x = Codim2Sample();
+  x->p = b * p0_;
+  if (ByEnergy()) x->energy = a * q0_, x->period = guess.period;
+  else x->omega = a * q0_, x->period = 2 * PETSC_PI / x->omega;
+  if (!InParameterRange(c_->parameter, x->p) || !(a > 0)) PetscFunctionReturn(0);
+  PetscCall(StackAt(x->p, &s));
+  PetscCall(StateFromRow(s->lat, guess.z0.data(), s->z));
+  PetscCall(s->shoot.Pack(s->z, x->period, guess.beta, s->X));
+  if (ByEnergy()) PetscCall(s->shoot.SetEnergyConstraint(s->z, x->energy)); // (the start solver: the SVD pseudo-inverse)
+  else PetscCall(s->shoot.SetPeriodConstraint(s->z, x->period));
+  PetscCall(s->shoot.Solve(s->X, &ok, &its));
+  c_->solves++;
+  if (!ok) PetscFunctionReturn(0);
+  PetscCall(s->shoot.Unpack(s->X, s->z, &x->period, &x->beta));
+  PetscCall(s->flow.Effects().Energy(s->z, &en));
+  x->energy = en.Total(), x->omega = 2 * PETSC_PI / x->period;
+  PetscCall(AppendStateRow(s->lat, s->z, &x->z0));
+  PetscCall(BroadcastFromRoot(comm_, MPIU_REAL, &x->z0));
+  if (ByEnergy()) PetscCall(HopfTest(*s, x));
+  else PetscCall(FoldTest(*s, x));
+  x->ok = std::isfinite(x->g);
+  PetscFunctionReturn(0);
+}
+
+// grad g at x in the scaled plane, by forward differences (kH).
+PetscErrorCode Codim2Walk::Gradient(const Codim2Sample &x, PetscReal grad[2], bool *ok)
+{
+  Codim2Sample xa, xb;
+  PetscFunctionBeginUser;
+  PetscCall(Evaluate(A(x) + kH, B(x), x, &xa));
+  PetscCall(Evaluate(A(x), B(x) + kH, x, &xb));
+  *ok = xa.ok && xb.ok;
+  grad[0] = (xa.g - x.g) / kH, grad[1] = (xb.g - x.g) / kH;
+  PetscFunctionReturn(0);
+}
+
+// Newton on [g(y); tau . (y - ypred)] from ypred (tau = 0: p fixed at ypred's, the
+// event's own point); *x the converged point, grad the gradient of its last iterate.
+PetscErrorCode Codim2Walk::Correct(const PetscReal ypred[2], const PetscReal tau[2], const Codim2Sample &from, Codim2Sample *x, PetscReal grad[2],
+                                   PetscInt *its, bool *ok)
+{
+  PetscReal y[2] = {ypred[0], ypred[1]};
+  const bool fixed_p = tau[0] == 0 && tau[1] == 0;
+  const PetscReal row[2] = {fixed_p ? 0 : tau[0], fixed_p ? 1 : tau[1]}; // the constraint's row
+  Codim2Sample cur = from;
+  PetscFunctionBeginUser;
+  *ok = false;
+  for (*its = 1; *its <= kMaxIts; (*its)++) {
+    bool gok = false;
+    PetscCall(Evaluate(y[0], y[1], cur, x));
+    if (!x->ok) PetscFunctionReturn(0);
+    cur = *x;
+    PetscCall(Gradient(*x, grad, &gok));
+    if (!gok) PetscFunctionReturn(0);
+    const PetscReal F[2] = {x->g, row[0] * (y[0] - ypred[0]) + row[1] * (y[1] - ypred[1])};
+    const PetscReal det = grad[0] * row[1] - grad[1] * row[0];
+    if (!(std::abs(det) > 0) || !std::isfinite(det)) PetscFunctionReturn(0);
+    const PetscReal d0 = -(F[0] * row[1] - grad[1] * F[1]) / det, d1 = -(grad[0] * F[1] - row[0] * F[0]) / det;
+    y[0] += d0, y[1] += d1;
+    if (std::hypot(d0, d1) <= o_.tol) {
+      PetscCall(Evaluate(y[0], y[1], cur, x)); // the orbit at the converged point
+      // and g's first-order distance to its zero set is small (a tiny step from a
+      // garbage gradient is no convergence; g itself is only as exact as the orbit)
+      // (both kinds' g are dimensionless and O(1) off the curve: kNoise bounds it
+      // where the orbit solves are too imprecise for the gradient, near E -> 0)
+      *ok = x->ok && std::abs(x->g) <= o_.test_tol * std::hypot(grad[0], grad[1]) && std::abs(x->g) <= kNoise;
+      PetscFunctionReturn(0);
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+// The event's own point: g = 0 at the event's p, from its located orbit.
+PetscErrorCode Codim2Walk::FirstPoint(const Codim2Start &start, Codim2Sample *x, PetscReal grad[2])
+{
+  Codim2Sample s0;
+  PetscInt its;
+  bool ok;
+  const PetscReal none[2] = {0, 0};
+  PetscFunctionBeginUser;
+  s0.ok = true, s0.omega = start.omega, s0.energy = start.energy, s0.p = Codim2ParameterValue(base_, c_->parameter), s0.period = start.period,
+  s0.beta = start.beta, s0.z0 = start.z0;
+  const PetscReal y[2] = {A(s0), B(s0)};
+  PetscCall(Correct(y, none, s0, x, grad, &its, &ok));
+  PetscCheck(ok, comm_, PETSC_ERR_NOT_CONVERGED,
+             "-cont_codim2 %s: the event's orbit (omega %g, %s %g) was not found again with the test function at zero (%" PetscInt_FMT " corrector iterations)",
+             o_.spec.c_str(), (double)start.omega, Codim2ParameterOption(c_->parameter), (double)s0.p, its);
+  PetscFunctionReturn(0);
+}
+
+// From x0 along the curve in direction dir (+1: p grows at the start), into pts.
+PetscErrorCode Codim2Walk::Walk(const Codim2Sample &x0, const PetscReal grad0[2], PetscInt dir, std::vector<Codim2Sample> *pts, std::string *why)
+{
+  Codim2Sample x = x0;
+  PetscReal grad[2] = {grad0[0], grad0[1]}, tau[2];
+  bstar_ = x0.bmid;
+  PetscReal ds = o_.step;
+  PetscFunctionBeginUser;
+  const PetscReal n0 = std::hypot(grad[0], grad[1]);
+  tau[0] = -grad[1] / n0, tau[1] = grad[0] / n0; // orthogonal to grad g
+  const PetscReal lead = std::abs(tau[1]) > 1e-12 ? tau[1] : tau[0];
+  if (lead * dir < 0) tau[0] = -tau[0], tau[1] = -tau[1];
+  for (;;) {
+    if ((PetscInt)pts->size() >= o_.max_points) {
+      *why = "reached -cont_codim2_max_points";
+      break;
+    }
+    Codim2Sample nx;
+    PetscReal ng[2];
+    PetscInt its = 0;
+    bool ok = false;
+    while (!ok && ds >= o_.step_min) {
+      const PetscReal yp[2] = {A(x) + ds * tau[0], B(x) + ds * tau[1]};
+      PetscCall(Correct(yp, tau, x, &nx, ng, &its, &ok));
+      if (!ok) ds *= 0.5;
+    }
+    if (!ok) {
+      *why = "step collapse (the corrector failed at every step size)";
+      break;
+    }
+    if (nx.p < o_.pmin || nx.p > o_.pmax) {
+      *why = nx.p < o_.pmin ? "reached -cont_codim2_min" : "reached -cont_codim2_max";
+      break;
+    }
+    const PetscReal nn = std::hypot(ng[0], ng[1]);
+    PetscReal nt[2] = {-ng[1] / nn, ng[0] / nn};
+    if (nt[0] * tau[0] + nt[1] * tau[1] < 0) nt[0] = -nt[0], nt[1] = -nt[1];
+    tau[0] = nt[0], tau[1] = nt[1];
+    x = nx;
+    bstar_ = x.bmid; // the collision moves along the curve
+    pts->push_back(x);
+    if (o_.verbose)
+      PetscCall(PetscPrintf(comm_, "  [%s codim2 %s] %+d %3zu  %s %.8g  E = %-11.6g omega = %.9f  g %.1e  corrector %" PetscInt_FMT "  ds %.3g\n", name_,
+                            c_->name.c_str(), (int)dir, pts->size(), Codim2ParameterOption(c_->parameter), (double)x.p, (double)x.energy, (double)x.omega,
+                            (double)x.g, its, (double)ds));
+    if (its <= 3) ds = std::min(1.5 * ds, o_.step_max);
+  }
+  PetscFunctionReturn(0);
+}
+
+// Appends point x with its multipliers nearest the kind's critical point (+1 for a fold).
+PetscErrorCode Codim2Walk::Record(const Codim2Sample &x)
+{
+  Codim2Stack *s;
+  FloquetResult r;
+  PetscFunctionBeginUser;
+  PetscCall(StackAt(x.p, &s));
+  PetscCall(StateFromRow(s->lat, x.z0.data(), s->z));
+  PetscCall(s->flow.IntegrateWithMonodromy(s->z, x.period, s->flow.FloquetBeta(x.beta), s->zT, s->S));
+  PetscCall(FloquetAnalysis(s->lat, s->S, flo_, &r));
+  // nearest the critical point: +1 (fold), -1 (period doubling), or in b = (mu + 1/mu)/2 to the colliding pairs' (Hamiltonian-Hopf)
+  using C = std::complex<PetscReal>;
+  const PetscReal crit = c_->kind == EventKind::PeriodDoubling ? -1 : 1;
+  auto dist = [&](PetscInt i) {
+    const C mu(r.re[i], r.im[i]);
+    return ByEnergy() ? std::abs(0.5 * (mu + 1.0 / mu) - x.bmid) : std::abs(mu - crit);
+  };
+  std::vector<PetscInt> idx(r.re.size());
+  for (size_t k = 0; k < idx.size(); k++) idx[k] = (PetscInt)k;
+  std::sort(idx.begin(), idx.end(), [&](PetscInt i, PetscInt j) { return dist(i) < dist(j); });
+  PetscReal mm = 0;
+  for (size_t k = 0; k < r.re.size(); k++) mm = std::max(mm, std::hypot(r.re[k], r.im[k]));
+  c_->p.push_back(x.p), c_->energy.push_back(x.energy), c_->omega.push_back(x.omega), c_->period.push_back(x.period), c_->test.push_back(x.g);
+  c_->max_modulus.push_back(mm);
+  for (PetscInt k = 0; k < Codim2Curve::kMultipliers; k++) {
+    const bool have = (size_t)k < idx.size();
+    c_->mu_re.push_back(have ? r.re[idx[k]] : NAN), c_->mu_im.push_back(have ? r.im[idx[k]] : NAN);
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Codim2Walk::Run(const Codim2Start &start, const BifurcationEvent &e)
+{
+  Codim2Sample x0;
+  PetscReal grad0[2];
+  std::vector<Codim2Sample> down, up;
+  std::string why_down, why_up;
+  PetscFunctionBeginUser;
+  q0_ = ByEnergy() ? start.energy : start.omega;
+  bstar_ = std::real(0.5 * (std::complex<PetscReal>(e.mu_re, e.mu_im) + 1.0 / std::complex<PetscReal>(e.mu_re, e.mu_im)));
+  const PetscReal pe = Codim2ParameterValue(base_, c_->parameter);
+  p0_ = pe != 0 ? std::abs(pe) : 1;
+  PetscCheck(pe >= o_.pmin && pe <= o_.pmax, comm_, PETSC_ERR_USER, "-cont_codim2 %s: the run's %s %g lies outside [-cont_codim2_min %g, -cont_codim2_max %g]",
+             o_.spec.c_str(), Codim2ParameterOption(c_->parameter), (double)pe, (double)o_.pmin, (double)o_.pmax);
+  PetscCall(FirstPoint(start, &x0, grad0));
+  if (!ByEnergy()) x0.bmid = 1; // (a fold: at +1)
+  PetscCall(PetscPrintf(comm_, "  [%s codim2 %s] the %s at %s %g: omega %.9f, E %.8g (test function %.1e); following it in %s\n", name_, c_->name.c_str(),
+                        EventKindName(c_->kind), Codim2ParameterOption(c_->parameter), (double)x0.p, (double)x0.omega, (double)x0.energy, (double)x0.g,
+                        Codim2ParameterOption(c_->parameter)));
+  PetscCall(Walk(x0, grad0, -1, &down, &why_down));
+  PetscCall(Walk(x0, grad0, +1, &up, &why_up));
+  for (auto it = down.rbegin(); it != down.rend(); ++it) PetscCall(Record(*it));
+  c_->event_point = (PetscInt)down.size();
+  PetscCall(Record(x0));
+  for (const Codim2Sample &x : up) PetscCall(Record(x));
+  c_->stop_reason = "p decreasing: " + why_down + "; p increasing: " + why_up;
+  PetscCall(PetscPrintf(comm_, "  [%s codim2 %s] %zu points, %s %.6g .. %.6g, E %.6g .. %.6g, %" PetscInt_FMT " orbits solved: %s\n", name_, c_->name.c_str(),
+                        c_->p.size(), Codim2ParameterOption(c_->parameter), (double)c_->p.front(), (double)c_->p.back(), (double)c_->energy.front(),
+                        (double)c_->energy.back(), c_->solves, c_->stop_reason.c_str()));
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode ContinueCodim2(MPI_Comm comm, const LatticeParams &base, const FlowOptions &fo, const ShootingOptions &so, const FloquetOptions &flo,
+                              PetscInt period_multiple, const Codim2Options &o, const BifurcationEvent &e, PetscInt event, const Codim2Start &start,
+                              const char *name, Codim2Curve *curve)
+{
+  static PetscLogEvent ev = 0;
+  PetscLogDouble t0, t1;
+  PetscFunctionBeginUser;
+  const Codim2KindName *k = KindOf(e.kind);
+  PetscCheck(k && k->implemented, comm, PETSC_ERR_SUP, "-cont_codim2: the two-parameter continuation of a %s is not implemented yet", EventKindName(e.kind));
+  PetscCheck(so.jacobian == ShootingJacobian::Dense, comm, PETSC_ERR_SUP,
+             "-cont_codim2 needs -nnm_jacobian dense (its test function factors the shooting Jacobian)");
+  PetscCheck(start.z0.size() == (size_t)(2 * base.N()), comm, PETSC_ERR_PLIB, "-cont_codim2: the event's orbit has %zu values for 2N = %" PetscInt_FMT,
+             start.z0.size(), 2 * base.N());
+  if (!ev) PetscCall(NamedLogEvent("Codim2", &ev));
+  PetscCall(PetscLogEventBegin(ev, 0, 0, 0, 0));
+  PetscCall(PetscTime(&t0));
+  *curve = Codim2Curve();
+  curve->kind = e.kind, curve->event = event, curve->parameter = o.parameter;
+  curve->name = std::string(k->tag) + std::to_string(event);
+  {
+    Codim2Walk walk(comm, base, fo, so, flo, period_multiple, o, name, curve);
+    PetscCall(walk.Run(start, e));
+  }
+  PetscCall(PetscTime(&t1));
+  curve->seconds = t1 - t0;
+  PetscCall(PetscLogEventEnd(ev, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+} // namespace nltopo
