@@ -29,13 +29,6 @@ using namespace nltopo;
 
 namespace {
 
-double Median(std::vector<double> x)
-{
-  std::sort(x.begin(), x.end());
-  const size_t n = x.size();
-  return n % 2 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]);
-}
-
 // u at the even sites of the insulated mode's decay, amplitude a at site m + 1 (0-based m).
 PetscErrorCode InsulatedState(const Lattice &lat, PetscReal a, Vec z)
 {

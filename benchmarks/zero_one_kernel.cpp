@@ -21,13 +21,6 @@ using namespace nltopo;
 
 namespace {
 
-double Median(std::vector<double> x)
-{
-  std::sort(x.begin(), x.end());
-  const size_t n = x.size();
-  return n % 2 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]);
-}
-
 std::vector<PetscReal> Record(PetscInt n, PetscInt N)
 {
   std::vector<PetscReal> x(n * N);

@@ -79,6 +79,22 @@ struct FoldOfMode0 {
     PetscCall(BroadcastFromRoot(PETSC_COMM_WORLD, MPIU_REAL, &s->z0));
     PetscFunctionReturn(0);
   }
+  // The located event (index) continued in -lattice_cubic over [0.3, 0.8] from Gamma = 0.5.
+  PetscErrorCode ContinueInCubic(Codim2Curve *c)
+  {
+    Codim2Start start;
+    Codim2Options o;
+    LatticeParams p;
+    PetscFunctionBeginUser;
+    PetscCall(Start(&start));
+    o.parameter = Codim2Parameter::Cubic;
+    o.pmin = 0.3, o.pmax = 0.8;
+    o.step = 0.05, o.step_max = 0.15;
+    o.verbose = PETSC_FALSE;
+    p.cells = 1, p.Gamma = 0.5;
+    PetscCall(ContinueCodim2(PETSC_COMM_WORLD, p, FlowOptions(), ShootingOptions(), FloquetOptions(), 1, o, ev[index], index, start, "mode0", c));
+    PetscFunctionReturn(0);
+  }
 };
 
 } // namespace
@@ -89,17 +105,8 @@ TEST_CASE("codim-2: the energy fold continued in -lattice_cubic lies on E Gamma 
   PCHK(f.Locate(0.5));
   REQUIRE(f.index >= 0);
   const BifurcationEvent &e = f.ev[f.index];
-  Codim2Start start;
-  PCHK(f.Start(&start));
-  Codim2Options o;
-  o.parameter = Codim2Parameter::Cubic;
-  o.pmin = 0.3, o.pmax = 0.8;
-  o.step = 0.05, o.step_max = 0.15;
-  o.verbose = PETSC_FALSE;
-  LatticeParams p;
-  p.cells = 1, p.Gamma = 0.5;
   Codim2Curve c;
-  PCHK(ContinueCodim2(PETSC_COMM_WORLD, p, FlowOptions(), ShootingOptions(), FloquetOptions(), 1, o, e, f.index, start, "mode0", &c));
+  PCHK(f.ContinueInCubic(&c));
   const size_t n = c.p.size();
   INFO("curve " << c.name << ": " << n << " points, p " << c.p.front() << " .. " << c.p.back() << ", " << c.solves << " orbits, " << c.stop_reason);
   REQUIRE(c.name == "fold" + std::to_string(f.index));
@@ -156,17 +163,8 @@ TEST_CASE("codim-2: a Hamiltonian-Hopf onset continued in -lattice_cubic lies on
   PCHK(f.Locate(0.5, 0.9702));
   REQUIRE(f.index >= 0);
   const BifurcationEvent &e = f.ev[f.index];
-  Codim2Start start;
-  PCHK(f.Start(&start));
-  Codim2Options o;
-  o.parameter = Codim2Parameter::Cubic;
-  o.pmin = 0.3, o.pmax = 0.8;
-  o.step = 0.05, o.step_max = 0.15;
-  o.verbose = PETSC_FALSE;
-  LatticeParams p;
-  p.cells = 1, p.Gamma = 0.5;
   Codim2Curve c;
-  PCHK(ContinueCodim2(PETSC_COMM_WORLD, p, FlowOptions(), ShootingOptions(), FloquetOptions(), 1, o, e, f.index, start, "mode0", &c));
+  PCHK(f.ContinueInCubic(&c));
   const size_t n = c.p.size();
   INFO("curve " << c.name << ": " << n << " points, p " << c.p.front() << " .. " << c.p.back() << ", " << c.solves << " orbits, " << c.stop_reason);
   REQUIRE(c.name == "hh" + std::to_string(f.index));
