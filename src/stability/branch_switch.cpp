@@ -134,6 +134,11 @@ PetscErrorCode ParseSwitchSpecs(MPI_Comm comm, const std::vector<std::string> &i
 
 bool SwitchNames(const std::string &branch, const std::string &name) { return branch == name || branch == "mode" + name || "mode" + branch == name; }
 
+bool WillBeFollowed(const std::vector<SwitchSpec> &specs, const std::string &branch, const std::function<bool(const std::string &)> &among)
+{
+  return Followed(specs, branch, among);
+}
+
 PetscErrorCode CheckSwitchParents(MPI_Comm comm, const std::vector<SwitchSpec> &specs, const std::function<bool(const std::string &)> &among)
 {
   PetscFunctionBeginUser;

@@ -49,6 +49,9 @@ bool SwitchNames(const std::string &branch, const std::string &name);
 // Every spec on a branch that will be continued: one of -cont_branch (among),
 // or a family another spec starts (by index: exactly; by kind: any index).
 PetscErrorCode CheckSwitchParents(MPI_Comm comm, const std::vector<SwitchSpec> &specs, const std::function<bool(const std::string &)> &among);
+// Whether branch will be continued: one of -cont_branch (among), or a family
+// a spec starts on such a branch (-cont_codim2 on a switched family).
+bool WillBeFollowed(const std::vector<SwitchSpec> &specs, const std::string &branch, const std::function<bool(const std::string &)> &among);
 // The event of ev (branch label's located events) that s selects: by index,
 // or the event of s's kind nearest s.omega, at most half as far from it as
 // the next one of that kind. None, out of range or ambiguous: one line

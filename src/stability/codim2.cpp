@@ -52,7 +52,7 @@ struct Codim2KindName {
 };
 const Codim2KindName kCodim2Kinds[] = {{"fold", "fold", EventKind::Fold, true},
                                        {"branch_point", "bp", EventKind::BranchPoint, false},
-                                       {"period_doubling", "pd", EventKind::PeriodDoubling, false},
+                                       {"period_doubling", "pd", EventKind::PeriodDoubling, true},
                                        {"hamiltonian_hopf", "hh", EventKind::HamiltonianHopf, true}};
 
 const Codim2KindName *KindOf(EventKind k)
@@ -67,8 +67,9 @@ const Codim2KindName *KindOf(EventKind k)
 static const auto &kCodim2Table = DeclareOptionTable<Codim2Options>("cont_", "Two-parameter continuation of events", [](OptionTable<Codim2Options> &t) {
   using C = Codim2Options;
   t.String("codim2", &C::spec,
-           "Follow a located event of a branch in (E, p), p = -cont_codim2_parameter: <branch>:<kind>@<omega>, the event of that kind nearest omega "
-           "(kind fold or 1, hamiltonian_hopf or 5; branch_point, period_doubling (2, 3) are not implemented yet); needs -cont_bifurcations")
+           "Follow a located event of a branch (of -cont_branch, or a family of -cont_switch) in (E, p), p = -cont_codim2_parameter: "
+           "<branch>:<kind>@<omega>, the event of that kind nearest omega "
+           "(kind fold or 1, period_doubling or 3, hamiltonian_hopf or 5; branch_point (2) is not implemented yet); needs -cont_bifurcations")
       .Default("none")
       .Enum("codim2_parameter", &C::parameter, kParameterNames, 3,
             "The second parameter of -cont_codim2: the lattice option lattice_gamma, lattice_k or lattice_cubic (degenerate: its curves are E Gamma = "
@@ -105,7 +106,8 @@ PetscErrorCode ParseCodim2Spec(MPI_Comm comm, const std::string &item, Codim2Spe
              "omega > 0), e.g. insulated:fold@1.9",
              item.c_str());
   PetscCheck(k->implemented, comm, PETSC_ERR_USER,
-             "-cont_codim2 %s: the two-parameter continuation of a %s (kind %d) is not implemented yet; of a fold (1) and a Hamiltonian-Hopf onset (5) it is",
+             "-cont_codim2 %s: the two-parameter continuation of a %s (kind %d) is not implemented yet; of a fold (1), a period doubling (3) and a "
+             "Hamiltonian-Hopf onset (5) it is",
              item.c_str(), EventKindName(k->kind), (int)k->kind);
   s->text = item, s->branch = item.substr(0, colon), s->kind = k->kind;
   PetscFunctionReturn(0);
@@ -168,7 +170,7 @@ struct Codim2Stack {
 struct Codim2Sample {
   bool ok = false;
   PetscReal omega = 0, p = 0, energy = 0, period = 0, beta = 0, g = NAN;
-  PetscReal bmid = 0;        // kind 5: the middle of the two colliding pairs' b
+  PetscReal bmid = 0;        // kind 5: the middle of the two colliding pairs' b (kind 3: -1)
   std::vector<PetscReal> z0; // natural order, every rank
 };
 
@@ -186,7 +188,8 @@ private:
   PetscErrorCode Evaluate(PetscReal a, PetscReal b, const Codim2Sample &guess, Codim2Sample *x);
   PetscErrorCode FoldTest(Codim2Stack &s, Codim2Sample *x);
   PetscErrorCode HopfTest(Codim2Stack &s, Codim2Sample *x);
-  bool ByEnergy() const { return c_->kind != EventKind::Fold; } // the orbit's coordinate q: E, or omega at a fold
+  PetscErrorCode DoublingTest(Codim2Stack &s, Codim2Sample *x);
+  bool ByEnergy() const { return c_->kind != EventKind::Fold; } // the orbit's coordinate q: E (kinds 3, 5), or omega at a fold
   PetscErrorCode Gradient(const Codim2Sample &x, PetscReal grad[2], bool *ok);
   PetscErrorCode Correct(const PetscReal ypred[2], const PetscReal tau[2], const Codim2Sample &from, Codim2Sample *x, PetscReal grad[2], PetscInt *its,
                          bool *ok);
@@ -283,6 +286,30 @@ PetscErrorCode Codim2Walk::HopfTest(Codim2Stack &s, Codim2Sample *x)
   PetscFunctionReturn(0);
 }
 
+// Kind 3: the pair nearest -1 is the two nontrivial multipliers nearest -1 (on
+// the circle e^(+-i theta), or real -r, -1/r), and b = (mu1 + mu2 + 1/mu1 +
+// 1/mu2) / 4 = tr(B on their 2-dim invariant subspace) / 2 = (mu + 1/mu)/2.
+// g = b + 1 = cos(theta) + 1 >= 0 while the pair is on the circle, = -(r - 1)^2
+// / (2 r) <= 0 once it has left along the negative real axis: smooth through
+// the event, where |mu| and the angle are not. At -1 itself the pair is a
+// Jordan block and each computed mu is off by the root of rounding; their sum
+// (a trace on the invariant subspace) is not, nor is g.
+PetscErrorCode Codim2Walk::DoublingTest(Codim2Stack &s, Codim2Sample *x)
+{
+  using C = std::complex<PetscReal>;
+  FloquetResult r;
+  PetscFunctionBeginUser;
+  PetscCall(s.flow.IntegrateWithMonodromy(s.z, x->period, s.flow.FloquetBeta(x->beta), s.zT, s.S));
+  PetscCall(FloquetAnalysis(s.lat, s.S, flo_, &r));
+  std::vector<C> mu;
+  for (PetscInt j : NontrivialIndices(r.re.data(), r.im.data(), (PetscInt)r.re.size())) mu.emplace_back(r.re[j], r.im[j]);
+  if (mu.size() < 2) PetscFunctionReturn(0); // g stays NaN
+  std::partial_sort(mu.begin(), mu.begin() + 2, mu.end(), [](const C &u, const C &v) { return std::abs(u + 1.0) < std::abs(v + 1.0); });
+  x->g = 1 + 0.25 * std::real(mu[0] + mu[1] + 1.0 / mu[0] + 1.0 / mu[1]);
+  x->bmid = -1;
+  PetscFunctionReturn(0);
+}
+
 // The orbit at the scaled point (a, b) = (omega / q0, p / p0), from guess's orbit, and g there.
 PetscErrorCode Codim2Walk::Evaluate(PetscReal a, PetscReal b, const Codim2Sample &guess, Codim2Sample *x)
 {
@@ -309,7 +336,8 @@ PetscErrorCode Codim2Walk::Evaluate(PetscReal a, PetscReal b, const Codim2Sample
   x->energy = en.Total(), x->omega = 2 * PETSC_PI / x->period;
   PetscCall(AppendStateRow(s->lat, s->z, &x->z0));
   PetscCall(BroadcastFromRoot(comm_, MPIU_REAL, &x->z0));
-  if (ByEnergy()) PetscCall(HopfTest(*s, x));
+  if (c_->kind == EventKind::HamiltonianHopf) PetscCall(HopfTest(*s, x));
+  else if (c_->kind == EventKind::PeriodDoubling) PetscCall(DoublingTest(*s, x));
   else PetscCall(FoldTest(*s, x));
   x->ok = std::isfinite(x->g);
   PetscFunctionReturn(0);
@@ -354,7 +382,7 @@ PetscErrorCode Codim2Walk::Correct(const PetscReal ypred[2], const PetscReal tau
       PetscCall(Evaluate(y[0], y[1], cur, x)); // the orbit at the converged point
       // and g's first-order distance to its zero set is small (a tiny step from a
       // garbage gradient is no convergence; g itself is only as exact as the orbit)
-      // (both kinds' g are dimensionless and O(1) off the curve: kNoise bounds it
+      // (each kind's g is dimensionless and O(1) off the curve: kNoise bounds it
       // where the orbit solves are too imprecise for the gradient, near E -> 0)
       *ok = x->ok && std::abs(x->g) <= o_.test_tol * std::hypot(grad[0], grad[1]) && std::abs(x->g) <= kNoise;
       PetscFunctionReturn(0);
@@ -446,7 +474,7 @@ PetscErrorCode Codim2Walk::Record(const Codim2Sample &x)
   const PetscReal crit = c_->kind == EventKind::PeriodDoubling ? -1 : 1;
   auto dist = [&](PetscInt i) {
     const C mu(r.re[i], r.im[i]);
-    return ByEnergy() ? std::abs(0.5 * (mu + 1.0 / mu) - x.bmid) : std::abs(mu - crit);
+    return c_->kind == EventKind::HamiltonianHopf ? std::abs(0.5 * (mu + 1.0 / mu) - x.bmid) : std::abs(mu - crit);
   };
   std::vector<PetscInt> idx(r.re.size());
   for (size_t k = 0; k < idx.size(); k++) idx[k] = (PetscInt)k;

@@ -14,8 +14,9 @@
 //
 // Implemented: kind 1, the energy fold, g = d ln E / d ln omega along the
 // family at fixed p, q = omega (at a fold E does not fix the orbit, omega does);
-// kind 5, the Hamiltonian-Hopf onset, g = the discriminant (b1 - b2)^2 of the
-// two colliding pairs' b = (mu + 1/mu)/2, q = E.
+// kind 3, the period doubling, g = b + 1, b = (mu + 1/mu)/2 of the pair
+// nearest -1, q = E; kind 5, the Hamiltonian-Hopf onset, g = the discriminant
+// (b1 - b2)^2 of the two colliding pairs' b, q = E.
 #include "orbits/shooting.hpp"
 #include "stability/bifurcations.hpp"
 #include "stability/floquet.hpp"

@@ -291,13 +291,13 @@ private:
   }
 
   // -cont_codim2 before anything is computed: a located event (-cont_bifurcations) of a
-  // -cont_branch entry, the dense shooting Jacobian, the run's p within the bounds.
+  // -cont_branch entry or of a family -cont_switch starts (period doublings occur only there), the dense shooting Jacobian, the run's p within the bounds.
   PetscErrorCode CheckCodim2()
   {
     PetscFunctionBeginUser;
     PetscCheck(bo_.enabled, comm_, PETSC_ERR_USER, "-cont_codim2 needs -cont_bifurcations (on with -floquet): it continues a located event");
-    PetscCheck(AmongBranches(c2spec_.branch), comm_, PETSC_ERR_USER, "-cont_codim2 %s: no branch %s among -cont_branch", c2spec_.text.c_str(),
-               c2spec_.branch.c_str());
+    PetscCheck(WillBeFollowed(switches_, c2spec_.branch, [&](const std::string &b) { return AmongBranches(b); }), comm_, PETSC_ERR_USER,
+               "-cont_codim2 %s: no branch %s among -cont_branch or the families of -cont_switch", c2spec_.text.c_str(), c2spec_.branch.c_str());
     PetscCheck(nnm_.so.jacobian == ShootingJacobian::Dense, comm_, PETSC_ERR_USER,
                "-cont_codim2 needs -nnm_jacobian dense (its test function factors the shooting Jacobian)");
     const PetscReal p = Codim2ParameterValue(nnm_.lp, c2o_.parameter);

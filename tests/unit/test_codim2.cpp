@@ -9,6 +9,7 @@
 #include "helpers.hpp"
 #include "nnm_fixture.hpp"
 #include "stability/bifurcation_locator.hpp"
+#include "stability/branch_switch.hpp"
 #include "stability/codim2.hpp"
 #include <cmath>
 
@@ -26,6 +27,7 @@ struct FoldOfMode0 {
   std::vector<BifurcationEvent> ev;
   PetscInt index = -1;
   EventKind kind = EventKind::Fold; // the first event of this kind that begins (fold: an E maximum) is selected
+  const char *name = "mode0";       // the branch of ev (messages)
   PetscErrorCode Locate(PetscReal Gamma, PetscReal omega_max = 0.9692)
   {
     LatticeParams p;
@@ -92,7 +94,51 @@ struct FoldOfMode0 {
     o.step = 0.05, o.step_max = 0.15;
     o.verbose = PETSC_FALSE;
     p.cells = 1, p.Gamma = 0.5;
-    PetscCall(ContinueCodim2(PETSC_COMM_WORLD, p, FlowOptions(), ShootingOptions(), FloquetOptions(), 1, o, ev[index], index, start, "mode0", c));
+    PetscCall(ContinueCodim2(PETSC_COMM_WORLD, p, FlowOptions(), ShootingOptions(), FloquetOptions(), 1, o, ev[index], index, start, name, c));
+    PetscFunctionReturn(0);
+  }
+};
+
+// A period doubling (kind 3). The lattice's own NNM families have none (x(t +
+// T/2) = -x(t) makes multipliers near -1 come as quadruplets: docs/continuation.md
+// "Branch switching"); the families switched onto at a branch point break that
+// symmetry. On the N = 6 lattice, mode 3's first branch point (omega 2.50275,
+// E 53.0 at Gamma 0.5) starts a family whose first period doubling (a window
+// opening at omega 3.43444, E 223.0) this locates: ev, loc and index are the
+// switched family's, so that Start and ContinueInCubic work as for the fold.
+struct DoublingOnSwitchedFamily : FoldOfMode0 {
+  BifurcationLocator parent_loc;
+  PetscErrorCode LocateDoubling(PetscReal Gamma)
+  {
+    LatticeParams p;
+    ContinuationOptions co;
+    Branch b, start, fam;
+    std::vector<BifurcationEvent> pev;
+    SwitchJob job;
+    bool found, pinned;
+    PetscFunctionBeginUser;
+    kind = EventKind::PeriodDoubling, name = "mode3_bp_plus";
+    p.cells = 1, p.Gamma = Gamma;
+    PetscCall(nf.Setup(p));
+    co.verbose = PETSC_FALSE;
+    co.energy_max = 60 * 0.5 / Gamma; // past the branch point (E Gamma is its invariant)
+    Record rec(nf.flow);
+    PetscCall(nf.Continue(3, co, &b, &rec));
+    PetscCall(LocateRecorded(parent_loc, nf.shoot, b, rec, "mode3", &pev));
+    for (size_t k = 0; k < pev.size() && job.plan.parent.empty(); k++)
+      if (pev[k].kind == EventKind::BranchPoint && pev[k].direction > 0) job.plan.parent = "mode3", job.plan.event = (PetscInt)k, job.e = pev[k];
+    PetscCheck(!job.plan.parent.empty(), PETSC_COMM_WORLD, PETSC_ERR_NOT_CONVERGED, "mode 3 has no branch point below E %g", (double)co.energy_max);
+    PetscCall(nf.shoot.CreateUnknowns(job.Xs.out()));
+    PetscCall(parent_loc.OrbitAt(job.e.point, job.e.sigma, job.Xs, &found));
+    PetscCheck(found, PETSC_COMM_WORLD, PETSC_ERR_NOT_CONVERGED, "the branch point's orbit was not found again");
+    Record frec(nf.flow);
+    PetscCall(StartFamily(nf.shoot, job, 0.02, +1, frec, &start, &pinned));
+    PetscCheck(pinned, PETSC_COMM_WORLD, PETSC_ERR_NOT_CONVERGED, "no orbit off the branch point");
+    co.energy_max = 230 * 0.5 / Gamma; // just past the period doubling
+    PetscCall(ContinueBranch(nf.shoot, nullptr, 0, co, "mode3_bp_plus", &fam, &frec, &start));
+    PetscCall(LocateRecorded(loc, nf.shoot, fam, frec, "mode3_bp_plus", &ev));
+    for (size_t k = 0; k < ev.size(); k++)
+      if (ev[k].kind == kind && ev[k].direction > 0 && index < 0) index = (PetscInt)k;
     PetscFunctionReturn(0);
   }
 };
@@ -209,6 +255,64 @@ TEST_CASE("codim-2: a Hamiltonian-Hopf onset continued in -lattice_cubic lies on
                    (double)std::abs(h.omega - c.omega[n - 1]), (double)std::abs(h.energy / c.energy[n - 1] - 1)));
 }
 
+TEST_CASE("codim-2: a period doubling continued in -lattice_cubic lies on E Gamma = const at constant omega, through the one-parameter runs' "
+          "doublings",
+          "[codim2][once]")
+{
+  // [once]: three continuations and a curve of 30 orbits on a lattice of 6 sites cost ~25 times as much at 2
+  // ranks as serially (distributing 12 unknowns); its distributed parts (the walk, the lattice rebuilt at each p,
+  // the multipliers per point, which the test function shares with Record) run at 2 ranks in the fold case.
+  // on a family switched onto at a branch point (the lattice's own families have none); a window of
+  // instability opens there (a real pair leaves through -1): g = b + 1 > 0 below it, < 0 inside
+  DoublingOnSwitchedFamily f;
+  PCHK(f.LocateDoubling(0.5));
+  REQUIRE(f.index >= 0);
+  const BifurcationEvent &e = f.ev[f.index];
+  REQUIRE(std::abs(e.mu_re + 1) <= 1e-3);
+  Codim2Curve c;
+  PCHK(f.ContinueInCubic(&c));
+  const size_t n = c.p.size();
+  INFO("curve " << c.name << ": " << n << " points, p " << c.p.front() << " .. " << c.p.back() << ", " << c.solves << " orbits, " << c.stop_reason);
+  REQUIRE(c.name == "pd" + std::to_string(f.index));
+  REQUIRE(c.kind == EventKind::PeriodDoubling);
+  REQUIRE(n >= 6);
+  REQUIRE(c.p.front() < 0.36);
+  REQUIRE(c.p.back() > 0.7);
+  REQUIRE(c.p[c.event_point] == 0.5);
+  for (size_t k = 1; k < n; k++) REQUIRE(c.p[k] > c.p[k - 1]);
+  REQUIRE(std::abs(c.omega[c.event_point] - e.omega) <= 1e-8);
+  REQUIRE(std::abs(c.energy[c.event_point] - e.energy) <= 1e-8 * e.energy);
+  const PetscReal EG = c.energy[c.event_point] * c.p[c.event_point], w = c.omega[c.event_point];
+  PetscReal worst_eg = 0, worst_w = 0;
+  for (size_t k = 0; k < n; k++) {
+    worst_eg = std::max(worst_eg, std::abs(c.energy[k] * c.p[k] / EG - 1));
+    worst_w = std::max(worst_w, std::abs(c.omega[k] / w - 1));
+    REQUIRE(std::abs(c.test[k]) <= 1e-6); // b + 1, 0 on the curve
+    // the pair at -1, the two multipliers nearest it (a Jordan block there: each is off by the root of rounding)
+    for (PetscInt j = 0; j < 2; j++)
+      REQUIRE(std::hypot(c.mu_re[k * Codim2Curve::kMultipliers + j] + 1, c.mu_im[k * Codim2Curve::kMultipliers + j]) <= 1e-2);
+  }
+  PCHK(PetscPrintf(
+      PETSC_COMM_WORLD,
+      "  codim2 period doubling in -lattice_cubic: %zu points, Gamma %.4g .. %.4g, max |E Gamma / (E Gamma)* - 1| = %.1e, max |omega / omega* - 1| = %.1e\n",
+      n, (double)c.p.front(), (double)c.p.back(), (double)worst_eg, (double)worst_w));
+  REQUIRE(worst_eg <= 1e-8);
+  REQUIRE(worst_w <= 1e-8);
+  // an independent one-parameter run (parent, branch point, switched family) at the curve's last p
+  DoublingOnSwitchedFamily g;
+  PCHK(g.LocateDoubling(c.p[n - 1]));
+  const PetscInt hi = g.Nearest(c.omega[n - 1]);
+  REQUIRE(hi >= 0);
+  const BifurcationEvent &h = g.ev[hi];
+  REQUIRE(h.direction == e.direction);
+  INFO("one-parameter period doubling at Gamma " << c.p[n - 1] << ": omega " << h.omega << ", E " << h.energy << "; the curve's " << c.omega[n - 1] << ", "
+                                                 << c.energy[n - 1]);
+  REQUIRE(std::abs(h.omega - c.omega[n - 1]) <= 1e-6);
+  REQUIRE(std::abs(h.energy - c.energy[n - 1]) <= 1e-5 * h.energy);
+  PCHK(PetscPrintf(PETSC_COMM_WORLD, "  one-parameter period doubling at Gamma %.6g: |omega - curve's| = %.1e, |E / curve's - 1| = %.1e\n",
+                   (double)c.p[n - 1], (double)std::abs(h.omega - c.omega[n - 1]), (double)std::abs(h.energy / c.energy[n - 1] - 1)));
+}
+
 TEST_CASE("codim-2: the energy fold continued in -lattice_gamma passes through the folds of independent one-parameter runs at its ends", "[codim2][once]")
 {
   // [once]: the distributed path (the lattice rebuilt at each p, the bordered solve) runs at 2 ranks in the
@@ -264,7 +368,13 @@ TEST_CASE("codim-2: -cont_codim2 items are parsed, and the kinds not implemented
   REQUIRE(s.kind == EventKind::HamiltonianHopf);
   PCHK(ParseCodim2Spec(PETSC_COMM_SELF, "insulated:5@1.8", &s));
   REQUIRE(s.kind == EventKind::HamiltonianHopf);
-  for (const char *todo : {"insulated:pd@2", "insulated:3@2", "insulated:bp@2.4", "insulated:2@2.4"})
+  PCHK(ParseCodim2Spec(PETSC_COMM_SELF, "insulated_bp3_plus:period_doubling@2.5", &s));
+  REQUIRE((s.branch == "insulated_bp3_plus" && s.kind == EventKind::PeriodDoubling && s.omega == 2.5));
+  PCHK(ParseCodim2Spec(PETSC_COMM_SELF, "insulated:pd@2", &s));
+  REQUIRE(s.kind == EventKind::PeriodDoubling);
+  PCHK(ParseCodim2Spec(PETSC_COMM_SELF, "insulated:3@2", &s));
+  REQUIRE(s.kind == EventKind::PeriodDoubling);
+  for (const char *todo : {"insulated:bp@2.4", "insulated:2@2.4", "insulated:branch_point@2.4"})
     REQUIRE(ParseCodim2Spec(PETSC_COMM_SELF, todo, &s) == PETSC_ERR_USER); // (named: not implemented yet)
   PetscPopErrorHandler();
 }
