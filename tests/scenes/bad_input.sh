@@ -62,6 +62,7 @@ expect_error "-cont_switch insulated:0: that event is a Hamiltonian-Hopf (opposi
 expect_error "-cont_codim2 insulated:fold: expected <branch>:<kind>@<omega>" o.h5 $C -floquet -cont_codim2 insulated:fold
 expect_error "-cont_codim2 insulated:bp@2: the two-parameter continuation of a branch point (+1) (kind 2) is not implemented yet" o.h5 $C -floquet -cont_codim2 insulated:bp@2
 expect_error "-cont_codim2 interface:fold@2: no branch interface among -cont_branch" o.h5 $C -floquet -cont_codim2 interface:fold@2
+expect_error "-cont_codim2 insulated_bp3_plus:pd@2: no branch insulated_bp3_plus among -cont_branch or the families of -cont_switch" o.h5 $C -floquet -cont_codim2 insulated_bp3_plus:pd@2
 expect_error "-cont_codim2 insulated:fold@2: the run's -lattice_gamma 0.4 lies outside \\[-cont_codim2_min 0.5" o.h5 $C -floquet -cont_codim2 insulated:fold@2 -cont_codim2_min 0.5
 expect_error "-cont_codim2 needs -cont_bifurcations" o.h5 $C -cont_codim2 insulated:fold@2
 expect_error "-cont_codim2 insulated:fold@2: branch insulated has no energy folds among its 0 located events" o.h5 $C -floquet -cont_codim2 insulated:fold@2
