@@ -14,6 +14,54 @@ static const char *const kLeadingEdgeShare =
     "share of the leading nontrivial eigenvector's displacement norm within -floquet_edge_sites of the interface cell (as the instability class "
     "uses it); NaN matrix-free";
 
+// -cont_codim2 (issue 37, stability/codim2.hpp): an event followed in (E, p).
+static Schema Codim2Schema()
+{
+  using namespace schema_names;
+  return {"/continuation/<branch>/codim2/<curve>",
+          "",
+          {{"p", D, R, "npts", "the parameter's: 1 (-lattice_gamma), stiffness (-lattice_k), stiffness/displacement^2 (-lattice_cubic)",
+            "the second parameter (the option the attribute parameter names) at each point, in order along the curve: the side where p first "
+            "decreases (reversed), the event (row event_point), the side where it first increases (monotone unless the curve turns in p)"},
+           {"energy", D, R, "npts", "energy", "energy of the orbit at the event"},
+           {"omega", D, R, "npts", "rad/time", "frequency of the orbit at the event"},
+           {"period", D, R, "npts", "time", "period of the orbit at the event"},
+           {"test", D, R, "npts", "1",
+            "the kind's test function there, 0 on the curve (fold: d ln E / d ln omega along the family at fixed p; period doubling: "
+            "b + 1, b = (mu + 1/mu)/2 of the pair nearest -1; Hamiltonian-Hopf: (b1 - b2)^2 of the colliding pairs' b)"},
+           {"multipliers_re", D, R, "npts x 4", "1",
+            "the four Floquet multipliers nearest the kind's critical point (+1 for a fold or branch point, -1 for a period doubling; Hamiltonian-Hopf: the "
+            "colliding pairs, nearest in b = (mu + 1/mu)/2), nearest first; real part"},
+           {"multipliers_im", D, R, "npts x 4", "1", "the same multipliers, imaginary part"},
+           {"max_modulus", D, R, "npts", "1", "largest |mu| of the orbit"},
+           {"parameter", A, S, "scalar", "1", "the second parameter's option: -lattice_gamma, -lattice_k or -lattice_cubic (-cont_codim2_parameter)"},
+           {"kind", A, I, "scalar", "1", "the kind of event the curve continues, in the codes of /bifurcations kind", codes::kEventKind},
+           {"event", A, I, "scalar", "1", "the event's row in /continuation/<branch>/bifurcations"},
+           {"event_point", A, I, "scalar", "1", "the row of the curve at the event itself (the run's own p)"},
+           {"stop_reason", A, S, "scalar", "1", "why the curve ended on each side of the event (p decreasing: ...; p increasing: ...)"},
+           {"solves", A, I, "scalar", "1", "orbits solved to follow the curve"},
+           {"seconds", A, R, "scalar", "s", "wall time of the curve"}}};
+}
+
+// The Krein resonance map (issue 35 item 4, stability/krein_map.hpp): written with -floquet (either route).
+static Schema KreinMapSchema()
+{
+  using namespace schema_names;
+  return {"/continuation/<branch>/krein_map",
+          "",
+          {{"open", D, I, "npts x kmax", "1",
+            "opposite-signature resonances w_q + w_q' = k Omega (Omega = 2 pi / period) that the linear dispersion allows at each orbit (row) for k = 1..kmax "
+            "(column): the sum of the bits of the open pair classes (A acoustic band, O optical band, E localised linear mode of edge_omega)",
+            codes::kKreinPairs},
+           {"edge_omega", D, R, "nedge", "rad/time",
+            "the E modes: the finite lattice's linear frequencies outside both infinite-lattice bands, the branch's own linear mode left out"},
+           {"energy_criterion", D, I, "npts", "1", "where dE/dOmega changes sign along the branch (energy criterion, PRL 117, 094101 (2016))",
+            codes::kEnergyCriterion},
+           {"dE_domega", D, R, "npts", "energy/(rad/time)", "dE/dOmega by the central difference along the branch (one-sided at its ends)"},
+           {"kmax", A, I, "scalar", "1", "the largest k with a possible resonance on the branch (columns of open)"},
+           {"pair_classes", A, S, "scalar", "1", "the pair classes in bit order (bit 0 first)"}}};
+}
+
 StudyContract ContinuationStudyContract()
 {
   using namespace schema_names;
@@ -32,7 +80,8 @@ StudyContract ContinuationStudyContract()
          {"beta", D, R, "npts", "energy", "unfolding parameter (energy defect)"},
          {"z0", D, R, "npts x 2N", "[u: displacement, v: displacement/time]", "initial state [u, v] of each orbit"},
          {"interactions", D, R, "ninter", "1", "indices of points flagged as modal interactions"},
-         {"next_tangent", D, R, "2N + 2", "[du: displacement, dv: displacement/time, dT: time, dbeta: energy]", "family tangent after the last point (du, dv, dT, dbeta), for -cont_resume"},
+         {"next_tangent", D, R, "2N + 2", "[du: displacement, dv: displacement/time, dT: time, dbeta: energy]",
+          "family tangent after the last point (du, dv, dT, dbeta), for -cont_resume"},
          {"next_ds", D, R, "1", "1", "the next step length, for -cont_resume"},
          {"linear_omega", A, R, "scalar", "rad/time", "linear frequency the branch starts from (a switched branch: the event's omega on its parent)"},
          {"parent", A, S, "scalar", "1",
@@ -67,14 +116,17 @@ StudyContract ContinuationStudyContract()
          {"leading_edge_share", D, R, "npts", "1", kLeadingEdgeShare}}},
        {"/continuation/<branch>/bifurcations",
         "",
-        {{"kind", D, I, "nevents", "1", "1 energy fold, 2 branch point (+1), 3 period doubling (-1), 4 Krein collision, 5 Hamiltonian-Hopf, 6 internal resonance", codes::kEventKind},
+        {{"kind", D, I, "nevents", "1",
+          "1 energy fold, 2 branch point (+1), 3 period doubling (-1), 4 Krein collision, 5 Hamiltonian-Hopf, 6 internal resonance", codes::kEventKind},
          {"energy", D, R, "nevents", "energy", "energy at the located event (middle of the final bracket)"},
          {"omega", D, R, "nevents", "rad/time", "frequency at the located event"},
          {"s", D, R, "nevents", "1", "arclength from the first point, |dX| summed over (z0, T, beta)"},
          {"multiplier_re", D, R, "nevents", "1", "the critical multiplier just off the circle, real part (fold: 1)"},
          {"multiplier_im", D, R, "nevents", "1", "the critical multiplier, imaginary part (upper half plane)"},
-         {"krein", D, I, "nevents x 2", "1", "Krein signatures of the colliding pairs' upper-half-plane members on the circle side (+1/-1: the pair's two members)", codes::kKrein},
-         {"vector", D, R, "nevents x 2N", "[u: displacement, v: displacement/time]", "the critical eigenvector of M [u, v], unit norm, phase turned real (fold: the family tangent)"},
+         {"krein", D, I, "nevents x 2", "1",
+          "Krein signatures of the colliding pairs' upper-half-plane members on the circle side (+1/-1: the pair's two members)", codes::kKrein},
+         {"vector", D, R, "nevents x 2N", "[u: displacement, v: displacement/time]",
+          "the critical eigenvector of M [u, v], unit norm, phase turned real (fold: the family tangent)"},
          {"direction", D, I, "nevents", "1", "+1: an instability begins along the branch (fold: E maximum), -1: it ends (fold: E minimum)", codes::kDirection},
          {"point", D, I, "nevents", "1", "the continuation point the event follows"},
          {"instability", D, I, "nevents", "1", "localisation of the critical eigenvector: 1 B-B, 2 B-E, 3 E-E (0: fold)", codes::kInstability},
@@ -89,10 +141,13 @@ StudyContract ContinuationStudyContract()
           "leading multipliers (|mu| >= 1 of each pair), real part; NaN: not converged, rejected by its true residual, or fewer pairs than nev"},
          {"multipliers_im", D, R, "npts x nev", "1", "leading multipliers, imaginary part"},
          {"max_modulus", D, R, "npts", "1", "largest |mu| (NaN: not converged)"},
-         {"krein", D, I, "npts x nev", "1", "Krein signatures of the leading multipliers as in the dense route (dense route only; 0 matrix-free)", codes::kKrein},
-         {"instability", D, I, "npts", "1", "the leading instability's class, 0 stable, 1 B-B, 2 B-E, 3 E-E (dense route only); -1 not computed (matrix-free)", codes::kInstability},
+         {"krein", D, I, "npts x nev", "1", "Krein signatures of the leading multipliers as in the dense route (dense route only; 0 matrix-free)",
+          codes::kKrein},
+         {"instability", D, I, "npts", "1", "the leading instability's class, 0 stable, 1 B-B, 2 B-E, 3 E-E (dense route only); -1 not computed (matrix-free)",
+          codes::kInstability},
          {"stable", D, I, "npts", "1",
-          "1 stable (dense route only), 0 unstable (a multiplier beyond 1 + tol), -1 not decided (matrix-free: a complex quadruplet cannot be excluded)", codes::kStable},
+          "1 stable (dense route only), 0 unstable (a multiplier beyond 1 + tol), -1 not decided (matrix-free: a complex quadruplet cannot be excluded)",
+          codes::kStable},
          {"verdict", D, I, "npts", "1", "the orbit's stability verdict (docs/long-lattices.md, Verdicts)", codes::kVerdict},
          {"verdict_bound", D, R, "npts", "1",
           "stable: -floquet_tol; stable-to: delta, nothing beyond 1 + delta; unstable-*: |mu| - 1 of the confirmed multiplier; unresolved: the largest "
@@ -106,43 +161,8 @@ StudyContract ContinuationStudyContract()
          // issue 35: the leading eigenvector's extent (dense route; NaN matrix-free)
          {"leading_participation", D, R, "npts", "sites", kLeadingParticipation},
          {"leading_edge_share", D, R, "npts", "1", kLeadingEdgeShare}}},
-       // -cont_codim2 (issue 37, stability/codim2.hpp): an event followed in (E, p)
-       {"/continuation/<branch>/codim2/<curve>",
-        "",
-        {{"p", D, R, "npts", "the parameter's: 1 (-lattice_gamma), stiffness (-lattice_k), stiffness/displacement^2 (-lattice_cubic)",
-          "the second parameter (the option the attribute parameter names) at each point, in order along the curve: the side where p first "
-          "decreases (reversed), the event (row event_point), the side where it first increases (monotone unless the curve turns in p)"},
-         {"energy", D, R, "npts", "energy", "energy of the orbit at the event"},
-         {"omega", D, R, "npts", "rad/time", "frequency of the orbit at the event"},
-         {"period", D, R, "npts", "time", "period of the orbit at the event"},
-         {"test", D, R, "npts", "1", "the kind's test function there, 0 on the curve (fold: d ln E / d ln omega along the family at fixed p; period doubling: "
-          "b + 1, b = (mu + 1/mu)/2 of the pair nearest -1; Hamiltonian-Hopf: (b1 - b2)^2 of the colliding pairs' b)"},
-         {"multipliers_re", D, R, "npts x 4", "1",
-          "the four Floquet multipliers nearest the kind's critical point (+1 for a fold or branch point, -1 for a period doubling; Hamiltonian-Hopf: the "
-          "colliding pairs, nearest in b = (mu + 1/mu)/2), nearest first; real part"},
-         {"multipliers_im", D, R, "npts x 4", "1", "the same multipliers, imaginary part"},
-         {"max_modulus", D, R, "npts", "1", "largest |mu| of the orbit"},
-         {"parameter", A, S, "scalar", "1", "the second parameter's option: -lattice_gamma, -lattice_k or -lattice_cubic (-cont_codim2_parameter)"},
-         {"kind", A, I, "scalar", "1", "the kind of event the curve continues, in the codes of /bifurcations kind", codes::kEventKind},
-         {"event", A, I, "scalar", "1", "the event's row in /continuation/<branch>/bifurcations"},
-         {"event_point", A, I, "scalar", "1", "the row of the curve at the event itself (the run's own p)"},
-         {"stop_reason", A, S, "scalar", "1", "why the curve ended on each side of the event (p decreasing: ...; p increasing: ...)"},
-         {"solves", A, I, "scalar", "1", "orbits solved to follow the curve"},
-         {"seconds", A, R, "scalar", "s", "wall time of the curve"}}},
-       // the Krein resonance map (issue 35 item 4, stability/krein_map.hpp): written with -floquet (either route)
-       {"/continuation/<branch>/krein_map",
-        "",
-        {{"open", D, I, "npts x kmax", "1",
-          "opposite-signature resonances w_q + w_q' = k Omega (Omega = 2 pi / period) that the linear dispersion allows at each orbit (row) for k = 1..kmax "
-          "(column): the sum of the bits of the open pair classes (A acoustic band, O optical band, E localised linear mode of edge_omega)",
-          codes::kKreinPairs},
-         {"edge_omega", D, R, "nedge", "rad/time",
-          "the E modes: the finite lattice's linear frequencies outside both infinite-lattice bands, the branch's own linear mode left out"},
-         {"energy_criterion", D, I, "npts", "1", "where dE/dOmega changes sign along the branch (energy criterion, PRL 117, 094101 (2016))",
-          codes::kEnergyCriterion},
-         {"dE_domega", D, R, "npts", "energy/(rad/time)", "dE/dOmega by the central difference along the branch (one-sided at its ends)"},
-         {"kmax", A, I, "scalar", "1", "the largest k with a possible resonance on the branch (columns of open)"},
-         {"pair_classes", A, S, "scalar", "1", "the pair classes in bit order (bit 0 first)"}}}}};
+       Codim2Schema(),
+       KreinMapSchema()}};
 }
 
 } // namespace nltopo

@@ -143,6 +143,32 @@ struct DoublingOnSwitchedFamily : FoldOfMode0 {
   }
 };
 
+// The exact truth of -lattice_cubic (the file's head) on a curve continued from
+// the event at Gamma = 0.5 over [0.3, 0.8]: it spans the range in order of p,
+// its test function is 0, and E Gamma and omega are constant along it.
+void RequireScaledCurve(const Codim2Curve &c, const char *what)
+{
+  const size_t n = c.p.size();
+  REQUIRE(n >= 6);
+  REQUIRE(c.p.front() < 0.36);
+  REQUIRE(c.p.back() > 0.7);
+  REQUIRE(c.p[c.event_point] == 0.5);
+  for (size_t k = 1; k < n; k++) REQUIRE(c.p[k] > c.p[k - 1]);
+  const PetscReal EG = c.energy[c.event_point] * c.p[c.event_point], w = c.omega[c.event_point];
+  PetscReal worst_eg = 0, worst_w = 0;
+  for (size_t k = 0; k < n; k++) {
+    worst_eg = std::max(worst_eg, std::abs(c.energy[k] * c.p[k] / EG - 1));
+    worst_w = std::max(worst_w, std::abs(c.omega[k] / w - 1));
+    REQUIRE(std::abs(c.test[k]) <= 1e-6);
+  }
+  INFO("worst |E Gamma / (E Gamma)* - 1| " << worst_eg << ", worst |omega / omega* - 1| " << worst_w);
+  PCHK(PetscPrintf(PETSC_COMM_WORLD,
+                   "  codim2 %s in -lattice_cubic: %zu points, Gamma %.4g .. %.4g, max |E Gamma / (E Gamma)* - 1| = %.1e, max |omega / omega* - 1| = %.1e\n",
+                   what, n, (double)c.p.front(), (double)c.p.back(), (double)worst_eg, (double)worst_w));
+  REQUIRE(worst_eg <= 1e-8);
+  REQUIRE(worst_w <= 1e-8);
+}
+
 } // namespace
 
 TEST_CASE("codim-2: the energy fold continued in -lattice_cubic lies on E Gamma = const at constant omega, through the one-parameter runs' folds", "[codim2]")
@@ -156,32 +182,14 @@ TEST_CASE("codim-2: the energy fold continued in -lattice_cubic lies on E Gamma 
   const size_t n = c.p.size();
   INFO("curve " << c.name << ": " << n << " points, p " << c.p.front() << " .. " << c.p.back() << ", " << c.solves << " orbits, " << c.stop_reason);
   REQUIRE(c.name == "fold" + std::to_string(f.index));
-  REQUIRE(n >= 6);
-  // it spans the range asked for, on both sides of the event, in order of p
-  REQUIRE(c.p.front() < 0.36);
-  REQUIRE(c.p.back() > 0.7);
-  REQUIRE(c.p[c.event_point] == 0.5);
-  for (size_t k = 1; k < n; k++) REQUIRE(c.p[k] > c.p[k - 1]);
   // the event itself: the located fold, to the one-parameter run's bracket
   REQUIRE(std::abs(c.omega[c.event_point] - e.omega) <= 1e-8);
   REQUIRE(std::abs(c.energy[c.event_point] - e.energy) <= 1e-8 * e.energy);
-  // E Gamma and omega constant along the whole curve
-  const PetscReal EG = c.energy[c.event_point] * c.p[c.event_point], w = c.omega[c.event_point];
-  PetscReal worst_eg = 0, worst_w = 0;
-  for (size_t k = 0; k < n; k++) {
-    worst_eg = std::max(worst_eg, std::abs(c.energy[k] * c.p[k] / EG - 1));
-    worst_w = std::max(worst_w, std::abs(c.omega[k] / w - 1));
-    REQUIRE(std::abs(c.test[k]) <= 1e-6); // d ln E / d ln omega, 0 on the curve
-    // at a fold the multiplier +1 is fourfold: the trivial pair and the pair passing +1
+  RequireScaledCurve(c, "fold");
+  // at a fold the multiplier +1 is fourfold: the trivial pair and the pair passing +1
+  for (size_t k = 0; k < n; k++)
     for (PetscInt j = 0; j < Codim2Curve::kMultipliers; j++)
       REQUIRE(std::hypot(c.mu_re[k * Codim2Curve::kMultipliers + j] - 1, c.mu_im[k * Codim2Curve::kMultipliers + j]) <= 1e-2);
-  }
-  INFO("worst |E Gamma / (E Gamma)* - 1| " << worst_eg << ", worst |omega / omega* - 1| " << worst_w);
-  PCHK(PetscPrintf(PETSC_COMM_WORLD,
-                   "  codim2 fold in -lattice_cubic: %zu points, Gamma %.4g .. %.4g, max |E Gamma / (E Gamma)* - 1| = %.1e, max |omega / omega* - 1| = %.1e\n",
-                   n, (double)c.p.front(), (double)c.p.back(), (double)worst_eg, (double)worst_w));
-  REQUIRE(worst_eg <= 1e-8);
-  REQUIRE(worst_w <= 1e-8);
   // an independent one-parameter run at the curve's last p locates the same fold there
   FoldOfMode0 g;
   PCHK(g.Locate(c.p[n - 1]));
@@ -214,29 +222,15 @@ TEST_CASE("codim-2: a Hamiltonian-Hopf onset continued in -lattice_cubic lies on
   const size_t n = c.p.size();
   INFO("curve " << c.name << ": " << n << " points, p " << c.p.front() << " .. " << c.p.back() << ", " << c.solves << " orbits, " << c.stop_reason);
   REQUIRE(c.name == "hh" + std::to_string(f.index));
-  REQUIRE(n >= 6);
-  REQUIRE(c.p.front() < 0.36);
-  REQUIRE(c.p.back() > 0.7);
   REQUIRE(std::abs(c.omega[c.event_point] - e.omega) <= 1e-8);
-  const PetscReal EG = c.energy[c.event_point] * c.p[c.event_point], w = c.omega[c.event_point];
-  PetscReal worst_eg = 0, worst_w = 0;
-  for (size_t k = 0; k < n; k++) {
-    worst_eg = std::max(worst_eg, std::abs(c.energy[k] * c.p[k] / EG - 1));
-    worst_w = std::max(worst_w, std::abs(c.omega[k] / w - 1));
-    REQUIRE(std::abs(c.test[k]) <= 1e-6);
-    // the four colliding multipliers: on the unit circle at the onset (a double pair, two of each), at the event's angle
+  RequireScaledCurve(c, "Hamiltonian-Hopf");
+  // the four colliding multipliers: on the unit circle at the onset (a double pair, two of each), at the event's angle
+  for (size_t k = 0; k < n; k++)
     for (PetscInt j = 0; j < Codim2Curve::kMultipliers; j++) {
       const PetscReal re = c.mu_re[k * Codim2Curve::kMultipliers + j], im = c.mu_im[k * Codim2Curve::kMultipliers + j];
       REQUIRE(std::abs(std::hypot(re, im) - 1) <= 1e-3);
       REQUIRE(std::abs(std::abs(std::atan2(im, re)) - std::atan2(e.mu_im, e.mu_re)) <= 1e-3);
     }
-  }
-  PCHK(PetscPrintf(
-      PETSC_COMM_WORLD,
-      "  codim2 Hamiltonian-Hopf in -lattice_cubic: %zu points, Gamma %.4g .. %.4g, max |E Gamma / (E Gamma)* - 1| = %.1e, max |omega / omega* - 1| = %.1e\n",
-      n, (double)c.p.front(), (double)c.p.back(), (double)worst_eg, (double)worst_w));
-  REQUIRE(worst_eg <= 1e-8);
-  REQUIRE(worst_w <= 1e-8);
   FoldOfMode0 g;
   g.kind = EventKind::HamiltonianHopf;
   LatticeParams q;
@@ -275,29 +269,12 @@ TEST_CASE("codim-2: a period doubling continued in -lattice_cubic lies on E Gamm
   INFO("curve " << c.name << ": " << n << " points, p " << c.p.front() << " .. " << c.p.back() << ", " << c.solves << " orbits, " << c.stop_reason);
   REQUIRE(c.name == "pd" + std::to_string(f.index));
   REQUIRE(c.kind == EventKind::PeriodDoubling);
-  REQUIRE(n >= 6);
-  REQUIRE(c.p.front() < 0.36);
-  REQUIRE(c.p.back() > 0.7);
-  REQUIRE(c.p[c.event_point] == 0.5);
-  for (size_t k = 1; k < n; k++) REQUIRE(c.p[k] > c.p[k - 1]);
   REQUIRE(std::abs(c.omega[c.event_point] - e.omega) <= 1e-8);
   REQUIRE(std::abs(c.energy[c.event_point] - e.energy) <= 1e-8 * e.energy);
-  const PetscReal EG = c.energy[c.event_point] * c.p[c.event_point], w = c.omega[c.event_point];
-  PetscReal worst_eg = 0, worst_w = 0;
-  for (size_t k = 0; k < n; k++) {
-    worst_eg = std::max(worst_eg, std::abs(c.energy[k] * c.p[k] / EG - 1));
-    worst_w = std::max(worst_w, std::abs(c.omega[k] / w - 1));
-    REQUIRE(std::abs(c.test[k]) <= 1e-6); // b + 1, 0 on the curve
-    // the pair at -1, the two multipliers nearest it (a Jordan block there: each is off by the root of rounding)
-    for (PetscInt j = 0; j < 2; j++)
-      REQUIRE(std::hypot(c.mu_re[k * Codim2Curve::kMultipliers + j] + 1, c.mu_im[k * Codim2Curve::kMultipliers + j]) <= 1e-2);
-  }
-  PCHK(PetscPrintf(
-      PETSC_COMM_WORLD,
-      "  codim2 period doubling in -lattice_cubic: %zu points, Gamma %.4g .. %.4g, max |E Gamma / (E Gamma)* - 1| = %.1e, max |omega / omega* - 1| = %.1e\n",
-      n, (double)c.p.front(), (double)c.p.back(), (double)worst_eg, (double)worst_w));
-  REQUIRE(worst_eg <= 1e-8);
-  REQUIRE(worst_w <= 1e-8);
+  RequireScaledCurve(c, "period doubling");
+  // the pair at -1, the two multipliers nearest it (a Jordan block there: each is off by the root of rounding)
+  for (size_t k = 0; k < n; k++)
+    for (PetscInt j = 0; j < 2; j++) REQUIRE(std::hypot(c.mu_re[k * Codim2Curve::kMultipliers + j] + 1, c.mu_im[k * Codim2Curve::kMultipliers + j]) <= 1e-2);
   // an independent one-parameter run (parent, branch point, switched family) at the curve's last p
   DoublingOnSwitchedFamily g;
   PCHK(g.LocateDoubling(c.p[n - 1]));
@@ -309,8 +286,8 @@ TEST_CASE("codim-2: a period doubling continued in -lattice_cubic lies on E Gamm
                                                  << c.energy[n - 1]);
   REQUIRE(std::abs(h.omega - c.omega[n - 1]) <= 1e-6);
   REQUIRE(std::abs(h.energy - c.energy[n - 1]) <= 1e-5 * h.energy);
-  PCHK(PetscPrintf(PETSC_COMM_WORLD, "  one-parameter period doubling at Gamma %.6g: |omega - curve's| = %.1e, |E / curve's - 1| = %.1e\n",
-                   (double)c.p[n - 1], (double)std::abs(h.omega - c.omega[n - 1]), (double)std::abs(h.energy / c.energy[n - 1] - 1)));
+  PCHK(PetscPrintf(PETSC_COMM_WORLD, "  one-parameter period doubling at Gamma %.6g: |omega - curve's| = %.1e, |E / curve's - 1| = %.1e\n", (double)c.p[n - 1],
+                   (double)std::abs(h.omega - c.omega[n - 1]), (double)std::abs(h.energy / c.energy[n - 1] - 1)));
 }
 
 TEST_CASE("codim-2: the energy fold continued in -lattice_gamma passes through the folds of independent one-parameter runs at its ends", "[codim2][once]")
