@@ -37,8 +37,7 @@ PetscErrorCode CheckMcrAccuracyIntegrator(MPI_Comm comm, const McrAccuracyOption
   PetscFunctionReturn(0);
 }
 
-SimulationOptions McrFirstRunOptions(const McrAccuracyOptions &o, const SimulationOptions &sim, PetscReal omega_ext, PetscReal energy,
-                                     PetscReal omega_top)
+SimulationOptions McrFirstRunOptions(const McrAccuracyOptions &o, const SimulationOptions &sim, PetscReal omega_ext, PetscReal energy, PetscReal omega_top)
 {
   SimulationOptions first = sim;
   if (o.tol > 0 && o.dt_phase > 0) {
@@ -56,9 +55,7 @@ SimulationOptions McrFirstRunOptions(const McrAccuracyOptions &o, const Simulati
 
 PetscReal McrFirstStep(const SimulationOptions &first, PetscReal scene_dt, PetscReal energy)
 {
-  PetscReal h = (first.dt_base > 0 ? first.dt_base : scene_dt) * first.dt_scale;
-  if (first.dt_quartic_energy > 0 && energy > first.dt_quartic_energy) h *= std::pow(first.dt_quartic_energy / energy, 0.25);
-  return h;
+  return (first.dt_base > 0 ? first.dt_base : scene_dt) * first.dt_scale * QuarticStepFactor(first, energy);
 }
 
 namespace {

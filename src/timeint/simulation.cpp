@@ -41,6 +41,11 @@ PetscErrorCode SimulationOptionsFromOptions(MPI_Comm comm, SimulationOptions *o)
 // The initial step of every run (-sim_ts_dt overrides it).
 static const PetscReal kInitialStep = 0.01;
 
+PetscReal QuarticStepFactor(const SimulationOptions &o, PetscReal energy)
+{
+  return o.dt_quartic_energy > 0 && energy > o.dt_quartic_energy ? std::pow(o.dt_quartic_energy / energy, 0.25) : 1;
+}
+
 PetscErrorCode SimulationGivenStep(PetscReal *dt)
 {
   PetscFunctionBeginUser;
@@ -253,8 +258,8 @@ struct Run {
   ProgressLine progress;
 
   Run(const EffectList &e, const SimulationOptions &o, SampleSink *s, SimulationResult *res)
-      : lat(&e.Lat()), fx(&e), rhs(e), r(res), keep_state(o.keep_cutoff_state), estar(e.Burst() ? e.Burst()->EnergyStar() : 0), crossing(e, estar), window(e), sampler(e, s, o),
-        progress(e.Lat().Comm(), o.progress, o.t_final)
+      : lat(&e.Lat()), fx(&e), rhs(e), r(res), keep_state(o.keep_cutoff_state), estar(e.Burst() ? e.Burst()->EnergyStar() : 0), crossing(e, estar), window(e),
+        sampler(e, s, o), progress(e.Lat().Comm(), o.progress, o.t_final)
   {
   }
 
@@ -509,7 +514,7 @@ PetscErrorCode SetFixedStep(const EffectList &fx, const SimulationOptions &o, Ru
         PetscCall(fx.Energy(z, &e));
         E = e.Total();
       }
-      if (E > o.dt_quartic_energy) scale *= std::pow(o.dt_quartic_energy / E, 0.25);
+      scale *= QuarticStepFactor(o, E);
     }
     PetscCall(TSGetTimeStep(ts, &dt));
     if (o.dt_base > 0) dt = o.dt_base;

@@ -22,6 +22,9 @@ struct SimulationOptions {
   bool keep_cutoff_state = false;  // keep the state at the cut-off in SimulationResult::z_off (set by code: the sweep's Lyapunov exponent)
 };
 PetscErrorCode SimulationOptionsFromOptions(MPI_Comm comm, SimulationOptions *o);
+// Fixed-step types: the factor (E_q / E)^(1/4) on the step above E_q =
+// o.dt_quartic_energy (1 at or below it, or with E_q = 0).
+PetscReal QuarticStepFactor(const SimulationOptions &o, PetscReal energy);
 // The step -sim_ts_dt gives (the initial step Simulate sets when it is not given):
 // a fixed-step type's step before dt_base, dt_scale and the quartic shrinking.
 PetscErrorCode SimulationGivenStep(PetscReal *dt);

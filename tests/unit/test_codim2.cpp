@@ -169,6 +169,19 @@ void RequireScaledCurve(const Codim2Curve &c, const char *what)
   REQUIRE(worst_w <= 1e-8);
 }
 
+// An independent one-parameter run's event h of the curve's kind, at the
+// curve's last p: at the curve's omega to 1e-6 and its E to 1e-5 relative.
+void RequireEventAtCurveEnd(const BifurcationEvent &h, const Codim2Curve &c, const char *what)
+{
+  const size_t n = c.p.size();
+  INFO("one-parameter " << what << " at Gamma " << c.p[n - 1] << ": omega " << h.omega << ", E " << h.energy << "; the curve's " << c.omega[n - 1] << ", "
+                        << c.energy[n - 1]);
+  REQUIRE(std::abs(h.omega - c.omega[n - 1]) <= 1e-6);
+  REQUIRE(std::abs(h.energy - c.energy[n - 1]) <= 1e-5 * h.energy);
+  PCHK(PetscPrintf(PETSC_COMM_WORLD, "  one-parameter %s at Gamma %.6g: |omega - curve's| = %.1e, |E / curve's - 1| = %.1e\n", what, (double)c.p[n - 1],
+                   (double)std::abs(h.omega - c.omega[n - 1]), (double)std::abs(h.energy / c.energy[n - 1] - 1)));
+}
+
 } // namespace
 
 TEST_CASE("codim-2: the energy fold continued in -lattice_cubic lies on E Gamma = const at constant omega, through the one-parameter runs' folds", "[codim2]")
@@ -195,12 +208,7 @@ TEST_CASE("codim-2: the energy fold continued in -lattice_cubic lies on E Gamma 
   PCHK(g.Locate(c.p[n - 1]));
   REQUIRE(g.index >= 0);
   const BifurcationEvent &h = g.ev[g.index];
-  INFO("one-parameter fold at Gamma " << c.p[n - 1] << ": omega " << h.omega << ", E " << h.energy << "; the curve's " << c.omega[n - 1] << ", "
-                                      << c.energy[n - 1]);
-  REQUIRE(std::abs(h.omega - c.omega[n - 1]) <= 1e-6);
-  REQUIRE(std::abs(h.energy - c.energy[n - 1]) <= 1e-5 * h.energy);
-  PCHK(PetscPrintf(PETSC_COMM_WORLD, "  one-parameter fold at Gamma %.6g: |omega - curve's| = %.1e, |E / curve's - 1| = %.1e\n", (double)c.p[n - 1],
-                   (double)std::abs(h.omega - c.omega[n - 1]), (double)std::abs(h.energy / c.energy[n - 1] - 1)));
+  RequireEventAtCurveEnd(h, c, "fold");
 }
 
 TEST_CASE("codim-2: a Hamiltonian-Hopf onset continued in -lattice_cubic lies on E Gamma = const at constant omega, through the one-parameter runs' "
@@ -241,12 +249,7 @@ TEST_CASE("codim-2: a Hamiltonian-Hopf onset continued in -lattice_cubic lies on
   REQUIRE(hi >= 0);
   const BifurcationEvent &h = g.ev[hi];
   REQUIRE(h.direction == e.direction);
-  INFO("one-parameter onset at Gamma " << c.p[n - 1] << ": omega " << h.omega << ", E " << h.energy << "; the curve's " << c.omega[n - 1] << ", "
-                                       << c.energy[n - 1]);
-  REQUIRE(std::abs(h.omega - c.omega[n - 1]) <= 1e-6);
-  REQUIRE(std::abs(h.energy - c.energy[n - 1]) <= 1e-5 * h.energy);
-  PCHK(PetscPrintf(PETSC_COMM_WORLD, "  one-parameter onset at Gamma %.6g: |omega - curve's| = %.1e, |E / curve's - 1| = %.1e\n", (double)c.p[n - 1],
-                   (double)std::abs(h.omega - c.omega[n - 1]), (double)std::abs(h.energy / c.energy[n - 1] - 1)));
+  RequireEventAtCurveEnd(h, c, "onset");
 }
 
 TEST_CASE("codim-2: a period doubling continued in -lattice_cubic lies on E Gamma = const at constant omega, through the one-parameter runs' "
@@ -282,12 +285,7 @@ TEST_CASE("codim-2: a period doubling continued in -lattice_cubic lies on E Gamm
   REQUIRE(hi >= 0);
   const BifurcationEvent &h = g.ev[hi];
   REQUIRE(h.direction == e.direction);
-  INFO("one-parameter period doubling at Gamma " << c.p[n - 1] << ": omega " << h.omega << ", E " << h.energy << "; the curve's " << c.omega[n - 1] << ", "
-                                                 << c.energy[n - 1]);
-  REQUIRE(std::abs(h.omega - c.omega[n - 1]) <= 1e-6);
-  REQUIRE(std::abs(h.energy - c.energy[n - 1]) <= 1e-5 * h.energy);
-  PCHK(PetscPrintf(PETSC_COMM_WORLD, "  one-parameter period doubling at Gamma %.6g: |omega - curve's| = %.1e, |E / curve's - 1| = %.1e\n", (double)c.p[n - 1],
-                   (double)std::abs(h.omega - c.omega[n - 1]), (double)std::abs(h.energy / c.energy[n - 1] - 1)));
+  RequireEventAtCurveEnd(h, c, "period doubling");
 }
 
 TEST_CASE("codim-2: the energy fold continued in -lattice_gamma passes through the folds of independent one-parameter runs at its ends", "[codim2][once]")
