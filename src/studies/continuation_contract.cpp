@@ -3,6 +3,7 @@
 // (studies/continuation_record.cpp).
 #include "studies/nnm_setup.hpp"
 #include "studies/registry.hpp"
+#include "studies/continuation_record.hpp"
 
 namespace nltopo {
 
@@ -15,10 +16,10 @@ static const char *const kLeadingEdgeShare =
     "uses it); NaN matrix-free";
 
 // -cont_codim2 (issue 37, stability/codim2.hpp): an event followed in (E, p).
-static Schema Codim2Schema()
+Schema Codim2Schema(const char *path)
 {
   using namespace schema_names;
-  return {"/continuation/<branch>/codim2/<curve>",
+  return {path,
           "",
           {{"p", D, R, "npts", "the parameter's: 1 (-lattice_gamma), stiffness (-lattice_k), stiffness/displacement^2 (-lattice_cubic)",
             "the second parameter (the option the attribute parameter names) at each point, in order along the curve: the side where p first "
@@ -161,7 +162,7 @@ StudyContract ContinuationStudyContract()
          // issue 35: the leading eigenvector's extent (dense route; NaN matrix-free)
          {"leading_participation", D, R, "npts", "sites", kLeadingParticipation},
          {"leading_edge_share", D, R, "npts", "1", kLeadingEdgeShare}}},
-       Codim2Schema(),
+       Codim2Schema("/continuation/<branch>/codim2/<curve>"),
        KreinMapSchema()}};
 }
 

@@ -305,13 +305,17 @@ std::vector<std::string> ContinuationColumnNames()
 // /continuation/<branch>/codim2/<curve> (-cont_codim2): each field of its schema from the curve.
 PetscErrorCode WriteCodim2Curve(PetscViewer v, const std::string &label, const Codim2Curve &c)
 {
+  return WriteCodim2CurveAt(v, "/continuation/" + label + "/codim2/" + c.name, "/continuation/<branch>/codim2/<curve>", c);
+}
+
+PetscErrorCode WriteCodim2CurveAt(PetscViewer v, const std::string &g, const char *schema_path, const Codim2Curve &c)
+{
   MPI_Comm comm = PetscObjectComm((PetscObject)v);
-  const std::string g = "/continuation/" + label + "/codim2/" + c.name;
   const char *gc = g.c_str();
-  const Schema *s = FindSchema("/continuation/<branch>/codim2/<curve>");
+  const Schema *s = FindSchema(schema_path);
   const PetscInt np = (PetscInt)c.p.size();
   PetscFunctionBeginUser;
-  PetscCheck(s, comm, PETSC_ERR_PLIB, "output schema has no /continuation/<branch>/codim2/<curve>");
+  PetscCheck(s, comm, PETSC_ERR_PLIB, "output schema has no %s", schema_path);
   for (const Field &fd : s->fields) {
     const std::string n = fd.name;
     if (fd.kind == FieldKind::Attribute) {

@@ -7,6 +7,7 @@
 #include "stability/codim2.hpp"
 #include "stability/floquet_hooks.hpp" // FloquetColumns
 #include "stability/krein_map.hpp"
+#include "io/schema.hpp"
 #include <string>
 #include <vector>
 
@@ -39,6 +40,13 @@ enum class FloquetKind { None, Dense, MatrixFree };
 std::vector<const char *> ContinuationVariants(FloquetKind fk);
 // The names the column table binds (tests: it covers the schema exactly).
 std::vector<std::string> ContinuationColumnNames();
+
+// One curve of -cont_codim2 into group g, by the fields of the schema at
+// schema_path (a Codim2Schema: /continuation/<branch>/codim2/<curve>, or
+// the stability map's copy of it).
+PetscErrorCode WriteCodim2CurveAt(PetscViewer v, const std::string &g, const char *schema_path, const Codim2Curve &c);
+// The schema of one such curve, at path (studies/continuation_contract.cpp).
+Schema Codim2Schema(const char *path);
 
 // n2 = 2N, nev = -floquet_mf_nev.
 PetscErrorCode WriteRecord(PetscViewer v, const BranchRecord &r, FloquetKind fk, PetscInt n2, PetscInt nev);

@@ -17,6 +17,7 @@
 #include "studies/checkpoint_hook.hpp"
 #include "studies/continuation_choices.hpp"
 #include "studies/continuation_record.hpp"
+#include "studies/event_orbit.hpp"
 #include "studies/registry.hpp"
 #include "studies/study.hpp"
 #include <cmath>
@@ -311,7 +312,6 @@ private:
   PetscErrorCode Codim2From(const std::string &name, const std::string &label)
   {
     PetscInt k;
-    OwnedVec X, z;
     bool found;
     Codim2Start st;
     Codim2Curve c;
@@ -320,18 +320,9 @@ private:
     BranchRecord &d = done_.back();
     PetscCall(SelectEventNearest(comm_, "-cont_codim2", c2spec_.text, c2spec_.kind, c2spec_.omega, d.events, label, &k));
     const BifurcationEvent e = d.events[k];
-    PetscCall(nnm_.shoot.CreateUnknowns(X.out()));
-    PetscCall(nnm_.lat.CreateStateVector(z.out()));
-    PetscCall(locator_.OrbitAt(e.point, e.sigma, X, &found));
+    PetscCall(EventOrbit(comm_, locator_, nnm_, e, &st, &found));
     PetscCheck(found, comm_, PETSC_ERR_NOT_CONVERGED, "-cont_codim2 %s: the orbit of event %" PetscInt_FMT " (omega %g) was not found again",
                c2spec_.text.c_str(), k, (double)e.omega);
-    PetscCall(nnm_.shoot.Unpack(X, z, &st.period, &st.beta));
-    st.omega = 2 * PETSC_PI / st.period;
-    EnergyParts en;
-    PetscCall(nnm_.flow.Effects().Energy(z, &en));
-    st.energy = en.Total();
-    PetscCall(AppendStateRow(nnm_.lat, z, &st.z0));
-    PetscCall(BroadcastFromRoot(comm_, MPIU_REAL, &st.z0));
     PetscCall(ContinueCodim2(comm_, nnm_.lp, nnm_.fo, nnm_.so, flo_, nnm_.flow.PeriodMultiple(), c2o_, e, k, st, label.c_str(), &c));
     d.codim2.push_back(std::move(c));
     PetscFunctionReturn(0);

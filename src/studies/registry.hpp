@@ -32,6 +32,8 @@ namespace nltopo {
   X("stability", Stability, "-stability_", "perturbed insulated-branch NNMs integrated for many periods: does the standing wave persist")                      \
   X("floquet_scaling", FloquetScaling, "-scaling_",                                                                                                            \
     "one branch at several lattice sizes, dense Floquet: does an instability persist as N grows (envelope ~ N^-p)")                                            \
+  X("stabilitymap", StabilityMap, "-smap_",                                                                                                                     \
+    "where the NNMs of one branch are stable in (p, E): its events followed as curves in a second parameter, the regions they bound, brute-force checks") \
   X("merge", Merge, "-merge_", "joins the shard files of one sweep (-sweep_shard i/n) into its map")
 
 // What a study adds to the output contract, stated in its own file.

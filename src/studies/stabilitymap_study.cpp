@@ -1,0 +1,554 @@
+// -study stabilitymap (issue 37; docs/studies/stabilitymap.md): where the NNMs
+// of one branch are stable in the plane of E and a second parameter p (a
+// lattice option, -cont_codim2_parameter). At each lattice size (-smap_cells)
+// the branch is continued at the run's p with dense Floquet and its events
+// located (as -study continuation -cont_bifurcations does); the events of the
+// asked kinds are followed in (E, p) (stability/codim2.hpp), one curve per
+// event that no curve followed already passes through; the curves label the
+// raster of (p, E) regions (stability/stability_regions.hpp). At the first
+// size, one-parameter branches at the -smap_check values of p are the brute
+// force the map is checked against: their events and verdicts, with the map's
+// label at each of their orbits. /stabilitymap of outputs.md.
+#include "studies/nnm_setup.hpp"
+#include "bands/bloch.hpp"
+#include "core/errors.hpp"
+#include "core/log.hpp"
+#include "core/option_table.hpp"
+#include "core/signals.hpp"
+#include "io/output.hpp"
+#include "io/schema.hpp"
+#include "stability/bifurcation_locator.hpp"
+#include "stability/codim2.hpp"
+#include "stability/floquet_hooks.hpp"
+#include "stability/stability_regions.hpp"
+#include "studies/continuation_choices.hpp"
+#include "studies/continuation_record.hpp"
+#include "studies/event_orbit.hpp"
+#include "studies/registry.hpp"
+#include "studies/study.hpp"
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+namespace nltopo {
+
+namespace {
+
+constexpr const char *kEventCurveCodes = ">= 0 the curve's row in curve_*; -1 not a kind followed (-smap_kinds); -2 not followed (-smap_max_curves, or its "
+                                          "curve could not be started)";
+constexpr const char *kCurveSideCodes = "1 left of its direction of travel; -1 right; 0 unknown (no direction, or vertical at its event)";
+constexpr const char *kAgreeCodes = "1 the map's label equals the orbit's class; 0 it does not; -1 not compared (within -smap_same_curve_rtol of a curve, or below "
+                                    "-smap_energy_min)";
+
+struct MapOptions {
+  std::vector<PetscReal> cells{5};
+  std::string branch = "insulated";
+  std::vector<PetscReal> kinds{5, 2, 3};
+  std::vector<PetscReal> check;
+  PetscInt raster_p = 121, raster_energy = 121;
+  PetscReal energy_min = 0.1;
+  PetscInt max_curves = 40;
+  PetscReal same_curve_rtol = 1e-3;
+};
+
+const auto &kMapTable = DeclareOptionTable<MapOptions>(
+    "smap_", "Stability map in (p, E): event curves of one branch, regions, brute-force check", [](OptionTable<MapOptions> &t) {
+      using M = MapOptions;
+      t.RealList("cells", &M::cells, 4, Closed(1, 1e5),
+                 "Cells per side of each lattice size mapped (N = 4 cells + 2 on the interface layout), integers; the first is the main map (the "
+                 "-smap_check branches are compared with it), the others are drawn beside it to show where the map depends on N")
+          .String("branch", &M::branch, "The branch whose stability is mapped, named as in -cont_branch (insulated, interface, ..., mode<k>)")
+          .RealList("kinds", &M::kinds, 4, Closed(1, 5),
+                    "The kinds of located events followed as curves, in the codes of /bifurcations kind: 1 energy fold, 2 branch point, 3 period "
+                    "doubling, 5 Hamiltonian-Hopf onset (4, a pass of equal signatures, bounds no instability)")
+          .RealList("check", &M::check, 16, Closed(-1e6, 1e6),
+                    "Values of p (-cont_codim2_parameter) at which the branch is also continued as a one-parameter run at the first size: its events "
+                    "and verdicts are the brute force the map is checked against (none: no check)",
+                    OptionClass::Extent)
+          .Int("raster_p", &M::raster_p, Closed(2, 100000), "Columns of the region raster, evenly over [-cont_codim2_min, -cont_codim2_max]", OptionClass::Extent)
+          .Int("raster_energy", &M::raster_energy, Closed(2, 100000), "Rows of the region raster, log-spaced over [-smap_energy_min, -cont_energy_max]",
+               OptionClass::Extent)
+          .Real("energy_min", &M::energy_min, Open(0, 1e12), "The lowest energy of the region raster (the map's bottom)", OptionClass::Extent)
+          .Int("max_curves", &M::max_curves, Closed(1, 10000), "Curves followed at most per lattice size (events past it are listed, not followed)",
+               OptionClass::Extent)
+          .Real("same_curve_rtol", &M::same_curve_rtol, Open(0, 1),
+                "An event lies on a curve already followed (and is not followed again) when the curve crosses the run's p at the event's energy to "
+                "this, relative");
+    });
+
+PetscErrorCode MapOptionsFromOptions(MPI_Comm comm, MapOptions *o)
+{
+  PetscFunctionBeginUser;
+  PetscCall(kMapTable.Read(comm, o));
+  PetscCheck(!o->cells.empty(), comm, PETSC_ERR_USER, "-smap_cells needs at least one size");
+  for (PetscReal c : o->cells)
+    PetscCheck(c == std::floor(c), comm, PETSC_ERR_USER, "-smap_cells %g: cells per side are integers", (double)c);
+  for (PetscReal k : o->kinds)
+    PetscCheck(k == 1 || k == 2 || k == 3 || k == 5, comm, PETSC_ERR_USER,
+               "-smap_kinds %g: the kinds followed are 1 (energy fold), 2 (branch point), 3 (period doubling) and 5 (Hamiltonian-Hopf onset)", (double)k);
+  PetscFunctionReturn(0);
+}
+
+// One followed event: its curve and the side of it where the instability lies.
+struct MapCurve {
+  Codim2Curve c;
+  PetscInt event = 0, cls = 0, direction = 0, side = 0;
+};
+
+// One lattice size: the branch at the run's p, its events and their curves, the raster.
+struct SizeMap {
+  PetscInt cells = 0, N = 0;
+  PetscReal p = 0;
+  Branch b;
+  FloquetColumns f;
+  std::vector<BifurcationEvent> events;
+  std::vector<PetscInt> event_curve; // per event: the curve it lies on (-1 not a kind followed, -2 not followed: -smap_max_curves or a failure)
+  std::vector<MapCurve> curves;
+  std::vector<PetscInt> label;
+  PetscInt inconsistent = 0;
+  PetscReal seconds = 0;
+};
+
+// One brute-force branch at p = -smap_check value.
+struct CheckRun {
+  PetscReal p = 0;
+  Branch b;
+  FloquetColumns f;
+  std::vector<BifurcationEvent> events;
+  std::vector<PetscInt> map_label, agree;
+  std::vector<PetscReal> event_offset; // per event: relative E distance to the nearest crossing of a curve of its kind at p
+  PetscReal seconds = 0;
+};
+
+// The branch of nnm (built) continued with dense Floquet, its events located.
+PetscErrorCode BranchWithEvents(MPI_Comm comm, NnmSetup &nnm, const std::string &branch, const FloquetOptions &flo, const BifurcationOptions &bo,
+                                BifurcationLocator *loc, Branch *b, FloquetColumns *f, std::vector<BifurcationEvent> *events)
+{
+  OwnedVec u;
+  PetscReal omega;
+  std::string label;
+  PetscFunctionBeginUser;
+  PetscCall(DMCreateGlobalVector(nnm.lat.SiteDM(), u.out()));
+  PetscCall(BranchStart(nnm.lat, nnm.modes, branch.c_str(), u, &omega, &label));
+  FloquetHook hook(nnm.flow, flo);
+  PetscCall(ContinueBranch(nnm.shoot, u, 2 * PETSC_PI / omega, nnm.co, label.c_str(), b, &hook));
+  PetscCall(loc->Setup(nnm.shoot, flo, bo));
+  loc->SetProgress(nnm.co.progress);
+  PetscCall(loc->Locate(*b, hook.c.re, hook.c.im, hook.c.edge, label.c_str(), events, hook.c.krein));
+  *f = std::move(hook.c);
+  PetscFunctionReturn(0);
+}
+
+RegionCurve AsRegion(const MapCurve &m)
+{
+  RegionCurve r;
+  r.p = m.c.p, r.energy = m.c.energy, r.cls = m.cls, r.side = m.side;
+  return r;
+}
+
+// Relative distance in E from (p, E) to the nearest crossing of the column p by a curve of kind k (+inf: none crosses).
+PetscReal OffsetToCurves(const std::vector<MapCurve> &curves, EventKind k, PetscReal p, PetscReal energy)
+{
+  PetscReal best = INFINITY;
+  for (const MapCurve &m : curves) {
+    if (m.c.kind != k) continue;
+    RegionCurve r = AsRegion(m);
+    r.side = 1; // (any side: only where it crosses)
+    for (const Crossing &x : ColumnCrossings(r, p)) best = std::min(best, std::abs(x.energy - energy) / energy);
+  }
+  return best;
+}
+
+class StabilityMapStudy : public Study {
+protected:
+  PetscErrorCode ReadOptions() override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(base_.ReadOptions(comm_));
+    if (!declaring_) PetscCall(RejectGivenOptions(comm_, {"-lattice_cells", "-cont_codim2"}, "-study stabilitymap (-smap_cells, -smap_kinds)"));
+    PetscCall(FloquetOptionsFromOptions(comm_, &flo_));
+    PetscCall(BifurcationOptionsFromOptions(comm_, PETSC_TRUE, &bo_));
+    PetscCall(Codim2OptionsFromOptions(comm_, &c2o_, &c2spec_));
+    PetscCall(MapOptionsFromOptions(comm_, &mo_));
+    if (declaring_) PetscFunctionReturn(0);
+    PetscCheck(bo_.enabled, comm_, PETSC_ERR_USER, "-study stabilitymap locates the branch's events: -cont_bifurcations 0 cannot be given");
+    PetscCheck(base_.so.jacobian == ShootingJacobian::Dense, comm_, PETSC_ERR_USER,
+               "-study stabilitymap needs -nnm_jacobian dense (the curves' test functions factor the shooting Jacobian)");
+    PetscCheck(c2o_.pmin > -1e6 && c2o_.pmax < 1e6, comm_, PETSC_ERR_USER,
+               "-study stabilitymap needs -cont_codim2_min and -cont_codim2_max: the window of %s the map covers", Codim2ParameterOption(c2o_.parameter));
+    const PetscReal p = Codim2ParameterValue(base_.lp, c2o_.parameter);
+    PetscCheck(p >= c2o_.pmin && p <= c2o_.pmax, comm_, PETSC_ERR_USER, "-study stabilitymap: the run's %s %g lies outside [-cont_codim2_min %g, -cont_codim2_max %g]",
+               Codim2ParameterOption(c2o_.parameter), (double)p, (double)c2o_.pmin, (double)c2o_.pmax);
+    for (PetscReal q : mo_.check)
+      PetscCheck(q >= c2o_.pmin && q <= c2o_.pmax, comm_, PETSC_ERR_USER, "-smap_check %g lies outside [-cont_codim2_min %g, -cont_codim2_max %g]", (double)q,
+                 (double)c2o_.pmin, (double)c2o_.pmax);
+    PetscCheck(mo_.energy_min < base_.co.energy_max, comm_, PETSC_ERR_USER, "-smap_energy_min %g must lie below -cont_energy_max %g", (double)mo_.energy_min,
+               (double)base_.co.energy_max);
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode DeclareSolvers(MPI_Comm comm) override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(base_.DeclareSolvers(comm));
+    PetscCall(DeclareEPS(comm, "floquet_"));
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode CheckResources() override
+  {
+    PetscFunctionBeginUser;
+    for (PetscReal c : mo_.cells) {
+      NnmSetup s;
+      Adopt(&s, (PetscInt)c, Codim2ParameterValue(base_.lp, c2o_.parameter));
+      PetscCall(s.CheckResources(comm_));
+    }
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode Build() override
+  {
+    PetscFunctionBeginUser;
+    for (PetscInt i = 0; i < mo_.raster_p; i++) p_.push_back(c2o_.pmin + (c2o_.pmax - c2o_.pmin) * i / (mo_.raster_p - 1));
+    const PetscReal l0 = std::log(mo_.energy_min), l1 = std::log(base_.co.energy_max);
+    for (PetscInt j = 0; j < mo_.raster_energy; j++) energy_.push_back(std::exp(l0 + (l1 - l0) * j / (mo_.raster_energy - 1)));
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode Solve() override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(PetscPrintf(comm_, "nltopo stabilitymap: branch %s in (E, %s), %s in [%g, %g], %zu size(s), %zu check branch(es)\n", mo_.branch.c_str(),
+                          Codim2ParameterOption(c2o_.parameter), Codim2ParameterOption(c2o_.parameter), (double)c2o_.pmin, (double)c2o_.pmax,
+                          mo_.cells.size(), mo_.check.size()));
+    for (PetscReal c : mo_.cells) PetscCall(MapSize((PetscInt)c));
+    for (PetscReal q : mo_.check) PetscCall(Check(q));
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode Write(PetscViewer v) override;
+
+private:
+  void Adopt(NnmSetup *s, PetscInt cells, PetscReal p) const
+  {
+    s->lp = base_.lp, s->mo = base_.mo, s->fo = base_.fo, s->so = base_.so, s->co = base_.co;
+    s->lp.cells = cells;
+    SetCodim2Parameter(&s->lp, c2o_.parameter, p);
+  }
+  bool Followed(EventKind k) const
+  {
+    for (PetscReal q : mo_.kinds)
+      if ((PetscInt)q == (PetscInt)k) return true;
+    return false;
+  }
+  // The curve of sm.curves that event e lies on (crossing the run's p at its E), -1 none.
+  PetscInt CurveThrough(const SizeMap &sm, const BifurcationEvent &e) const
+  {
+    for (size_t k = 0; k < sm.curves.size(); k++) {
+      const MapCurve &m = sm.curves[k];
+      if (m.c.kind != e.kind) continue;
+      const std::vector<MapCurve> one{m};
+      if (OffsetToCurves(one, e.kind, sm.p, e.energy) <= mo_.same_curve_rtol) return (PetscInt)k;
+    }
+    return -1;
+  }
+  PetscErrorCode MapSize(PetscInt cells);
+  PetscErrorCode FollowEvents(NnmSetup &nnm, BifurcationLocator &loc, SizeMap *sm);
+  PetscErrorCode Check(PetscReal p);
+  PetscErrorCode WriteSize(PetscViewer v, const SizeMap &sm) const;
+  PetscErrorCode WriteCheck(PetscViewer v, size_t k, const CheckRun &cr) const;
+  PetscErrorCode WriteAxes(PetscViewer v) const;
+
+  NnmSetup base_; // the options; each size and check builds its own NnmSetup from them
+  FloquetOptions flo_;
+  BifurcationOptions bo_;
+  Codim2Options c2o_;
+  Codim2Spec c2spec_;
+  MapOptions mo_;
+  std::vector<PetscReal> p_, energy_; // the raster's axes
+  std::vector<SizeMap> sizes_;
+  std::vector<CheckRun> checks_;
+};
+
+PetscErrorCode StabilityMapStudy::MapSize(PetscInt cells)
+{
+  PetscLogDouble t0, t1;
+  BifurcationLocator loc;
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t0));
+  SizeMap sm;
+  sm.cells = cells, sm.p = Codim2ParameterValue(base_.lp, c2o_.parameter);
+  auto nnm = std::make_unique<NnmSetup>();
+  Adopt(nnm.get(), cells, sm.p);
+  PetscCall(nnm->Build(comm_, "-study stabilitymap"));
+  sm.N = nnm->lat.N();
+  PetscCall(PetscPrintf(comm_, "  [%s, N = %" PetscInt_FMT "] the branch at %s %g\n", mo_.branch.c_str(), sm.N, Codim2ParameterOption(c2o_.parameter), (double)sm.p));
+  PetscCall(BranchWithEvents(comm_, *nnm, mo_.branch, flo_, bo_, &loc, &sm.b, &sm.f, &sm.events));
+  PetscCall(FollowEvents(*nnm, loc, &sm));
+  std::vector<RegionCurve> rc;
+  for (const MapCurve &m : sm.curves) rc.push_back(AsRegion(m));
+  sm.label = LabelRegions(rc, p_, energy_, &sm.inconsistent);
+  PetscCall(PetscTime(&t1));
+  sm.seconds = t1 - t0;
+  sm.b.z0.clear(); // the orbits are -study continuation's to keep; the map keeps its columns
+  PetscCall(PetscPrintf(comm_, "  [%s, N = %" PetscInt_FMT "] %zu events, %zu curves, %" PetscInt_FMT " raster columns inconsistent, %.1f s\n", mo_.branch.c_str(),
+                        sm.N, sm.events.size(), sm.curves.size(), sm.inconsistent, (double)sm.seconds));
+  sizes_.push_back(std::move(sm));
+  PetscFunctionReturn(0);
+}
+
+// The events of the kinds followed, in order; each one no earlier curve passes
+// through starts a curve (its instability's side from the event's direction).
+PetscErrorCode StabilityMapStudy::FollowEvents(NnmSetup &nnm, BifurcationLocator &loc, SizeMap *sm)
+{
+  PetscFunctionBeginUser;
+  sm->event_curve.assign(sm->events.size(), -1);
+  for (size_t k = 0; k < sm->events.size(); k++) {
+    const BifurcationEvent &e = sm->events[k];
+    if (!Followed(e.kind)) continue;
+    const PetscInt on = CurveThrough(*sm, e);
+    if (on >= 0) {
+      sm->event_curve[k] = on;
+      PetscCall(PetscPrintf(comm_, "  [N = %" PetscInt_FMT "] event %zu (%s, omega %.7f) lies on curve %s\n", sm->N, k, EventKindName(e.kind), (double)e.omega,
+                            sm->curves[on].c.name.c_str()));
+      continue;
+    }
+    sm->event_curve[k] = -2;
+    if ((PetscInt)sm->curves.size() >= mo_.max_curves) continue;
+    Codim2Start st;
+    bool found;
+    PetscCall(EventOrbit(comm_, loc, nnm, e, &st, &found));
+    if (!found) {
+      PetscCall(PetscPrintf(comm_, "  [N = %" PetscInt_FMT "] warning: the orbit of event %zu (omega %g) was not found again; not followed\n", sm->N, k, (double)e.omega));
+      continue;
+    }
+    MapCurve m;
+    m.event = (PetscInt)k, m.cls = e.instability, m.direction = e.direction;
+    const std::string label = mo_.branch + " N=" + std::to_string(sm->N);
+    PetscErrorCode ierr = 0;
+    char msg[512];
+    PetscCall(CaptureError([&]() { return ContinueCodim2(comm_, nnm.lp, nnm.fo, nnm.so, flo_, 1, c2o_, e, (PetscInt)k, st, label.c_str(), &m.c); }, &ierr, msg,
+                           sizeof msg));
+    if (IsInterrupt(ierr)) SETERRQ(comm_, PETSC_ERR_SIG, "%s", msg);
+    if (ierr) { // a numerical failure of one curve (its start not found again): listed, not followed; the map goes on
+      PetscCall(PetscPrintf(comm_, "  [N = %" PetscInt_FMT "] warning: event %zu (omega %g) not followed: %s\n", sm->N, k, (double)e.omega, msg));
+      continue;
+    }
+    m.side = UnstableSide(AsRegion(m), m.c.event_point, m.direction);
+    sm->event_curve[k] = (PetscInt)sm->curves.size();
+    sm->curves.push_back(std::move(m));
+  }
+  PetscFunctionReturn(0);
+}
+
+// The brute force at p: the branch as a one-parameter run at the first size,
+// each orbit's verdict against the map's label there, each event's distance
+// to the map's curves of its kind.
+PetscErrorCode StabilityMapStudy::Check(PetscReal p)
+{
+  PetscLogDouble t0, t1;
+  BifurcationLocator loc;
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t0));
+  const SizeMap &sm = sizes_.front();
+  CheckRun cr;
+  cr.p = p;
+  auto nnm = std::make_unique<NnmSetup>();
+  Adopt(nnm.get(), sm.cells, p);
+  PetscCall(nnm->Build(comm_, "-study stabilitymap"));
+  PetscCall(PetscPrintf(comm_, "  [check, N = %" PetscInt_FMT "] the branch at %s %g\n", sm.N, Codim2ParameterOption(c2o_.parameter), (double)p));
+  PetscCall(BranchWithEvents(comm_, *nnm, mo_.branch, flo_, bo_, &loc, &cr.b, &cr.f, &cr.events));
+  std::vector<RegionCurve> rc;
+  for (const MapCurve &m : sm.curves) rc.push_back(AsRegion(m));
+  PetscInt agree = 0, compared = 0;
+  for (size_t i = 0; i < cr.b.energy.size(); i++) {
+    const PetscReal E = cr.b.energy[i];
+    const PetscInt lab = LabelAt(rc, p, E), got = cr.f.instability[i];
+    // orbits within -smap_same_curve_rtol of a boundary are not compared (either side is right within the map's resolution)
+    bool near = false;
+    for (const RegionCurve &r : rc)
+      for (const Crossing &x : ColumnCrossings(r, p)) near = near || std::abs(x.energy - E) <= mo_.same_curve_rtol * E;
+    const PetscInt a = near || E < mo_.energy_min ? -1 : (lab == got ? 1 : 0);
+    cr.map_label.push_back(lab), cr.agree.push_back(a);
+    if (a >= 0) compared++, agree += a;
+  }
+  for (const BifurcationEvent &e : cr.events) cr.event_offset.push_back(OffsetToCurves(sm.curves, e.kind, p, e.energy));
+  PetscCall(PetscTime(&t1));
+  cr.seconds = t1 - t0;
+  cr.b.z0.clear();
+  PetscCall(PetscPrintf(comm_, "  [check %s %g] %zu events; the map's label agrees with the branch's verdict at %" PetscInt_FMT " of %" PetscInt_FMT " orbits, %.1f s\n",
+                        Codim2ParameterOption(c2o_.parameter), (double)p, cr.events.size(), agree, compared, (double)cr.seconds));
+  checks_.push_back(std::move(cr));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode StabilityMapStudy::Write(PetscViewer v)
+{
+  PetscFunctionBeginUser;
+  PetscCall(WriteAttr(v, "/stabilitymap", "branch", mo_.branch.c_str()));
+  PetscCall(WriteAttr(v, "/stabilitymap", "parameter", Codim2ParameterOption(c2o_.parameter)));
+  PetscCall(WriteAttr(v, "/stabilitymap", "p_base", Codim2ParameterValue(base_.lp, c2o_.parameter)));
+  PetscCall(WriteAttr(v, "/stabilitymap", "sizes", (PetscInt)sizes_.size()));
+  PetscCall(WriteAttr(v, "/stabilitymap", "checks", (PetscInt)checks_.size()));
+  PetscCall(WriteAxes(v));
+  for (const SizeMap &sm : sizes_) PetscCall(WriteSize(v, sm));
+  for (size_t k = 0; k < checks_.size(); k++) PetscCall(WriteCheck(v, k, checks_[k]));
+  PetscFunctionReturn(0);
+}
+
+// The raster's axes, and per p the linear band edges and the insulated mode's decay length.
+PetscErrorCode StabilityMapStudy::WriteAxes(PetscViewer v) const
+{
+  std::vector<PetscReal> ab, at, ob, ot, decay;
+  PetscFunctionBeginUser;
+  for (PetscReal p : p_) {
+    LatticeParams lp = base_.lp;
+    SetCodim2Parameter(&lp, c2o_.parameter, p);
+    const BandEdges be = InfiniteBandEdges(lp);
+    ab.push_back(be.acoustic_bottom), at.push_back(be.acoustic_top), ob.push_back(be.optical_bottom), ot.push_back(be.optical_top);
+    // the insulated mode's amplitude changes by -k2/k1 per cell (docs/model.md): decay length 1 / ln(k1/k2) cells
+    decay.push_back(lp.K1() > lp.K2() && lp.K2() > 0 ? 1 / std::log(lp.K1() / lp.K2()) : INFINITY);
+  }
+  PetscCall(WriteArray(v, "/stabilitymap", "p", p_));
+  PetscCall(WriteArray(v, "/stabilitymap", "energy", energy_));
+  PetscCall(WriteArray(v, "/stabilitymap", "acoustic_bottom", ab));
+  PetscCall(WriteArray(v, "/stabilitymap", "acoustic_top", at));
+  PetscCall(WriteArray(v, "/stabilitymap", "optical_bottom", ob));
+  PetscCall(WriteArray(v, "/stabilitymap", "optical_top", ot));
+  PetscCall(WriteArray(v, "/stabilitymap", "decay_cells", decay));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode StabilityMapStudy::WriteSize(PetscViewer v, const SizeMap &sm) const
+{
+  const std::string g = "/stabilitymap/cells" + std::to_string(sm.cells);
+  const char *gc = g.c_str();
+  std::vector<PetscInt> ck, ccls, cdir, cside, cev, cpts, ekind, ecls, edir;
+  std::vector<PetscReal> eE, ew;
+  std::string names;
+  PetscFunctionBeginUser;
+  for (const MapCurve &m : sm.curves) {
+    ck.push_back((PetscInt)m.c.kind), ccls.push_back(m.cls), cdir.push_back(m.direction), cside.push_back(m.side), cev.push_back(m.event),
+        cpts.push_back((PetscInt)m.c.p.size());
+    names += (names.empty() ? "" : ",") + m.c.name;
+  }
+  for (const BifurcationEvent &e : sm.events)
+    ekind.push_back((PetscInt)e.kind), ecls.push_back(e.instability), edir.push_back(e.direction), eE.push_back(e.energy), ew.push_back(e.omega);
+  PetscCall(WriteAttr(v, gc, "cells", sm.cells));
+  PetscCall(WriteAttr(v, gc, "N", sm.N));
+  PetscCall(WriteAttr(v, gc, "curves", names.c_str()));
+  PetscCall(WriteAttr(v, gc, "inconsistent_columns", sm.inconsistent));
+  PetscCall(WriteAttr(v, gc, "seconds", sm.seconds));
+  PetscCall(WriteIntArray(v, gc, "region", sm.label, (PetscInt)energy_.size(), true));
+  PetscCall(WriteArray(v, gc, "branch_energy", sm.b.energy));
+  PetscCall(WriteArray(v, gc, "branch_omega", sm.b.omega));
+  PetscCall(WriteIntArray(v, gc, "branch_instability", sm.f.instability));
+  PetscCall(WriteArray(v, gc, "event_energy", eE));
+  PetscCall(WriteArray(v, gc, "event_omega", ew));
+  PetscCall(WriteIntArray(v, gc, "event_kind", ekind));
+  PetscCall(WriteIntArray(v, gc, "event_class", ecls));
+  PetscCall(WriteIntArray(v, gc, "event_direction", edir));
+  PetscCall(WriteIntArray(v, gc, "event_curve", sm.event_curve));
+  PetscCall(WriteIntArray(v, gc, "curve_kind", ck));
+  PetscCall(WriteIntArray(v, gc, "curve_class", ccls));
+  PetscCall(WriteIntArray(v, gc, "curve_direction", cdir));
+  PetscCall(WriteIntArray(v, gc, "curve_side", cside));
+  PetscCall(WriteIntArray(v, gc, "curve_event", cev));
+  PetscCall(WriteIntArray(v, gc, "curve_points", cpts));
+  for (const MapCurve &m : sm.curves) PetscCall(WriteCodim2CurveAt(v, g + "/curves/" + m.c.name, "/stabilitymap/cells<c>/curves/<curve>", m.c));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode StabilityMapStudy::WriteCheck(PetscViewer v, size_t k, const CheckRun &cr) const
+{
+  const std::string g = "/stabilitymap/checks/check" + std::to_string(k);
+  const char *gc = g.c_str();
+  std::vector<PetscInt> ekind, ecls, edir;
+  std::vector<PetscReal> eE, ew;
+  PetscFunctionBeginUser;
+  for (const BifurcationEvent &e : cr.events)
+    ekind.push_back((PetscInt)e.kind), ecls.push_back(e.instability), edir.push_back(e.direction), eE.push_back(e.energy), ew.push_back(e.omega);
+  PetscCall(WriteAttr(v, gc, "p", cr.p));
+  PetscCall(WriteAttr(v, gc, "seconds", cr.seconds));
+  PetscCall(WriteArray(v, gc, "energy", cr.b.energy));
+  PetscCall(WriteArray(v, gc, "omega", cr.b.omega));
+  PetscCall(WriteIntArray(v, gc, "instability", cr.f.instability));
+  PetscCall(WriteIntArray(v, gc, "map_label", cr.map_label));
+  PetscCall(WriteIntArray(v, gc, "agree", cr.agree));
+  PetscCall(WriteArray(v, gc, "event_energy", eE));
+  PetscCall(WriteArray(v, gc, "event_omega", ew));
+  PetscCall(WriteIntArray(v, gc, "event_kind", ekind));
+  PetscCall(WriteIntArray(v, gc, "event_class", ecls));
+  PetscCall(WriteIntArray(v, gc, "event_direction", edir));
+  PetscCall(WriteArray(v, gc, "event_offset", cr.event_offset));
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+StudyContract StabilityMapStudyContract()
+{
+  using namespace schema_names;
+  return {WithPrefixes({NnmSetup::OptionPrefixes(), {"-floquet", "-smap_"}}),
+          {{"/stabilitymap",
+            "",
+            {{"branch", A, S, "scalar", "1", "-smap_branch: the branch whose stability is mapped"},
+             {"parameter", A, S, "scalar", "1", "the second parameter's option (-cont_codim2_parameter): -lattice_gamma, -lattice_k or -lattice_cubic"},
+             {"p_base", A, R, "scalar", "1", "the run's own value of the parameter: the branches are continued and their events located there"},
+             {"sizes", A, I, "scalar", "1", "lattice sizes mapped (groups cells<c>)"},
+             {"checks", A, I, "scalar", "1", "brute-force branches (groups checks/check<k>)"},
+             {"p", D, R, "np", "1 (the parameter's unit)", "the region raster's columns: the parameter, evenly over [-cont_codim2_min, -cont_codim2_max]"},
+             {"energy", D, R, "ne", "energy", "the region raster's rows: energy, log-spaced over [-smap_energy_min, -cont_energy_max]"},
+             {"acoustic_bottom", D, R, "np", "rad/time", "infinite-lattice acoustic band bottom at each p (linear, E -> 0)"},
+             {"acoustic_top", D, R, "np", "rad/time", "infinite-lattice acoustic band top at each p"},
+             {"optical_bottom", D, R, "np", "rad/time", "infinite-lattice optical band bottom at each p"},
+             {"optical_top", D, R, "np", "rad/time", "infinite-lattice optical band top at each p"},
+             {"decay_cells", D, R, "np", "cells",
+              "decay length of the insulated mode at each p, 1 / ln(k1 / k2) cells (its amplitude changes by -k2/k1 per cell; inf where k1 <= k2): "
+              "where it exceeds a quarter of a size's cells per side, that size's map is a finite-size one"}}},
+           {"/stabilitymap/cells<c>",
+            "",
+            {{"cells", A, I, "scalar", "1", "cells per side"},
+             {"N", A, I, "scalar", "1", "sites"},
+             {"curves", A, S, "scalar", "1", "the names of the curves followed (groups curves/<curve>), comma-separated, in the order of the curve_* rows"},
+             {"inconsistent_columns", A, I, "scalar", "1",
+              "raster columns where a crossing closed an instability no crossing below had opened (a curve missing or ended inside the map); 0 "
+              "when the curves bound every region"},
+             {"seconds", A, R, "scalar", "s", "wall time of this size (branch, events, curves)"},
+             {"region", D, I, "np x ne", "1",
+              "the label of each raster point (p column, energy row) from the curves: 0 stable, 2 B-E, 3 E-E unstable (E-E wins where both are open; 1 "
+              "B-B only with -cont_bif_bulk)",
+              codes::kInstability},
+             {"branch_energy", D, R, "npts", "energy", "the branch at p_base: energy of each orbit"},
+             {"branch_omega", D, R, "npts", "rad/time", "the branch at p_base: frequency"},
+             {"branch_instability", D, I, "npts", "1", "the branch at p_base: the leading instability's class of each orbit (dense Floquet)", codes::kInstability},
+             {"event_energy", D, R, "nev", "energy", "the branch's located events at p_base: energy"},
+             {"event_omega", D, R, "nev", "rad/time", "the events' frequency"},
+             {"event_kind", D, I, "nev", "1", "the events' kind", codes::kEventKind},
+             {"event_class", D, I, "nev", "1", "the events' critical eigenvector class", codes::kInstability},
+             {"event_direction", D, I, "nev", "1", "whether the event begins or ends an instability along the branch", codes::kDirection},
+             {"event_curve", D, I, "nev", "1", "the row of the curve the event lies on", kEventCurveCodes},
+             {"curve_kind", D, I, "ncurves", "1", "each curve's kind of event", codes::kEventKind},
+             {"curve_class", D, I, "ncurves", "1", "the class of the instability it bounds", codes::kInstability},
+             {"curve_direction", D, I, "ncurves", "1", "its event's direction at p_base", codes::kDirection},
+             {"curve_side", D, I, "ncurves", "1", "the hand of its direction of travel (rows ascending, in the (p, ln E) plane) the instability lies on",
+              kCurveSideCodes},
+             {"curve_event", D, I, "ncurves", "1", "the row of its event in event_*"},
+             {"curve_points", D, I, "ncurves", "1", "its points"}}},
+           Codim2Schema("/stabilitymap/cells<c>/curves/<curve>"),
+           {"/stabilitymap/checks/<check>",
+            "",
+            {{"p", A, R, "scalar", "1 (the parameter's unit)", "the value of the parameter (-smap_check) of this one-parameter branch (first size)"},
+             {"seconds", A, R, "scalar", "s", "wall time of this branch and its events"},
+             {"energy", D, R, "npts", "energy", "energy of each orbit"},
+             {"omega", D, R, "npts", "rad/time", "frequency of each orbit"},
+             {"instability", D, I, "npts", "1", "the orbit's leading instability class (dense Floquet): the brute force", codes::kInstability},
+             {"map_label", D, I, "npts", "1", "the map's label at (p, E) of the orbit (first size)", codes::kInstability},
+             {"agree", D, I, "npts", "1", "whether the map's label equals the orbit's class", kAgreeCodes},
+             {"event_energy", D, R, "nev", "energy", "the branch's located events: energy"},
+             {"event_omega", D, R, "nev", "rad/time", "the events' frequency"},
+             {"event_kind", D, I, "nev", "1", "the events' kind", codes::kEventKind},
+             {"event_class", D, I, "nev", "1", "the events' critical eigenvector class", codes::kInstability},
+             {"event_direction", D, I, "nev", "1", "whether the event begins or ends an instability", codes::kDirection},
+             {"event_offset", D, R, "nev", "1",
+              "relative distance in E from the event to the nearest crossing of p by a map curve of its kind (first size); inf: none crosses there"}}}}};
+}
+
+std::unique_ptr<Study> CreateStabilityMapStudy() { return std::make_unique<StabilityMapStudy>(); }
+
+} // namespace nltopo
