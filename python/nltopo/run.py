@@ -20,7 +20,7 @@ class Run:
     Root: study, version, options (dict), effective_options (dict), complete,
     format_version, wall_seconds, cost (dict of /cost). Groups: linear,
     simulate, continuation, branches, sweep, zak, perturb, stability,
-    floquet_scaling, workprecision (each raises MissingError if the file lacks it)."""
+    floquet_scaling, stabilitymap, workprecision (each raises MissingError if the file lacks it)."""
 
     def __init__(self, path):
         self.path = os.fspath(path)
@@ -189,6 +189,11 @@ class Run:
     @property
     def stability(self):
         return self._view("stability", _views.Stability, "/stability")
+
+    @property
+    def stabilitymap(self):
+        """/stabilitymap of -study stabilitymap: its sizes (cells<c>: regions, curves, events) and checks (brute-force branches)."""
+        return self._view("stabilitymap", _views.StabilityMap, "/stabilitymap")
 
     @property
     def floquet_scaling(self):

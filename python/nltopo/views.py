@@ -336,6 +336,44 @@ class Codim2Curve(Group):
         return self.decode("kind")
 
 
+class StabilityMapSize(Group):
+    """/stabilitymap/cells<c>: one lattice size of the map. Arrays region (np x ne, codes of the
+    instability class: `region_name` decodes), branch_* (the branch at p_base), event_* (its located
+    events; event_curve the curve each lies on), curve_* (one row per curve); attributes N, cells,
+    inconsistent_columns. `curves`: dict curve name -> Codim2Curve, in the order of the curve_* rows."""
+
+    @property
+    def curves(self):
+        if "_curves" not in self._cache:
+            names = [n for n in str(self.attrs.get("curves", "")).split(",") if n]
+            self._cache["_curves"] = {n: Codim2Curve(self._run, self._path + "/curves/" + n) for n in names}
+        return self._cache["_curves"]
+
+    @property
+    def region_name(self):
+        return self.decode("region")
+
+
+class StabilityMap(Group):
+    """/stabilitymap of -study stabilitymap: the raster's axes p and energy, the band edges and
+    decay_cells against p; `sizes` (dict cells -> StabilityMapSize, ascending) and `checks` (the
+    brute-force branches, list of groups in order, each with attribute p)."""
+
+    @property
+    def sizes(self):
+        if "_sizes" not in self._cache:
+            cells = sorted(int(n[5:]) for n in self._subgroups if n.startswith("cells"))
+            self._cache["_sizes"] = {c: StabilityMapSize(self._run, f"{self._path}/cells{c}") for c in cells}
+        return self._cache["_sizes"]
+
+    @property
+    def checks(self):
+        if "checks" not in self._subgroups:
+            return []
+        g = Group(self._run, self._path + "/checks")
+        return [Group(self._run, f"{self._path}/checks/check{k}") for k in range(len(g.groups))]
+
+
 class Continuation(Group):
     """/continuation: the band-edge attributes (*_inf) and `branches`."""
 

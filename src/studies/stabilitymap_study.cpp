@@ -34,8 +34,6 @@ namespace nltopo {
 
 namespace {
 
-constexpr const char *kEventCurveCodes = ">= 0 the curve's row in curve_*; -1 not a kind followed (-smap_kinds); -2 not followed (-smap_max_curves, or its "
-                                          "curve could not be started)";
 constexpr const char *kCurveSideCodes = "1 left of its direction of travel; -1 right; 0 unknown (no direction, or vertical at its event)";
 constexpr const char *kAgreeCodes = "1 the map's label equals the orbit's class; 0 it does not; -1 not compared (within -smap_same_curve_rtol of a curve, or below "
                                     "-smap_energy_min)";
@@ -522,7 +520,9 @@ StudyContract StabilityMapStudyContract()
              {"event_kind", D, I, "nev", "1", "the events' kind", codes::kEventKind},
              {"event_class", D, I, "nev", "1", "the events' critical eigenvector class", codes::kInstability},
              {"event_direction", D, I, "nev", "1", "whether the event begins or ends an instability along the branch", codes::kDirection},
-             {"event_curve", D, I, "nev", "1", "the row of the curve the event lies on", kEventCurveCodes},
+             {"event_curve", D, I, "nev", "1",
+              "the row in curve_* of the curve the event lies on; -1 not a kind followed (-smap_kinds); -2 not followed (-smap_max_curves, or its "
+              "curve could not be started)"},
              {"curve_kind", D, I, "ncurves", "1", "each curve's kind of event", codes::kEventKind},
              {"curve_class", D, I, "ncurves", "1", "the class of the instability it bounds", codes::kInstability},
              {"curve_direction", D, I, "ncurves", "1", "its event's direction at p_base", codes::kDirection},
