@@ -47,6 +47,7 @@ struct MapOptions {
   PetscReal energy_min = 0.1;
   PetscInt max_curves = 40;
   PetscReal same_curve_rtol = 1e-3;
+  PetscBool seed_checks = PETSC_TRUE;
 };
 
 const auto &kMapTable = DeclareOptionTable<MapOptions>(
@@ -71,7 +72,10 @@ const auto &kMapTable = DeclareOptionTable<MapOptions>(
                OptionClass::Extent)
           .Real("same_curve_rtol", &M::same_curve_rtol, Open(0, 1),
                 "An event lies on a curve already followed (and is not followed again) when the curve crosses the run's p at the event's energy to "
-                "this, relative");
+                "this, relative")
+          .Bool("seed_checks", &M::seed_checks,
+                "An event of a -smap_check branch that no curve passes through starts a curve of its own (a bubble the run's p does not cross); 0: "
+                "the checks only check");
     });
 
 PetscErrorCode MapOptionsFromOptions(MPI_Comm comm, MapOptions *o)
@@ -91,6 +95,7 @@ PetscErrorCode MapOptionsFromOptions(MPI_Comm comm, MapOptions *o)
 struct MapCurve {
   Codim2Curve c;
   PetscInt event = 0, cls = 0, direction = 0, side = 0;
+  PetscInt seed = -1; // where its event was located: -1 the branch at the run's p, k the check branch k (-smap_seed_checks)
 };
 
 // One lattice size: the branch at the run's p, its events and their curves, the raster.
@@ -114,6 +119,7 @@ struct CheckRun {
   FloquetColumns f;
   std::vector<BifurcationEvent> events;
   std::vector<PetscInt> map_label, agree;
+  std::vector<PetscInt> event_curve; // per event: as SizeMap's (the first size's curves)
   std::vector<PetscReal> event_offset; // per event: relative E distance to the nearest crossing of a curve of its kind at p
   PetscReal seconds = 0;
 };
@@ -217,6 +223,7 @@ protected:
                           mo_.cells.size(), mo_.check.size()));
     for (PetscReal c : mo_.cells) PetscCall(MapSize((PetscInt)c));
     for (PetscReal q : mo_.check) PetscCall(Check(q));
+    PetscCall(Label());
     PetscFunctionReturn(0);
   }
   PetscErrorCode Write(PetscViewer v) override;
@@ -234,20 +241,30 @@ private:
       if ((PetscInt)q == (PetscInt)k) return true;
     return false;
   }
-  // The curve of sm.curves that event e lies on (crossing the run's p at its E), -1 none.
-  PetscInt CurveThrough(const SizeMap &sm, const BifurcationEvent &e) const
+  // The curve of sm.curves that event e (located at p) lies on, -1 none: one that crosses
+  // p again (away from its own event: the segments next to its event row
+  // are left out) at e's energy.
+  PetscInt CurveThrough(const SizeMap &sm, const BifurcationEvent &e, PetscReal p) const
   {
     for (size_t k = 0; k < sm.curves.size(); k++) {
       const MapCurve &m = sm.curves[k];
       if (m.c.kind != e.kind) continue;
-      const std::vector<MapCurve> one{m};
-      if (OffsetToCurves(one, e.kind, sm.p, e.energy) <= mo_.same_curve_rtol) return (PetscInt)k;
+      const size_t ev = (size_t)m.c.event_point;
+      for (int part = 0; part < 2; part++) { // rows before and after the event row
+        MapCurve piece;
+        piece.c.kind = m.c.kind;
+        const size_t lo = part == 0 ? 0 : ev + 1, hi = part == 0 ? ev : m.c.p.size(); // [lo, hi)
+        for (size_t r = lo; r < hi; r++) piece.c.p.push_back(m.c.p[r]), piece.c.energy.push_back(m.c.energy[r]);
+        if (OffsetToCurves({piece}, e.kind, p, e.energy) <= mo_.same_curve_rtol) return (PetscInt)k;
+      }
     }
     return -1;
   }
   PetscErrorCode MapSize(PetscInt cells);
-  PetscErrorCode FollowEvents(NnmSetup &nnm, BifurcationLocator &loc, SizeMap *sm);
+  PetscErrorCode FollowEvents(NnmSetup &nnm, BifurcationLocator &loc, const std::vector<BifurcationEvent> &events, PetscReal p, PetscInt seed, SizeMap *sm,
+                              std::vector<PetscInt> *event_curve);
   PetscErrorCode Check(PetscReal p);
+  PetscErrorCode Label();
   PetscErrorCode WriteSize(PetscViewer v, const SizeMap &sm) const;
   PetscErrorCode WriteCheck(PetscViewer v, size_t k, const CheckRun &cr) const;
   PetscErrorCode WriteAxes(PetscViewer v) const;
@@ -277,46 +294,47 @@ PetscErrorCode StabilityMapStudy::MapSize(PetscInt cells)
   sm.N = nnm->lat.N();
   PetscCall(PetscPrintf(comm_, "  [%s, N = %" PetscInt_FMT "] the branch at %s %g\n", mo_.branch.c_str(), sm.N, Codim2ParameterOption(c2o_.parameter), (double)sm.p));
   PetscCall(BranchWithEvents(comm_, *nnm, mo_.branch, flo_, bo_, &loc, &sm.b, &sm.f, &sm.events));
-  PetscCall(FollowEvents(*nnm, loc, &sm));
-  std::vector<RegionCurve> rc;
-  for (const MapCurve &m : sm.curves) rc.push_back(AsRegion(m));
-  sm.label = LabelRegions(rc, p_, energy_, &sm.inconsistent);
+  PetscCall(FollowEvents(*nnm, loc, sm.events, sm.p, -1, &sm, &sm.event_curve));
   PetscCall(PetscTime(&t1));
   sm.seconds = t1 - t0;
   sm.b.z0.clear(); // the orbits are -study continuation's to keep; the map keeps its columns
-  PetscCall(PetscPrintf(comm_, "  [%s, N = %" PetscInt_FMT "] %zu events, %zu curves, %" PetscInt_FMT " raster columns inconsistent, %.1f s\n", mo_.branch.c_str(),
-                        sm.N, sm.events.size(), sm.curves.size(), sm.inconsistent, (double)sm.seconds));
+  PetscCall(PetscPrintf(comm_, "  [%s, N = %" PetscInt_FMT "] %zu events, %zu curves, %.1f s\n", mo_.branch.c_str(), sm.N, sm.events.size(), sm.curves.size(),
+                        (double)sm.seconds));
   sizes_.push_back(std::move(sm));
   PetscFunctionReturn(0);
 }
 
-// The events of the kinds followed, in order; each one no earlier curve passes
-// through starts a curve (its instability's side from the event's direction).
-PetscErrorCode StabilityMapStudy::FollowEvents(NnmSetup &nnm, BifurcationLocator &loc, SizeMap *sm)
+// The events (located at p; seed: -1 the run's branch, k check k) of the kinds
+// followed, in order; each one no curve of sm passes through starts a curve
+// (its instability's side from the event's direction). event_curve: per event,
+// the curve it lies on or starts (-1 not a kind followed, -2 not followed).
+PetscErrorCode StabilityMapStudy::FollowEvents(NnmSetup &nnm, BifurcationLocator &loc, const std::vector<BifurcationEvent> &events, PetscReal p, PetscInt seed,
+                                               SizeMap *sm, std::vector<PetscInt> *event_curve)
 {
   PetscFunctionBeginUser;
-  sm->event_curve.assign(sm->events.size(), -1);
-  for (size_t k = 0; k < sm->events.size(); k++) {
-    const BifurcationEvent &e = sm->events[k];
+  event_curve->assign(events.size(), -1);
+  for (size_t k = 0; k < events.size(); k++) {
+    const BifurcationEvent &e = events[k];
     if (!Followed(e.kind)) continue;
-    const PetscInt on = CurveThrough(*sm, e);
+    const PetscInt on = CurveThrough(*sm, e, p);
     if (on >= 0) {
-      sm->event_curve[k] = on;
+      (*event_curve)[k] = on;
       PetscCall(PetscPrintf(comm_, "  [N = %" PetscInt_FMT "] event %zu (%s, omega %.7f) lies on curve %s\n", sm->N, k, EventKindName(e.kind), (double)e.omega,
                             sm->curves[on].c.name.c_str()));
       continue;
     }
-    sm->event_curve[k] = -2;
-    if ((PetscInt)sm->curves.size() >= mo_.max_curves) continue;
+    (*event_curve)[k] = -2;
+    if ((PetscInt)sm->curves.size() >= mo_.max_curves || (seed >= 0 && !mo_.seed_checks)) continue;
     Codim2Start st;
     bool found;
     PetscCall(EventOrbit(comm_, loc, nnm, e, &st, &found));
     if (!found) {
-      PetscCall(PetscPrintf(comm_, "  [N = %" PetscInt_FMT "] warning: the orbit of event %zu (omega %g) was not found again; not followed\n", sm->N, k, (double)e.omega));
+      PetscCall(PetscPrintf(comm_, "  [N = %" PetscInt_FMT "] warning: the orbit of event %zu (omega %g) was not found again; not followed\n", sm->N, k,
+                            (double)e.omega));
       continue;
     }
     MapCurve m;
-    m.event = (PetscInt)k, m.cls = e.instability, m.direction = e.direction;
+    m.event = (PetscInt)k, m.cls = e.instability, m.direction = e.direction, m.seed = seed;
     const std::string label = mo_.branch + " N=" + std::to_string(sm->N);
     PetscErrorCode ierr = 0;
     char msg[512];
@@ -327,8 +345,9 @@ PetscErrorCode StabilityMapStudy::FollowEvents(NnmSetup &nnm, BifurcationLocator
       PetscCall(PetscPrintf(comm_, "  [N = %" PetscInt_FMT "] warning: event %zu (omega %g) not followed: %s\n", sm->N, k, (double)e.omega, msg));
       continue;
     }
+    if (seed >= 0) m.c.name = "check" + std::to_string(seed) + "_" + m.c.name; // (its event's row is the check branch's)
     m.side = UnstableSide(AsRegion(m), m.c.event_point, m.direction);
-    sm->event_curve[k] = (PetscInt)sm->curves.size();
+    (*event_curve)[k] = (PetscInt)sm->curves.size();
     sm->curves.push_back(std::move(m));
   }
   PetscFunctionReturn(0);
@@ -351,27 +370,47 @@ PetscErrorCode StabilityMapStudy::Check(PetscReal p)
   PetscCall(nnm->Build(comm_, "-study stabilitymap"));
   PetscCall(PetscPrintf(comm_, "  [check, N = %" PetscInt_FMT "] the branch at %s %g\n", sm.N, Codim2ParameterOption(c2o_.parameter), (double)p));
   PetscCall(BranchWithEvents(comm_, *nnm, mo_.branch, flo_, bo_, &loc, &cr.b, &cr.f, &cr.events));
-  std::vector<RegionCurve> rc;
-  for (const MapCurve &m : sm.curves) rc.push_back(AsRegion(m));
-  PetscInt agree = 0, compared = 0;
-  for (size_t i = 0; i < cr.b.energy.size(); i++) {
-    const PetscReal E = cr.b.energy[i];
-    const PetscInt lab = LabelAt(rc, p, E), got = cr.f.instability[i];
-    // orbits within -smap_same_curve_rtol of a boundary are not compared (either side is right within the map's resolution)
-    bool near = false;
-    for (const RegionCurve &r : rc)
-      for (const Crossing &x : ColumnCrossings(r, p)) near = near || std::abs(x.energy - E) <= mo_.same_curve_rtol * E;
-    const PetscInt a = near || E < mo_.energy_min ? -1 : (lab == got ? 1 : 0);
-    cr.map_label.push_back(lab), cr.agree.push_back(a);
-    if (a >= 0) compared++, agree += a;
-  }
-  for (const BifurcationEvent &e : cr.events) cr.event_offset.push_back(OffsetToCurves(sm.curves, e.kind, p, e.energy));
+  PetscCall(FollowEvents(*nnm, loc, cr.events, p, (PetscInt)checks_.size(), &sizes_.front(), &cr.event_curve));
   PetscCall(PetscTime(&t1));
   cr.seconds = t1 - t0;
   cr.b.z0.clear();
-  PetscCall(PetscPrintf(comm_, "  [check %s %g] %zu events; the map's label agrees with the branch's verdict at %" PetscInt_FMT " of %" PetscInt_FMT " orbits, %.1f s\n",
-                        Codim2ParameterOption(c2o_.parameter), (double)p, cr.events.size(), agree, compared, (double)cr.seconds));
   checks_.push_back(std::move(cr));
+  PetscFunctionReturn(0);
+}
+
+// The raster of each size from its curves; each check orbit's class against
+// the first size's label there, each check event's distance to its curves.
+PetscErrorCode StabilityMapStudy::Label()
+{
+  PetscFunctionBeginUser;
+  for (SizeMap &sm : sizes_) {
+    std::vector<RegionCurve> rc;
+    for (const MapCurve &m : sm.curves) rc.push_back(AsRegion(m));
+    sm.label = LabelRegions(rc, p_, energy_, &sm.inconsistent);
+    PetscCall(PetscPrintf(comm_, "  [N = %" PetscInt_FMT "] %zu curves; %" PetscInt_FMT " of %zu raster columns inconsistent\n", sm.N, sm.curves.size(), sm.inconsistent,
+                          p_.size()));
+  }
+  const SizeMap &sm = sizes_.front();
+  std::vector<RegionCurve> rc;
+  for (const MapCurve &m : sm.curves) rc.push_back(AsRegion(m));
+  for (CheckRun &cr : checks_) {
+    PetscInt agree = 0, compared = 0;
+    cr.map_label.clear(), cr.agree.clear(), cr.event_offset.clear();
+    for (size_t i = 0; i < cr.b.energy.size(); i++) {
+      const PetscReal E = cr.b.energy[i];
+      const PetscInt lab = LabelAt(rc, cr.p, E), got = cr.f.instability[i];
+      // orbits within -smap_same_curve_rtol of a boundary are not compared (either side is right within the map's resolution)
+      bool near = false;
+      for (const RegionCurve &r : rc)
+        for (const Crossing &x : ColumnCrossings(r, cr.p)) near = near || std::abs(x.energy - E) <= mo_.same_curve_rtol * E;
+      const PetscInt a = near || E < mo_.energy_min ? -1 : (lab == got ? 1 : 0);
+      cr.map_label.push_back(lab), cr.agree.push_back(a);
+      if (a >= 0) compared++, agree += a;
+    }
+    for (const BifurcationEvent &e : cr.events) cr.event_offset.push_back(OffsetToCurves(sm.curves, e.kind, cr.p, e.energy));
+    PetscCall(PetscPrintf(comm_, "  [check %s %g] %zu events; the map's label agrees with the branch's verdict at %" PetscInt_FMT " of %" PetscInt_FMT " orbits\n",
+                          Codim2ParameterOption(c2o_.parameter), (double)cr.p, cr.events.size(), agree, compared));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -416,13 +455,13 @@ PetscErrorCode StabilityMapStudy::WriteSize(PetscViewer v, const SizeMap &sm) co
 {
   const std::string g = "/stabilitymap/cells" + std::to_string(sm.cells);
   const char *gc = g.c_str();
-  std::vector<PetscInt> ck, ccls, cdir, cside, cev, cpts, ekind, ecls, edir;
+  std::vector<PetscInt> ck, ccls, cdir, cside, cev, cpts, cseed, ekind, ecls, edir;
   std::vector<PetscReal> eE, ew;
   std::string names;
   PetscFunctionBeginUser;
   for (const MapCurve &m : sm.curves) {
     ck.push_back((PetscInt)m.c.kind), ccls.push_back(m.cls), cdir.push_back(m.direction), cside.push_back(m.side), cev.push_back(m.event),
-        cpts.push_back((PetscInt)m.c.p.size());
+        cpts.push_back((PetscInt)m.c.p.size()), cseed.push_back(m.seed);
     names += (names.empty() ? "" : ",") + m.c.name;
   }
   for (const BifurcationEvent &e : sm.events)
@@ -448,6 +487,7 @@ PetscErrorCode StabilityMapStudy::WriteSize(PetscViewer v, const SizeMap &sm) co
   PetscCall(WriteIntArray(v, gc, "curve_side", cside));
   PetscCall(WriteIntArray(v, gc, "curve_event", cev));
   PetscCall(WriteIntArray(v, gc, "curve_points", cpts));
+  PetscCall(WriteIntArray(v, gc, "curve_seed", cseed));
   for (const MapCurve &m : sm.curves) PetscCall(WriteCodim2CurveAt(v, g + "/curves/" + m.c.name, "/stabilitymap/cells<c>/curves/<curve>", m.c));
   PetscFunctionReturn(0);
 }
@@ -474,6 +514,7 @@ PetscErrorCode StabilityMapStudy::WriteCheck(PetscViewer v, size_t k, const Chec
   PetscCall(WriteIntArray(v, gc, "event_class", ecls));
   PetscCall(WriteIntArray(v, gc, "event_direction", edir));
   PetscCall(WriteArray(v, gc, "event_offset", cr.event_offset));
+  PetscCall(WriteIntArray(v, gc, "event_curve", cr.event_curve));
   PetscFunctionReturn(0);
 }
 
@@ -529,7 +570,10 @@ StudyContract StabilityMapStudyContract()
              {"curve_side", D, I, "ncurves", "1", "the hand of its direction of travel (rows ascending, in the (p, ln E) plane) the instability lies on",
               kCurveSideCodes},
              {"curve_event", D, I, "ncurves", "1", "the row of its event in event_*"},
-             {"curve_points", D, I, "ncurves", "1", "its points"}}},
+             {"curve_points", D, I, "ncurves", "1", "its points"},
+             {"curve_seed", D, I, "ncurves", "1",
+              "where its event was located: -1 on the branch at p_base (event_* rows); k >= 0 on check branch k (-smap_seed_checks: a bubble the "
+              "run's p does not cross), its event's row then in that check's event_* rows"}}},
            Codim2Schema("/stabilitymap/cells<c>/curves/<curve>"),
            {"/stabilitymap/checks/<check>",
             "",
@@ -546,7 +590,10 @@ StudyContract StabilityMapStudyContract()
              {"event_class", D, I, "nev", "1", "the events' critical eigenvector class", codes::kInstability},
              {"event_direction", D, I, "nev", "1", "whether the event begins or ends an instability", codes::kDirection},
              {"event_offset", D, R, "nev", "1",
-              "relative distance in E from the event to the nearest crossing of p by a map curve of its kind (first size); inf: none crosses there"}}}}};
+              "relative distance in E from the event to the nearest crossing of p by a map curve of its kind (first size); inf: none crosses there"},
+             {"event_curve", D, I, "nev", "1",
+              "the row in the first size's curve_* of the curve the event lies on, or started (-smap_seed_checks; curve_seed says which); -1 not a kind "
+              "followed; -2 not followed"}}}}};
 }
 
 std::unique_ptr<Study> CreateStabilityMapStudy() { return std::make_unique<StabilityMapStudy>(); }
