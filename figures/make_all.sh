@@ -8,7 +8,7 @@
 # Environment:
 #   FIG_SIZE   small (default) | paper | test (the ctest scene's tiny runs)
 #   FIG_OUT    where the PNGs, timings.md, data/ (HDF5) and logs/ go (default figures/out)
-#   FIG_ONLY   the figures to make, e.g. "3 6" (default: 2 3 4 5 6 7 8 9); a figure
+#   FIG_ONLY   the figures to make, e.g. "3 6" (default: 2 3 4 5 6 7 8 9 10); a figure
 #              that needs the FEP (4, 6, 7, 9) runs it first when data/fep.h5 of
 #              this size is missing
 #   FIG_NP     ranks of the parallel studies: sweep, zak, perturb (default 2)
@@ -23,7 +23,7 @@ set -uo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 SIZE=${FIG_SIZE:-small}
 OUT=${FIG_OUT:-$ROOT/figures/out}
-ONLY=${FIG_ONLY:-2 3 4 5 6 7 8 9}
+ONLY=${FIG_ONLY:-2 3 4 5 6 7 8 9 10}
 NP=${FIG_NP:-2}
 CHECK=${FIG_CHECK:-1}
 NLTOPO=${NLTOPO:-$ROOT/build/nltopo}
@@ -58,6 +58,7 @@ case "$SIZE" in
     EXPO=(-options_file "$OPT/sweep_exponential.opts" -sweep_omega_n 50 -sweep_energy_n 50)
     HIST_E="0.01 1 5 10 30"
     PERT=(-options_file "$OPT/perturb.opts")
+    SMAP=(-options_file "$OPT/stabilitymap.opts")
     ;;
   small)
     FEP=(-options_file "$OPT/fep.opts")
@@ -68,6 +69,7 @@ case "$SIZE" in
     EXPO=(-options_file "$OPT/sweep_exponential.opts")
     HIST_E="0.01 1 5 10 30"
     PERT=(-options_file "$OPT/perturb.opts" -perturb_ensemble 4)
+    SMAP=(-options_file "$OPT/stabilitymap.opts" -smap_cells 25 -smap_check 0.25,0.55)
     ;;
   test)
     # no bifurcation location (3/4 of the run): plot_fep.py's events are drawn and checked in the bifurcations scene
@@ -79,6 +81,8 @@ case "$SIZE" in
     EXPO=(-options_file "$OPT/sweep_exponential.opts" -sweep_omega_n 6 -sweep_energy_n 6)
     HIST_E="0.01 1 10"
     PERT=(-options_file "$OPT/perturb.opts" -perturb_delta_list 0,0.05 -perturb_ensemble 2 -perturb_energy_min 0.1 -perturb_energy_max 10 -perturb_energy_n 3)
+    SMAP=(-options_file "$OPT/stabilitymap.opts" -smap_cells 5,10 -smap_check 0.41 -cont_energy_max 0.7 -cont_codim2_min 0.38 -cont_codim2_max 0.42
+      -smap_raster_p 21 -smap_raster_energy 21)
     ;;
 esac
 # sweep_exponential.opts leaves the integrator at rk 5dp 1e-8; the paper grid's
@@ -212,9 +216,15 @@ fig9() {
   runp "${PERT[@]}" -perturb_fep "$DATA/fep.h5" -output "$DATA/perturb.h5" || return 1
   plot plot_perturb.py "$DATA/perturb.h5" "$OUT/fig9_perturb.png"
 }
+# Fig. 10 (beyond the paper): where the insulated NNM is stable in (gamma, E), at two lattice sizes
+fig10() {
+  rm -f "$DATA/stabilitymap.h5"
+  runp "${SMAP[@]}" -output "$DATA/stabilitymap.h5" || return 1
+  plot plot_stabilitymap.py "$DATA/stabilitymap.h5" "$OUT/fig10_stabilitymap.png"
+}
 declare -A WHAT=([2]="linear modes (transition: slot)" [3]="FEP, nonlinear optical band, NNM shapes" [4]="Floquet: Krein, multipliers; long runs"
   [5]="half-lattice runs (a, b), phases (c, d)" [6]="MCR map + FEP, energy ratio, 0-1 test" [7]="time histories on the insulated branch"
-  [8]="exponential forcing profile (a, b), its map (c)" [9]="perturbation ensembles")
+  [8]="exponential forcing profile (a, b), its map (c)" [9]="perturbation ensembles" [10]="stability map in (gamma, E), two sizes")
 
 # ---- run them and time them -------------------------------------------------------
 TABLE=$OUT/timings.md
@@ -229,7 +239,7 @@ TABLE=$OUT/timings.md
 failed=0
 T0=$(now)
 for n in $ONLY; do
-  declare -F "fig$n" > /dev/null || { echo "make_all.sh: no figure $n (2..9)" >&2; failed=$((failed + 1)); continue; }
+  declare -F "fig$n" > /dev/null || { echo "make_all.sh: no figure $n (2..10)" >&2; failed=$((failed + 1)); continue; }
   LOG=$OUT/logs/fig$n.log
   : > "$LOG"
   RUN_S=0 PLOT_S=0

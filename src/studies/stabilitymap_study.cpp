@@ -87,7 +87,8 @@ PetscErrorCode MapOptionsFromOptions(MPI_Comm comm, MapOptions *o)
     PetscCheck(c == std::floor(c), comm, PETSC_ERR_USER, "-smap_cells %g: cells per side are integers", (double)c);
   for (PetscReal k : o->kinds)
     PetscCheck(k == 1 || k == 2 || k == 3 || k == 5, comm, PETSC_ERR_USER,
-               "-smap_kinds %g: the kinds followed are 1 (energy fold), 2 (branch point), 3 (period doubling) and 5 (Hamiltonian-Hopf onset)", (double)k);
+               "-smap_kinds %s: the kinds followed are 1 (energy fold), 2 (branch point), 3 (period doubling) and 5 (Hamiltonian-Hopf onset)",
+               k == std::floor(k) ? std::to_string((long long)k).c_str() : std::to_string(k).c_str());
   PetscFunctionReturn(0);
 }
 

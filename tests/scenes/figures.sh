@@ -17,12 +17,12 @@ if ! FIG_SIZE=$SIZE FIG_OUT="$WORK/out" NLTOPO="$NLTOPO" bash "$SRC/figures/make
 fi
 cat out/timings.md
 pngs=(fig2_linear_modes fig3_fep fig4ab_floquet fig4c_stability fig5ab_zak_runs fig5cd_zak fig6_sweep fig7_time_histories fig8ab_forcing
-  fig8c_exponential fig9_perturb)
+  fig8c_exponential fig9_perturb fig10_stabilitymap)
 for png in "${pngs[@]}"; do
   [ -s "out/$png.png" ] || { echo "make_all.sh wrote no out/$png.png"; exit 1; }
 done
 # every figure was drawn through plot_check.py: one "limits cover them" line per panel
-for n in 2 3 4 5 6 7 8 9; do
+for n in 2 3 4 5 6 7 8 9 10; do
   panels=$(grep -c "limits cover them" "out/logs/fig$n.log" || true)
   [ "$panels" -ge 2 ] || { echo "figure $n: plot_check.py checked $panels panels"; cat "out/logs/fig$n.log"; exit 1; }
   grep -q "^| $n | .* | ok |$" out/timings.md || { echo "figure $n missing from timings.md"; exit 1; }

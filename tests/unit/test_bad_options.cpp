@@ -145,6 +145,14 @@ const std::vector<BadCase> &OptionCases()
       {"-nnm_mf_pc_parametric_weight must lie in (0, 1\\], got 0",
        "-study continuation -lattice_cells 5 -nnm_jacobian mf -nnm_mf_pc parametric -nnm_mf_pc_parametric_weight 0"},
       {"-nnm_orbit_rtol must lie in \\[0, 1), got -1", "-study continuation -lattice_cells 5 -nnm_orbit_rtol -1"},
+      // -study stabilitymap: the sizes are -smap_cells, the events -smap_kinds, the window of p is needed
+      {"-lattice_cells.*-smap_cells", "-study stabilitymap -lattice_cells 5 -cont_codim2_min 0.3 -cont_codim2_max 0.5"},
+      {"-cont_codim2.*-smap_kinds", "-study stabilitymap -smap_cells 5 -cont_codim2 insulated:hh@1.75 -cont_codim2_min 0.3 -cont_codim2_max 0.5"},
+      {"-study stabilitymap needs -cont_codim2_min and -cont_codim2_max", "-study stabilitymap -smap_cells 5"},
+      {"-smap_check 0.9 lies outside", "-study stabilitymap -smap_cells 5 -cont_codim2_min 0.3 -cont_codim2_max 0.5 -smap_check 0.9"},
+      {"-smap_kinds 4: the kinds followed", "-study stabilitymap -smap_cells 5 -cont_codim2_min 0.3 -cont_codim2_max 0.5 -smap_kinds 5,4"},
+      {"-smap_cells 2.5: cells per side are integers", "-study stabilitymap -smap_cells 2.5 -cont_codim2_min 0.3 -cont_codim2_max 0.5"},
+      {"-study stabilitymap locates the branch's events", "-study stabilitymap -smap_cells 5 -cont_codim2_min 0.3 -cont_codim2_max 0.5 -cont_bifurcations 0"},
       // resource guard: the estimate is named before anything is allocated
       {"-lattice_cells must lie in 1..2500000, got 20000000", "-study simulate -lattice_cells 20000000 -sim_t_final 1000"},
       {"-linear_dense_max must lie in 0\\.\\.10000 (the dense path holds N x N.*), got 1000000",
