@@ -442,6 +442,10 @@ bool HopfDiscriminant(const std::vector<std::complex<PetscReal>> &mu, PetscReal 
     if (m.imag() > tol * std::abs(m)) b.push_back(0.5 * (m + 1.0 / m)); // upper members (a real pair: a branch point or period doubling, not these)
   if (b.size() < 2) return false;                                         // no two pairs to collide
   std::partial_sort(b.begin(), b.begin() + 2, b.end(), [&](const C &u, const C &v) { return std::abs(u - bstar) < std::abs(v - bstar); });
+  // the two colliding pairs' b are both real (on the circle) or conjugate (a quadruplet's): Im (b1 + b2) = 0,
+  // a trace over their invariant subspace, exact to rounding even at the Jordan block. A real b and an
+  // unrelated quadruplet's b are no collision, and Re (b1 - b2)^2 has spurious zeros there (|Re d| = |Im d|)
+  if (std::abs(std::imag(b[0] + b[1])) > 2 * tol) return false;
   *g = std::real((b[0] - b[1]) * (b[0] - b[1]));
   *bmid = 0.5 * std::real(b[0] + b[1]);
   return true;
