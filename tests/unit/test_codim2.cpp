@@ -525,6 +525,40 @@ TEST_CASE("codim-2: the energy fold continued in -lattice_gamma passes through t
   }
 }
 
+TEST_CASE("codim-2: the energy fold of mode 0 continued in -lattice_gamma ends at the linear limit, written as that codim-2 point", "[codim2][once]")
+{
+  // [once]: the orbit path at 2 ranks runs in the -lattice_cubic fold case. From gamma 0.4 (E 65.8) the E
+  // maximum's fold curve runs down to E -> 0 as gamma grows (docs/continuation.md "Where the curves end"):
+  // the branch's frequency shift at E -> 0 changes sign there. The corrector's steps collapse as g gets noisy.
+  FoldOfMode0 f;
+  PCHK(f.Locate(0.5));
+  REQUIRE(f.index >= 0);
+  Codim2Start start;
+  PCHK(f.Start(&start));
+  Codim2Options o;
+  o.parameter = Codim2Parameter::Gamma;
+  o.pmin = 0.39, o.pmax = 0.8, o.max_points = 80;
+  o.verbose = PETSC_FALSE;
+  LatticeParams p;
+  p.cells = 1, p.Gamma = 0.5;
+  Codim2Curve c;
+  PCHK(ContinueCodim2(PETSC_COMM_WORLD, p, FlowOptions(), ShootingOptions(), FloquetOptions(), 1, o, f.ev[f.index], f.index, start, "mode0", &c));
+  const size_t n = c.p.size(), m = c.point_kind.size();
+  INFO("curve " << c.name << ": " << n << " points, p " << c.p.front() << " .. " << c.p.back() << ", E " << c.energy.back() << ": " << c.stop_reason);
+  REQUIRE(m == 2); // both ends, no turn in p
+  REQUIRE(c.point_kind[0] == (PetscInt)Codim2PointKind::End);
+  REQUIRE(c.point_arc[0] == 0);
+  REQUIRE(c.point_kind[1] == (PetscInt)Codim2PointKind::LinearLimit);
+  REQUIRE(c.point_arc[1] == (PetscReal)(n - 1));
+  REQUIRE(c.point_p[1] == c.p[n - 1]);
+  REQUIRE(c.point_energy[1] == c.energy[n - 1]);
+  REQUIRE(c.point_energy[1] <= 1e-2 * c.energy[c.event_point]);
+  REQUIRE(std::abs(c.point_p[1] - 0.6736) <= 1e-3);
+  for (size_t k = 1; k < n; k++) REQUIRE(c.p[k] > c.p[k - 1]);
+  PCHK(PetscPrintf(PETSC_COMM_WORLD, "  codim2 fold in -lattice_gamma: linear limit at gamma %.6f, omega %.6f, E %.3g (%zu points, %" PetscInt_FMT " orbits)\n",
+                   (double)c.point_p[1], (double)c.point_omega[1], (double)c.point_energy[1], n, c.solves));
+}
+
 TEST_CASE("codim-2: -cont_codim2 items are parsed, and the kinds not implemented yet refused", "[codim2][serial]")
 {
   Codim2Spec s;
