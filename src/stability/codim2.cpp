@@ -440,7 +440,7 @@ bool HopfDiscriminant(const std::vector<std::complex<PetscReal>> &mu, PetscReal 
   std::vector<C> b;
   for (const C &m : mu)
     if (m.imag() > tol * std::abs(m)) b.push_back(0.5 * (m + 1.0 / m)); // upper members (a real pair: a branch point or period doubling, not these)
-  if (b.size() < 2) return false;                                         // no two pairs to collide
+  if (b.size() < 2) return false;                                       // no two pairs to collide
   std::partial_sort(b.begin(), b.begin() + 2, b.end(), [&](const C &u, const C &v) { return std::abs(u - bstar) < std::abs(v - bstar); });
   // the two colliding pairs' b are both real (on the circle) or conjugate (a quadruplet's): Im (b1 + b2) = 0,
   // a trace over their invariant subspace, exact to rounding even at the Jordan block. A real b and an
@@ -480,8 +480,8 @@ public:
   Codim2Follower(MPI_Comm comm, Codim2Function &f, const Codim2Options &o, const char *label) : comm_(comm), f_(f), o_(o), label_(label) {}
   PetscErrorCode Correct(const PetscReal ypred[2], const PetscReal tau[2], const Codim2Sample &from, Codim2Sample *x, PetscReal grad[2], PetscInt *its,
                          bool *ok);
-  PetscErrorCode Walk(const Codim2Sample &x0, const PetscReal grad0[2], PetscInt dir, std::vector<Codim2Sample> *pts,
-                      std::vector<Codim2Trace::Point> *turns, std::string *why, bool *collapsed);
+  PetscErrorCode Walk(const Codim2Sample &x0, const PetscReal grad0[2], PetscInt dir, std::vector<Codim2Sample> *pts, std::vector<Codim2Trace::Point> *turns,
+                      std::string *why, bool *collapsed);
 
 private:
   PetscErrorCode Gradient(const Codim2Sample &x, PetscReal grad[2], bool *ok);

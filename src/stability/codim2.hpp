@@ -58,11 +58,11 @@ PetscErrorCode ParseCodim2Spec(MPI_Comm comm, const std::string &text, Codim2Spe
 
 // The codim-2 points of a curve (point_kind of /continuation/<branch>/codim2/<curve>; the codes of io/schema.hpp codes::kCodim2Point).
 enum class Codim2PointKind : PetscInt {
-  End = 0,           // an end of the curve not classified below (a bound, -cont_codim2_max_points, step collapse: stop_reason)
-  Turn = 1,          // a turn in p: dp/ds = 0, the curve goes on through it
-  CollisionPlus = 2, // a Hamiltonian-Hopf curve ends where the colliding pairs' b reaches +1 (1:1 resonance)
+  End = 0,            // an end of the curve not classified below (a bound, -cont_codim2_max_points, step collapse: stop_reason)
+  Turn = 1,           // a turn in p: dp/ds = 0, the curve goes on through it
+  CollisionPlus = 2,  // a Hamiltonian-Hopf curve ends where the colliding pairs' b reaches +1 (1:1 resonance)
   CollisionMinus = 3, // ... reaches -1 (1:2 resonance)
-  LinearLimit = 4    // the curve ends as E -> 0 (the linear limit)
+  LinearLimit = 4     // the curve ends as E -> 0 (the linear limit)
 };
 
 // One curve: /continuation/<branch>/codim2/<name> of outputs.md.
@@ -102,8 +102,8 @@ PetscErrorCode ContinueCodim2(MPI_Comm comm, const LatticeParams &base, const Fl
 
 // One sample of the test function g at the point (a, b) of the scaled plane.
 struct Codim2Sample {
-  bool ok = false;          // g was evaluated (a finite number)
-  PetscReal a = 0, b = 0;   // the point: (q / q0, p / p0) for an orbit
+  bool ok = false;        // g was evaluated (a finite number)
+  PetscReal a = 0, b = 0; // the point: (q / q0, p / p0) for an orbit
   PetscReal omega = 0, p = 0, energy = 0, period = 0, beta = 0, g = NAN;
   PetscReal bmid = 0;        // kind 5: the middle of the two colliding pairs' b (kind 3: -1, kind 1: +1)
   std::vector<PetscReal> z0; // the orbit (natural order, every rank); empty for a closed form
@@ -126,10 +126,10 @@ struct Codim2Trace {
   PetscInt start = 0;            // the row of the start point
   struct Point {
     Codim2PointKind kind;
-    Codim2Sample x;  // the curve there
-    PetscReal arc;   // fractional row of pts
+    Codim2Sample x; // the curve there
+    PetscReal arc;  // fractional row of pts
   };
-  std::vector<Point> points; // sorted by arc
+  std::vector<Point> points;    // sorted by arc
   std::string why_down, why_up; // why each side ended
   PetscInt its = 0;             // corrector iterations at the start point
   bool started = false;         // the start point was corrected onto the curve (at its b)
