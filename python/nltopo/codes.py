@@ -28,6 +28,9 @@ REGIME = ("0 regular (lyapunov x window below -sweep_lyapunov_efolds); 1 chaotic
           "(no -sweep_lyapunov, E* not reached, or failed)")
 SCALING_VERDICT = ("0 stable (no orbit of the window unstable at any N); 1 persists (p < -scaling_persist_exponent); 2 finite-size "
                    "(p >= it); 3 undetermined (fewer than two N with an unstable orbit, or the threshold within one standard error of p)")
+# the codim-2 points of a -cont_codim2 curve (/continuation/<branch>/codim2/<curve> point_kind)
+CODIM2_POINT = ("0 end of the curve (a bound, -cont_codim2_max_points or step collapse: stop_reason); 1 turn in p (dp/ds = 0, the curve goes on); "
+                "2 Hamiltonian-Hopf end at b = +1 (1:1 resonance); 3 Hamiltonian-Hopf end at b = -1 (1:2 resonance); 4 linear limit (E -> 0)")
 # the Krein resonance map (/continuation/<branch>/krein_map): open is a bitmask, the sum of its classes' bits
 KREIN_PAIRS = ("0 none; 1 AA (acoustic + acoustic); 2 AO (acoustic + optical); 4 OO (optical + optical); "
                "8 EA (localised + acoustic); 16 EO (localised + optical); "
@@ -45,6 +48,7 @@ FORMAT0 = {
     ("/continuation/<branch>", "verdict"): VERDICT,  # (format 1 on; listed so the table knows every code)
     ("/continuation/<branch>", "reached_energy_max"): YES_NO,
     ("/continuation/<branch>/codim2/<curve>", "kind"): EVENT_KIND,
+    ("/continuation/<branch>/codim2/<curve>", "point_kind"): CODIM2_POINT,  # (format 1 on)
     ("/continuation/<branch>/bifurcations", "kind"): EVENT_KIND,
     ("/continuation/<branch>/bifurcations", "direction"): DIRECTION,
     ("/continuation/<branch>/bifurcations", "instability"): INSTABILITY,

@@ -321,7 +321,9 @@ class Codim2Curve(Group):
     Arrays p (along the curve: the side where p first decreases, reversed, then the other), energy, omega, period, test (the kind's test function, 0 on the
     curve), max_modulus; `multipliers` (complex, npts x 4, nearest the kind's critical point);
     attributes parameter (the option, e.g. "-lattice_gamma"), kind (`kind_name` decoded), event
-    (its row in the branch's bifurcations), event_point (the curve's row at the event), stop_reason."""
+    (its row in the branch's bifurcations), event_point (the curve's row at the event), stop_reason.
+    Its codim-2 points (row-aligned arrays point_kind, point_p, point_energy, point_omega, point_arc):
+    `points`, with `point_kind_name` decoded ("end of the curve", "turn in p", ...)."""
 
     def __init__(self, run, path):
         super().__init__(run, path)
@@ -334,6 +336,22 @@ class Codim2Curve(Group):
     @property
     def kind_name(self):
         return self.decode("kind")
+
+    @property
+    def point_kind_name(self):
+        """point_kind decoded per codim-2 point (numpy array of str; empty in a file written before them)."""
+        return self.decode("point_kind") if "point_kind" in self else np.array([], dtype=str)
+
+    @property
+    def points(self):
+        """The codim-2 points in order along the curve: list of dicts kind, kind_name, p, energy, omega,
+        arc (fractional row of p, energy, ...); [] in a file written before them."""
+        if "point_kind" not in self:
+            return []
+        names = self.point_kind_name
+        return [dict(kind=int(k), kind_name=str(n), p=float(p), energy=float(e), omega=float(w), arc=float(a))
+                for k, n, p, e, w, a in zip(self["point_kind"], names, self["point_p"], self["point_energy"],
+                                            self["point_omega"], self["point_arc"])]
 
 
 class StabilityMapSize(Group):

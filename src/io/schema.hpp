@@ -54,6 +54,10 @@ constexpr const char *kKreinPairs = "0 none; 1 AA (acoustic + acoustic); 2 AO (a
                                     "16 EO (localised + optical); 32 EE (localised + localised, crossed since the previous orbit)";
 constexpr const char *kEnergyCriterion = "0 no sign change; 1 E extremum (dE/dOmega through 0: a real pair through +1); 2 Omega extremum (dE/dOmega through "
                                          "infinity); 3 both";
+// The codim-2 points of a -cont_codim2 curve (stability/codim2.hpp Codim2PointKind).
+constexpr const char *kCodim2Point =
+    "0 end of the curve (a bound, -cont_codim2_max_points or step collapse: stop_reason); 1 turn in p (dp/ds = 0, the curve goes on); "
+    "2 Hamiltonian-Hopf end at b = +1 (1:1 resonance); 3 Hamiltonian-Hopf end at b = -1 (1:2 resonance); 4 linear limit (E -> 0)";
 } // namespace codes
 
 struct Schema {

@@ -166,15 +166,8 @@ struct Codim2Stack {
   }
 };
 
-// One evaluation of the test function: the orbit at (q, p) and g there.
-struct Codim2Sample {
-  bool ok = false;
-  PetscReal omega = 0, p = 0, energy = 0, period = 0, beta = 0, g = NAN;
-  PetscReal bmid = 0;        // kind 5: the middle of the two colliding pairs' b (kind 3: -1)
-  std::vector<PetscReal> z0; // natural order, every rank
-};
-
-class Codim2Walk {
+// The orbit-based test function of the curve (Codim2Sample of codim2.hpp: the orbit at (q, p) and g there).
+class Codim2Walk : public Codim2Function {
 public:
   Codim2Walk(MPI_Comm comm, const LatticeParams &base, const FlowOptions &fo, const ShootingOptions &so, const FloquetOptions &flo, PetscInt multiple,
              const Codim2Options &o, const char *name, Codim2Curve *c)
@@ -182,6 +175,9 @@ public:
   {
   }
   PetscErrorCode Run(const Codim2Start &start, const BifurcationEvent &e);
+  PetscErrorCode Sample(PetscReal a, PetscReal b, const Codim2Sample &from, Codim2Sample *x) override;
+  void Accept(const Codim2Sample &x) override { bstar_ = x.bmid; } // the collision moves along the curve
+  bool Collision() const override { return c_->kind == EventKind::HamiltonianHopf; }
 
 private:
   PetscErrorCode StackAt(PetscReal p, Codim2Stack **s);
@@ -190,11 +186,6 @@ private:
   PetscErrorCode HopfTest(Codim2Stack &s, Codim2Sample *x);
   PetscErrorCode DoublingTest(Codim2Stack &s, Codim2Sample *x);
   bool ByEnergy() const { return c_->kind != EventKind::Fold; } // the orbit's coordinate q: E (kinds 3, 5), or omega at a fold
-  PetscErrorCode Gradient(const Codim2Sample &x, PetscReal grad[2], bool *ok);
-  PetscErrorCode Correct(const PetscReal ypred[2], const PetscReal tau[2], const Codim2Sample &from, Codim2Sample *x, PetscReal grad[2], PetscInt *its,
-                         bool *ok);
-  PetscErrorCode FirstPoint(const Codim2Start &start, Codim2Sample *x, PetscReal grad[2]);
-  PetscErrorCode Walk(const Codim2Sample &x0, const PetscReal grad0[2], PetscInt dir, std::vector<Codim2Sample> *pts, std::string *why);
   PetscErrorCode Record(const Codim2Sample &x);
   PetscReal A(const Codim2Sample &x) const { return (ByEnergy() ? x.energy : x.omega) / q0_; }
   PetscReal B(const Codim2Sample &x) const { return x.p / p0_; }
@@ -211,9 +202,6 @@ private:
   PetscReal q0_ = 1, p0_ = 1;                        // scales of the plane: the event's q and p (1 if p = 0)
   PetscReal bstar_ = 0;                              // kind 5: where the two colliding pairs' b = (mu + 1/mu)/2 meet (followed along the curve)
   std::vector<std::unique_ptr<Codim2Stack>> stacks_; // the lattices of the last two values of p (a gradient alternates between them)
-  static constexpr PetscReal kH = 1e-6;              // finite-difference step of grad g in the scaled plane
-  static constexpr PetscInt kMaxIts = 10;            // corrector iterations
-  static constexpr PetscReal kNoise = 1e-5;          // the largest |g| a converged point may have
 };
 
 PetscErrorCode Codim2Walk::StackAt(PetscReal p, Codim2Stack **s)
@@ -271,18 +259,12 @@ PetscErrorCode Codim2Walk::HopfTest(Codim2Stack &s, Codim2Sample *x)
 {
   using C = std::complex<PetscReal>;
   FloquetResult r;
-  std::vector<C> b;
+  std::vector<C> mu;
   PetscFunctionBeginUser;
   PetscCall(s.flow.IntegrateWithMonodromy(s.z, x->period, s.flow.FloquetBeta(x->beta), s.zT, s.S));
   PetscCall(FloquetAnalysis(s.lat, s.S, flo_, &r));
-  for (PetscInt j : NontrivialIndices(r.re.data(), r.im.data(), (PetscInt)r.re.size())) {
-    const C mu(r.re[j], r.im[j]);
-    if (r.im[j] > flo_.tol * std::abs(mu)) b.push_back(0.5 * (mu + 1.0 / mu)); // upper members (a real pair: a branch point or period doubling, not these)
-  }
-  std::sort(b.begin(), b.end(), [&](const C &u, const C &v) { return std::abs(u - bstar_) < std::abs(v - bstar_); });
-  if (b.size() < 2) PetscFunctionReturn(0); // g stays NaN: no two pairs to collide
-  x->g = std::real((b[0] - b[1]) * (b[0] - b[1]));
-  x->bmid = 0.5 * std::real(b[0] + b[1]);
+  for (PetscInt j : NontrivialIndices(r.re.data(), r.im.data(), (PetscInt)r.re.size())) mu.emplace_back(r.re[j], r.im[j]);
+  HopfDiscriminant(mu, flo_.tol, bstar_, &x->g, &x->bmid); // (g stays NaN without two pairs to collide)
   PetscFunctionReturn(0);
 }
 
@@ -343,119 +325,14 @@ PetscErrorCode Codim2Walk::Evaluate(PetscReal a, PetscReal b, const Codim2Sample
   PetscFunctionReturn(0);
 }
 
-// grad g at x in the scaled plane, by forward differences (kH).
-PetscErrorCode Codim2Walk::Gradient(const Codim2Sample &x, PetscReal grad[2], bool *ok)
+// The follower's sample: the orbit and g at (a, b), and the scaled point the orbit reached.
+PetscErrorCode Codim2Walk::Sample(PetscReal a, PetscReal b, const Codim2Sample &from, Codim2Sample *x)
 {
-  Codim2Sample xa, xb;
   PetscFunctionBeginUser;
-  PetscCall(Evaluate(A(x) + kH, B(x), x, &xa));
-  PetscCall(Evaluate(A(x), B(x) + kH, x, &xb));
-  *ok = xa.ok && xb.ok;
-  grad[0] = (xa.g - x.g) / kH, grad[1] = (xb.g - x.g) / kH;
-  PetscFunctionReturn(0);
-}
-
-// Newton on [g(y); tau . (y - ypred)] from ypred (tau = 0: p fixed at ypred's, the
-// event's own point); *x the converged point, grad the gradient of its last iterate.
-PetscErrorCode Codim2Walk::Correct(const PetscReal ypred[2], const PetscReal tau[2], const Codim2Sample &from, Codim2Sample *x, PetscReal grad[2],
-                                   PetscInt *its, bool *ok)
-{
-  PetscReal y[2] = {ypred[0], ypred[1]};
-  const bool fixed_p = tau[0] == 0 && tau[1] == 0;
-  const PetscReal row[2] = {fixed_p ? 0 : tau[0], fixed_p ? 1 : tau[1]}; // the constraint's row
-  Codim2Sample cur = from;
-  PetscFunctionBeginUser;
-  *ok = false;
-  for (*its = 1; *its <= kMaxIts; (*its)++) {
-    bool gok = false;
-    PetscCall(Evaluate(y[0], y[1], cur, x));
-    if (!x->ok) PetscFunctionReturn(0);
-    cur = *x;
-    PetscCall(Gradient(*x, grad, &gok));
-    if (!gok) PetscFunctionReturn(0);
-    const PetscReal F[2] = {x->g, row[0] * (y[0] - ypred[0]) + row[1] * (y[1] - ypred[1])};
-    const PetscReal det = grad[0] * row[1] - grad[1] * row[0];
-    if (!(std::abs(det) > 0) || !std::isfinite(det)) PetscFunctionReturn(0);
-    const PetscReal d0 = -(F[0] * row[1] - grad[1] * F[1]) / det, d1 = -(grad[0] * F[1] - row[0] * F[0]) / det;
-    y[0] += d0, y[1] += d1;
-    if (std::hypot(d0, d1) <= o_.tol) {
-      PetscCall(Evaluate(y[0], y[1], cur, x)); // the orbit at the converged point
-      // and g's first-order distance to its zero set is small (a tiny step from a
-      // garbage gradient is no convergence; g itself is only as exact as the orbit)
-      // (each kind's g is dimensionless and O(1) off the curve: kNoise bounds it
-      // where the orbit solves are too imprecise for the gradient, near E -> 0)
-      *ok = x->ok && std::abs(x->g) <= o_.test_tol * std::hypot(grad[0], grad[1]) && std::abs(x->g) <= kNoise;
-      PetscFunctionReturn(0);
-    }
-  }
-  PetscFunctionReturn(0);
-}
-
-// The event's own point: g = 0 at the event's p, from its located orbit.
-PetscErrorCode Codim2Walk::FirstPoint(const Codim2Start &start, Codim2Sample *x, PetscReal grad[2])
-{
-  Codim2Sample s0;
-  PetscInt its;
-  bool ok;
-  const PetscReal none[2] = {0, 0};
-  PetscFunctionBeginUser;
-  s0.ok = true, s0.omega = start.omega, s0.energy = start.energy, s0.p = Codim2ParameterValue(base_, c_->parameter), s0.period = start.period,
-  s0.beta = start.beta, s0.z0 = start.z0;
-  const PetscReal y[2] = {A(s0), B(s0)};
-  PetscCall(Correct(y, none, s0, x, grad, &its, &ok));
-  PetscCheck(ok, comm_, PETSC_ERR_NOT_CONVERGED,
-             "-cont_codim2 %s: the event's orbit (omega %g, %s %g) was not found again with the test function at zero (%" PetscInt_FMT " corrector iterations)",
-             o_.spec.c_str(), (double)start.omega, Codim2ParameterOption(c_->parameter), (double)s0.p, its);
-  PetscFunctionReturn(0);
-}
-
-// From x0 along the curve in direction dir (+1: p grows at the start), into pts.
-PetscErrorCode Codim2Walk::Walk(const Codim2Sample &x0, const PetscReal grad0[2], PetscInt dir, std::vector<Codim2Sample> *pts, std::string *why)
-{
-  Codim2Sample x = x0;
-  PetscReal grad[2] = {grad0[0], grad0[1]}, tau[2];
-  bstar_ = x0.bmid;
-  PetscReal ds = o_.step;
-  PetscFunctionBeginUser;
-  const PetscReal n0 = std::hypot(grad[0], grad[1]);
-  tau[0] = -grad[1] / n0, tau[1] = grad[0] / n0; // orthogonal to grad g
-  const PetscReal lead = std::abs(tau[1]) > 1e-12 ? tau[1] : tau[0];
-  if (lead * dir < 0) tau[0] = -tau[0], tau[1] = -tau[1];
-  for (;;) {
-    if ((PetscInt)pts->size() >= o_.max_points) {
-      *why = "reached -cont_codim2_max_points";
-      break;
-    }
-    Codim2Sample nx;
-    PetscReal ng[2];
-    PetscInt its = 0;
-    bool ok = false;
-    while (!ok && ds >= o_.step_min) {
-      const PetscReal yp[2] = {A(x) + ds * tau[0], B(x) + ds * tau[1]};
-      PetscCall(Correct(yp, tau, x, &nx, ng, &its, &ok));
-      if (!ok) ds *= 0.5;
-    }
-    if (!ok) {
-      *why = "step collapse (the corrector failed at every step size)";
-      break;
-    }
-    if (nx.p < o_.pmin || nx.p > o_.pmax) {
-      *why = nx.p < o_.pmin ? "reached -cont_codim2_min" : "reached -cont_codim2_max";
-      break;
-    }
-    const PetscReal nn = std::hypot(ng[0], ng[1]);
-    PetscReal nt[2] = {-ng[1] / nn, ng[0] / nn};
-    if (nt[0] * tau[0] + nt[1] * tau[1] < 0) nt[0] = -nt[0], nt[1] = -nt[1];
-    tau[0] = nt[0], tau[1] = nt[1];
-    x = nx;
-    bstar_ = x.bmid; // the collision moves along the curve
-    pts->push_back(x);
-    if (o_.verbose)
-      PetscCall(PetscPrintf(comm_, "  [%s codim2 %s] %+d %3zu  %s %.8g  E = %-11.6g omega = %.9f  g %.1e  corrector %" PetscInt_FMT "  ds %.3g\n", name_,
-                            c_->name.c_str(), (int)dir, pts->size(), Codim2ParameterOption(c_->parameter), (double)x.p, (double)x.energy, (double)x.omega,
-                            (double)x.g, its, (double)ds));
-    if (its <= 3) ds = std::min(1.5 * ds, o_.step_max);
-  }
+  PetscCall(Evaluate(a, b, from, x));
+  if (x->ok) x->a = A(*x), x->b = B(*x);
+  else x->a = a, x->b = b;
+  if (!ByEnergy()) x->bmid = 1; // (a fold: at +1)
   PetscFunctionReturn(0);
 }
 
@@ -492,10 +369,8 @@ PetscErrorCode Codim2Walk::Record(const Codim2Sample &x)
 
 PetscErrorCode Codim2Walk::Run(const Codim2Start &start, const BifurcationEvent &e)
 {
-  Codim2Sample x0;
-  PetscReal grad0[2];
-  std::vector<Codim2Sample> down, up;
-  std::string why_down, why_up;
+  Codim2Sample s0;
+  Codim2Trace t;
   PetscFunctionBeginUser;
   q0_ = ByEnergy() ? start.energy : start.omega;
   bstar_ = std::real(0.5 * (std::complex<PetscReal>(e.mu_re, e.mu_im) + 1.0 / std::complex<PetscReal>(e.mu_re, e.mu_im)));
@@ -503,21 +378,28 @@ PetscErrorCode Codim2Walk::Run(const Codim2Start &start, const BifurcationEvent 
   p0_ = pe != 0 ? std::abs(pe) : 1;
   PetscCheck(pe >= o_.pmin && pe <= o_.pmax, comm_, PETSC_ERR_USER, "-cont_codim2 %s: the run's %s %g lies outside [-cont_codim2_min %g, -cont_codim2_max %g]",
              o_.spec.c_str(), Codim2ParameterOption(c_->parameter), (double)pe, (double)o_.pmin, (double)o_.pmax);
-  PetscCall(FirstPoint(start, &x0, grad0));
-  if (!ByEnergy()) x0.bmid = 1; // (a fold: at +1)
-  PetscCall(PetscPrintf(comm_, "  [%s codim2 %s] the %s at %s %g: omega %.9f, E %.8g (test function %.1e); following it in %s\n", name_, c_->name.c_str(),
+  // the event's own point: g = 0 at the event's p, from its located orbit
+  s0.ok = true, s0.omega = start.omega, s0.energy = start.energy, s0.p = pe, s0.period = start.period, s0.beta = start.beta, s0.z0 = start.z0;
+  s0.a = A(s0), s0.b = B(s0), s0.bmid = bstar_;
+  const std::string label = std::string(name_) + " codim2 " + c_->name;
+  PetscCall(FollowCodim2(comm_, *this, o_, s0, label.c_str(), &t));
+  PetscCheck(t.started, comm_, PETSC_ERR_NOT_CONVERGED,
+             "-cont_codim2 %s: the event's orbit (omega %g, %s %g) was not found again with the test function at zero (%" PetscInt_FMT " corrector iterations)",
+             o_.spec.c_str(), (double)start.omega, Codim2ParameterOption(c_->parameter), (double)pe, t.its);
+  const Codim2Sample &x0 = t.pts[t.start];
+  PetscCall(PetscPrintf(comm_, "  [%s codim2 %s] the %s at %s %g: omega %.9f, E %.8g (test function %.1e); followed in %s\n", name_, c_->name.c_str(),
                         EventKindName(c_->kind), Codim2ParameterOption(c_->parameter), (double)x0.p, (double)x0.omega, (double)x0.energy, (double)x0.g,
                         Codim2ParameterOption(c_->parameter)));
-  PetscCall(Walk(x0, grad0, -1, &down, &why_down));
-  PetscCall(Walk(x0, grad0, +1, &up, &why_up));
-  for (auto it = down.rbegin(); it != down.rend(); ++it) PetscCall(Record(*it));
-  c_->event_point = (PetscInt)down.size();
-  PetscCall(Record(x0));
-  for (const Codim2Sample &x : up) PetscCall(Record(x));
-  c_->stop_reason = "p decreasing: " + why_down + "; p increasing: " + why_up;
-  PetscCall(PetscPrintf(comm_, "  [%s codim2 %s] %zu points, %s %.6g .. %.6g, E %.6g .. %.6g, %" PetscInt_FMT " orbits solved: %s\n", name_, c_->name.c_str(),
-                        c_->p.size(), Codim2ParameterOption(c_->parameter), (double)c_->p.front(), (double)c_->p.back(), (double)c_->energy.front(),
-                        (double)c_->energy.back(), c_->solves, c_->stop_reason.c_str()));
+  for (const Codim2Sample &x : t.pts) PetscCall(Record(x));
+  c_->event_point = t.start;
+  for (const Codim2Trace::Point &q : t.points) {
+    c_->point_kind.push_back((PetscInt)q.kind);
+    c_->point_p.push_back(q.x.p), c_->point_energy.push_back(q.x.energy), c_->point_omega.push_back(q.x.omega), c_->point_arc.push_back(q.arc);
+  }
+  c_->stop_reason = "p decreasing: " + t.why_down + "; p increasing: " + t.why_up;
+  PetscCall(PetscPrintf(comm_, "  [%s codim2 %s] %zu points, %s %.6g .. %.6g, E %.6g .. %.6g, %zu codim-2 points, %" PetscInt_FMT " orbits solved: %s\n", name_,
+                        c_->name.c_str(), c_->p.size(), Codim2ParameterOption(c_->parameter), (double)c_->p.front(), (double)c_->p.back(),
+                        (double)c_->energy.front(), (double)c_->energy.back(), t.points.size(), c_->solves, c_->stop_reason.c_str()));
   PetscFunctionReturn(0);
 }
 
@@ -549,6 +431,281 @@ PetscErrorCode ContinueCodim2(MPI_Comm comm, const LatticeParams &base, const Fl
   PetscCall(PetscTime(&t1));
   curve->seconds = t1 - t0;
   PetscCall(PetscLogEventEnd(ev, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+bool HopfDiscriminant(const std::vector<std::complex<PetscReal>> &mu, PetscReal tol, PetscReal bstar, PetscReal *g, PetscReal *bmid)
+{
+  using C = std::complex<PetscReal>;
+  std::vector<C> b;
+  for (const C &m : mu)
+    if (m.imag() > tol * std::abs(m)) b.push_back(0.5 * (m + 1.0 / m)); // upper members (a real pair: a branch point or period doubling, not these)
+  if (b.size() < 2) return false;                                       // no two pairs to collide
+  std::partial_sort(b.begin(), b.begin() + 2, b.end(), [&](const C &u, const C &v) { return std::abs(u - bstar) < std::abs(v - bstar); });
+  // the two colliding pairs' b are both real (on the circle) or conjugate (a quadruplet's): Im (b1 + b2) = 0,
+  // a trace over their invariant subspace, exact to rounding even at the Jordan block. A real b and an
+  // unrelated quadruplet's b are no collision, and Re (b1 - b2)^2 has spurious zeros there (|Re d| = |Im d|)
+  if (std::abs(std::imag(b[0] + b[1])) > 2 * tol) return false;
+  *g = std::real((b[0] - b[1]) * (b[0] - b[1]));
+  *bmid = 0.5 * std::real(b[0] + b[1]);
+  return true;
+}
+
+std::vector<Codim2Crossing> Codim2Intersections(const std::vector<PetscReal> &p1, const std::vector<PetscReal> &e1, const std::vector<PetscReal> &p2,
+                                                const std::vector<PetscReal> &e2)
+{
+  std::vector<Codim2Crossing> out;
+  const size_t n1 = std::min(p1.size(), e1.size()), n2 = std::min(p2.size(), e2.size());
+  for (size_t i = 0; i + 1 < n1; i++)
+    for (size_t j = 0; j + 1 < n2; j++) {
+      // P1 + t d1 = P2 + u d2 (affine: the same t, u in any scaling of p and E)
+      const PetscReal d1p = p1[i + 1] - p1[i], d1e = e1[i + 1] - e1[i], d2p = p2[j + 1] - p2[j], d2e = e2[j + 1] - e2[j];
+      const PetscReal rp = p2[j] - p1[i], re = e2[j] - e1[i];
+      const PetscReal det = d1p * (-d2e) - d1e * (-d2p);
+      const PetscReal scale = std::hypot(d1p, d1e) * std::hypot(d2p, d2e);
+      if (!(std::abs(det) > 1e-14 * scale)) continue; // parallel (or a repeated point)
+      const PetscReal t = (rp * (-d2e) - re * (-d2p)) / det, u = (d1p * re - d1e * rp) / det;
+      // half-open segments (a crossing at a shared vertex is counted once), the last one closed
+      const bool in1 = t >= 0 && (t < 1 || (i + 2 == n1 && t <= 1)), in2 = u >= 0 && (u < 1 || (j + 2 == n2 && u <= 1));
+      if (in1 && in2) out.push_back({p1[i] + t * d1p, e1[i] + t * d1e, (PetscReal)i + t, (PetscReal)j + u});
+    }
+  return out;
+}
+
+namespace {
+
+// Pseudo-arclength on g(a, b) = 0 (the head of codim2.hpp), on any Codim2Function.
+class Codim2Follower {
+public:
+  Codim2Follower(MPI_Comm comm, Codim2Function &f, const Codim2Options &o, const char *label) : comm_(comm), f_(f), o_(o), label_(label) {}
+  PetscErrorCode Correct(const PetscReal ypred[2], const PetscReal tau[2], const Codim2Sample &from, Codim2Sample *x, PetscReal grad[2], PetscInt *its,
+                         bool *ok);
+  PetscErrorCode Walk(const Codim2Sample &x0, const PetscReal grad0[2], PetscInt dir, std::vector<Codim2Sample> *pts, std::vector<Codim2Trace::Point> *turns,
+                      std::string *why, bool *collapsed);
+
+private:
+  PetscErrorCode Gradient(const Codim2Sample &x, PetscReal grad[2], bool *ok);
+  PetscErrorCode TurnAt(const Codim2Sample &x, const PetscReal tau[2], PetscReal s, Codim2Sample *xs, PetscReal *phi, bool *ok);
+  PetscErrorCode LocateTurn(const Codim2Sample &x, const PetscReal tau[2], PetscReal ds, PetscReal phi0, PetscReal phi1, Codim2Sample *xt, PetscReal *st);
+
+  MPI_Comm comm_;
+  Codim2Function &f_;
+  const Codim2Options &o_;
+  const char *label_;
+  static constexpr PetscReal kH = 1e-6;     // finite-difference step of grad g in the scaled plane
+  static constexpr PetscInt kMaxIts = 10;   // corrector iterations
+  static constexpr PetscReal kNoise = 1e-5; // the largest |g| a converged point may have
+  static constexpr PetscInt kTurnIts = 60;  // secant steps locating a turn
+};
+
+// grad g at x in the scaled plane, by forward differences (kH).
+PetscErrorCode Codim2Follower::Gradient(const Codim2Sample &x, PetscReal grad[2], bool *ok)
+{
+  Codim2Sample xa, xb;
+  PetscFunctionBeginUser;
+  PetscCall(f_.Sample(x.a + kH, x.b, x, &xa));
+  PetscCall(f_.Sample(x.a, x.b + kH, x, &xb));
+  *ok = xa.ok && xb.ok;
+  grad[0] = (xa.g - x.g) / kH, grad[1] = (xb.g - x.g) / kH;
+  PetscFunctionReturn(0);
+}
+
+// Newton on [g(y); tau . (y - ypred)] from ypred (tau = 0: p fixed at ypred's, the
+// start point); *x the converged point, grad the gradient of its last iterate.
+PetscErrorCode Codim2Follower::Correct(const PetscReal ypred[2], const PetscReal tau[2], const Codim2Sample &from, Codim2Sample *x, PetscReal grad[2],
+                                       PetscInt *its, bool *ok)
+{
+  PetscReal y[2] = {ypred[0], ypred[1]};
+  const bool fixed_p = tau[0] == 0 && tau[1] == 0;
+  const PetscReal row[2] = {fixed_p ? 0 : tau[0], fixed_p ? 1 : tau[1]}; // the constraint's row
+  Codim2Sample cur = from;
+  PetscFunctionBeginUser;
+  *ok = false;
+  for (*its = 1; *its <= kMaxIts; (*its)++) {
+    bool gok = false;
+    PetscCall(f_.Sample(y[0], y[1], cur, x));
+    if (!x->ok) PetscFunctionReturn(0);
+    cur = *x;
+    PetscCall(Gradient(*x, grad, &gok));
+    if (!gok) PetscFunctionReturn(0);
+    const PetscReal F[2] = {x->g, row[0] * (y[0] - ypred[0]) + row[1] * (y[1] - ypred[1])};
+    const PetscReal det = grad[0] * row[1] - grad[1] * row[0];
+    if (!(std::abs(det) > 0) || !std::isfinite(det)) PetscFunctionReturn(0);
+    const PetscReal d0 = -(F[0] * row[1] - grad[1] * F[1]) / det, d1 = -(grad[0] * F[1] - row[0] * F[0]) / det;
+    y[0] += d0, y[1] += d1;
+    if (std::hypot(d0, d1) <= o_.tol) {
+      PetscCall(f_.Sample(y[0], y[1], cur, x)); // the point at the converged y
+      // and g's first-order distance to its zero set is small (a tiny step from a
+      // garbage gradient is no convergence; g itself is only as exact as the orbit)
+      // (each kind's g is dimensionless and O(1) off the curve: kNoise bounds it
+      // where the orbit solves are too imprecise for the gradient, near E -> 0)
+      *ok = x->ok && std::abs(x->g) <= o_.test_tol * std::hypot(grad[0], grad[1]) && std::abs(x->g) <= kNoise;
+      PetscFunctionReturn(0);
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+// The curve at arclength s from x along tau (the corrector of a step of s), and
+// phi there: the b-component of its tangent (oriented as tau), from a central
+// difference of g in a (the forward one of the walk is off by O(kH)).
+PetscErrorCode Codim2Follower::TurnAt(const Codim2Sample &x, const PetscReal tau[2], PetscReal s, Codim2Sample *xs, PetscReal *phi, bool *ok)
+{
+  PetscReal grad[2];
+  PetscInt its;
+  Codim2Sample lo, hi;
+  PetscFunctionBeginUser;
+  const PetscReal yp[2] = {x.a + s * tau[0], x.b + s * tau[1]};
+  PetscCall(Correct(yp, tau, x, xs, grad, &its, ok));
+  if (!*ok) PetscFunctionReturn(0);
+  PetscCall(f_.Sample(xs->a - kH, xs->b, *xs, &lo));
+  PetscCall(f_.Sample(xs->a + kH, xs->b, *xs, &hi));
+  *ok = lo.ok && hi.ok;
+  const PetscReal ga = (hi.g - lo.g) / (2 * kH), gb = grad[1];
+  const PetscReal sign = -gb * tau[0] + ga * tau[1] < 0 ? -1 : 1; // the tangent (-gb, ga) oriented along tau
+  *phi = sign * ga / std::hypot(ga, gb);
+  PetscFunctionReturn(0);
+}
+
+// A turn in p between x (s = 0, tangent b-component phi0) and the next point
+// (s = ds, phi1 of the other sign): the zero of phi(s) by the Illinois variant
+// of regula falsi, to the corrector's tolerance in s. *xt the curve there.
+PetscErrorCode Codim2Follower::LocateTurn(const Codim2Sample &x, const PetscReal tau[2], PetscReal ds, PetscReal phi0, PetscReal phi1, Codim2Sample *xt,
+                                          PetscReal *st)
+{
+  PetscReal s0 = 0, s1 = ds, f0 = phi0, f1 = phi1;
+  PetscInt side = 0;
+  PetscFunctionBeginUser;
+  *st = 0.5 * ds;
+  for (PetscInt k = 0; k < kTurnIts && s1 - s0 > o_.tol; k++) {
+    PetscReal s = (s0 * f1 - s1 * f0) / (f1 - f0), phi;
+    bool ok;
+    if (!(s > s0 && s < s1)) s = 0.5 * (s0 + s1);
+    PetscCall(TurnAt(x, tau, s, xt, &phi, &ok));
+    if (!ok) { // bisection on failure
+      s = 0.5 * (s0 + s1);
+      PetscCall(TurnAt(x, tau, s, xt, &phi, &ok));
+      if (!ok) break;
+    }
+    *st = s;
+    if (phi == 0) break;
+    if ((phi < 0) == (f0 < 0)) {
+      s0 = s, f0 = phi;
+      if (side == -1) f1 *= 0.5;
+      side = -1;
+    } else {
+      s1 = s, f1 = phi;
+      if (side == 1) f0 *= 0.5;
+      side = 1;
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+// From x0 along the curve in direction dir (+1: p grows at the start), into pts;
+// the turns in p on the way into turns (arc: the walk's fractional point index, 0 at x0).
+PetscErrorCode Codim2Follower::Walk(const Codim2Sample &x0, const PetscReal grad0[2], PetscInt dir, std::vector<Codim2Sample> *pts,
+                                    std::vector<Codim2Trace::Point> *turns, std::string *why, bool *collapsed)
+{
+  Codim2Sample x = x0;
+  PetscReal tau[2];
+  PetscReal ds = o_.step;
+  PetscFunctionBeginUser;
+  *collapsed = false;
+  f_.Accept(x0);
+  const PetscReal n0 = std::hypot(grad0[0], grad0[1]);
+  tau[0] = -grad0[1] / n0, tau[1] = grad0[0] / n0; // orthogonal to grad g
+  const PetscReal lead = std::abs(tau[1]) > 1e-12 ? tau[1] : tau[0];
+  if (lead * dir < 0) tau[0] = -tau[0], tau[1] = -tau[1];
+  for (;;) {
+    if ((PetscInt)pts->size() >= o_.max_points) {
+      *why = "reached -cont_codim2_max_points";
+      break;
+    }
+    Codim2Sample nx;
+    PetscReal ng[2];
+    PetscInt its = 0;
+    bool ok = false;
+    while (!ok && ds >= o_.step_min) {
+      const PetscReal yp[2] = {x.a + ds * tau[0], x.b + ds * tau[1]};
+      PetscCall(Correct(yp, tau, x, &nx, ng, &its, &ok));
+      if (!ok) ds *= 0.5;
+    }
+    if (!ok) {
+      *why = "step collapse (the corrector failed at every step size)", *collapsed = true;
+      break;
+    }
+    if (nx.p < o_.pmin || nx.p > o_.pmax) {
+      *why = nx.p < o_.pmin ? "reached -cont_codim2_min" : "reached -cont_codim2_max";
+      break;
+    }
+    const PetscReal nn = std::hypot(ng[0], ng[1]);
+    PetscReal nt[2] = {-ng[1] / nn, ng[0] / nn};
+    if (nt[0] * tau[0] + nt[1] * tau[1] < 0) nt[0] = -nt[0], nt[1] = -nt[1];
+    if (tau[1] * nt[1] < 0) { // dp/ds changes sign: a turn in p between x and nx
+      Codim2Trace::Point q{Codim2PointKind::Turn, Codim2Sample(), 0};
+      PetscReal st;
+      PetscCall(LocateTurn(x, tau, ds, tau[1], nt[1], &q.x, &st));
+      q.arc = (PetscReal)pts->size() + st / ds;
+      turns->push_back(q);
+      if (o_.verbose)
+        PetscCall(PetscPrintf(comm_, "  [%s] %+d turn in p at %.10g (a = q/q0 %.10g) between points %zu and %zu\n", label_, (int)dir, (double)q.x.p,
+                              (double)q.x.a, pts->size(), pts->size() + 1));
+    }
+    tau[0] = nt[0], tau[1] = nt[1];
+    x = nx;
+    f_.Accept(x);
+    pts->push_back(x);
+    if (o_.verbose)
+      PetscCall(PetscPrintf(comm_, "  [%s] %+d %3zu  p %.8g  E = %-11.6g omega = %.9f  g %.1e  corrector %" PetscInt_FMT "  ds %.3g\n", label_, (int)dir,
+                            pts->size(), (double)x.p, (double)x.energy, (double)x.omega, (double)x.g, its, (double)ds));
+    if (its <= 3) ds = std::min(1.5 * ds, o_.step_max);
+  }
+  PetscFunctionReturn(0);
+}
+
+// How a side of the curve that collapsed at its last point ends: a collision
+// reaching +-1 (kind 5: 1 - |bmid| within kEdge; the test function loses its
+// pairs there, as they leave the circle at +-1 or become real), the linear
+// limit (E below kLinear times the start's), or unclassified.
+Codim2PointKind EndKind(const Codim2Function &f, const Codim2Sample &last, const Codim2Sample &start, bool collapsed)
+{
+  constexpr PetscReal kEdge = 1e-2, kLinear = 1e-2;
+  if (!collapsed) return Codim2PointKind::End;
+  if (f.Collision() && 1 - std::abs(last.bmid) <= kEdge) return last.bmid > 0 ? Codim2PointKind::CollisionPlus : Codim2PointKind::CollisionMinus;
+  if (start.energy > 0 && last.energy <= kLinear * start.energy) return Codim2PointKind::LinearLimit;
+  return Codim2PointKind::End;
+}
+
+} // namespace
+
+PetscErrorCode FollowCodim2(MPI_Comm comm, Codim2Function &f, const Codim2Options &o, const Codim2Sample &guess, const char *label, Codim2Trace *t)
+{
+  Codim2Follower w(comm, f, o, label);
+  Codim2Sample x0;
+  PetscReal grad0[2];
+  const PetscReal none[2] = {0, 0};
+  std::vector<Codim2Sample> down, up;
+  std::vector<Codim2Trace::Point> tdown, tup;
+  bool ok, cdown, cup;
+  PetscFunctionBeginUser;
+  *t = Codim2Trace();
+  f.Accept(guess);
+  const PetscReal y[2] = {guess.a, guess.b};
+  PetscCall(w.Correct(y, none, guess, &x0, grad0, &t->its, &ok));
+  if (!ok) PetscFunctionReturn(0);
+  t->started = true;
+  PetscCall(w.Walk(x0, grad0, -1, &down, &tdown, &t->why_down, &cdown));
+  PetscCall(w.Walk(x0, grad0, +1, &up, &tup, &t->why_up, &cup));
+  t->pts.assign(down.rbegin(), down.rend());
+  t->start = (PetscInt)down.size();
+  t->pts.push_back(x0);
+  t->pts.insert(t->pts.end(), up.begin(), up.end());
+  const PetscReal last = (PetscReal)t->pts.size() - 1;
+  t->points.push_back({EndKind(f, t->pts.front(), x0, cdown), t->pts.front(), 0});
+  for (auto it = tdown.rbegin(); it != tdown.rend(); ++it) t->points.push_back({it->kind, it->x, (PetscReal)t->start - it->arc});
+  for (const Codim2Trace::Point &q : tup) t->points.push_back({q.kind, q.x, (PetscReal)t->start + q.arc});
+  t->points.push_back({EndKind(f, t->pts.back(), x0, cup), t->pts.back(), last});
   PetscFunctionReturn(0);
 }
 

@@ -20,6 +20,7 @@
 #include "orbits/shooting.hpp"
 #include "stability/bifurcations.hpp"
 #include "stability/floquet.hpp"
+#include <complex>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,15 @@ struct Codim2Spec {
 PetscErrorCode Codim2OptionsFromOptions(MPI_Comm comm, Codim2Options *o, Codim2Spec *s);
 PetscErrorCode ParseCodim2Spec(MPI_Comm comm, const std::string &text, Codim2Spec *s);
 
+// The codim-2 points of a curve (point_kind of /continuation/<branch>/codim2/<curve>; the codes of io/schema.hpp codes::kCodim2Point).
+enum class Codim2PointKind : PetscInt {
+  End = 0,            // an end of the curve not classified below (a bound, -cont_codim2_max_points, step collapse: stop_reason)
+  Turn = 1,           // a turn in p: dp/ds = 0, the curve goes on through it
+  CollisionPlus = 2,  // a Hamiltonian-Hopf curve ends where the colliding pairs' b reaches +1 (1:1 resonance)
+  CollisionMinus = 3, // ... reaches -1 (1:2 resonance)
+  LinearLimit = 4     // the curve ends as E -> 0 (the linear limit)
+};
+
 // One curve: /continuation/<branch>/codim2/<name> of outputs.md.
 struct Codim2Curve {
   std::string name; // <tag><event>, e.g. fold3
@@ -64,6 +74,8 @@ struct Codim2Curve {
   static constexpr PetscInt kMultipliers = 4;                                       // written per point: the multipliers nearest the kind's critical point
   std::vector<PetscReal> p, energy, omega, period, test, max_modulus, mu_re, mu_im; // mu: npts x kMultipliers
   PetscInt event_point = 0;                                                         // the row of the event itself
+  std::vector<PetscInt> point_kind;                                                 // its codim-2 points (Codim2PointKind), in order of point_arc
+  std::vector<PetscReal> point_p, point_energy, point_omega, point_arc;             // point_arc: the fractional row along the curve
   std::string stop_reason;
   PetscInt solves = 0; // orbits solved
   PetscReal seconds = 0;
@@ -83,5 +95,65 @@ struct Codim2Start {
 PetscErrorCode ContinueCodim2(MPI_Comm comm, const LatticeParams &base, const FlowOptions &fo, const ShootingOptions &so, const FloquetOptions &flo,
                               PetscInt period_multiple, const Codim2Options &o, const BifurcationEvent &e, PetscInt event, const Codim2Start &start,
                               const char *name, Codim2Curve *curve);
+
+// ---- The curve follower, on any scalar test function of the scaled plane ----
+// The orbit-based test functions (codim2.cpp) are one implementation; a closed
+// form is another (tests/unit/test_codim2.cpp).
+
+// One sample of the test function g at the point (a, b) of the scaled plane.
+struct Codim2Sample {
+  bool ok = false;        // g was evaluated (a finite number)
+  PetscReal a = 0, b = 0; // the point: (q / q0, p / p0) for an orbit
+  PetscReal omega = 0, p = 0, energy = 0, period = 0, beta = 0, g = NAN;
+  PetscReal bmid = 0;        // kind 5: the middle of the two colliding pairs' b (kind 3: -1, kind 1: +1)
+  std::vector<PetscReal> z0; // the orbit (natural order, every rank); empty for a closed form
+};
+
+class Codim2Function {
+public:
+  virtual ~Codim2Function() = default;
+  // g at (a, b) into *x (x->a, x->b: the point actually reached); from: a nearby sample (the Newton guess of an orbit)
+  virtual PetscErrorCode Sample(PetscReal a, PetscReal b, const Codim2Sample &from, Codim2Sample *x) = 0;
+  // x is a new point of the curve (kind 5: the collision's b moves along it)
+  virtual void Accept(const Codim2Sample &x) { (void)x; }
+  // whether bmid is the collision of two pairs (kind 5): a curve that ends with |bmid| near 1 ends at +-1
+  virtual bool Collision() const { return false; }
+};
+
+// A curve followed from a start point in both directions of p.
+struct Codim2Trace {
+  std::vector<Codim2Sample> pts; // in order along the curve: the side where p first decreases (reversed), the start, the other side
+  PetscInt start = 0;            // the row of the start point
+  struct Point {
+    Codim2PointKind kind;
+    Codim2Sample x; // the curve there
+    PetscReal arc;  // fractional row of pts
+  };
+  std::vector<Point> points;    // sorted by arc
+  std::string why_down, why_up; // why each side ended
+  PetscInt its = 0;             // corrector iterations at the start point
+  bool started = false;         // the start point was corrected onto the curve (at its b)
+};
+
+// Corrects guess onto g = 0 at its b (p fixed), then walks both ways by
+// pseudo-arclength (-cont_codim2_* of o: steps, tolerances, p bounds on the
+// samples' p, max points), detecting and locating the turns in p and
+// classifying both ends. label: the messages' prefix.
+PetscErrorCode FollowCodim2(MPI_Comm comm, Codim2Function &f, const Codim2Options &o, const Codim2Sample &guess, const char *label, Codim2Trace *t);
+
+// The Hamiltonian-Hopf test function on a list of nontrivial multipliers: the
+// upper members' b = (mu + 1/mu)/2, the two nearest bstar, g = Re (b1 - b2)^2
+// (their discriminant) and bmid = Re (b1 + b2)/2; false (g left alone) with
+// fewer than two, or when they are not both real or conjugate (abs(Im (b1 + b2))
+// > 2 tol: no collision). tol: an upper member has Im mu > tol |mu| (a real pair is not one).
+bool HopfDiscriminant(const std::vector<std::complex<PetscReal>> &mu, PetscReal tol, PetscReal bstar, PetscReal *g, PetscReal *bmid);
+
+// Where two curves' polylines (p, E) cross, by linear interpolation within the
+// segments: p, E there and the fractional rows arc1, arc2 of either curve.
+struct Codim2Crossing {
+  PetscReal p, energy, arc1, arc2;
+};
+std::vector<Codim2Crossing> Codim2Intersections(const std::vector<PetscReal> &p1, const std::vector<PetscReal> &e1, const std::vector<PetscReal> &p2,
+                                                const std::vector<PetscReal> &e2);
 
 } // namespace nltopo

@@ -35,6 +35,16 @@ Schema Codim2Schema(const char *path)
             "colliding pairs, nearest in b = (mu + 1/mu)/2), nearest first; real part"},
            {"multipliers_im", D, R, "npts x 4", "1", "the same multipliers, imaginary part"},
            {"max_modulus", D, R, "npts", "1", "largest |mu| of the orbit"},
+           {"point_kind", D, I, "npoints", "1",
+            "the curve's codim-2 points, in order along it: its two ends (rows 0 and npts - 1), classified when a side collapsed (the colliding "
+            "pairs' b within 1e-2 of +-1, or E below 1e-2 of the event's), and each turn in p located between two rows",
+            codes::kCodim2Point},
+           {"point_p", D, R, "npoints", "as p", "the parameter at each codim-2 point"},
+           {"point_energy", D, R, "npoints", "energy", "the energy of the orbit at each codim-2 point"},
+           {"point_omega", D, R, "npoints", "rad/time", "the frequency of the orbit at each codim-2 point"},
+           {"point_arc", D, R, "npoints", "1",
+            "where each codim-2 point lies along the curve: a fractional row r + f, f the fraction of the arclength step from row r to r + 1 (turns: "
+            "located by regula falsi on the step's arclength to -cont_codim2_tol)"},
            {"parameter", A, S, "scalar", "1", "the second parameter's option: -lattice_gamma, -lattice_k or -lattice_cubic (-cont_codim2_parameter)"},
            {"kind", A, I, "scalar", "1", "the kind of event the curve continues, in the codes of /bifurcations kind", codes::kEventKind},
            {"event", A, I, "scalar", "1", "the event's row in /continuation/<branch>/bifurcations"},

@@ -329,6 +329,10 @@ PetscErrorCode WriteCodim2CurveAt(PetscViewer v, const std::string &g, const cha
       else SETERRQ(comm, PETSC_ERR_PLIB, "attribute %s/%s of the output schema has no value in studies/continuation_record.cpp", gc, fd.name);
       continue;
     }
+    if (n == "point_kind") {
+      PetscCall(WriteIntArray(v, gc, fd.name, c.point_kind));
+      continue;
+    }
     const std::vector<PetscReal> *x = n == "p"                ? &c.p
                                       : n == "energy"         ? &c.energy
                                       : n == "omega"          ? &c.omega
@@ -337,6 +341,10 @@ PetscErrorCode WriteCodim2CurveAt(PetscViewer v, const std::string &g, const cha
                                       : n == "max_modulus"    ? &c.max_modulus
                                       : n == "multipliers_re" ? &c.mu_re
                                       : n == "multipliers_im" ? &c.mu_im
+                                      : n == "point_p"        ? &c.point_p
+                                      : n == "point_energy"   ? &c.point_energy
+                                      : n == "point_omega"    ? &c.point_omega
+                                      : n == "point_arc"      ? &c.point_arc
                                                               : nullptr;
     PetscCheck(x, comm, PETSC_ERR_PLIB, "dataset %s/%s of the output schema has no column in studies/continuation_record.cpp", gc, fd.name);
     if (n.rfind("multipliers", 0) == 0) PetscCall(WriteArrayND(v, gc, fd.name, *x, {np, Codim2Curve::kMultipliers}));

@@ -279,6 +279,11 @@ def test_codim2_curve(runs):
     assert np.allclose(c.energy * c.p, c.energy[c.event_point] * 0.5, rtol=1e-10, atol=0)
     assert np.allclose(c.omega, c.omega[c.event_point], rtol=1e-10, atol=0)
     assert c.multipliers.shape == (len(c.p), 4) and np.all(np.abs(c.multipliers - 1) < 1e-2)
+    # its codim-2 points: both ends, at the bounds of -lattice_cubic (no turn in p on E Gamma = const)
+    pts = c.points
+    assert [q["kind_name"] for q in pts] == ["end of the curve", "end of the curve"] and list(c.point_kind_name) == ["end of the curve"] * 2
+    assert [q["arc"] for q in pts] == [0, len(c.p) - 1] and pts[0]["p"] == c.p[0] and pts[-1]["energy"] == c.energy[-1]
+    assert "point_arc" in c and c.codes("point_kind")[1] == "turn in p (dp/ds = 0, the curve goes on)"
     assert runs["fep"].branches["insulated"].codim2 == {}
 
 

@@ -11,7 +11,9 @@
 #include "stability/bifurcation_locator.hpp"
 #include "stability/branch_switch.hpp"
 #include "stability/codim2.hpp"
+#include <array>
 #include <cmath>
+#include <petscblaslapack.h>
 
 using namespace nltopo;
 using namespace nltopo::test;
@@ -182,7 +184,204 @@ void RequireEventAtCurveEnd(const BifurcationEvent &h, const Codim2Curve &c, con
                    (double)std::abs(h.omega - c.omega[n - 1]), (double)std::abs(h.energy / c.energy[n - 1] - 1)));
 }
 
+// A constructed pair with a Hamiltonian-Hopf curve known in closed form: two
+// oscillators of opposite Krein signature, coupled,
+//   H = (p1^2 + w1^2 q1^2)/2 - (p2^2 + w2^2 q2^2)/2 + c q1 q2,
+// so q'' = -K q, K = [[w1^2, c], [-c, w2^2]], whose frequencies Omega^2 =
+// (w1^2 + w2^2)/2 +- sqrt(((w1^2 - w2^2)/2)^2 - c^2) collide, and leave the
+// real axis (a quadruplet of multipliers), where |w1^2 - w2^2| = 2 |c|. With
+// w1^2 = s(a) + r(a), w2^2 = s(a) - r(a) and c = b the curves are b = +-r(a):
+// r(a) = a (2 - a) / 2 turns in b at a = 1 (b = +-1/2), and the two curves meet
+// at (a, b) = (2, 0) (c = 0, w1 = w2: a semisimple double frequency). The
+// collision's frequency on the curve is Omega* = sqrt(s(a)), s(a) = a - 1/4, so
+// its b* = cos(Omega* T) reaches +1 at a = 1/4 (Omega* -> 0: a 1:1 resonance),
+// where the curve ends (beyond, a pair is real). The monodromy exp(T J Hess H)
+// over T = 1 goes through the lattice's own Hamiltonian-Hopf test function
+// (HopfDiscriminant) and the same follower (FollowCodim2); p = b, E = a.
+class OppositePair : public Codim2Function {
+public:
+  static PetscReal R(PetscReal a) { return 0.5 * a * (2 - a); }
+  static PetscReal S(PetscReal a) { return a - 0.25; }
+  static constexpr PetscReal kT = 1;
+  PetscErrorCode Sample(PetscReal a, PetscReal b, const Codim2Sample &, Codim2Sample *x) override
+  {
+    PetscFunctionBeginUser;
+    *x = Codim2Sample();
+    x->a = a, x->b = b, x->p = b, x->energy = a, x->omega = std::sqrt(std::max(S(a), (PetscReal)0));
+    std::vector<std::complex<PetscReal>> mu;
+    PetscCall(Multipliers(S(a) + R(a), S(a) - R(a), b, &mu));
+    x->ok = HopfDiscriminant(mu, FloquetOptions().tol, bstar_, &x->g, &x->bmid) && std::isfinite(x->g);
+    PetscFunctionReturn(0);
+  }
+  void Accept(const Codim2Sample &x) override { bstar_ = x.bmid; }
+  bool Collision() const override { return true; }
+  // The start: on the curve b = sign r(a), off it by 0.01 in b (the corrector puts it back), the collision's b* there.
+  static Codim2Sample Guess(PetscReal a, PetscReal sign)
+  {
+    Codim2Sample s;
+    s.a = a, s.b = sign * R(a) + 0.01, s.p = s.b, s.energy = a, s.bmid = std::cos(std::sqrt(S(a)) * kT);
+    return s;
+  }
+
+private:
+  PetscReal bstar_ = 0;
+  // The four multipliers: eigenvalues of M = exp(T A), A = J Hess H in z = (q1, q2, p1, p2)
+  // (scaling and squaring of the Taylor series; LAPACK dgeev).
+  static PetscErrorCode Multipliers(PetscReal w1s, PetscReal w2s, PetscReal c, std::vector<std::complex<PetscReal>> *mu)
+  {
+    using M4 = std::array<PetscReal, 16>; // row-major
+    auto mul = [](const M4 &x, const M4 &y) {
+      M4 z{};
+      for (int i = 0; i < 4; i++)
+        for (int k = 0; k < 4; k++)
+          for (int j = 0; j < 4; j++) z[4 * i + j] += x[4 * i + k] * y[4 * k + j];
+      return z;
+    };
+    // q1' = p1, q2' = -p2, p1' = -w1^2 q1 - c q2, p2' = w2^2 q2 - c q1
+    M4 A{0, 0, 1, 0, 0, 0, 0, -1, -w1s, -c, 0, 0, -c, w2s, 0, 0};
+    PetscReal norm = 0;
+    for (PetscReal v : A) norm = std::max(norm, std::abs(v) * kT);
+    int sq = 0;
+    while (4 * norm > 0.5) norm *= 0.5, sq++; // ||T A / 2^sq||_1 <= 4 max|entry| <= 1/2
+    for (PetscReal &v : A) v *= kT / std::ldexp(1.0, sq);
+    M4 E{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}, term = E;
+    for (int k = 1; k <= 24; k++) {
+      term = mul(term, A);
+      for (PetscReal &v : term) v /= k;
+      for (int i = 0; i < 16; i++) E[i] += term[i];
+    }
+    for (int k = 0; k < sq; k++) E = mul(E, E);
+    PetscScalar a[16], work[64], vl[1], vr[1];
+    PetscReal wr[4], wi[4];
+    for (int i = 0; i < 4; i++)
+      for (int j = 0; j < 4; j++) a[4 * j + i] = E[4 * i + j]; // column-major
+    PetscBLASInt n = 4, one = 1, lwork = 64, info;
+    PetscFunctionBeginUser;
+    LAPACKgeev_("N", "N", &n, a, &n, wr, wi, vl, &one, vr, &one, work, &lwork, &info);
+    PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "dgeev failed: info %d", (int)info);
+    mu->clear();
+    for (int i = 0; i < 4; i++) mu->emplace_back(wr[i], wi[i]);
+    PetscFunctionReturn(0);
+  }
+};
+
+// Both curves of the pair, from (a, b) = (1.5, +-r(1.5)), p in [-0.6, 0.6].
+void FollowPair(PetscReal sign, Codim2Trace *t)
+{
+  OppositePair f;
+  Codim2Options o;
+  o.pmin = -0.6, o.pmax = 0.6;
+  o.verbose = PETSC_FALSE;
+  PCHK(FollowCodim2(PETSC_COMM_WORLD, f, o, OppositePair::Guess(1.5, sign), sign > 0 ? "pair +" : "pair -", t));
+  REQUIRE(t->started);
+  INFO("curve b = " << sign << " r(a): " << t->pts.size() << " points; p decreasing: " << t->why_down << "; p increasing: " << t->why_up);
+  REQUIRE(t->pts.size() >= 20);
+}
+
 } // namespace
+
+TEST_CASE("codim-2: a constructed pair's Hamiltonian-Hopf curve |c| = |w1^2 - w2^2| / 2, through the lattice's test function and follower", "[codim2]")
+{
+  for (PetscReal sign : {1.0, -1.0}) {
+    Codim2Trace t;
+    FollowPair(sign, &t);
+    PetscReal worst = 0, worst_b = 0, amin = 10, amax = 0;
+    for (const Codim2Sample &x : t.pts) {
+      worst = std::max(worst, std::abs(x.b - sign * OppositePair::R(x.a)));
+      worst_b = std::max(worst_b, std::abs(x.bmid - std::cos(std::sqrt(OppositePair::S(x.a)) * OppositePair::kT)));
+      amin = std::min(amin, x.a), amax = std::max(amax, x.a);
+    }
+    const Codim2Trace::Point &lo = t.points.front(), &hi = t.points.back();
+    const Codim2Trace::Point &end = sign > 0 ? hi : lo; // the side running to a = 1/4 (p increasing on b = +r)
+    PCHK(PetscPrintf(PETSC_COMM_WORLD,
+                     "  codim2 pair, b = %+g r(a): %zu points, a %.6f .. %.6f, max |b - b(a)| = %.1e, max |b* - cos(Omega* T)| = %.1e; end at a = %.6g "
+                     "(b* = %.8f, point kind %d)\n",
+                     (double)sign, t.pts.size(), (double)amin, (double)amax, (double)worst, (double)worst_b, (double)end.x.a, (double)end.x.bmid,
+                     (int)end.kind));
+    REQUIRE(worst <= 1e-8);   // on the closed form (the corrector's distance to the curve: -cont_codim2_test_tol |grad g| and below)
+    REQUIRE(worst_b <= 1e-8); // and the collision is where it is (the middle of a Jordan block's computed pair: exact to rounding)
+    REQUIRE(amax > 2.1);      // through the meeting with the other curve at (2, 0)
+    // the end at the 1:1 resonance: the last point near a = 1/4, where b* -> 1
+    REQUIRE(end.kind == Codim2PointKind::CollisionPlus);
+    REQUIRE(end.x.a - 0.25 >= 0);
+    REQUIRE(end.x.a - 0.25 <= 2e-3); // (it ends where a finite-difference probe finds a real pair: s(a) ~ sqrt(kH))
+    REQUIRE(1 - end.x.bmid <= 1e-2);
+    // the other end: the bound of p (-0.6 on b = +r, +0.6 on b = -r), past the meeting at (2, 0): not a codim-2 point
+    REQUIRE((sign > 0 ? lo : hi).kind == Codim2PointKind::End);
+    REQUIRE((sign > 0 ? t.why_down : t.why_up) == (sign > 0 ? "reached -cont_codim2_min" : "reached -cont_codim2_max"));
+  }
+}
+
+TEST_CASE("codim-2: the curve is smooth through a turning point in p, located at p's extremum (the constructed pair)", "[codim2]")
+{
+  // (no quick real lattice curve with a turn in p is known yet: the fold curve of mode 0 of N = 6 runs to E -> 0)
+  for (PetscReal sign : {1.0, -1.0}) {
+    Codim2Trace t;
+    FollowPair(sign, &t);
+    std::vector<const Codim2Trace::Point *> turns;
+    for (const Codim2Trace::Point &q : t.points)
+      if (q.kind == Codim2PointKind::Turn) turns.push_back(&q);
+    REQUIRE(turns.size() == 1);
+    const Codim2Trace::Point &q = *turns[0];
+    // where the locator puts it: at p's extremum b = +-1/2, a = 1 (b - b* is quadratic in a - 1 there)
+    PCHK(PetscPrintf(PETSC_COMM_WORLD, "  codim2 pair, b = %+g r(a): turn in p located at a = %.12f (|a - 1| = %.1e), p = %.14f (|p - p*| = %.1e), arc %.4f\n",
+                     (double)sign, (double)q.x.a, (double)std::abs(q.x.a - 1), (double)q.x.p, (double)std::abs(q.x.p - 0.5 * sign), (double)q.arc));
+    REQUIRE(std::abs(q.x.a - 1) <= 1e-8);
+    REQUIRE(std::abs(q.x.p - 0.5 * sign) <= 1e-12);
+    // between the rows it names, and no written point beyond the extremum
+    const size_t r = (size_t)q.arc;
+    REQUIRE(r + 1 < t.pts.size());
+    REQUIRE((t.pts[r].a - 1) * (t.pts[r + 1].a - 1) < 0);
+    for (const Codim2Sample &x : t.pts) REQUIRE(sign * x.p <= sign * q.x.p + 1e-14);
+    // one smooth curve through it: the points on both sides continue on the closed form (the case above), the
+    // chords turn by at most about step x curvature (<= 1 here) and the rows' arclength steps change smoothly
+    PetscReal worst_turn = 0;
+    for (size_t k = 1; k + 1 < t.pts.size(); k++) {
+      const PetscReal u0 = t.pts[k].a - t.pts[k - 1].a, v0 = t.pts[k].b - t.pts[k - 1].b, u1 = t.pts[k + 1].a - t.pts[k].a, v1 = t.pts[k + 1].b - t.pts[k].b;
+      const PetscReal angle = std::abs(std::atan2(u0 * v1 - v0 * u1, u0 * u1 + v0 * v1));
+      worst_turn = std::max(worst_turn, angle);
+      if (k == r || k == r + 1) REQUIRE(angle <= 0.2); // across the turn itself
+    }
+    INFO("largest angle between successive chords " << worst_turn);
+    REQUIRE(worst_turn <= 0.25);
+    REQUIRE(std::abs(t.pts[r].b - sign * OppositePair::R(t.pts[r].a)) <= 1e-8);
+    REQUIRE(std::abs(t.pts[r + 1].b - sign * OppositePair::R(t.pts[r + 1].a)) <= 1e-8);
+  }
+}
+
+TEST_CASE("codim-2: Codim2Intersections finds where two curves' polylines cross", "[codim2][serial]")
+{
+  // straight lines: exact; a crossing at a shared vertex counted once
+  auto x = Codim2Intersections({0, 1, 2}, {0, 1, 2}, {0, 2}, {2, 0});
+  REQUIRE(x.size() == 1);
+  REQUIRE(x[0].p == Approx(1).margin(1e-15));
+  REQUIRE(x[0].energy == Approx(1).margin(1e-15));
+  REQUIRE(x[0].arc1 == Approx(1).margin(1e-15));
+  REQUIRE(x[0].arc2 == Approx(0.5).margin(1e-15));
+  // twice; parallel and disjoint: none
+  x = Codim2Intersections({0, 1, 2}, {0, 1, 0}, {0, 2}, {0.5, 0.5});
+  REQUIRE(x.size() == 2);
+  REQUIRE(x[0].p == Approx(0.5).margin(1e-15));
+  REQUIRE(x[1].p == Approx(1.5).margin(1e-15));
+  REQUIRE(x[1].arc1 == Approx(1.5).margin(1e-15));
+  REQUIRE(Codim2Intersections({0, 1}, {0, 1}, {0, 1}, {1, 2}).empty());
+  REQUIRE(Codim2Intersections({0, 1}, {0, 1}, {2, 3}, {1, 0}).empty());
+  REQUIRE(Codim2Intersections({0}, {0}, {0, 1}, {1, 0}).empty());
+  // the constructed pair's two Hamiltonian-Hopf curves meet at (p, E) = (0, 2) (c = 0, w1 = w2), to the chords' error
+  Codim2Trace up, dn;
+  FollowPair(1, &up);
+  FollowPair(-1, &dn);
+  std::vector<PetscReal> p1, e1, p2, e2;
+  for (const Codim2Sample &s : up.pts) p1.push_back(s.p), e1.push_back(s.energy);
+  for (const Codim2Sample &s : dn.pts) p2.push_back(s.p), e2.push_back(s.energy);
+  x = Codim2Intersections(p1, e1, p2, e2);
+  REQUIRE(x.size() == 1);
+  INFO("meeting at p " << x[0].p << ", E " << x[0].energy);
+  REQUIRE(std::abs(x[0].p) <= 2e-3);
+  REQUIRE(std::abs(x[0].energy - 2) <= 2e-3);
+  const size_t i = (size_t)x[0].arc1;
+  REQUIRE((up.pts[i].a - 2) * (up.pts[i + 1].a - 2) <= 0);
+}
 
 TEST_CASE("codim-2: the energy fold continued in -lattice_cubic lies on E Gamma = const at constant omega, through the one-parameter runs' folds", "[codim2]")
 {
@@ -324,6 +523,40 @@ TEST_CASE("codim-2: the energy fold continued in -lattice_gamma passes through t
     PCHK(PetscPrintf(PETSC_COMM_WORLD, "  codim2 fold in -lattice_gamma at %.6g: |omega - one-parameter fold's| = %.1e, |E / its - 1| = %.1e\n", (double)c.p[k],
                      (double)std::abs(h.omega - c.omega[k]), (double)std::abs(h.energy / c.energy[k] - 1)));
   }
+}
+
+TEST_CASE("codim-2: the energy fold of mode 0 continued in -lattice_gamma ends at the linear limit, written as that codim-2 point", "[codim2][once]")
+{
+  // [once]: the orbit path at 2 ranks runs in the -lattice_cubic fold case. From gamma 0.4 (E 65.8) the E
+  // maximum's fold curve runs down to E -> 0 as gamma grows (docs/continuation.md "Where the curves end"):
+  // the branch's frequency shift at E -> 0 changes sign there. The corrector's steps collapse as g gets noisy.
+  FoldOfMode0 f;
+  PCHK(f.Locate(0.5));
+  REQUIRE(f.index >= 0);
+  Codim2Start start;
+  PCHK(f.Start(&start));
+  Codim2Options o;
+  o.parameter = Codim2Parameter::Gamma;
+  o.pmin = 0.39, o.pmax = 0.8, o.max_points = 80;
+  o.verbose = PETSC_FALSE;
+  LatticeParams p;
+  p.cells = 1, p.Gamma = 0.5;
+  Codim2Curve c;
+  PCHK(ContinueCodim2(PETSC_COMM_WORLD, p, FlowOptions(), ShootingOptions(), FloquetOptions(), 1, o, f.ev[f.index], f.index, start, "mode0", &c));
+  const size_t n = c.p.size(), m = c.point_kind.size();
+  INFO("curve " << c.name << ": " << n << " points, p " << c.p.front() << " .. " << c.p.back() << ", E " << c.energy.back() << ": " << c.stop_reason);
+  REQUIRE(m == 2); // both ends, no turn in p
+  REQUIRE(c.point_kind[0] == (PetscInt)Codim2PointKind::End);
+  REQUIRE(c.point_arc[0] == 0);
+  REQUIRE(c.point_kind[1] == (PetscInt)Codim2PointKind::LinearLimit);
+  REQUIRE(c.point_arc[1] == (PetscReal)(n - 1));
+  REQUIRE(c.point_p[1] == c.p[n - 1]);
+  REQUIRE(c.point_energy[1] == c.energy[n - 1]);
+  REQUIRE(c.point_energy[1] <= 1e-2 * c.energy[c.event_point]);
+  REQUIRE(std::abs(c.point_p[1] - 0.6736) <= 1e-3);
+  for (size_t k = 1; k < n; k++) REQUIRE(c.p[k] > c.p[k - 1]);
+  PCHK(PetscPrintf(PETSC_COMM_WORLD, "  codim2 fold in -lattice_gamma: linear limit at gamma %.6f, omega %.6f, E %.3g (%zu points, %" PetscInt_FMT " orbits)\n",
+                   (double)c.point_p[1], (double)c.point_omega[1], (double)c.point_energy[1], n, c.solves));
 }
 
 TEST_CASE("codim-2: -cont_codim2 items are parsed, and the kinds not implemented yet refused", "[codim2][serial]")

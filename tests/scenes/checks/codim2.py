@@ -27,6 +27,11 @@ def curve():
         x, y = a[f][:], b[f][:]
         worst = max(worst, float(np.max(np.abs(x - y) / np.abs(x))))
     require(worst <= 1e-9, worst)
+    # its codim-2 points: no turn in p (p increases along the rows), both ends at the bounds of p (code 0, rows 0 and npts - 1)
+    for g in (a, b):
+        require(list(g["point_kind"][:]) == [0, 0] and list(g["point_arc"][:]) == [0, len(p) - 1], g["point_kind"][:], g["point_arc"][:])
+        require(g["point_p"][0] == g["p"][0] and g["point_energy"][-1] == g["energy"][-1] and g["point_omega"][-1] == g["omega"][-1], g["point_p"][:])
+        require(str(g["point_kind"].attrs["codes"]).find("1 turn in p") >= 0, g["point_kind"].attrs["codes"])
     print("codim2 curve: %d points, gamma %.4f .. %.4f, E %.4g .. %.4g; 1 vs 2 ranks: largest relative difference %.2g"
           % (len(p), p[0], p[-1], a["energy"][0], a["energy"][-1], worst))
 
