@@ -79,6 +79,10 @@ static const auto &kCodim2Table = DeclareOptionTable<Codim2Options>("cont_", "Tw
       .Real("codim2_step", &C::step, Open(0, 1), "-cont_codim2: the first step along the curve, in the scaled plane (q / q0, p / p0) of the event's q0, p0")
       .Real("codim2_step_min", &C::step_min, Open(0, 1), "-cont_codim2: the curve stops when the step falls below this (step collapse)")
       .Real("codim2_step_max", &C::step_max, Open(0, 10), "-cont_codim2: the largest step along the curve (scaled plane)")
+      .Real("codim2_energy_min", &C::emin, Closed(0, 1e12), "-cont_codim2: the curve stops where E falls below this (the first point below it is kept)",
+            OptionClass::Extent)
+      .Real("codim2_energy_max", &C::emax, Closed(0, 1e12), "-cont_codim2: the curve stops where E exceeds this (the first point above it is kept)",
+            OptionClass::Extent)
       .Int("codim2_max_points", &C::max_points, Closed(1, 100000), "-cont_codim2: points of the curve on each side of the event", OptionClass::Extent)
       .Real("codim2_tol", &C::tol, Open(0, 1e-3), "-cont_codim2: the corrector has converged when its step in the scaled plane is below this")
       .Real("codim2_test_tol", &C::test_tol, Open(0, 1),
@@ -511,37 +515,48 @@ PetscErrorCode Codim2Follower::Gradient(const Codim2Sample &x, PetscReal grad[2]
 }
 
 // Newton on [g(y); tau . (y - ypred)] from ypred (tau = 0: p fixed at ypred's, the
-// start point); *x the converged point, grad the gradient of its last iterate.
+// start point); *x the converged point, grad the gradient there. A chord
+// method: the gradient (two more samples) is taken at the first iterate and
+// kept while the steps shrink by half or more; the converged point gets its
+// own (the tangent of the next step, and the distance test below).
 PetscErrorCode Codim2Follower::Correct(const PetscReal ypred[2], const PetscReal tau[2], const Codim2Sample &from, Codim2Sample *x, PetscReal grad[2],
                                        PetscInt *its, bool *ok)
 {
-  PetscReal y[2] = {ypred[0], ypred[1]};
+  PetscReal y[2] = {ypred[0], ypred[1]}, last = INFINITY;
   const bool fixed_p = tau[0] == 0 && tau[1] == 0;
   const PetscReal row[2] = {fixed_p ? 0 : tau[0], fixed_p ? 1 : tau[1]}; // the constraint's row
   Codim2Sample cur = from;
+  bool fresh = false, gok = false;
   PetscFunctionBeginUser;
   *ok = false;
   for (*its = 1; *its <= kMaxIts; (*its)++) {
-    bool gok = false;
     PetscCall(f_.Sample(y[0], y[1], cur, x));
     if (!x->ok) PetscFunctionReturn(0);
     cur = *x;
-    PetscCall(Gradient(*x, grad, &gok));
-    if (!gok) PetscFunctionReturn(0);
+    if (*its == 1 || !fresh) { // the first iterate, or a chord step that did not halve the last
+      PetscCall(Gradient(*x, grad, &gok));
+      if (!gok) PetscFunctionReturn(0);
+      fresh = true;
+    }
     const PetscReal F[2] = {x->g, row[0] * (y[0] - ypred[0]) + row[1] * (y[1] - ypred[1])};
     const PetscReal det = grad[0] * row[1] - grad[1] * row[0];
     if (!(std::abs(det) > 0) || !std::isfinite(det)) PetscFunctionReturn(0);
     const PetscReal d0 = -(F[0] * row[1] - grad[1] * F[1]) / det, d1 = -(grad[0] * F[1] - row[0] * F[0]) / det;
     y[0] += d0, y[1] += d1;
-    if (std::hypot(d0, d1) <= o_.tol) {
+    const PetscReal step = std::hypot(d0, d1);
+    if (step <= o_.tol) {
       PetscCall(f_.Sample(y[0], y[1], cur, x)); // the point at the converged y
+      if (!x->ok) PetscFunctionReturn(0);
+      PetscCall(Gradient(*x, grad, &gok)); // its own gradient
       // and g's first-order distance to its zero set is small (a tiny step from a
       // garbage gradient is no convergence; g itself is only as exact as the orbit)
       // (each kind's g is dimensionless and O(1) off the curve: kNoise bounds it
       // where the orbit solves are too imprecise for the gradient, near E -> 0)
-      *ok = x->ok && std::abs(x->g) <= o_.test_tol * std::hypot(grad[0], grad[1]) && std::abs(x->g) <= kNoise;
+      *ok = gok && std::abs(x->g) <= o_.test_tol * std::hypot(grad[0], grad[1]) && std::abs(x->g) <= kNoise;
       PetscFunctionReturn(0);
     }
+    fresh = !(step <= 0.5 * last); // the chord converges: keep its gradient; else a new one next
+    last = step;
   }
   PetscFunctionReturn(0);
 }
@@ -635,10 +650,9 @@ PetscErrorCode Codim2Follower::Walk(const Codim2Sample &x0, const PetscReal grad
       *why = "step collapse (the corrector failed at every step size)", *collapsed = true;
       break;
     }
-    if (nx.p < o_.pmin || nx.p > o_.pmax) {
-      *why = nx.p < o_.pmin ? "reached -cont_codim2_min" : "reached -cont_codim2_max";
-      break;
-    }
+    // past a bound of p or E: that point is kept (the curve crosses the window's edge) and the side ends
+    const char *out = nx.p < o_.pmin ? "reached -cont_codim2_min" : nx.p > o_.pmax ? "reached -cont_codim2_max"
+                    : nx.energy < o_.emin ? "reached -cont_codim2_energy_min" : nx.energy > o_.emax ? "reached -cont_codim2_energy_max" : nullptr;
     const PetscReal nn = std::hypot(ng[0], ng[1]);
     PetscReal nt[2] = {-ng[1] / nn, ng[0] / nn};
     if (nt[0] * tau[0] + nt[1] * tau[1] < 0) nt[0] = -nt[0], nt[1] = -nt[1];
@@ -659,7 +673,13 @@ PetscErrorCode Codim2Follower::Walk(const Codim2Sample &x0, const PetscReal grad
     if (o_.verbose)
       PetscCall(PetscPrintf(comm_, "  [%s] %+d %3zu  p %.8g  E = %-11.6g omega = %.9f  g %.1e  corrector %" PetscInt_FMT "  ds %.3g\n", label_, (int)dir,
                             pts->size(), (double)x.p, (double)x.energy, (double)x.omega, (double)x.g, its, (double)ds));
-    if (its <= 3) ds = std::min(1.5 * ds, o_.step_max);
+    if (out) {
+      *why = out;
+      break;
+    }
+    // (chord iterations: a step that converged in a few grows, one that needed many shrinks)
+    if (its <= 4) ds = std::min(1.5 * ds, o_.step_max);
+    else if (its >= 7) ds = std::max(0.7 * ds, o_.step_min);
   }
   PetscFunctionReturn(0);
 }

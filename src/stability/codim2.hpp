@@ -41,6 +41,7 @@ struct Codim2Options {
   PetscInt max_points = 60;  // per direction from the event
   PetscReal tol = 1e-10;     // corrector: the last Newton step in the scaled plane
   PetscReal test_tol = 1e-7; // and |g| / |grad g| at the converged point (the distance to the curve, scaled plane)
+  PetscReal emin = 0, emax = 1e12; // the curve stops once E leaves [emin, emax] (that point kept)
   PetscBool verbose = PETSC_TRUE;
 };
 

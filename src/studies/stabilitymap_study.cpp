@@ -189,6 +189,8 @@ protected:
                  (double)c2o_.pmin, (double)c2o_.pmax);
     PetscCheck(mo_.energy_min < base_.co.energy_max, comm_, PETSC_ERR_USER, "-smap_energy_min %g must lie below -cont_energy_max %g", (double)mo_.energy_min,
                (double)base_.co.energy_max);
+    // the curves end where they leave the map's window of E (their first point outside kept)
+    c2o_.emin = std::max(c2o_.emin, mo_.energy_min), c2o_.emax = std::min(c2o_.emax, base_.co.energy_max);
     PetscFunctionReturn(0);
   }
   PetscErrorCode DeclareSolvers(MPI_Comm comm) override

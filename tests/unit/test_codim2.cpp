@@ -171,17 +171,24 @@ void RequireScaledCurve(const Codim2Curve &c, const char *what)
   REQUIRE(worst_w <= 1e-8);
 }
 
-// An independent one-parameter run's event h of the curve's kind, at the
-// curve's last p: at the curve's omega to 1e-6 and its E to 1e-5 relative.
-void RequireEventAtCurveEnd(const BifurcationEvent &h, const Codim2Curve &c, const char *what)
+// The curve's last row inside its bounds of p (a side that reached a bound
+// keeps the first point past it).
+size_t LastInside(const Codim2Curve &c)
 {
   const size_t n = c.p.size();
-  INFO("one-parameter " << what << " at Gamma " << c.p[n - 1] << ": omega " << h.omega << ", E " << h.energy << "; the curve's " << c.omega[n - 1] << ", "
-                        << c.energy[n - 1]);
-  REQUIRE(std::abs(h.omega - c.omega[n - 1]) <= 1e-6);
-  REQUIRE(std::abs(h.energy - c.energy[n - 1]) <= 1e-5 * h.energy);
-  PCHK(PetscPrintf(PETSC_COMM_WORLD, "  one-parameter %s at Gamma %.6g: |omega - curve's| = %.1e, |E / curve's - 1| = %.1e\n", what, (double)c.p[n - 1],
-                   (double)std::abs(h.omega - c.omega[n - 1]), (double)std::abs(h.energy / c.energy[n - 1] - 1)));
+  return c.stop_reason.find("reached -cont_codim2_max") != std::string::npos && n >= 2 ? n - 2 : n - 1;
+}
+
+// An independent one-parameter run's event h of the curve's kind, at the
+// curve's p of row m: at the curve's omega to 1e-6 and its E to 1e-5 relative.
+void RequireEventAtCurveEnd(const BifurcationEvent &h, const Codim2Curve &c, const char *what, size_t m)
+{
+  INFO("one-parameter " << what << " at Gamma " << c.p[m] << ": omega " << h.omega << ", E " << h.energy << "; the curve's " << c.omega[m] << ", "
+                        << c.energy[m]);
+  REQUIRE(std::abs(h.omega - c.omega[m]) <= 1e-6);
+  REQUIRE(std::abs(h.energy - c.energy[m]) <= 1e-5 * h.energy);
+  PCHK(PetscPrintf(PETSC_COMM_WORLD, "  one-parameter %s at Gamma %.6g: |omega - curve's| = %.1e, |E / curve's - 1| = %.1e\n", what, (double)c.p[m],
+                   (double)std::abs(h.omega - c.omega[m]), (double)std::abs(h.energy / c.energy[m] - 1)));
 }
 
 // A constructed pair with a Hamiltonian-Hopf curve known in closed form: two
@@ -404,10 +411,10 @@ TEST_CASE("codim-2: the energy fold continued in -lattice_cubic lies on E Gamma 
       REQUIRE(std::hypot(c.mu_re[k * Codim2Curve::kMultipliers + j] - 1, c.mu_im[k * Codim2Curve::kMultipliers + j]) <= 1e-2);
   // an independent one-parameter run at the curve's last p locates the same fold there
   FoldOfMode0 g;
-  PCHK(g.Locate(c.p[n - 1]));
+  PCHK(g.Locate(c.p[LastInside(c)]));
   REQUIRE(g.index >= 0);
   const BifurcationEvent &h = g.ev[g.index];
-  RequireEventAtCurveEnd(h, c, "fold");
+  RequireEventAtCurveEnd(h, c, "fold", LastInside(c));
 }
 
 TEST_CASE("codim-2: a Hamiltonian-Hopf onset continued in -lattice_cubic lies on E Gamma = const at constant omega, through the one-parameter runs' "
@@ -441,14 +448,14 @@ TEST_CASE("codim-2: a Hamiltonian-Hopf onset continued in -lattice_cubic lies on
   FoldOfMode0 g;
   g.kind = EventKind::HamiltonianHopf;
   LatticeParams q;
-  q.cells = 1, q.Gamma = c.p[n - 1];
+  q.cells = 1, q.Gamma = c.p[LastInside(c)];
   PCHK(g.Locate(q, 0.9702, 0.05)); // short steps: the onset follows the fold closely, and the locator's probes fail across it at 0.2
   // (the first onset there may be another: a short bubble near omega 0.954 that the probes of the run at Gamma 0.5 step over)
   const PetscInt hi = g.Nearest(c.omega[n - 1]);
   REQUIRE(hi >= 0);
   const BifurcationEvent &h = g.ev[hi];
   REQUIRE(h.direction == e.direction);
-  RequireEventAtCurveEnd(h, c, "onset");
+  RequireEventAtCurveEnd(h, c, "onset", LastInside(c));
 }
 
 TEST_CASE("codim-2: a period doubling continued in -lattice_cubic lies on E Gamma = const at constant omega, through the one-parameter runs' "
@@ -478,13 +485,19 @@ TEST_CASE("codim-2: a period doubling continued in -lattice_cubic lies on E Gamm
   for (size_t k = 0; k < n; k++)
     for (PetscInt j = 0; j < 2; j++) REQUIRE(std::hypot(c.mu_re[k * Codim2Curve::kMultipliers + j] + 1, c.mu_im[k * Codim2Curve::kMultipliers + j]) <= 1e-2);
   // an independent one-parameter run (parent, branch point, switched family) at the curve's last p
+  // below 0.75 (the parent's continuation steps are not scale-free, the switch is: at some Gamma,
+  // e.g. 0.7886, the switched family's first orbit is not pinned)
+  size_t m = 0;
+  for (size_t k = 0; k < n; k++)
+    if (c.p[k] <= 0.75) m = k;
+  REQUIRE(c.p[m] > 0.7);
   DoublingOnSwitchedFamily g;
-  PCHK(g.LocateDoubling(c.p[n - 1]));
+  PCHK(g.LocateDoubling(c.p[m]));
   const PetscInt hi = g.Nearest(c.omega[n - 1]);
   REQUIRE(hi >= 0);
   const BifurcationEvent &h = g.ev[hi];
   REQUIRE(h.direction == e.direction);
-  RequireEventAtCurveEnd(h, c, "period doubling");
+  RequireEventAtCurveEnd(h, c, "period doubling", m);
 }
 
 TEST_CASE("codim-2: the energy fold continued in -lattice_gamma passes through the folds of independent one-parameter runs at its ends", "[codim2][once]")

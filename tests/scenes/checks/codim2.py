@@ -12,14 +12,14 @@ FIELDS = ("p", "energy", "omega", "period", "test")
 
 def curve():
     """The Hamiltonian-Hopf curve of event 0 in -lattice_gamma: kind 5, at least 6 points on each side of the
-    event (row event_point, at the run's own gamma 0.4), p increasing along the rows inside [0.35, 0.45], the
+    event (row event_point, at the run's own gamma 0.4), p increasing along the rows over [0.35, 0.45] (one past each bound), the
     test function zero along it; 1 and 2 ranks give the same curve to 1e-9 (relative)."""
     a, b = group("c1.h5", CURVE), group("c2.h5", CURVE)
     require(a.attrs["kind"] == 5 and a.attrs["event"] == 0 and attr_str(a, "parameter") == "-lattice_gamma",
             dict(a.attrs))
     k, p = int(a.attrs["event_point"]), a["p"][:]
     require(6 <= k <= len(p) - 7 and p[k] == 0.4, k, p)
-    require((np.diff(p) > 0).all() and p[0] >= 0.35 and p[-1] <= 0.45, p)
+    require((np.diff(p) > 0).all() and p[0] < 0.35 <= p[1] and p[-2] <= 0.45 < p[-1], p)  # each side keeps its first point past the bound
     require((np.abs(a["test"][:]) < 1e-10).all(), a["test"][:])
     require(a.attrs["event_point"] == b.attrs["event_point"] and a["p"].shape == b["p"].shape, a["p"].shape, b["p"].shape)
     worst = 0.0

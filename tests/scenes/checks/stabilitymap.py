@@ -12,7 +12,7 @@ def content(path):
     the raster column at the run's p (orbits within 1 % of a curve's crossing left out), the check branch's
     classes (agree: 1 or -1 only, some 1), each check event within 1e-3 of a curve of its kind (and its
     event_curve row names one); every curve through its event (row event_point at p_base, the event's E to
-    1e-8) with its test function at zero; region codes 0, 2 or 3; no inconsistent column."""
+    1e-6) with its test function at zero; region codes 0, 2 or 3; no inconsistent column."""
     top = group(path, "/stabilitymap")
     require(attr_str(top, "parameter") == "-lattice_gamma" and top.attrs["sizes"] == 1 and top.attrs["checks"] == 1, dict(top.attrs))
     p, E, pb = top["p"][:], top["energy"][:], float(top.attrs["p_base"])
@@ -29,7 +29,8 @@ def content(path):
         require(np.all(np.abs(c["test"][:]) < 1e-10), name, c["test"][:])
         if g["curve_seed"][row] == -1:
             e = int(g["curve_event"][row])
-            require(c["p"][k] == pb and abs(c["energy"][k] / ev_E[e] - 1) < 1e-8 and ev_curve[e] == row, name, c["energy"][k], ev_E[e])
+            # (the event is located to -cont_bif_tol 1e-7 in omega; the curve refines it to g = 0)
+            require(c["p"][k] == pb and abs(c["energy"][k] / ev_E[e] - 1) < 1e-6 and ev_curve[e] == row, name, c["energy"][k], ev_E[e])
     # the raster column at p_base against the branch's own classes
     i = int(np.argmin(np.abs(p - pb)))
     require(abs(p[i] - pb) < 1e-12, p[i], pb)
