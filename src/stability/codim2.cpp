@@ -194,7 +194,7 @@ private:
   PetscErrorCode HopfTest(Codim2Stack &s, Codim2Sample *x);
   PetscErrorCode DoublingTest(Codim2Stack &s, Codim2Sample *x);
   PetscErrorCode BranchTest(Codim2Stack &s, Codim2Sample *x);
-  bool ByEnergy() const { return c_->kind != EventKind::Fold; } // the orbit's coordinate q: E (kinds 3, 5), or omega at a fold
+  bool ByEnergy() const { return c_->kind != EventKind::Fold; } // the orbit's coordinate q: E (kinds 2, 3, 5), or omega at a fold
   PetscErrorCode Gradient(const Codim2Sample &x, PetscReal grad[2], bool *ok);
   PetscErrorCode Correct(const PetscReal ypred[2], const PetscReal tau[2], const Codim2Sample &from, Codim2Sample *x, PetscReal grad[2], PetscInt *its,
                          bool *ok);
@@ -503,7 +503,8 @@ PetscErrorCode Codim2Walk::Record(const Codim2Sample &x)
   PetscCall(StateFromRow(s->lat, x.z0.data(), s->z));
   PetscCall(s->flow.IntegrateWithMonodromy(s->z, x.period, s->flow.FloquetBeta(x.beta), s->zT, s->S));
   PetscCall(FloquetAnalysis(s->lat, s->S, flo_, &r));
-  // nearest the critical point: +1 (fold, branch point: the trivial pair and the critical one), -1 (period doubling), or in b = (mu + 1/mu)/2 to the colliding pairs' (Hamiltonian-Hopf)
+  // nearest the critical point: +1 (fold, branch point: the trivial pair and the critical one), -1 (period doubling),
+  // or in b = (mu + 1/mu)/2 to the colliding pairs' (Hamiltonian-Hopf)
   using C = std::complex<PetscReal>;
   const PetscReal crit = c_->kind == EventKind::PeriodDoubling ? -1 : 1;
   auto dist = [&](PetscInt i) {
