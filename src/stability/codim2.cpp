@@ -51,7 +51,7 @@ struct Codim2KindName {
   bool implemented;
 };
 const Codim2KindName kCodim2Kinds[] = {{"fold", "fold", EventKind::Fold, true},
-                                       {"branch_point", "bp", EventKind::BranchPoint, false},
+                                       {"branch_point", "bp", EventKind::BranchPoint, true},
                                        {"period_doubling", "pd", EventKind::PeriodDoubling, true},
                                        {"hamiltonian_hopf", "hh", EventKind::HamiltonianHopf, true}};
 
@@ -69,7 +69,8 @@ static const auto &kCodim2Table = DeclareOptionTable<Codim2Options>("cont_", "Tw
   t.String("codim2", &C::spec,
            "Follow a located event of a branch (of -cont_branch, or a family of -cont_switch) in (E, p), p = -cont_codim2_parameter: "
            "<branch>:<kind>@<omega>, the event of that kind nearest omega "
-           "(kind fold or 1, period_doubling or 3, hamiltonian_hopf or 5; branch_point (2) is not implemented yet); needs -cont_bifurcations")
+           "(kind fold or 1, branch_point or 2, period_doubling or 3, hamiltonian_hopf or 5; not 4 or 6, which are no boundaries of stability); needs "
+           "-cont_bifurcations")
       .Default("none")
       .Enum("codim2_parameter", &C::parameter, kParameterNames, 3,
             "The second parameter of -cont_codim2: the lattice option lattice_gamma, lattice_k or lattice_cubic (degenerate: its curves are E Gamma = "
@@ -105,14 +106,17 @@ PetscErrorCode ParseCodim2Spec(MPI_Comm comm, const std::string &item, Codim2Spe
   const Codim2KindName *k = nullptr;
   for (const Codim2KindName &n : kCodim2Kinds)
     if (kind == n.name || kind == n.tag || kind == std::to_string((int)n.kind)) k = &n;
+  // kinds 4 (a pass of equal signatures) and 6 (a resonance) leave every multiplier on the circle: no curve bounds a region of stability there
+  PetscCheck(!(kind == "4" || kind == "6" || kind == "krein_collision" || kind == "resonance"), comm, PETSC_ERR_USER,
+             "-cont_codim2 %s: kinds 4 (Krein collision, a pass) and 6 (internal resonance) are not boundaries of stability and are not followed; "
+             "kinds fold (1), branch_point (2), period_doubling (3) and hamiltonian_hopf (5) are",
+             item.c_str());
   PetscCheck(ok && k, comm, PETSC_ERR_USER,
              "-cont_codim2 %s: expected <branch>:<kind>@<omega> (kind fold or 1, branch_point or 2, period_doubling or 3, hamiltonian_hopf or 5; "
              "omega > 0), e.g. insulated:fold@1.9",
              item.c_str());
-  PetscCheck(k->implemented, comm, PETSC_ERR_USER,
-             "-cont_codim2 %s: the two-parameter continuation of a %s (kind %d) is not implemented yet; of a fold (1), a period doubling (3) and a "
-             "Hamiltonian-Hopf onset (5) it is",
-             item.c_str(), EventKindName(k->kind), (int)k->kind);
+  PetscCheck(k->implemented, comm, PETSC_ERR_USER, "-cont_codim2 %s: the two-parameter continuation of a %s (kind %d) is not implemented yet", item.c_str(),
+             EventKindName(k->kind), (int)k->kind);
   s->text = item, s->branch = item.substr(0, colon), s->kind = k->kind;
   PetscFunctionReturn(0);
 }
@@ -189,7 +193,8 @@ private:
   PetscErrorCode FoldTest(Codim2Stack &s, Codim2Sample *x);
   PetscErrorCode HopfTest(Codim2Stack &s, Codim2Sample *x);
   PetscErrorCode DoublingTest(Codim2Stack &s, Codim2Sample *x);
-  bool ByEnergy() const { return c_->kind != EventKind::Fold; } // the orbit's coordinate q: E (kinds 3, 5), or omega at a fold
+  PetscErrorCode BranchTest(Codim2Stack &s, Codim2Sample *x);
+  bool ByEnergy() const { return c_->kind != EventKind::Fold; } // the orbit's coordinate q: E (kinds 2, 3, 5), or omega at a fold
   PetscErrorCode Record(const Codim2Sample &x);
   PetscReal A(const Codim2Sample &x) const { return (ByEnergy() ? x.energy : x.omega) / q0_; }
   PetscReal B(const Codim2Sample &x) const { return x.p / p0_; }
@@ -296,6 +301,34 @@ PetscErrorCode Codim2Walk::DoublingTest(Codim2Stack &s, Codim2Sample *x)
   PetscFunctionReturn(0);
 }
 
+// Kind 2: as kind 3 at +1. The pair is the two nontrivial multipliers nearest
+// +1 in b = (mu + 1/mu)/2 (the trivial Jordan pair, also at +1, projected out
+// by NontrivialIndices; |b - 1| puts a pair's two members at one distance, so
+// a real pair r, 1/r is not split), b = (mu1 + mu2 + 1/mu1 + 1/mu2) / 4 and
+// g = b - 1 = cos(theta) - 1 <= 0 on the circle, (r - 1)^2 / (2 r) >= 0 once
+// the pair is real: smooth through +1, where each computed mu is off by the
+// root of rounding (a Jordan block) and their sum is not. The orbit at fixed E
+// (Evaluate) is solved as for kinds 3 and 5, although its Jacobian is singular
+// at the event: the critical vector has the other symmetry than the orbit, so
+// Newton's residual has no component along it but rounding, which the start
+// solver's SVD pseudo-inverse does not amplify (docs/continuation.md).
+PetscErrorCode Codim2Walk::BranchTest(Codim2Stack &s, Codim2Sample *x)
+{
+  using C = std::complex<PetscReal>;
+  FloquetResult r;
+  PetscFunctionBeginUser;
+  PetscCall(s.flow.IntegrateWithMonodromy(s.z, x->period, s.flow.FloquetBeta(x->beta), s.zT, s.S));
+  PetscCall(FloquetAnalysis(s.lat, s.S, flo_, &r));
+  std::vector<C> mu;
+  for (PetscInt j : NontrivialIndices(r.re.data(), r.im.data(), (PetscInt)r.re.size())) mu.emplace_back(r.re[j], r.im[j]);
+  if (mu.size() < 2) PetscFunctionReturn(0); // g stays NaN
+  auto d1 = [](const C &u) { return std::abs(0.5 * (u + 1.0 / u) - 1.0); };
+  std::partial_sort(mu.begin(), mu.begin() + 2, mu.end(), [&](const C &u, const C &v) { return d1(u) < d1(v); });
+  x->g = 0.25 * std::real(mu[0] + mu[1] + 1.0 / mu[0] + 1.0 / mu[1]) - 1;
+  x->bmid = 1;
+  PetscFunctionReturn(0);
+}
+
 // The orbit at the scaled point (a, b) = (omega / q0, p / p0), from guess's orbit, and g there.
 PetscErrorCode Codim2Walk::Evaluate(PetscReal a, PetscReal b, const Codim2Sample &guess, Codim2Sample *x)
 {
@@ -324,6 +357,7 @@ PetscErrorCode Codim2Walk::Evaluate(PetscReal a, PetscReal b, const Codim2Sample
   PetscCall(BroadcastFromRoot(comm_, MPIU_REAL, &x->z0));
   if (c_->kind == EventKind::HamiltonianHopf) PetscCall(HopfTest(*s, x));
   else if (c_->kind == EventKind::PeriodDoubling) PetscCall(DoublingTest(*s, x));
+  else if (c_->kind == EventKind::BranchPoint) PetscCall(BranchTest(*s, x));
   else PetscCall(FoldTest(*s, x));
   x->ok = std::isfinite(x->g);
   PetscFunctionReturn(0);
@@ -350,7 +384,8 @@ PetscErrorCode Codim2Walk::Record(const Codim2Sample &x)
   PetscCall(StateFromRow(s->lat, x.z0.data(), s->z));
   PetscCall(s->flow.IntegrateWithMonodromy(s->z, x.period, s->flow.FloquetBeta(x.beta), s->zT, s->S));
   PetscCall(FloquetAnalysis(s->lat, s->S, flo_, &r));
-  // nearest the critical point: +1 (fold), -1 (period doubling), or in b = (mu + 1/mu)/2 to the colliding pairs' (Hamiltonian-Hopf)
+  // nearest the critical point: +1 (fold, branch point: the trivial pair and the critical one), -1 (period doubling),
+  // or in b = (mu + 1/mu)/2 to the colliding pairs' (Hamiltonian-Hopf)
   using C = std::complex<PetscReal>;
   const PetscReal crit = c_->kind == EventKind::PeriodDoubling ? -1 : 1;
   auto dist = [&](PetscInt i) {

@@ -14,6 +14,7 @@
 //
 // Implemented: kind 1, the energy fold, g = d ln E / d ln omega along the
 // family at fixed p, q = omega (at a fold E does not fix the orbit, omega does);
+// kind 2, the branch point, g = b - 1 of the nontrivial pair nearest +1, q = E;
 // kind 3, the period doubling, g = b + 1, b = (mu + 1/mu)/2 of the pair
 // nearest -1, q = E; kind 5, the Hamiltonian-Hopf onset, g = the discriminant
 // (b1 - b2)^2 of the two colliding pairs' b, q = E.
@@ -52,8 +53,8 @@ struct Codim2Spec {
   PetscReal omega = 0;
   bool Given() const { return !text.empty(); }
 };
-// Reads the -cont_codim2_* options; a malformed -cont_codim2, or a kind not
-// implemented yet, is refused with one line naming the option and the value.
+// Reads the -cont_codim2_* options; a malformed -cont_codim2, or kind 4 or 6
+// (no boundaries of stability), is refused with one line naming the option and the value.
 PetscErrorCode Codim2OptionsFromOptions(MPI_Comm comm, Codim2Options *o, Codim2Spec *s);
 PetscErrorCode ParseCodim2Spec(MPI_Comm comm, const std::string &text, Codim2Spec *s);
 

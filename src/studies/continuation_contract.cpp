@@ -28,7 +28,8 @@ Schema Codim2Schema(const char *path)
            {"omega", D, R, "npts", "rad/time", "frequency of the orbit at the event"},
            {"period", D, R, "npts", "time", "period of the orbit at the event"},
            {"test", D, R, "npts", "1",
-            "the kind's test function there, 0 on the curve (fold: d ln E / d ln omega along the family at fixed p; period doubling: "
+            "the kind's test function there, 0 on the curve (fold: d ln E / d ln omega along the family at fixed p; branch point: b - 1, "
+            "b = (mu + 1/mu)/2 of the nontrivial pair nearest +1; period doubling: "
             "b + 1, b = (mu + 1/mu)/2 of the pair nearest -1; Hamiltonian-Hopf: (b1 - b2)^2 of the colliding pairs' b)"},
            {"multipliers_re", D, R, "npts x 4", "1",
             "the four Floquet multipliers nearest the kind's critical point (+1 for a fold or branch point, -1 for a period doubling; Hamiltonian-Hopf: the "

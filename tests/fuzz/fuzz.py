@@ -132,7 +132,7 @@ T = {
     "cont_bif_angle_tol": ("real", 0.01, 0.5), "cont_bif_bulk": ("bool",),
     "cont_bif_passes": ("bool",), "cont_bif_resonance_order": ("int", 0, 5),
     "cont_switch": ("enum", 0, 0, ["insulated:0", "insulated:1", "insulated", "optical_top:x"]), "cont_switch_step": ("real", 1e-3, 0.1),
-    "cont_codim2": ("enum", 0, 0, ["insulated:fold@1.9", "insulated:1@2", "insulated:pd@2", "insulated:bp@2", "insulated", "optical_top:fold@x"]),
+    "cont_codim2": ("enum", 0, 0, ["insulated:fold@1.9", "insulated:1@2", "insulated:pd@2", "insulated:bp@2", "insulated:4@2", "insulated", "optical_top:fold@x"]),
     "cont_codim2_parameter": ("enum", 0, 0, ["lattice_gamma", "lattice_k", "lattice_cubic"]),
     "cont_codim2_min": ("real", -1.0, 0.4), "cont_codim2_max": ("real", 0.4, 2.0), "cont_codim2_step": ("real", 1e-3, 0.1),
     "cont_codim2_step_min": ("real", 1e-8, 1e-4), "cont_codim2_step_max": ("real", 0.05, 0.5), "cont_codim2_max_points": ("int", 1, 5),

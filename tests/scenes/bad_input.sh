@@ -58,9 +58,9 @@ expect_error "-sim_ts_symsplit_scheme was not used by that run" o.h5 -study work
 expect_error "-cont_switch insulated:5: branch insulated has 0 located events" o.h5 $C -floquet -cont_switch insulated:5
 # switching follows branch points and period doublings only (event 0 of the N = 22 insulated branch: a Hamiltonian-Hopf onset at E 0.62)
 expect_error "-cont_switch insulated:0: that event is a Hamiltonian-Hopf (opposite signatures); branch switching follows branch points (kind 2) and period doublings (kind 3)" o.h5 -study continuation -lattice_cells 5 -cont_energy_max 1 -cont_verbose 0 -floquet -cont_switch insulated:0
-# -cont_codim2: malformed, a kind not implemented yet, a branch not continued, outside its bounds (before any branch is computed); an event the branch lacks
+# -cont_codim2: malformed, a kind that bounds no region of stability (4, 6), a branch not continued, outside its bounds (before any branch is computed); an event the branch lacks
 expect_error "-cont_codim2 insulated:fold: expected <branch>:<kind>@<omega>" o.h5 $C -floquet -cont_codim2 insulated:fold
-expect_error "-cont_codim2 insulated:bp@2: the two-parameter continuation of a branch point (+1) (kind 2) is not implemented yet" o.h5 $C -floquet -cont_codim2 insulated:bp@2
+expect_error "-cont_codim2 insulated:4@2: kinds 4 (Krein collision, a pass) and 6 (internal resonance) are not boundaries of stability" o.h5 $C -floquet -cont_codim2 insulated:4@2
 expect_error "-cont_codim2 interface:fold@2: no branch interface among -cont_branch" o.h5 $C -floquet -cont_codim2 interface:fold@2
 expect_error "-cont_codim2 insulated_bp3_plus:pd@2: no branch insulated_bp3_plus among -cont_branch or the families of -cont_switch" o.h5 $C -floquet -cont_codim2 insulated_bp3_plus:pd@2
 expect_error "-cont_codim2 insulated:fold@2: the run's -lattice_gamma 0.4 lies outside \\[-cont_codim2_min 0.5" o.h5 $C -floquet -cont_codim2 insulated:fold@2 -cont_codim2_min 0.5

@@ -30,6 +30,7 @@ struct FoldOfMode0 {
   PetscInt index = -1;
   EventKind kind = EventKind::Fold; // the first event of this kind that begins (fold: an E maximum) is selected
   const char *name = "mode0";       // the branch of ev (messages)
+  PetscInt mode = 0;                // the family of this linear mode
   PetscErrorCode Locate(PetscReal Gamma, PetscReal omega_max = 0.9692)
   {
     LatticeParams p;
@@ -41,6 +42,13 @@ struct FoldOfMode0 {
   {
     PetscFunctionBeginUser;
     PetscCall(nf.Setup(p));
+    PetscCall(ContinueAndLocate(omega_max, max_change));
+    PetscFunctionReturn(0);
+  }
+  // (on the lattice nf is set up on)
+  PetscErrorCode ContinueAndLocate(PetscReal omega_max, PetscReal max_change)
+  {
+    PetscFunctionBeginUser;
     ContinuationOptions co;
     co.verbose = PETSC_FALSE;
     co.energy_max = 1e3;
@@ -48,8 +56,8 @@ struct FoldOfMode0 {
     co.max_change = max_change;
     Record rec(nf.flow);
     Branch b;
-    PetscCall(nf.Continue(0, co, &b, &rec));
-    PetscCall(LocateRecorded(loc, nf.shoot, b, rec, "mode0", &ev));
+    PetscCall(nf.Continue(mode, co, &b, &rec));
+    PetscCall(LocateRecorded(loc, nf.shoot, b, rec, name, &ev));
     for (size_t k = 0; k < ev.size(); k++)
       if (ev[k].kind == kind && ev[k].direction > 0 && index < 0) index = (PetscInt)k;
     PetscFunctionReturn(0);
@@ -141,6 +149,51 @@ struct DoublingOnSwitchedFamily : FoldOfMode0 {
     PetscCall(LocateRecorded(loc, nf.shoot, fam, frec, "mode3_bp_plus", &ev));
     for (size_t k = 0; k < ev.size(); k++)
       if (ev[k].kind == kind && ev[k].direction > 0 && index < 0) index = (PetscInt)k;
+    PetscFunctionReturn(0);
+  }
+};
+
+// The coupled dimers (dimers.hpp) at gamma, from the linear lattice: lambda_hi =
+// Omega_3^2 and kappa = (Omega_3^2 - Omega_2^2) / 2, and the first-order
+// averaging prediction of their pitchfork (test_bifurcations.cpp, "the pitchfork
+// of two coupled dimers"): Omega^2 = lambda_hi + kappa. On the backbone of mode
+// 3, u = a phi cos(Omega t) (phi of unit norm), Omega^2 = lambda_hi + (3/4)
+// Gamma a^2 S4 with S4 = sum over stiff bonds of (phi_i - phi_j)^4, and E =
+// lambda_hi a^2 / 2: at the pitchfork E* = 2 lambda_hi kappa / (3 Gamma S4).
+// Both to O(kappa / Omega^2).
+struct DimerAveraging {
+  PetscReal lam_hi = 0, kappa = 0, energy = 0;
+  explicit DimerAveraging(PetscReal gamma)
+  {
+    LatticeParams p;
+    p.layout = Layout::Right, p.cells = 2, p.gamma = gamma;
+    Lattice lat;
+    LinearModes modes;
+    PCHK(lat.Setup(PETSC_COMM_WORLD, p));
+    PCHK(modes.Compute(lat, LinearModesOptions()));
+    const auto &w = modes.Omega();
+    lam_hi = w[3] * w[3], kappa = (lam_hi - w[2] * w[2]) / 2;
+    const std::vector<PetscReal> phi = Gather(modes.Mode(3));
+    PetscReal nrm = 0, s4 = 0;
+    for (PetscReal x : phi) nrm += x * x;
+    for (PetscInt b = 0; b + 1 < p.N(); b++)
+      if (p.Stiff(b)) s4 += std::pow((phi[b] - phi[b + 1]) / std::sqrt(nrm), 4);
+    energy = 2 * lam_hi * kappa / (3 * p.Gamma * s4);
+  }
+};
+
+// The pitchfork of the coupled dimers' upper optical NNM (mode 3) at gamma 0.9,
+// located as in test_bifurcations.cpp (steps of 0.05, up to Omega^2 = lambda_hi + 3 kappa).
+struct DimerPitchfork : FoldOfMode0 {
+  PetscErrorCode LocatePitchfork()
+  {
+    LatticeParams p;
+    PetscFunctionBeginUser;
+    kind = EventKind::BranchPoint, name = "dimers", mode = 3;
+    p.layout = Layout::Right, p.cells = 2, p.gamma = 0.9;
+    const DimerAveraging av(p.gamma);
+    PetscCall(nf.Setup(p));
+    PetscCall(ContinueAndLocate(std::sqrt(av.lam_hi + 1.5 * av.kappa), 0.2));
     PetscFunctionReturn(0);
   }
 };
@@ -500,6 +553,47 @@ TEST_CASE("codim-2: a period doubling continued in -lattice_cubic lies on E Gamm
   RequireEventAtCurveEnd(h, c, "period doubling", m);
 }
 
+TEST_CASE("codim-2: a branch point continued in -lattice_cubic lies on E Gamma = const at constant omega, through the one-parameter runs' "
+          "branch points",
+          "[codim2][once]")
+{
+  // [once]: the branch point's test function and the walk run at 2 ranks in the dimers' case below (this one
+  // costs ~50 times its serial time at 2 ranks on 6 sites).
+  // mode 3 of the N = 6 interface lattice: its first branch point (omega 2.50275, E 53.0 at Gamma 0.5), where
+  // a real pair leaves +1 and the mirror-breaking families of docs/continuation.md "Branch switching" begin
+  FoldOfMode0 f;
+  f.kind = EventKind::BranchPoint, f.mode = 3, f.name = "mode3";
+  LatticeParams q;
+  q.cells = 1, q.Gamma = 0.5;
+  PCHK(f.Locate(q, 2.51, 0.2));
+  REQUIRE(f.index >= 0);
+  const BifurcationEvent &e = f.ev[f.index];
+  REQUIRE(std::abs(e.mu_re - 1) <= 1e-3);
+  Codim2Curve c;
+  PCHK(f.ContinueInCubic(&c));
+  const size_t n = c.p.size();
+  INFO("curve " << c.name << ": " << n << " points, p " << c.p.front() << " .. " << c.p.back() << ", " << c.solves << " orbits, " << c.stop_reason);
+  REQUIRE(c.name == "bp" + std::to_string(f.index));
+  REQUIRE(c.kind == EventKind::BranchPoint);
+  REQUIRE(std::abs(c.omega[c.event_point] - e.omega) <= 1e-8);
+  REQUIRE(std::abs(c.energy[c.event_point] - e.energy) <= 1e-8 * e.energy);
+  RequireScaledCurve(c, "branch point");
+  // the trivial pair and the critical one at +1 (each a Jordan block there: off by the root of rounding)
+  for (size_t k = 0; k < n; k++)
+    for (PetscInt j = 0; j < Codim2Curve::kMultipliers; j++)
+      REQUIRE(std::hypot(c.mu_re[k * Codim2Curve::kMultipliers + j] - 1, c.mu_im[k * Codim2Curve::kMultipliers + j]) <= 1e-2);
+  FoldOfMode0 g;
+  g.kind = EventKind::BranchPoint, g.mode = 3, g.name = "mode3";
+  const size_t m = LastInside(c);
+  q.Gamma = c.p[m];
+  PCHK(g.Locate(q, 2.51, 0.2));
+  const PetscInt hi = g.Nearest(c.omega[m]);
+  REQUIRE(hi >= 0);
+  const BifurcationEvent &h = g.ev[hi];
+  REQUIRE(h.direction == e.direction);
+  RequireEventAtCurveEnd(h, c, "branch point", m);
+}
+
 TEST_CASE("codim-2: the energy fold continued in -lattice_gamma passes through the folds of independent one-parameter runs at its ends", "[codim2][once]")
 {
   // [once]: the distributed path (the lattice rebuilt at each p, the bordered solve) runs at 2 ranks in the
@@ -572,7 +666,60 @@ TEST_CASE("codim-2: the energy fold of mode 0 continued in -lattice_gamma ends a
                    (double)c.point_p[1], (double)c.point_omega[1], (double)c.point_energy[1], n, c.solves));
 }
 
-TEST_CASE("codim-2: -cont_codim2 items are parsed, and the kinds not implemented yet refused", "[codim2][serial]")
+TEST_CASE("codim-2: the pitchfork of the dimer fixture, continued in its coupling, follows the averaging prediction", "[codim2]")
+{
+  // The coupled dimers' upper optical NNM loses stability where first-order averaging puts it, Omega^2 -
+  // lambda_hi = kappa, at E* (DimerAveraging; to O(kappa / Omega^2), test_bifurcations.cpp). -lattice_gamma
+  // sets the weak bond k2 = 1 - gamma that couples them (kappa = k2 / 2 to first order), so lambda_hi and
+  // kappa move along the curve. lambda_hi + kappa stays near 5 (k1 + k2 = 2), so omega barely moves; E* is
+  // proportional to kappa and falls by half over the curve: the curve's E must follow it.
+  DimerPitchfork f;
+  PCHK(f.LocatePitchfork());
+  REQUIRE(f.index >= 0);
+  const BifurcationEvent &e = f.ev[f.index];
+  Codim2Start start;
+  PCHK(f.Start(&start));
+  Codim2Options o;
+  o.parameter = Codim2Parameter::Gamma;
+  o.pmin = 0.86, o.pmax = 0.94;
+  o.verbose = PETSC_FALSE;
+  LatticeParams p;
+  p.layout = Layout::Right, p.cells = 2, p.gamma = 0.9;
+  Codim2Curve c;
+  PCHK(ContinueCodim2(PETSC_COMM_WORLD, p, FlowOptions(), ShootingOptions(), FloquetOptions(), 1, o, e, f.index, start, "dimers", &c));
+  const size_t n = c.p.size();
+  INFO("curve " << c.name << ": " << n << " points, p " << c.p.front() << " .. " << c.p.back() << ", " << c.solves << " orbits, " << c.stop_reason);
+  REQUIRE(c.name == "bp" + std::to_string(f.index));
+  REQUIRE(c.kind == EventKind::BranchPoint);
+  REQUIRE(std::abs(c.omega[c.event_point] - e.omega) <= 1e-8);
+  REQUIRE(std::abs(c.energy[c.event_point] - e.energy) <= 1e-8 * e.energy);
+  REQUIRE(c.event_point >= 2);
+  REQUIRE(n - c.event_point >= 3);
+  REQUIRE(c.p.front() < 0.87);
+  REQUIRE(c.p.back() > 0.93);
+  PetscReal worst = 0, worst_e = 0;
+  for (size_t k = 0; k < n; k++) {
+    if (k) REQUIRE(c.p[k] > c.p[k - 1]);
+    REQUIRE(std::abs(c.test[k]) <= 1e-6);
+    const DimerAveraging av(c.p[k]);
+    const PetscReal onset = (c.omega[k] * c.omega[k] - av.lam_hi) / av.kappa;
+    INFO("gamma " << c.p[k] << ": omega " << c.omega[k] << ", E " << c.energy[k] << ", (Omega^2 - lambda_hi) / kappa = " << onset
+                  << ", E / E* = " << c.energy[k] / av.energy);
+    REQUIRE(std::abs(onset - 1) < 0.05);
+    REQUIRE(std::abs(c.energy[k] / av.energy - 1) < 0.05);
+    REQUIRE(std::abs(c.energy[k] / av.energy - 1) <= av.kappa / av.lam_hi); // first order: the error is O(kappa / Omega^2)
+    worst = std::max(worst, std::abs(onset - 1)), worst_e = std::max(worst_e, std::abs(c.energy[k] / av.energy - 1));
+    // the trivial pair and the critical one, at +1
+    for (PetscInt j = 0; j < Codim2Curve::kMultipliers; j++)
+      REQUIRE(std::hypot(c.mu_re[k * Codim2Curve::kMultipliers + j] - 1, c.mu_im[k * Codim2Curve::kMultipliers + j]) <= 1e-2);
+  }
+  PCHK(PetscPrintf(PETSC_COMM_WORLD,
+                   "  codim2 dimer pitchfork in -lattice_gamma: %zu points, gamma %.4g .. %.4g, max |(Omega^2 - lambda_hi) / kappa - 1| = %.1e, "
+                   "max |E / E* - 1| = %.1e\n",
+                   n, (double)c.p.front(), (double)c.p.back(), (double)worst, (double)worst_e));
+}
+
+TEST_CASE("codim-2: -cont_codim2 items are parsed, and kinds 4 and 6 (no boundaries of stability) refused", "[codim2][serial]")
 {
   Codim2Spec s;
   PCHK(ParseCodim2Spec(PETSC_COMM_SELF, "insulated:fold@1.9", &s));
@@ -595,7 +742,11 @@ TEST_CASE("codim-2: -cont_codim2 items are parsed, and the kinds not implemented
   REQUIRE(s.kind == EventKind::PeriodDoubling);
   PCHK(ParseCodim2Spec(PETSC_COMM_SELF, "insulated:3@2", &s));
   REQUIRE(s.kind == EventKind::PeriodDoubling);
-  for (const char *todo : {"insulated:bp@2.4", "insulated:2@2.4", "insulated:branch_point@2.4"})
-    REQUIRE(ParseCodim2Spec(PETSC_COMM_SELF, todo, &s) == PETSC_ERR_USER); // (named: not implemented yet)
+  for (const char *bp : {"insulated:bp@2.4", "insulated:2@2.4", "insulated:branch_point@2.4"}) {
+    PCHK(ParseCodim2Spec(PETSC_COMM_SELF, bp, &s));
+    REQUIRE((s.branch == "insulated" && s.kind == EventKind::BranchPoint && s.omega == 2.4));
+  }
+  for (const char *no : {"insulated:4@2.4", "insulated:6@2.4", "insulated:krein_collision@2.4", "insulated:resonance@2.4"})
+    REQUIRE(ParseCodim2Spec(PETSC_COMM_SELF, no, &s) == PETSC_ERR_USER); // (named: not a boundary of stability)
   PetscPopErrorHandler();
 }
