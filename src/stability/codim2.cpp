@@ -77,7 +77,7 @@ static const auto &kCodim2Table = DeclareOptionTable<Codim2Options>("cont_", "Tw
             "const, a test)")
       .Real("codim2_min", &C::pmin, Closed(-1e6, 1e6), "-cont_codim2: the curve stops where p falls below this", OptionClass::Extent)
       .Real("codim2_max", &C::pmax, Closed(-1e6, 1e6), "-cont_codim2: the curve stops where p exceeds this", OptionClass::Extent)
-      .Real("codim2_step", &C::step, Open(0, 1), "-cont_codim2: the first step along the curve, in the scaled plane (q / q0, p / p0) of the event's q0, p0")
+      .Real("codim2_step", &C::step, Open(0, 1), "-cont_codim2: the first step along the curve, in the scaled plane (ln(q / q0), p / p0) of the event's q0, p0")
       .Real("codim2_step_min", &C::step_min, Open(0, 1), "-cont_codim2: the curve stops when the step falls below this (step collapse)")
       .Real("codim2_step_max", &C::step_max, Open(0, 10), "-cont_codim2: the largest step along the curve (scaled plane)")
       .Real("codim2_energy_min", &C::emin, Closed(0, 1e12), "-cont_codim2: the curve stops where E falls below this (the first point below it is kept)",
@@ -196,7 +196,7 @@ private:
   PetscErrorCode BranchTest(Codim2Stack &s, Codim2Sample *x);
   bool ByEnergy() const { return c_->kind != EventKind::Fold; } // the orbit's coordinate q: E (kinds 2, 3, 5), or omega at a fold
   PetscErrorCode Record(const Codim2Sample &x);
-  PetscReal A(const Codim2Sample &x) const { return (ByEnergy() ? x.energy : x.omega) / q0_; }
+  PetscReal A(const Codim2Sample &x) const { return std::log((ByEnergy() ? x.energy : x.omega) / q0_); } // ln(q / q0): a curve over decades of E in few steps
   PetscReal B(const Codim2Sample &x) const { return x.p / p0_; }
 
   MPI_Comm comm_;
@@ -339,9 +339,10 @@ PetscErrorCode Codim2Walk::Evaluate(PetscReal a, PetscReal b, const Codim2Sample
   PetscFunctionBeginUser;
   *x = Codim2Sample();
   x->p = b * p0_;
-  if (ByEnergy()) x->energy = a * q0_, x->period = guess.period;
-  else x->omega = a * q0_, x->period = 2 * PETSC_PI / x->omega;
-  if (!InParameterRange(c_->parameter, x->p) || !(a > 0)) PetscFunctionReturn(0);
+  const PetscReal q = q0_ * std::exp(a);
+  if (ByEnergy()) x->energy = q, x->period = guess.period;
+  else x->omega = q, x->period = 2 * PETSC_PI / x->omega;
+  if (!InParameterRange(c_->parameter, x->p) || !(q > 0 && std::isfinite(q))) PetscFunctionReturn(0);
   PetscCall(StackAt(x->p, &s));
   PetscCall(StateFromRow(s->lat, guess.z0.data(), s->z));
   PetscCall(s->shoot.Pack(s->z, x->period, guess.beta, s->X));
@@ -518,7 +519,7 @@ class Codim2Follower {
 public:
   Codim2Follower(MPI_Comm comm, Codim2Function &f, const Codim2Options &o, const char *label) : comm_(comm), f_(f), o_(o), label_(label) {}
   PetscErrorCode Correct(const PetscReal ypred[2], const PetscReal tau[2], const Codim2Sample &from, Codim2Sample *x, PetscReal grad[2], PetscInt *its,
-                         bool *ok);
+                         bool *ok, bool have_grad = false);
   PetscErrorCode Walk(const Codim2Sample &x0, const PetscReal grad0[2], PetscInt dir, std::vector<Codim2Sample> *pts, std::vector<Codim2Trace::Point> *turns,
                       std::string *why, bool *collapsed);
 
@@ -550,35 +551,41 @@ PetscErrorCode Codim2Follower::Gradient(const Codim2Sample &x, PetscReal grad[2]
 }
 
 // Newton on [g(y); tau . (y - ypred)] from ypred (tau = 0: p fixed at ypred's, the
-// start point); *x the converged point, grad the gradient there. A chord
-// method: the gradient (two more samples) is taken at the first iterate and
-// kept while the steps shrink by half or more; the converged point gets its
+// start point); *x the converged point, grad the gradient there. A secant
+// method: the gradient (two more samples) is the one given (have_grad: the
+// last point's, on a step of the walk) or taken at the first iterate, then
+// updated by Broyden's rank-one rule from each step's change of g, while the
+// steps shrink by half or more (else a new one); the converged point gets its
 // own (the tangent of the next step, and the distance test below).
 PetscErrorCode Codim2Follower::Correct(const PetscReal ypred[2], const PetscReal tau[2], const Codim2Sample &from, Codim2Sample *x, PetscReal grad[2],
-                                       PetscInt *its, bool *ok)
+                                       PetscInt *its, bool *ok, bool have_grad)
 {
-  PetscReal y[2] = {ypred[0], ypred[1]}, last = INFINITY;
+  PetscReal y[2] = {ypred[0], ypred[1]}, last = INFINITY, d[2] = {0, 0}, g_prev = 0;
   const bool fixed_p = tau[0] == 0 && tau[1] == 0;
   const PetscReal row[2] = {fixed_p ? 0 : tau[0], fixed_p ? 1 : tau[1]}; // the constraint's row
   Codim2Sample cur = from;
-  bool fresh = false, gok = false;
+  bool fresh = have_grad, gok = false;
   PetscFunctionBeginUser;
   *ok = false;
   for (*its = 1; *its <= kMaxIts; (*its)++) {
     PetscCall(f_.Sample(y[0], y[1], cur, x));
     if (!x->ok) PetscFunctionReturn(0);
     cur = *x;
-    if (*its == 1 || !fresh) { // the first iterate, or a chord step that did not halve the last
+    if (!fresh) { // the first iterate without a gradient, or a step that did not halve the last
       PetscCall(Gradient(*x, grad, &gok));
       if (!gok) PetscFunctionReturn(0);
       fresh = true;
+    } else if (*its > 1) { // Broyden's update along the last step: the gradient's change seen by g itself, no sample more
+      const PetscReal dd = d[0] * d[0] + d[1] * d[1], r = (x->g - g_prev) - (grad[0] * d[0] + grad[1] * d[1]);
+      if (dd > 0) grad[0] += r * d[0] / dd, grad[1] += r * d[1] / dd;
     }
     const PetscReal F[2] = {x->g, row[0] * (y[0] - ypred[0]) + row[1] * (y[1] - ypred[1])};
     const PetscReal det = grad[0] * row[1] - grad[1] * row[0];
     if (!(std::abs(det) > 0) || !std::isfinite(det)) PetscFunctionReturn(0);
-    const PetscReal d0 = -(F[0] * row[1] - grad[1] * F[1]) / det, d1 = -(grad[0] * F[1] - row[0] * F[0]) / det;
-    y[0] += d0, y[1] += d1;
-    const PetscReal step = std::hypot(d0, d1);
+    d[0] = -(F[0] * row[1] - grad[1] * F[1]) / det, d[1] = -(grad[0] * F[1] - row[0] * F[0]) / det;
+    y[0] += d[0], y[1] += d[1];
+    g_prev = x->g;
+    const PetscReal step = std::hypot(d[0], d[1]);
     if (step <= o_.tol) {
       PetscCall(f_.Sample(y[0], y[1], cur, x)); // the point at the converged y
       if (!x->ok) PetscFunctionReturn(0);
@@ -590,7 +597,7 @@ PetscErrorCode Codim2Follower::Correct(const PetscReal ypred[2], const PetscReal
       *ok = gok && std::abs(x->g) <= o_.test_tol * std::hypot(grad[0], grad[1]) && std::abs(x->g) <= kNoise;
       PetscFunctionReturn(0);
     }
-    fresh = !(step <= 0.5 * last); // the chord converges: keep its gradient; else a new one next
+    fresh = !(step <= 0.5 * last); // the secant iteration converges: keep updating its gradient; else a new one next
     last = step;
   }
   PetscFunctionReturn(0);
@@ -658,7 +665,7 @@ PetscErrorCode Codim2Follower::Walk(const Codim2Sample &x0, const PetscReal grad
                                     std::vector<Codim2Trace::Point> *turns, std::string *why, bool *collapsed)
 {
   Codim2Sample x = x0;
-  PetscReal tau[2];
+  PetscReal tau[2], gx[2] = {grad0[0], grad0[1]}; // gx: the gradient at x
   PetscReal ds = o_.step;
   PetscFunctionBeginUser;
   *collapsed = false;
@@ -678,7 +685,8 @@ PetscErrorCode Codim2Follower::Walk(const Codim2Sample &x0, const PetscReal grad
     bool ok = false;
     while (!ok && ds >= o_.step_min) {
       const PetscReal yp[2] = {x.a + ds * tau[0], x.b + ds * tau[1]};
-      PetscCall(Correct(yp, tau, x, &nx, ng, &its, &ok));
+      ng[0] = gx[0], ng[1] = gx[1];
+      PetscCall(Correct(yp, tau, x, &nx, ng, &its, &ok, true));
       if (!ok) ds *= 0.5;
     }
     if (!ok) {
@@ -702,6 +710,7 @@ PetscErrorCode Codim2Follower::Walk(const Codim2Sample &x0, const PetscReal grad
                               (double)q.x.a, pts->size(), pts->size() + 1));
     }
     tau[0] = nt[0], tau[1] = nt[1];
+    gx[0] = ng[0], gx[1] = ng[1];
     x = nx;
     f_.Accept(x);
     pts->push_back(x);
@@ -712,9 +721,9 @@ PetscErrorCode Codim2Follower::Walk(const Codim2Sample &x0, const PetscReal grad
       *why = out;
       break;
     }
-    // (chord iterations: a step that converged in a few grows, one that needed many shrinks)
-    if (its <= 4) ds = std::min(1.5 * ds, o_.step_max);
-    else if (its >= 7) ds = std::max(0.7 * ds, o_.step_min);
+    // (secant iterations from the last point's gradient: a step that converged in a few grows, one that needed many shrinks)
+    if (its <= 6) ds = std::min(1.5 * ds, o_.step_max);
+    else if (its >= 9) ds = std::max(0.7 * ds, o_.step_min);
   }
   PetscFunctionReturn(0);
 }

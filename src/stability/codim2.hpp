@@ -9,7 +9,7 @@
 // by the shooting Newton (q fixed by its constraint) on the lattice rebuilt at
 // p, and g is evaluated there (block elimination of the minimally augmented
 // system [orbit rows; g; arclength] in (X, p)). Pseudo-arclength in the scaled
-// plane y = (q / q0, p / p0) follows it: tangent orthogonal to grad g (finite
+// plane y = (ln(q / q0), p / p0) follows it: tangent orthogonal to grad g (finite
 // differences), predictor, Newton corrector on [g; tau . (y - y_pred)].
 //
 // Implemented: kind 1, the energy fold, g = d ln E / d ln omega along the
@@ -37,7 +37,7 @@ struct Codim2Options {
   std::string spec; // -cont_codim2 <branch>:<kind>@<omega> ("" none)
   Codim2Parameter parameter = Codim2Parameter::Gamma;
   PetscReal pmin = -1e6, pmax = 1e6; // bounds of p (the parameter's own range applies too)
-  PetscReal step = 0.02;             // first step, in the scaled plane (q / q0, p / p0)
+  PetscReal step = 0.02;             // first step, in the scaled plane (ln(q / q0), p / p0)
   PetscReal step_min = 1e-6, step_max = 0.1;
   PetscInt max_points = 60;  // per direction from the event
   PetscReal tol = 1e-10;     // corrector: the last Newton step in the scaled plane
@@ -105,7 +105,7 @@ PetscErrorCode ContinueCodim2(MPI_Comm comm, const LatticeParams &base, const Fl
 // One sample of the test function g at the point (a, b) of the scaled plane.
 struct Codim2Sample {
   bool ok = false;        // g was evaluated (a finite number)
-  PetscReal a = 0, b = 0; // the point: (q / q0, p / p0) for an orbit
+  PetscReal a = 0, b = 0; // the point: (ln(q / q0), p / p0) for an orbit
   PetscReal omega = 0, p = 0, energy = 0, period = 0, beta = 0, g = NAN;
   PetscReal bmid = 0;        // kind 5: the middle of the two colliding pairs' b (kind 3: -1, kind 1: +1)
   std::vector<PetscReal> z0; // the orbit (natural order, every rank); empty for a closed form
