@@ -536,6 +536,8 @@ private:
   static constexpr PetscInt kMaxIts = 10;   // corrector iterations
   static constexpr PetscReal kNoise = 1e-5; // the largest |g| a converged point may have
   static constexpr PetscInt kTurnIts = 60;  // secant steps locating a turn
+  static constexpr PetscReal kMaxCorrection = 0.3; // a step's corrector moves the predicted point at most this times the step
+  static constexpr PetscReal kMaxAngle = 0.3;      // and the tangent turns at most this (rad) over the step
 };
 
 // grad g at x in the scaled plane, by forward differences (kH).
@@ -687,6 +689,13 @@ PetscErrorCode Codim2Follower::Walk(const Codim2Sample &x0, const PetscReal grad
       const PetscReal yp[2] = {x.a + ds * tau[0], x.b + ds * tau[1]};
       ng[0] = gx[0], ng[1] = gx[1];
       PetscCall(Correct(yp, tau, x, &nx, ng, &its, &ok, true));
+      // a step is taken only on the same curve: the corrector moved the point a fraction of the step, and
+      // the tangent turned little (another curve near, e.g. the next collision of the same pairs, would
+      // otherwise catch a long step)
+      if (ok) {
+        const PetscReal nn = std::hypot(ng[0], ng[1]), c = std::abs(-ng[1] / nn * tau[0] + ng[0] / nn * tau[1]);
+        ok = std::hypot(nx.a - yp[0], nx.b - yp[1]) <= kMaxCorrection * ds && c >= std::cos(kMaxAngle);
+      }
       if (!ok) ds *= 0.5;
     }
     if (!ok) {
