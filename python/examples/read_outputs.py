@@ -90,6 +90,17 @@ def show_floquet_scaling(run):
               f"(R^2 {w.r2[k]:.2f}, {w.npoints[k]} sizes): {verdict.split(' (')[0]}")
 
 
+def show_stabilitymap(run):
+    m = run.stabilitymap
+    for cells, s in m.sizes.items():
+        share = {n: float(np.mean(s.region_name == n)) for n in ("stable", "B-E unstable", "E-E unstable")}
+        print(f"  N = {s.attrs['N']}: {len(s.curves)} curves in {m.attrs['parameter']}; of the (p, E) raster "
+              + ", ".join(f"{v:.0%} {k}" for k, v in share.items()))
+    for ch in m.checks:
+        a = np.asarray(ch.agree)
+        print(f"  check at p = {ch.attrs['p']:g}: the map agrees with {int((a == 1).sum())} of {int((a >= 0).sum())} orbits")
+
+
 def show_workprecision(run):
     w = run.workprecision
     for k, cfg in enumerate(w.configs):
@@ -101,7 +112,7 @@ def show_workprecision(run):
 
 SHOW = {"continuation": show_continuation, "linear": show_linear, "simulate": show_simulate, "sweep": show_sweep,
         "zak": show_zak, "perturb": show_perturb, "stability": show_stability,
-        "floquet_scaling": show_floquet_scaling, "workprecision": show_workprecision}
+        "floquet_scaling": show_floquet_scaling, "stabilitymap": show_stabilitymap, "workprecision": show_workprecision}
 
 
 def main():

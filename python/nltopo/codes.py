@@ -31,6 +31,11 @@ SCALING_VERDICT = ("0 stable (no orbit of the window unstable at any N); 1 persi
 # the codim-2 points of a -cont_codim2 curve (/continuation/<branch>/codim2/<curve> point_kind)
 CODIM2_POINT = ("0 end of the curve (a bound, -cont_codim2_max_points or step collapse: stop_reason); 1 turn in p (dp/ds = 0, the curve goes on); "
                 "2 Hamiltonian-Hopf end at b = +1 (1:1 resonance); 3 Hamiltonian-Hopf end at b = -1 (1:2 resonance); 4 linear limit (E -> 0)")
+# the stability map (/stabilitymap): its regions, which side of a curve is unstable, whether a check orbit agrees
+REGION = "0 stable; 1 B-B unstable; 2 B-E unstable; 3 E-E unstable"
+CURVE_SIDE = "1 left of its direction of travel; -1 right; 0 unknown (no direction, or vertical at its event)"
+AGREE = ("1 the map's label equals the orbit's class; 0 it does not; -1 not compared (within -smap_same_curve_rtol of a curve, or below "
+         "-smap_energy_min)")
 # the Krein resonance map (/continuation/<branch>/krein_map): open is a bitmask, the sum of its classes' bits
 KREIN_PAIRS = ("0 none; 1 AA (acoustic + acoustic); 2 AO (acoustic + optical); 4 OO (optical + optical); "
                "8 EA (localised + acoustic); 16 EO (localised + optical); "
@@ -58,6 +63,23 @@ FORMAT0 = {
     ("/stability/case<k>", "verdict"): VERDICT,
     ("/stability/case<k>", "persisted"): YES_NO,
     ("/stability/case<k>", "omega_replaced"): YES_NO,
+    ("/stabilitymap/cells<c>", "region"): REGION,  # (format 1 on: -study stabilitymap)
+    ("/stabilitymap/cells<c>", "branch_instability"): INSTABILITY,
+    ("/stabilitymap/cells<c>", "event_kind"): EVENT_KIND,
+    ("/stabilitymap/cells<c>", "event_class"): INSTABILITY,
+    ("/stabilitymap/cells<c>", "event_direction"): DIRECTION,
+    ("/stabilitymap/cells<c>", "curve_kind"): EVENT_KIND,
+    ("/stabilitymap/cells<c>", "curve_class"): INSTABILITY,
+    ("/stabilitymap/cells<c>", "curve_direction"): DIRECTION,
+    ("/stabilitymap/cells<c>", "curve_side"): CURVE_SIDE,
+    ("/stabilitymap/cells<c>/curves/<curve>", "kind"): EVENT_KIND,
+    ("/stabilitymap/cells<c>/curves/<curve>", "point_kind"): CODIM2_POINT,
+    ("/stabilitymap/checks/<check>", "instability"): INSTABILITY,
+    ("/stabilitymap/checks/<check>", "map_label"): REGION,
+    ("/stabilitymap/checks/<check>", "agree"): AGREE,
+    ("/stabilitymap/checks/<check>", "event_kind"): EVENT_KIND,
+    ("/stabilitymap/checks/<check>", "event_class"): INSTABILITY,
+    ("/stabilitymap/checks/<check>", "event_direction"): DIRECTION,
     ("/floquet_scaling/cells<c>", "stable"): STABLE,
     ("/floquet_scaling/cells<c>", "instability"): INSTABILITY,
     ("/floquet_scaling/windows", "envelope_instability"): INSTABILITY,

@@ -34,6 +34,7 @@ namespace nltopo {
 
 namespace {
 
+constexpr const char *kRegionCodes = "0 stable; 1 B-B unstable; 2 B-E unstable; 3 E-E unstable";
 constexpr const char *kCurveSideCodes = "1 left of its direction of travel; -1 right; 0 unknown (no direction, or vertical at its event)";
 constexpr const char *kAgreeCodes = "1 the map's label equals the orbit's class; 0 it does not; -1 not compared (within -smap_same_curve_rtol of a curve, or below "
                                     "-smap_energy_min)";
@@ -555,7 +556,7 @@ StudyContract StabilityMapStudyContract()
              {"region", D, I, "np x ne", "1",
               "the label of each raster point (p column, energy row) from the curves: 0 stable, 2 B-E, 3 E-E unstable (E-E wins where both are open; 1 "
               "B-B only with -cont_bif_bulk)",
-              codes::kInstability},
+              kRegionCodes},
              {"branch_energy", D, R, "npts", "energy", "the branch at p_base: energy of each orbit"},
              {"branch_omega", D, R, "npts", "rad/time", "the branch at p_base: frequency"},
              {"branch_instability", D, I, "npts", "1", "the branch at p_base: the leading instability's class of each orbit (dense Floquet)", codes::kInstability},
@@ -585,7 +586,7 @@ StudyContract StabilityMapStudyContract()
              {"energy", D, R, "npts", "energy", "energy of each orbit"},
              {"omega", D, R, "npts", "rad/time", "frequency of each orbit"},
              {"instability", D, I, "npts", "1", "the orbit's leading instability class (dense Floquet): the brute force", codes::kInstability},
-             {"map_label", D, I, "npts", "1", "the map's label at (p, E) of the orbit (first size)", codes::kInstability},
+             {"map_label", D, I, "npts", "1", "the map's label at (p, E) of the orbit (first size)", kRegionCodes},
              {"agree", D, I, "npts", "1", "whether the map's label equals the orbit's class", kAgreeCodes},
              {"event_energy", D, R, "nev", "energy", "the branch's located events: energy"},
              {"event_omega", D, R, "nev", "rad/time", "the events' frequency"},

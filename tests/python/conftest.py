@@ -46,13 +46,16 @@ RUNS = {
     # two sizes, the dense Floquet route, one energy window
     "floquet_scaling": (None, ["-study", "floquet_scaling", "-scaling_cells", "3,5", "-cont_energy_max", "1", "-scaling_energy_windows", "0,1",
                                "-cont_verbose", "0"]),
+    # one size, one curve (the first onset of N = 22 near gamma 0.4), one check branch
+    "stabilitymap": ("stabilitymap.opts", ["-smap_cells", "5", "-smap_check", "0.405", "-cont_energy_max", "0.63", "-cont_codim2_min", "0.39",
+                                           "-cont_codim2_max", "0.41", "-smap_raster_p", "5", "-smap_raster_energy", "5"]),
     "workprecision": ("workprecision.opts", ["-lattice_cells", "5", "-wp_repeats", "1", "-wp_twins", "1",
                                              "-wp_configs", WP_CONFIGS] + BURST),
 }
 
 STUDY = {"linear": "linear", "simulate": "simulate", "simulate_stride": "simulate", "fep": "continuation", "codim2": "continuation",
          "fep_plain": "continuation", "fep_mf": "continuation", "sweep": "sweep", "zak": "zak", "perturb": "perturb", "stability": "stability",
-         "floquet_scaling": "floquet_scaling", "workprecision": "workprecision"}
+         "floquet_scaling": "floquet_scaling", "stabilitymap": "stabilitymap", "workprecision": "workprecision"}
 
 
 def nltopo_binary():

@@ -485,6 +485,24 @@ def test_floquet_scaling(runs):
     assert ncodes.short(w.codes("verdict")[int(w.verdict[0])]) in ("stable", "persists", "finite-size", "undetermined")
 
 
+def test_stabilitymap(runs):
+    m = runs["stabilitymap"].stabilitymap
+    assert list(m.sizes) == [5] and len(m.checks) == 1 and m.attrs["parameter"] == "-lattice_gamma"
+    s = m.sizes[5]
+    assert s.attrs["N"] == 22 and s.region.shape == (len(m.p), len(m.energy))
+    names = set(np.unique(s.region_name))
+    assert names <= {"stable", "B-E unstable", "E-E unstable"}, names
+    assert len(s.curves) >= 1 and list(s.curves) == str(s.attrs["curves"]).split(",")
+    c = next(iter(s.curves.values()))
+    assert c.kind_name.startswith("Hamiltonian-Hopf") and np.all(np.abs(c.test) < 1e-10)
+    k = int(c.attrs["event_point"])
+    assert c.p[k] == pytest.approx(m.attrs["p_base"], abs=0)
+    assert str(c.attrs["stop_reason"]).count("reached -cont_codim2_") == 2, c.attrs["stop_reason"]  # both sides left the window (p or E)
+    ch = m.checks[0]
+    assert ch.attrs["p"] == pytest.approx(0.405) and set(np.unique(ch.agree)) <= {-1, 0, 1}
+    assert np.all(m.decay_cells > 0) and np.all(m.optical_bottom > m.acoustic_top)
+
+
 def test_workprecision(runs):
     w = runs["workprecision"].workprecision
     nc = len(w.configs)
