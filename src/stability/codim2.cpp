@@ -194,6 +194,7 @@ private:
   PetscErrorCode HopfTest(Codim2Stack &s, Codim2Sample *x);
   PetscErrorCode DoublingTest(Codim2Stack &s, Codim2Sample *x);
   PetscErrorCode BranchTest(Codim2Stack &s, Codim2Sample *x);
+  PetscErrorCode PairTest(Codim2Stack &s, PetscReal t, Codim2Sample *x);
   bool ByEnergy() const { return c_->kind != EventKind::Fold; } // the orbit's coordinate q: E (kinds 2, 3, 5), or omega at a fold
   PetscErrorCode Record(const Codim2Sample &x);
   PetscReal A(const Codim2Sample &x) const { return std::log((ByEnergy() ? x.energy : x.omega) / q0_); } // ln(q / q0): a curve over decades of E in few steps
@@ -285,21 +286,7 @@ PetscErrorCode Codim2Walk::HopfTest(Codim2Stack &s, Codim2Sample *x)
 // the event, where |mu| and the angle are not. At -1 itself the pair is a
 // Jordan block and each computed mu is off by the root of rounding; their sum
 // (a trace on the invariant subspace) is not, nor is g.
-PetscErrorCode Codim2Walk::DoublingTest(Codim2Stack &s, Codim2Sample *x)
-{
-  using C = std::complex<PetscReal>;
-  FloquetResult r;
-  PetscFunctionBeginUser;
-  PetscCall(s.flow.IntegrateWithMonodromy(s.z, x->period, s.flow.FloquetBeta(x->beta), s.zT, s.S));
-  PetscCall(FloquetAnalysis(s.lat, s.S, flo_, &r));
-  std::vector<C> mu;
-  for (PetscInt j : NontrivialIndices(r.re.data(), r.im.data(), (PetscInt)r.re.size())) mu.emplace_back(r.re[j], r.im[j]);
-  if (mu.size() < 2) PetscFunctionReturn(0); // g stays NaN
-  std::partial_sort(mu.begin(), mu.begin() + 2, mu.end(), [](const C &u, const C &v) { return std::abs(u + 1.0) < std::abs(v + 1.0); });
-  x->g = 1 + 0.25 * std::real(mu[0] + mu[1] + 1.0 / mu[0] + 1.0 / mu[1]);
-  x->bmid = -1;
-  PetscFunctionReturn(0);
-}
+PetscErrorCode Codim2Walk::DoublingTest(Codim2Stack &s, Codim2Sample *x) { return PairTest(s, -1, x); }
 
 // Kind 2: as kind 3 at +1. The pair is the two nontrivial multipliers nearest
 // +1 in b = (mu + 1/mu)/2 (the trivial Jordan pair, also at +1, projected out
@@ -312,7 +299,12 @@ PetscErrorCode Codim2Walk::DoublingTest(Codim2Stack &s, Codim2Sample *x)
 // at the event: the critical vector has the other symmetry than the orbit, so
 // Newton's residual has no component along it but rounding, which the start
 // solver's SVD pseudo-inverse does not amplify (docs/continuation.md).
-PetscErrorCode Codim2Walk::BranchTest(Codim2Stack &s, Codim2Sample *x)
+PetscErrorCode Codim2Walk::BranchTest(Codim2Stack &s, Codim2Sample *x) { return PairTest(s, +1, x); }
+
+// Kinds 2 and 3: g = b - t of the pair nearest t = +1 or -1 in b = (mu + 1/mu)/2
+// (|b - t| puts a pair's two members at one distance, so a real pair r, 1/r is
+// not split), b = (mu1 + mu2 + 1/mu1 + 1/mu2) / 4 over its two members.
+PetscErrorCode Codim2Walk::PairTest(Codim2Stack &s, PetscReal t, Codim2Sample *x)
 {
   using C = std::complex<PetscReal>;
   FloquetResult r;
@@ -322,10 +314,10 @@ PetscErrorCode Codim2Walk::BranchTest(Codim2Stack &s, Codim2Sample *x)
   std::vector<C> mu;
   for (PetscInt j : NontrivialIndices(r.re.data(), r.im.data(), (PetscInt)r.re.size())) mu.emplace_back(r.re[j], r.im[j]);
   if (mu.size() < 2) PetscFunctionReturn(0); // g stays NaN
-  auto d1 = [](const C &u) { return std::abs(0.5 * (u + 1.0 / u) - 1.0); };
-  std::partial_sort(mu.begin(), mu.begin() + 2, mu.end(), [&](const C &u, const C &v) { return d1(u) < d1(v); });
-  x->g = 0.25 * std::real(mu[0] + mu[1] + 1.0 / mu[0] + 1.0 / mu[1]) - 1;
-  x->bmid = 1;
+  auto dist = [t](const C &u) { return std::abs(0.5 * (u + 1.0 / u) - t); };
+  std::partial_sort(mu.begin(), mu.begin() + 2, mu.end(), [&](const C &u, const C &v) { return dist(u) < dist(v); });
+  x->g = 0.25 * std::real(mu[0] + mu[1] + 1.0 / mu[0] + 1.0 / mu[1]) - t;
+  x->bmid = t;
   PetscFunctionReturn(0);
 }
 

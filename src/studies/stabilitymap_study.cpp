@@ -145,6 +145,22 @@ PetscErrorCode BranchWithEvents(MPI_Comm comm, NnmSetup &nnm, const std::string 
   PetscFunctionReturn(0);
 }
 
+// A branch's located events as the event_* columns of group g.
+PetscErrorCode WriteEvents(PetscViewer v, const char *g, const std::vector<BifurcationEvent> &events)
+{
+  std::vector<PetscInt> kind, cls, dir;
+  std::vector<PetscReal> E, w;
+  PetscFunctionBeginUser;
+  for (const BifurcationEvent &e : events)
+    kind.push_back((PetscInt)e.kind), cls.push_back(e.instability), dir.push_back(e.direction), E.push_back(e.energy), w.push_back(e.omega);
+  PetscCall(WriteArray(v, g, "event_energy", E));
+  PetscCall(WriteArray(v, g, "event_omega", w));
+  PetscCall(WriteIntArray(v, g, "event_kind", kind));
+  PetscCall(WriteIntArray(v, g, "event_class", cls));
+  PetscCall(WriteIntArray(v, g, "event_direction", dir));
+  PetscFunctionReturn(0);
+}
+
 RegionCurve AsRegion(const MapCurve &m)
 {
   RegionCurve r;
@@ -459,8 +475,7 @@ PetscErrorCode StabilityMapStudy::WriteSize(PetscViewer v, const SizeMap &sm) co
 {
   const std::string g = "/stabilitymap/cells" + std::to_string(sm.cells);
   const char *gc = g.c_str();
-  std::vector<PetscInt> ck, ccls, cdir, cside, cev, cpts, cseed, ekind, ecls, edir;
-  std::vector<PetscReal> eE, ew;
+  std::vector<PetscInt> ck, ccls, cdir, cside, cev, cpts, cseed;
   std::string names;
   PetscFunctionBeginUser;
   for (const MapCurve &m : sm.curves) {
@@ -468,8 +483,6 @@ PetscErrorCode StabilityMapStudy::WriteSize(PetscViewer v, const SizeMap &sm) co
         cpts.push_back((PetscInt)m.c.p.size()), cseed.push_back(m.seed);
     names += (names.empty() ? "" : ",") + m.c.name;
   }
-  for (const BifurcationEvent &e : sm.events)
-    ekind.push_back((PetscInt)e.kind), ecls.push_back(e.instability), edir.push_back(e.direction), eE.push_back(e.energy), ew.push_back(e.omega);
   PetscCall(WriteAttr(v, gc, "cells", sm.cells));
   PetscCall(WriteAttr(v, gc, "N", sm.N));
   PetscCall(WriteAttr(v, gc, "curves", names.c_str()));
@@ -479,11 +492,7 @@ PetscErrorCode StabilityMapStudy::WriteSize(PetscViewer v, const SizeMap &sm) co
   PetscCall(WriteArray(v, gc, "branch_energy", sm.b.energy));
   PetscCall(WriteArray(v, gc, "branch_omega", sm.b.omega));
   PetscCall(WriteIntArray(v, gc, "branch_instability", sm.f.instability));
-  PetscCall(WriteArray(v, gc, "event_energy", eE));
-  PetscCall(WriteArray(v, gc, "event_omega", ew));
-  PetscCall(WriteIntArray(v, gc, "event_kind", ekind));
-  PetscCall(WriteIntArray(v, gc, "event_class", ecls));
-  PetscCall(WriteIntArray(v, gc, "event_direction", edir));
+  PetscCall(WriteEvents(v, gc, sm.events));
   PetscCall(WriteIntArray(v, gc, "event_curve", sm.event_curve));
   PetscCall(WriteIntArray(v, gc, "curve_kind", ck));
   PetscCall(WriteIntArray(v, gc, "curve_class", ccls));
@@ -500,11 +509,7 @@ PetscErrorCode StabilityMapStudy::WriteCheck(PetscViewer v, size_t k, const Chec
 {
   const std::string g = "/stabilitymap/checks/check" + std::to_string(k);
   const char *gc = g.c_str();
-  std::vector<PetscInt> ekind, ecls, edir;
-  std::vector<PetscReal> eE, ew;
   PetscFunctionBeginUser;
-  for (const BifurcationEvent &e : cr.events)
-    ekind.push_back((PetscInt)e.kind), ecls.push_back(e.instability), edir.push_back(e.direction), eE.push_back(e.energy), ew.push_back(e.omega);
   PetscCall(WriteAttr(v, gc, "p", cr.p));
   PetscCall(WriteAttr(v, gc, "seconds", cr.seconds));
   PetscCall(WriteArray(v, gc, "energy", cr.b.energy));
@@ -512,11 +517,7 @@ PetscErrorCode StabilityMapStudy::WriteCheck(PetscViewer v, size_t k, const Chec
   PetscCall(WriteIntArray(v, gc, "instability", cr.f.instability));
   PetscCall(WriteIntArray(v, gc, "map_label", cr.map_label));
   PetscCall(WriteIntArray(v, gc, "agree", cr.agree));
-  PetscCall(WriteArray(v, gc, "event_energy", eE));
-  PetscCall(WriteArray(v, gc, "event_omega", ew));
-  PetscCall(WriteIntArray(v, gc, "event_kind", ekind));
-  PetscCall(WriteIntArray(v, gc, "event_class", ecls));
-  PetscCall(WriteIntArray(v, gc, "event_direction", edir));
+  PetscCall(WriteEvents(v, gc, cr.events));
   PetscCall(WriteArray(v, gc, "event_offset", cr.event_offset));
   PetscCall(WriteIntArray(v, gc, "event_curve", cr.event_curve));
   PetscFunctionReturn(0);

@@ -107,6 +107,21 @@ struct FoldOfMode0 {
     PetscCall(ContinueCodim2(PETSC_COMM_WORLD, p, FlowOptions(), ShootingOptions(), FloquetOptions(), 1, o, ev[index], index, start, name, c));
     PetscFunctionReturn(0);
   }
+  // The event (located at Gamma 0.5 on the one-cell lattice) followed in -lattice_gamma over [pmin, pmax].
+  PetscErrorCode ContinueInGamma(PetscReal pmin, PetscReal pmax, PetscInt max_points, Codim2Curve *c)
+  {
+    Codim2Start start;
+    Codim2Options o;
+    LatticeParams p;
+    PetscFunctionBeginUser;
+    PetscCall(Start(&start));
+    o.parameter = Codim2Parameter::Gamma;
+    o.pmin = pmin, o.pmax = pmax, o.max_points = max_points;
+    o.verbose = PETSC_FALSE;
+    p.cells = 1, p.Gamma = 0.5;
+    PetscCall(ContinueCodim2(PETSC_COMM_WORLD, p, FlowOptions(), ShootingOptions(), FloquetOptions(), 1, o, ev[index], index, start, name, c));
+    PetscFunctionReturn(0);
+  }
 };
 
 // A period doubling (kind 3). The lattice's own NNM families have none (x(t +
@@ -602,16 +617,8 @@ TEST_CASE("codim-2: the energy fold continued in -lattice_gamma passes through t
   FoldOfMode0 f;
   PCHK(f.Locate(0.5));
   REQUIRE(f.index >= 0);
-  Codim2Start start;
-  PCHK(f.Start(&start));
-  Codim2Options o;
-  o.parameter = Codim2Parameter::Gamma;
-  o.pmin = 0.36, o.pmax = 0.45;
-  o.verbose = PETSC_FALSE;
-  LatticeParams p;
-  p.cells = 1, p.Gamma = 0.5;
   Codim2Curve c;
-  PCHK(ContinueCodim2(PETSC_COMM_WORLD, p, FlowOptions(), ShootingOptions(), FloquetOptions(), 1, o, f.ev[f.index], f.index, start, "mode0", &c));
+  PCHK(f.ContinueInGamma(0.36, 0.45, Codim2Options().max_points, &c));
   const size_t n = c.p.size();
   REQUIRE(n >= 4);
   REQUIRE(c.p[c.event_point] == 0.4);
@@ -640,16 +647,8 @@ TEST_CASE("codim-2: the energy fold of mode 0 continued in -lattice_gamma ends a
   FoldOfMode0 f;
   PCHK(f.Locate(0.5));
   REQUIRE(f.index >= 0);
-  Codim2Start start;
-  PCHK(f.Start(&start));
-  Codim2Options o;
-  o.parameter = Codim2Parameter::Gamma;
-  o.pmin = 0.39, o.pmax = 0.8, o.max_points = 80;
-  o.verbose = PETSC_FALSE;
-  LatticeParams p;
-  p.cells = 1, p.Gamma = 0.5;
   Codim2Curve c;
-  PCHK(ContinueCodim2(PETSC_COMM_WORLD, p, FlowOptions(), ShootingOptions(), FloquetOptions(), 1, o, f.ev[f.index], f.index, start, "mode0", &c));
+  PCHK(f.ContinueInGamma(0.39, 0.8, 80, &c));
   const size_t n = c.p.size(), m = c.point_kind.size();
   INFO("curve " << c.name << ": " << n << " points, p " << c.p.front() << " .. " << c.p.back() << ", E " << c.energy.back() << ": " << c.stop_reason);
   REQUIRE(m == 2); // both ends, no turn in p
