@@ -246,6 +246,15 @@ protected:
     PetscCall(Label());
     PetscFunctionReturn(0);
   }
+  // A stop signal: the sizes whose branch is done, with the curves followed so far, and the checks done.
+  bool Interrupted(Interruption *it) const override
+  {
+    it->partial = !sizes_.empty();
+    it->where = "after " + std::to_string(sizes_.size()) + " of " + std::to_string(mo_.cells.size()) + " sizes' branches (" +
+                std::to_string(sizes_.empty() ? 0 : sizes_.back().curves.size()) + " curves of the last) and " + std::to_string(checks_.size()) + " of " +
+                std::to_string(mo_.check.size()) + " checks";
+    return true;
+  }
   PetscErrorCode Write(PetscViewer v) override;
 
 private:
@@ -298,6 +307,7 @@ private:
   std::vector<PetscReal> p_, energy_; // the raster's axes
   std::vector<SizeMap> sizes_;
   std::vector<CheckRun> checks_;
+  bool labelled_ = false;
 };
 
 PetscErrorCode StabilityMapStudy::MapSize(PetscInt cells)
@@ -314,13 +324,14 @@ PetscErrorCode StabilityMapStudy::MapSize(PetscInt cells)
   sm.N = nnm->lat.N();
   PetscCall(PetscPrintf(comm_, "  [%s, N = %" PetscInt_FMT "] the branch at %s %g\n", mo_.branch.c_str(), sm.N, Codim2ParameterOption(c2o_.parameter), (double)sm.p));
   PetscCall(BranchWithEvents(comm_, *nnm, mo_.branch, flo_, bo_, &loc, &sm.b, &sm.f, &sm.events));
-  PetscCall(FollowEvents(*nnm, loc, sm.events, sm.p, -1, &sm, &sm.event_curve));
-  PetscCall(PetscTime(&t1));
-  sm.seconds = t1 - t0;
   sm.b.z0.clear(); // the orbits are -study continuation's to keep; the map keeps its columns
-  PetscCall(PetscPrintf(comm_, "  [%s, N = %" PetscInt_FMT "] %zu events, %zu curves, %.1f s\n", mo_.branch.c_str(), sm.N, sm.events.size(), sm.curves.size(),
-                        (double)sm.seconds));
-  sizes_.push_back(std::move(sm));
+  sizes_.push_back(std::move(sm)); // from here a stop signal writes the curves done (Interrupted)
+  SizeMap &done = sizes_.back();
+  PetscCall(FollowEvents(*nnm, loc, done.events, done.p, -1, &done, &done.event_curve));
+  PetscCall(PetscTime(&t1));
+  done.seconds = t1 - t0;
+  PetscCall(PetscPrintf(comm_, "  [%s, N = %" PetscInt_FMT "] %zu events, %zu curves, %.1f s\n", mo_.branch.c_str(), done.N, done.events.size(),
+                        done.curves.size(), (double)done.seconds));
   PetscFunctionReturn(0);
 }
 
@@ -333,6 +344,8 @@ PetscErrorCode StabilityMapStudy::FollowEvents(NnmSetup &nnm, BifurcationLocator
 {
   PetscFunctionBeginUser;
   event_curve->assign(events.size(), -1);
+  for (size_t k = 0; k < events.size(); k++)
+    if (Followed(events[k].kind)) (*event_curve)[k] = -2; // (until followed: what a stop signal leaves)
   for (size_t k = 0; k < events.size(); k++) {
     const BifurcationEvent &e = events[k];
     if (!Followed(e.kind)) continue;
@@ -403,6 +416,7 @@ PetscErrorCode StabilityMapStudy::Check(PetscReal p)
 PetscErrorCode StabilityMapStudy::Label()
 {
   PetscFunctionBeginUser;
+  labelled_ = true;
   for (SizeMap &sm : sizes_) {
     std::vector<RegionCurve> rc;
     for (const MapCurve &m : sm.curves) rc.push_back(AsRegion(m));
@@ -437,6 +451,7 @@ PetscErrorCode StabilityMapStudy::Label()
 PetscErrorCode StabilityMapStudy::Write(PetscViewer v)
 {
   PetscFunctionBeginUser;
+  if (!labelled_) PetscCall(Label()); // (a stop signal: the regions of the curves done)
   PetscCall(WriteAttr(v, "/stabilitymap", "branch", mo_.branch.c_str()));
   PetscCall(WriteAttr(v, "/stabilitymap", "parameter", Codim2ParameterOption(c2o_.parameter)));
   PetscCall(WriteAttr(v, "/stabilitymap", "p_base", Codim2ParameterValue(base_.lp, c2o_.parameter)));
