@@ -43,6 +43,7 @@ struct MapOptions {
   std::vector<PetscReal> cells{5};
   std::string branch = "insulated";
   std::vector<PetscReal> kinds{5, 2, 3};
+  std::vector<PetscReal> classes{2, 3};
   std::vector<PetscReal> check;
   PetscInt raster_p = 121, raster_energy = 121;
   PetscReal energy_min = 0.1;
@@ -61,6 +62,9 @@ const auto &kMapTable = DeclareOptionTable<MapOptions>(
           .RealList("kinds", &M::kinds, 4, Closed(1, 5),
                     "The kinds of located events followed as curves, in the codes of /bifurcations kind: 1 energy fold, 2 branch point, 3 period "
                     "doubling, 5 Hamiltonian-Hopf onset (4, a pass of equal signatures, bounds no instability)")
+          .RealList("classes", &M::classes, 3, Closed(1, 3),
+                    "The instability classes whose events are followed (the critical eigenvector's localisation: 1 B-B, 2 B-E, 3 E-E); 3 alone maps "
+                    "the interface's own instabilities, whose curves do not multiply with N")
           .RealList("check", &M::check, 16, Closed(-1e6, 1e6),
                     "Values of p (-cont_codim2_parameter) at which the branch is also continued as a one-parameter run at the first size: its events "
                     "and verdicts are the brute force the map is checked against (none: no check)",
@@ -264,11 +268,12 @@ private:
     s->lp.cells = cells;
     SetCodim2Parameter(&s->lp, c2o_.parameter, p);
   }
-  bool Followed(EventKind k) const
+  bool Followed(const BifurcationEvent &e) const
   {
-    for (PetscReal q : mo_.kinds)
-      if ((PetscInt)q == (PetscInt)k) return true;
-    return false;
+    bool kind = false, cls = e.instability == 0; // (a fold has no class)
+    for (PetscReal q : mo_.kinds) kind = kind || (PetscInt)q == (PetscInt)e.kind;
+    for (PetscReal q : mo_.classes) cls = cls || (PetscInt)q == e.instability;
+    return kind && cls;
   }
   // The curve of sm.curves that event e (located at p) lies on, -1 none: one that crosses
   // p again (away from its own event: the segments next to its event row
@@ -345,10 +350,10 @@ PetscErrorCode StabilityMapStudy::FollowEvents(NnmSetup &nnm, BifurcationLocator
   PetscFunctionBeginUser;
   event_curve->assign(events.size(), -1);
   for (size_t k = 0; k < events.size(); k++)
-    if (Followed(events[k].kind)) (*event_curve)[k] = -2; // (until followed: what a stop signal leaves)
+    if (Followed(events[k])) (*event_curve)[k] = -2; // (until followed: what a stop signal leaves)
   for (size_t k = 0; k < events.size(); k++) {
     const BifurcationEvent &e = events[k];
-    if (!Followed(e.kind)) continue;
+    if (!Followed(e)) continue;
     const PetscInt on = CurveThrough(*sm, e, p);
     if (on >= 0) {
       (*event_curve)[k] = on;
@@ -582,7 +587,7 @@ StudyContract StabilityMapStudyContract()
              {"event_class", D, I, "nev", "1", "the events' critical eigenvector class", codes::kInstability},
              {"event_direction", D, I, "nev", "1", "whether the event begins or ends an instability along the branch", codes::kDirection},
              {"event_curve", D, I, "nev", "1",
-              "the row in curve_* of the curve the event lies on; -1 not a kind followed (-smap_kinds); -2 not followed (-smap_max_curves, or its "
+              "the row in curve_* of the curve the event lies on; -1 not a kind or class followed (-smap_kinds, -smap_classes); -2 not followed (-smap_max_curves, or its "
               "curve could not be started)"},
              {"curve_kind", D, I, "ncurves", "1", "each curve's kind of event", codes::kEventKind},
              {"curve_class", D, I, "ncurves", "1", "the class of the instability it bounds", codes::kInstability},

@@ -139,7 +139,7 @@ T = {
     "cont_codim2_tol": ("real", 1e-12, 1e-6), "cont_codim2_test_tol": ("real", 1e-9, 1e-4), "cont_codim2_verbose": ("bool",),
     "cont_codim2_energy_min": ("real", 0.0, 0.5), "cont_codim2_energy_max": ("real", 1.0, 100.0),
     "smap_cells": ("reals", 1, 5), "smap_branch": ("enum", 0, 0, ["insulated", "interface", "mode0", "nope"]),
-    "smap_kinds": ("reals", 1, 5), "smap_check": ("reals", 0.1, 0.8), "smap_raster_p": ("int", 2, 50), "smap_raster_energy": ("int", 2, 50),
+    "smap_kinds": ("reals", 1, 5), "smap_classes": ("reals", 1, 3), "smap_check": ("reals", 0.1, 0.8), "smap_raster_p": ("int", 2, 50), "smap_raster_energy": ("int", 2, 50),
     "smap_energy_min": ("real", 1e-3, 1.0), "smap_max_curves": ("int", 1, 5), "smap_same_curve_rtol": ("real", 1e-6, 0.1),
     "smap_seed_checks": ("bool",),
     "cont_branch": ("strings", 0, 0, ["insulated", "interface", "acoustic_top", "optical_bottom", "optical_top", "mode3", "7"]),
