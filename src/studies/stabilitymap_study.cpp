@@ -407,7 +407,14 @@ PetscErrorCode StabilityMapStudy::Check(PetscReal p)
   Adopt(nnm.get(), sm.cells, p);
   PetscCall(nnm->Build(comm_, "-study stabilitymap"));
   PetscCall(PetscPrintf(comm_, "  [check, N = %" PetscInt_FMT "] the branch at %s %g\n", sm.N, Codim2ParameterOption(c2o_.parameter), (double)p));
-  PetscCall(BranchWithEvents(comm_, *nnm, mo_.branch, flo_, bo_, &loc, &cr.b, &cr.f, &cr.events));
+  PetscErrorCode ierr = 0;
+  char msg[512];
+  PetscCall(CaptureError([&]() { return BranchWithEvents(comm_, *nnm, mo_.branch, flo_, bo_, &loc, &cr.b, &cr.f, &cr.events); }, &ierr, msg, sizeof msg));
+  if (IsInterrupt(ierr)) SETERRQ(comm_, PETSC_ERR_SIG, "%s", msg);
+  if (ierr) { // a numerical failure of one check branch: said, left out; the map and the other checks go on
+    PetscCall(PetscPrintf(comm_, "  [check %s %g] warning: the branch failed (%s); this check is left out\n", Codim2ParameterOption(c2o_.parameter), (double)p, msg));
+    PetscFunctionReturn(0);
+  }
   PetscCall(FollowEvents(*nnm, loc, cr.events, p, (PetscInt)checks_.size(), &sizes_.front(), &cr.event_curve));
   PetscCall(PetscTime(&t1));
   cr.seconds = t1 - t0;
