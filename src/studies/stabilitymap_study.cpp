@@ -444,7 +444,12 @@ PetscErrorCode StabilityMapStudy::Label()
     cr.map_label.clear(), cr.agree.clear(), cr.event_offset.clear();
     for (size_t i = 0; i < cr.b.energy.size(); i++) {
       const PetscReal E = cr.b.energy[i];
-      const PetscInt lab = LabelAt(rc, cr.p, E), got = cr.f.instability[i];
+      // the orbit's class, where the map follows that class (-smap_classes); else stable for the map
+      PetscInt got = cr.f.instability[i];
+      bool mapped = false;
+      for (PetscReal q : mo_.classes) mapped = mapped || (PetscInt)q == got;
+      if (!mapped) got = 0;
+      const PetscInt lab = LabelAt(rc, cr.p, E);
       // orbits within -smap_same_curve_rtol of a boundary are not compared (either side is right within the map's resolution)
       bool near = false;
       for (const RegionCurve &r : rc)
@@ -615,7 +620,7 @@ StudyContract StabilityMapStudyContract()
              {"omega", D, R, "npts", "rad/time", "frequency of each orbit"},
              {"instability", D, I, "npts", "1", "the orbit's leading instability class (dense Floquet): the brute force", codes::kInstability},
              {"map_label", D, I, "npts", "1", "the map's label at (p, E) of the orbit (first size)", kRegionCodes},
-             {"agree", D, I, "npts", "1", "whether the map's label equals the orbit's class", kAgreeCodes},
+             {"agree", D, I, "npts", "1", "whether the map's label equals the orbit's class (a class not in -smap_classes counts as stable)", kAgreeCodes},
              {"event_energy", D, R, "nev", "energy", "the branch's located events: energy"},
              {"event_omega", D, R, "nev", "rad/time", "the events' frequency"},
              {"event_kind", D, I, "nev", "1", "the events' kind", codes::kEventKind},
