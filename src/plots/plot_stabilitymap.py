@@ -21,7 +21,10 @@ import nltopo_plot
 # region codes (the instability class): 0 stable, 1 B-B, 2 B-E, 3 E-E
 REGION = [(0, "stable", "#dbe9f6"), (1, "B-B", "#fde0c5"), (2, "B-E", "#e3d3ef"), (3, "E-E", "#f7c9c9")]
 CURVE = {1: "tab:orange", 2: "tab:purple", 3: "tab:red"}
-POINT_MARK = {1: ("turn in p", "D"), 2: ("end at b = +-1", "s"), 3: ("linear limit", "v"), 4: ("end", "o")}
+# codim-2 points (codes of point_kind): 0 an end (a bound or step collapse: stop_reason), 1 a turn in p, 2 and 3 a
+# Hamiltonian-Hopf end at b = +1 / -1, 4 the linear limit
+POINT_MARK = {0: ("end of a curve (a bound or step collapse)", "o"), 1: ("turn in p", "D"), 2: ("end at b = +1", "s"), 3: ("end at b = -1", "^"),
+              4: ("linear limit", "v")}
 
 
 def load(path):
@@ -69,11 +72,11 @@ def panel_map(ax, fig, m, size):
     box = ((m.p[0], m.p[-1]), (m.energy[0], m.energy[-1]))
     draw_curves(ax, size, box)
     marked = False
-    for ch in m.checks:
+    for ch in m.checks:  # the events of the kinds and classes the map follows (event_curve != -1)
         E = np.asarray(ch.event_energy)
-        sel = (E >= m.energy[0]) & (E <= m.energy[-1])
+        sel = (E >= m.energy[0]) & (E <= m.energy[-1]) & (np.asarray(ch.event_curve) != -1)
         if sel.any():
-            ax.plot(np.full(sel.sum(), ch.attrs["p"]), E[sel], "x", color="k", ms=5, label=None if marked else "events of the check branches")
+            ax.plot(np.full(sel.sum(), ch.attrs["p"]), E[sel], "x", color="k", ms=5, label=None if marked else "events of the check branches (kinds and classes followed)")
             marked = True
     finite_size(ax, m, size.attrs["cells"])
     ax.set(yscale="log", xlim=(m.p[0], m.p[-1]), ylim=(m.energy[0], m.energy[-1]), xlabel=m.attrs["parameter"].lstrip("-"), ylabel="E (energy)",
