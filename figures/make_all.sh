@@ -69,7 +69,7 @@ case "$SIZE" in
     EXPO=(-options_file "$OPT/sweep_exponential.opts")
     HIST_E="0.01 1 5 10 30"
     PERT=(-options_file "$OPT/perturb.opts" -perturb_ensemble 4)
-    SMAP=(-options_file "$OPT/stabilitymap.opts" -smap_cells 25 -smap_check 0.3,0.55)
+    SMAP=(-options_file "$OPT/stabilitymap.opts" -smap_cells 25 -smap_classes 3 -smap_check 0.3,0.55)
     ;;
   test)
     # no bifurcation location (3/4 of the run): plot_fep.py's events are drawn and checked in the bifurcations scene
