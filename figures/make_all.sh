@@ -81,7 +81,7 @@ case "$SIZE" in
     EXPO=(-options_file "$OPT/sweep_exponential.opts" -sweep_omega_n 6 -sweep_energy_n 6)
     HIST_E="0.01 1 10"
     PERT=(-options_file "$OPT/perturb.opts" -perturb_delta_list 0,0.05 -perturb_ensemble 2 -perturb_energy_min 0.1 -perturb_energy_max 10 -perturb_energy_n 3)
-    SMAP=(-options_file "$OPT/stabilitymap.opts" -smap_cells 5,10 -smap_check 0.41 -cont_energy_max 0.7 -cont_codim2_min 0.38 -cont_codim2_max 0.42
+    SMAP=(-options_file "$OPT/stabilitymap.opts" -smap_cells 5,3 -smap_check 0.41 -cont_energy_max 0.65 -cont_codim2_min 0.39 -cont_codim2_max 0.42
       -smap_raster_p 21 -smap_raster_energy 21)
     ;;
 esac

@@ -69,6 +69,7 @@ const auto &kMapTable = DeclareOptionTable<MapOptions>(
                     "Values of p (-cont_codim2_parameter) at which the branch is also continued as a one-parameter run at the first size: its events "
                     "and verdicts are the brute force the map is checked against (none: no check)",
                     OptionClass::Extent)
+          .Default("none")
           .Int("raster_p", &M::raster_p, Closed(2, 100000), "Columns of the region raster, evenly over [-cont_codim2_min, -cont_codim2_max]", OptionClass::Extent)
           .Int("raster_energy", &M::raster_energy, Closed(2, 100000), "Rows of the region raster, log-spaced over [-smap_energy_min, -cont_energy_max]",
                OptionClass::Extent)

@@ -43,7 +43,7 @@ expect_error "-lattice_cubic" o.h5 -study linear -lattice_Gamma 0.5
 # a fixed step scaled so short that the run could never end (found by the fuzzer: a hang at 2 ranks)
 expect_error "needs 2.5e+76 steps for -sim_t_final 5.: more than 1e+12" o.h5 $S -sim_ts_type symsplit -sim_ts_dt 0.2 -sim_dt_quartic_energy 1e-300
 # a run names its study (nltopo alone prints usage: the help scene)
-expect_error "no -study given (one of: linear, simulate, continuation, sweep, zak, perturb, workprecision, stability, floquet_scaling, merge)" o.h5 -lattice_cells 5
+expect_error "no -study given (one of: linear, simulate, continuation, sweep, zak, perturb, workprecision, stability, floquet_scaling, stabilitymap, merge)" o.h5 -lattice_cells 5
 # the output file
 expect_error "-output $WORK/no/such/dir/x.h5" "$WORK/no/such/dir/x.h5" -study linear
 mkdir -p adir.h5

@@ -127,7 +127,7 @@ TEST_CASE("every option a study reads is under a prefix its contract registers",
 {
   std::map<std::string, std::set<std::string>> known;
   REQUIRE(CollectKnownOptions(PETSC_COMM_WORLD, StudyOptionFunctions(), &known) == 0);
-  CHECK(known.size() == 10);
+  CHECK(known.size() == 11);
   // Never compared: where the output goes, which study runs, and monitors
   // (PETSc's own -all_ksp_monitor among them; io/run_options.hpp).
   const std::set<std::string> outside = {"output", "output_overwrite", "study", "help"};
