@@ -558,6 +558,20 @@ PetscErrorCode StabilityMapStudy::WriteCheck(PetscViewer v, size_t k, const Chec
 
 } // namespace
 
+// The event_* columns a size's branch and a check branch share (WriteEvents), after fields.
+static std::vector<Field> WithEventFields(std::vector<Field> fields)
+{
+  using namespace schema_names;
+  const std::vector<Field> ev = {
+      {"event_energy", D, R, "nev", "energy", "the branch's located events (the branch at p_base, or the check's): energy"},
+      {"event_omega", D, R, "nev", "rad/time", "the events' frequency"},
+      {"event_kind", D, I, "nev", "1", "the events' kind", codes::kEventKind},
+      {"event_class", D, I, "nev", "1", "the events' critical eigenvector class", codes::kInstability},
+      {"event_direction", D, I, "nev", "1", "whether the event begins or ends an instability along the branch", codes::kDirection}};
+  fields.insert(fields.end(), ev.begin(), ev.end());
+  return fields;
+}
+
 StudyContract StabilityMapStudyContract()
 {
   using namespace schema_names;
@@ -580,7 +594,7 @@ StudyContract StabilityMapStudyContract()
               "where it exceeds a quarter of a size's cells per side, that size's map is a finite-size one"}}},
            {"/stabilitymap/cells<c>",
             "",
-            {{"cells", A, I, "scalar", "1", "cells per side"},
+            WithEventFields({{"cells", A, I, "scalar", "1", "cells per side"},
              {"N", A, I, "scalar", "1", "sites"},
              {"curves", A, S, "scalar", "1", "the names of the curves followed (groups curves/<curve>), comma-separated, in the order of the curve_* rows"},
              {"inconsistent_columns", A, I, "scalar", "1",
@@ -594,11 +608,6 @@ StudyContract StabilityMapStudyContract()
              {"branch_energy", D, R, "npts", "energy", "the branch at p_base: energy of each orbit"},
              {"branch_omega", D, R, "npts", "rad/time", "the branch at p_base: frequency"},
              {"branch_instability", D, I, "npts", "1", "the branch at p_base: the leading instability's class of each orbit (dense Floquet)", codes::kInstability},
-             {"event_energy", D, R, "nev", "energy", "the branch's located events at p_base: energy"},
-             {"event_omega", D, R, "nev", "rad/time", "the events' frequency"},
-             {"event_kind", D, I, "nev", "1", "the events' kind", codes::kEventKind},
-             {"event_class", D, I, "nev", "1", "the events' critical eigenvector class", codes::kInstability},
-             {"event_direction", D, I, "nev", "1", "whether the event begins or ends an instability along the branch", codes::kDirection},
              {"event_curve", D, I, "nev", "1",
               "the row in curve_* of the curve the event lies on; -1 not a kind or class followed (-smap_kinds, -smap_classes); -2 not followed (-smap_max_curves, or its "
               "curve could not be started)"},
@@ -611,27 +620,22 @@ StudyContract StabilityMapStudyContract()
              {"curve_points", D, I, "ncurves", "1", "its points"},
              {"curve_seed", D, I, "ncurves", "1",
               "where its event was located: -1 on the branch at p_base (event_* rows); k >= 0 on check branch k (-smap_seed_checks: a bubble the "
-              "run's p does not cross), its event's row then in that check's event_* rows"}}},
+              "run's p does not cross), its event's row then in that check's event_* rows"}})},
            Codim2Schema("/stabilitymap/cells<c>/curves/<curve>"),
            {"/stabilitymap/checks/<check>",
             "",
-            {{"p", A, R, "scalar", "1 (the parameter's unit)", "the value of the parameter (-smap_check) of this one-parameter branch (first size)"},
+            WithEventFields({{"p", A, R, "scalar", "1 (the parameter's unit)", "the value of the parameter (-smap_check) of this one-parameter branch (first size)"},
              {"seconds", A, R, "scalar", "s", "wall time of this branch and its events"},
              {"energy", D, R, "npts", "energy", "energy of each orbit"},
              {"omega", D, R, "npts", "rad/time", "frequency of each orbit"},
              {"instability", D, I, "npts", "1", "the orbit's leading instability class (dense Floquet): the brute force", codes::kInstability},
              {"map_label", D, I, "npts", "1", "the map's label at (p, E) of the orbit (first size)", kRegionCodes},
              {"agree", D, I, "npts", "1", "whether the map's label equals the orbit's class (a class not in -smap_classes counts as stable)", kAgreeCodes},
-             {"event_energy", D, R, "nev", "energy", "the branch's located events: energy"},
-             {"event_omega", D, R, "nev", "rad/time", "the events' frequency"},
-             {"event_kind", D, I, "nev", "1", "the events' kind", codes::kEventKind},
-             {"event_class", D, I, "nev", "1", "the events' critical eigenvector class", codes::kInstability},
-             {"event_direction", D, I, "nev", "1", "whether the event begins or ends an instability", codes::kDirection},
              {"event_offset", D, R, "nev", "1",
               "relative distance in E from the event to the nearest crossing of p by a map curve of its kind (first size); inf: none crosses there"},
              {"event_curve", D, I, "nev", "1",
               "the row in the first size's curve_* of the curve the event lies on, or started (-smap_seed_checks; curve_seed says which); -1 not a kind "
-              "followed; -2 not followed"}}}}};
+              "followed; -2 not followed"}})}}};
 }
 
 std::unique_ptr<Study> CreateStabilityMapStudy() { return std::make_unique<StabilityMapStudy>(); }
