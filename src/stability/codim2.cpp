@@ -44,16 +44,15 @@ bool InParameterRange(Codim2Parameter p, PetscReal v)
   return std::abs(v) <= 1e6;
 }
 
-// The kinds -cont_codim2 names, by the names (and codes) of /bifurcations "kind"; implemented: whether the curve can be followed yet.
+// The kinds -cont_codim2 follows, by the names (and codes) of /bifurcations "kind".
 struct Codim2KindName {
   const char *name, *tag;
   EventKind kind;
-  bool implemented;
 };
-const Codim2KindName kCodim2Kinds[] = {{"fold", "fold", EventKind::Fold, true},
-                                       {"branch_point", "bp", EventKind::BranchPoint, true},
-                                       {"period_doubling", "pd", EventKind::PeriodDoubling, true},
-                                       {"hamiltonian_hopf", "hh", EventKind::HamiltonianHopf, true}};
+const Codim2KindName kCodim2Kinds[] = {{"fold", "fold", EventKind::Fold},
+                                       {"branch_point", "bp", EventKind::BranchPoint},
+                                       {"period_doubling", "pd", EventKind::PeriodDoubling},
+                                       {"hamiltonian_hopf", "hh", EventKind::HamiltonianHopf}};
 
 const Codim2KindName *KindOf(EventKind k)
 {
@@ -115,8 +114,6 @@ PetscErrorCode ParseCodim2Spec(MPI_Comm comm, const std::string &item, Codim2Spe
              "-cont_codim2 %s: expected <branch>:<kind>@<omega> (kind fold or 1, branch_point or 2, period_doubling or 3, hamiltonian_hopf or 5; "
              "omega > 0), e.g. insulated:fold@1.9",
              item.c_str());
-  PetscCheck(k->implemented, comm, PETSC_ERR_USER, "-cont_codim2 %s: the two-parameter continuation of a %s (kind %d) is not implemented yet", item.c_str(),
-             EventKindName(k->kind), (int)k->kind);
   s->text = item, s->branch = item.substr(0, colon), s->kind = k->kind;
   PetscFunctionReturn(0);
 }
@@ -445,7 +442,8 @@ PetscErrorCode ContinueCodim2(MPI_Comm comm, const LatticeParams &base, const Fl
   PetscLogDouble t0, t1;
   PetscFunctionBeginUser;
   const Codim2KindName *k = KindOf(e.kind);
-  PetscCheck(k && k->implemented, comm, PETSC_ERR_SUP, "-cont_codim2: the two-parameter continuation of a %s is not implemented yet", EventKindName(e.kind));
+  PetscCheck(k, comm, PETSC_ERR_SUP, "-cont_codim2: a %s bounds no region of stability and is not followed (folds, branch points, period doublings and "
+             "Hamiltonian-Hopf onsets are)", EventKindName(e.kind));
   PetscCheck(so.jacobian == ShootingJacobian::Dense, comm, PETSC_ERR_SUP,
              "-cont_codim2 needs -nnm_jacobian dense (its test function factors the shooting Jacobian)");
   PetscCheck(start.z0.size() == (size_t)(2 * base.N()), comm, PETSC_ERR_PLIB, "-cont_codim2: the event's orbit has %zu values for 2N = %" PetscInt_FMT,

@@ -33,6 +33,7 @@ std::vector<Crossing> AllCrossings(const std::vector<RegionCurve> &curves, Petsc
 {
   std::vector<Crossing> xs;
   for (const RegionCurve &c : curves) {
+    if (c.side == 0) continue; // (a side unknown: the curve is drawn, it labels nothing)
     const std::vector<Crossing> x = ColumnCrossings(c, pc);
     xs.insert(xs.end(), x.begin(), x.end());
   }
@@ -55,7 +56,6 @@ PetscInt UnstableSide(const RegionCurve &c, PetscInt event_row, PetscInt directi
 std::vector<Crossing> ColumnCrossings(const RegionCurve &c, PetscReal pc)
 {
   std::vector<Crossing> xs;
-  if (c.side == 0) return xs;
   for (size_t k = 0; k + 1 < c.p.size(); k++) {
     const PetscReal p0 = c.p[k], p1 = c.p[k + 1];
     // half-open in p, so that a column through a point counts one of its two segments

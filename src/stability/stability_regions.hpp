@@ -31,7 +31,7 @@ PetscInt UnstableSide(const RegionCurve &c, PetscInt event_row, PetscInt directi
 
 // Where the curve crosses the column p = pc: each crossing's E (interpolated
 // linearly in ln E between the bracketing points) and whether the side above
-// it is the unstable one.
+// it is the unstable one (not known for a side-0 curve: LabelRegions leaves such curves out).
 struct Crossing {
   PetscReal energy = 0;
   bool unstable_above = false;

@@ -179,9 +179,7 @@ PetscReal OffsetToCurves(const std::vector<MapCurve> &curves, EventKind k, Petsc
   PetscReal best = INFINITY;
   for (const MapCurve &m : curves) {
     if (m.c.kind != k) continue;
-    RegionCurve r = AsRegion(m);
-    r.side = 1; // (any side: only where it crosses)
-    for (const Crossing &x : ColumnCrossings(r, p)) best = std::min(best, std::abs(x.energy - energy) / energy);
+    for (const Crossing &x : ColumnCrossings(AsRegion(m), p)) best = std::min(best, std::abs(x.energy - energy) / energy);
   }
   return best;
 }
