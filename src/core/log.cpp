@@ -21,6 +21,7 @@ PetscErrorCode LogRegister()
   PetscCall(PetscLogEventRegister("Diagnostics", cid, &g_log.diagnostics));
   PetscCall(PetscLogEventRegister("VariationalRhs", cid, &g_log.variational));
   PetscCall(PetscLogEventRegister("Floquet", cid, &g_log.floquet));
+  PetscCall(PetscLogEventRegister("FloquetEigvals", cid, &g_log.floquet_eigenvalues));
   PetscCall(PetscLogEventRegister("Bifurcations", cid, &g_log.bifurcations));
   PetscCall(PetscLogEventRegister("ShootLinPC", cid, &g_log.mf_pc));
   PetscCall(PetscLogEventRegister("LinearTransition", cid, &g_log.transition));

@@ -7,7 +7,7 @@ namespace nltopo {
 
 struct LogEvents {
   PetscClassId classid; // the effects register their own events (RhsLinear, RhsCubic, ...) with it
-  PetscLogEvent energy, jacobian, eigen, bloch, output, diagnostics, variational, floquet, mf_pc;
+  PetscLogEvent energy, jacobian, eigen, bloch, output, diagnostics, variational, floquet, floquet_eigenvalues, mf_pc;
   PetscLogEvent bifurcations; // -cont_bifurcations: locating the events of a branch
   PetscLogEvent transition;   // -linear_gamma_list: spectra and Zak phases over gamma
   PetscLogStage setup, solve, write;

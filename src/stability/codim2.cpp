@@ -77,7 +77,8 @@ static const auto &kCodim2Table = DeclareOptionTable<Codim2Options>("cont_", "Tw
       .Real("codim2_min", &C::pmin, Closed(-1e6, 1e6), "-cont_codim2: the curve stops where p falls below this", OptionClass::Extent)
       .Real("codim2_max", &C::pmax, Closed(-1e6, 1e6), "-cont_codim2: the curve stops where p exceeds this", OptionClass::Extent)
       .Real("codim2_step", &C::step, Open(0, 1), "-cont_codim2: the first step along the curve, in the scaled plane (ln(q / q0), p / p0) of the event's q0, p0")
-      .Real("codim2_step_min", &C::step_min, Open(0, 1), "-cont_codim2: the curve stops when the step falls below this (step collapse)")
+      .Real("codim2_step_min", &C::step_min, Open(0, 1), "-cont_codim2: the curve stops when the step falls below this (step collapse: a curve whose tangent turns by 0.3 rad over a "
+                 "step this short is the test function's noise, as near E -> 0)")
       .Real("codim2_step_max", &C::step_max, Open(0, 10), "-cont_codim2: the largest step along the curve (scaled plane)")
       .Real("codim2_energy_min", &C::emin, Closed(0, 1e12), "-cont_codim2: the curve stops where E falls below this (the first point below it is kept)",
             OptionClass::Extent)
@@ -192,6 +193,7 @@ private:
   PetscErrorCode DoublingTest(Codim2Stack &s, Codim2Sample *x);
   PetscErrorCode BranchTest(Codim2Stack &s, Codim2Sample *x);
   PetscErrorCode PairTest(Codim2Stack &s, PetscReal t, Codim2Sample *x);
+  PetscErrorCode Multipliers(Codim2Stack &s, Codim2Sample *x, std::vector<std::complex<PetscReal>> *nontrivial);
   bool ByEnergy() const { return c_->kind != EventKind::Fold; } // the orbit's coordinate q: E (kinds 2, 3, 5), or omega at a fold
   PetscErrorCode Record(const Codim2Sample &x);
   PetscReal A(const Codim2Sample &x) const { return std::log((ByEnergy() ? x.energy : x.omega) / q0_); } // ln(q / q0): a curve over decades of E in few steps
@@ -230,6 +232,21 @@ PetscErrorCode Codim2Walk::StackAt(PetscReal p, Codim2Stack **s)
   PetscFunctionReturn(0);
 }
 
+// The multipliers of the orbit s.z (x's period and beta) on s's lattice,
+// eigenvalues only, into x->mu (Record writes them); nontrivial: those
+// without the trivial pair at +1 (NontrivialIndices).
+PetscErrorCode Codim2Walk::Multipliers(Codim2Stack &s, Codim2Sample *x, std::vector<std::complex<PetscReal>> *nontrivial)
+{
+  std::vector<PetscReal> re, im;
+  PetscFunctionBeginUser;
+  PetscCall(s.flow.IntegrateWithMonodromy(s.z, x->period, s.flow.FloquetBeta(x->beta), s.zT, s.S));
+  PetscCall(MonodromyMultipliers(s.S, 2 * s.lat.N(), &x->mu));
+  for (const auto &m : x->mu) re.push_back(m.real()), im.push_back(m.imag());
+  nontrivial->clear();
+  for (PetscInt j : NontrivialIndices(re.data(), im.data(), (PetscInt)re.size())) nontrivial->push_back(x->mu[j]);
+  PetscFunctionReturn(0);
+}
+
 // Kind 1: g = d ln E / d ln omega = -(T / E) dE/dT along the family at fixed p,
 // from the family tangent t at fixed T: the assembled shooting Jacobian with the
 // period row e_T (SetPeriodConstraint) solves J t = e_last, so t_T = 1 and
@@ -264,13 +281,9 @@ PetscErrorCode Codim2Walk::FoldTest(Codim2Stack &s, Codim2Sample *x)
 // and smooth through it (the locator's G is its square-root-free form in angles).
 PetscErrorCode Codim2Walk::HopfTest(Codim2Stack &s, Codim2Sample *x)
 {
-  using C = std::complex<PetscReal>;
-  FloquetResult r;
-  std::vector<C> mu;
+  std::vector<std::complex<PetscReal>> mu;
   PetscFunctionBeginUser;
-  PetscCall(s.flow.IntegrateWithMonodromy(s.z, x->period, s.flow.FloquetBeta(x->beta), s.zT, s.S));
-  PetscCall(FloquetAnalysis(s.lat, s.S, flo_, &r));
-  for (PetscInt j : NontrivialIndices(r.re.data(), r.im.data(), (PetscInt)r.re.size())) mu.emplace_back(r.re[j], r.im[j]);
+  PetscCall(Multipliers(s, x, &mu));
   HopfDiscriminant(mu, flo_.tol, bstar_, &x->g, &x->bmid); // (g stays NaN without two pairs to collide)
   PetscFunctionReturn(0);
 }
@@ -304,12 +317,9 @@ PetscErrorCode Codim2Walk::BranchTest(Codim2Stack &s, Codim2Sample *x) { return 
 PetscErrorCode Codim2Walk::PairTest(Codim2Stack &s, PetscReal t, Codim2Sample *x)
 {
   using C = std::complex<PetscReal>;
-  FloquetResult r;
-  PetscFunctionBeginUser;
-  PetscCall(s.flow.IntegrateWithMonodromy(s.z, x->period, s.flow.FloquetBeta(x->beta), s.zT, s.S));
-  PetscCall(FloquetAnalysis(s.lat, s.S, flo_, &r));
   std::vector<C> mu;
-  for (PetscInt j : NontrivialIndices(r.re.data(), r.im.data(), (PetscInt)r.re.size())) mu.emplace_back(r.re[j], r.im[j]);
+  PetscFunctionBeginUser;
+  PetscCall(Multipliers(s, x, &mu));
   if (mu.size() < 2) PetscFunctionReturn(0); // g stays NaN
   auto dist = [t](const C &u) { return std::abs(0.5 * (u + 1.0 / u) - t); };
   std::partial_sort(mu.begin(), mu.begin() + 2, mu.end(), [&](const C &u, const C &v) { return dist(u) < dist(v); });
@@ -367,31 +377,35 @@ PetscErrorCode Codim2Walk::Sample(PetscReal a, PetscReal b, const Codim2Sample &
 // Appends point x with its multipliers nearest the kind's critical point (+1 for a fold).
 PetscErrorCode Codim2Walk::Record(const Codim2Sample &x)
 {
-  Codim2Stack *s;
-  FloquetResult r;
+  std::vector<std::complex<PetscReal>> all = x.mu;
   PetscFunctionBeginUser;
-  PetscCall(StackAt(x.p, &s));
-  PetscCall(StateFromRow(s->lat, x.z0.data(), s->z));
-  PetscCall(s->flow.IntegrateWithMonodromy(s->z, x.period, s->flow.FloquetBeta(x.beta), s->zT, s->S));
-  PetscCall(FloquetAnalysis(s->lat, s->S, flo_, &r));
+  if (all.empty()) { // (the event's own start point: not sampled)
+    Codim2Stack *s;
+    Codim2Sample y = x;
+    std::vector<std::complex<PetscReal>> nontrivial;
+    PetscCall(StackAt(x.p, &s));
+    PetscCall(StateFromRow(s->lat, x.z0.data(), s->z));
+    PetscCall(Multipliers(*s, &y, &nontrivial));
+    all = y.mu;
+  }
   // nearest the critical point: +1 (fold, branch point: the trivial pair and the critical one), -1 (period doubling),
   // or in b = (mu + 1/mu)/2 to the colliding pairs' (Hamiltonian-Hopf)
   using C = std::complex<PetscReal>;
   const PetscReal crit = c_->kind == EventKind::PeriodDoubling ? -1 : 1;
   auto dist = [&](PetscInt i) {
-    const C mu(r.re[i], r.im[i]);
+    const C mu = all[i];
     return c_->kind == EventKind::HamiltonianHopf ? std::abs(0.5 * (mu + 1.0 / mu) - x.bmid) : std::abs(mu - crit);
   };
-  std::vector<PetscInt> idx(r.re.size());
+  std::vector<PetscInt> idx(all.size());
   for (size_t k = 0; k < idx.size(); k++) idx[k] = (PetscInt)k;
   std::sort(idx.begin(), idx.end(), [&](PetscInt i, PetscInt j) { return dist(i) < dist(j); });
   PetscReal mm = 0;
-  for (size_t k = 0; k < r.re.size(); k++) mm = std::max(mm, std::hypot(r.re[k], r.im[k]));
+  for (const C &mu : all) mm = std::max(mm, std::abs(mu));
   c_->p.push_back(x.p), c_->energy.push_back(x.energy), c_->omega.push_back(x.omega), c_->period.push_back(x.period), c_->test.push_back(x.g);
   c_->max_modulus.push_back(mm);
   for (PetscInt k = 0; k < Codim2Curve::kMultipliers; k++) {
     const bool have = (size_t)k < idx.size();
-    c_->mu_re.push_back(have ? r.re[idx[k]] : NAN), c_->mu_im.push_back(have ? r.im[idx[k]] : NAN);
+    c_->mu_re.push_back(have ? all[idx[k]].real() : NAN), c_->mu_im.push_back(have ? all[idx[k]].imag() : NAN);
   }
   PetscFunctionReturn(0);
 }
@@ -464,6 +478,65 @@ PetscErrorCode ContinueCodim2(MPI_Comm comm, const LatticeParams &base, const Fl
   PetscFunctionReturn(0);
 }
 
+namespace {
+
+// Each field in the order of Codim2Curve: a string or vector as its size, then its bytes.
+struct CurveBytes {
+  std::vector<char> b;
+  size_t at = 0;
+  template <typename T> void Put(const T &v) { b.insert(b.end(), (const char *)&v, (const char *)&v + sizeof v); }
+  template <typename T> void Put(const std::vector<T> &v)
+  {
+    Put(v.size());
+    b.insert(b.end(), (const char *)v.data(), (const char *)(v.data() + v.size()));
+  }
+  void Put(const std::string &s) { Put(std::vector<char>(s.begin(), s.end())); }
+  template <typename T> void Get(T *v)
+  {
+    std::copy(b.begin() + at, b.begin() + at + sizeof *v, (char *)v);
+    at += sizeof *v;
+  }
+  template <typename T> void Get(std::vector<T> *v)
+  {
+    size_t n;
+    Get(&n);
+    v->resize(n);
+    std::copy(b.begin() + at, b.begin() + at + n * sizeof(T), (char *)v->data());
+    at += n * sizeof(T);
+  }
+  void Get(std::string *s)
+  {
+    std::vector<char> c;
+    Get(&c);
+    s->assign(c.begin(), c.end());
+  }
+  template <typename C> void Fields(C &c, bool put)
+  {
+    auto f = [&](auto &x) { put ? Put(x) : Get(&x); };
+    f(c.name), f(c.kind), f(c.event), f(c.parameter), f(c.p), f(c.energy), f(c.omega), f(c.period), f(c.test), f(c.max_modulus), f(c.mu_re), f(c.mu_im);
+    f(c.event_point), f(c.point_kind), f(c.point_p), f(c.point_energy), f(c.point_omega), f(c.point_arc), f(c.stop_reason), f(c.solves), f(c.seconds);
+  }
+};
+
+} // namespace
+
+std::vector<char> PackCodim2Curve(const Codim2Curve &c)
+{
+  CurveBytes w;
+  Codim2Curve copy = c;
+  w.Fields(copy, true);
+  return w.b;
+}
+
+Codim2Curve UnpackCodim2Curve(const std::vector<char> &bytes)
+{
+  CurveBytes r;
+  Codim2Curve c;
+  r.b = bytes;
+  r.Fields(c, false);
+  return c;
+}
+
 bool HopfDiscriminant(const std::vector<std::complex<PetscReal>> &mu, PetscReal tol, PetscReal bstar, PetscReal *g, PetscReal *bmid)
 {
   using C = std::complex<PetscReal>;
@@ -504,6 +577,11 @@ std::vector<Codim2Crossing> Codim2Intersections(const std::vector<PetscReal> &p1
 
 namespace {
 
+// A curve whose E has fallen below 1e-4 of its start's runs into the linear
+// limit (E -> 0 at a finite p, the frequency shift's sign change there: ln E
+// grows without bound along it); the walk ends it there. (A closed form has E = 0.)
+bool AtLinearLimit(const Codim2Sample &x, const Codim2Sample &start) { return start.energy > 0 && x.energy <= 1e-4 * start.energy; }
+
 // Pseudo-arclength on g(a, b) = 0 (the head of codim2.hpp), on any Codim2Function.
 class Codim2Follower {
 public:
@@ -516,6 +594,12 @@ public:
 private:
   PetscErrorCode Gradient(const Codim2Sample &x, PetscReal grad[2], bool *ok);
   PetscErrorCode TurnAt(const Codim2Sample &x, const PetscReal tau[2], PetscReal s, Codim2Sample *xs, PetscReal *phi, bool *ok);
+  PetscErrorCode Phi(const Codim2Sample &x, const PetscReal tau[2], PetscReal *phi, bool *ok);
+  struct Step { // a step of the walk: from x along tau by ds
+    Codim2Sample x;
+    PetscReal tau[2], ds;
+  };
+  PetscErrorCode FindTurn(const Step &last, const Step &step, const Codim2Sample &nx, const PetscReal tau_n[2], PetscInt k, Codim2Trace::Point *q, bool *found);
   PetscErrorCode LocateTurn(const Codim2Sample &x, const PetscReal tau[2], PetscReal ds, PetscReal phi0, PetscReal phi1, Codim2Sample *xt, PetscReal *st);
 
   MPI_Comm comm_;
@@ -529,6 +613,21 @@ private:
   static constexpr PetscReal kMaxCorrection = 0.3; // a step's corrector moves the predicted point at most this times the step
   static constexpr PetscReal kMaxAngle = 0.3;      // and the tangent turns at most this (rad) over the step
 };
+
+// Broyden's rank-one update of grad along the step d that changed g by dg:
+// the change g itself saw, no sample more. Refused (false, grad kept) when it
+// would change grad by more than half its length: over a step that short the
+// change is g's noise, not its curvature (near E -> 0, where g is only as
+// exact as the orbit).
+bool Broyden(const PetscReal d[2], PetscReal dg, PetscReal grad[2])
+{
+  const PetscReal dd = d[0] * d[0] + d[1] * d[1];
+  if (!(dd > 0)) return true;
+  const PetscReal r = dg - (grad[0] * d[0] + grad[1] * d[1]);
+  if (!(std::abs(r) <= 0.5 * std::hypot(grad[0], grad[1]) * std::sqrt(dd))) return false;
+  grad[0] += r * d[0] / dd, grad[1] += r * d[1] / dd;
+  return true;
+}
 
 // grad g at x in the scaled plane, by forward differences (kH).
 PetscErrorCode Codim2Follower::Gradient(const Codim2Sample &x, PetscReal grad[2], bool *ok)
@@ -544,11 +643,13 @@ PetscErrorCode Codim2Follower::Gradient(const Codim2Sample &x, PetscReal grad[2]
 
 // Newton on [g(y); tau . (y - ypred)] from ypred (tau = 0: p fixed at ypred's, the
 // start point); *x the converged point, grad the gradient there. A secant
-// method: the gradient (two more samples) is the one given (have_grad: the
-// last point's, on a step of the walk) or taken at the first iterate, then
-// updated by Broyden's rank-one rule from each step's change of g, while the
-// steps shrink by half or more (else a new one); the converged point gets its
-// own (the tangent of the next step, and the distance test below).
+// method (Broyden's rank-one rule on each step's change of g, no samples
+// more): the gradient is the one given (have_grad: the last point's, on a
+// step of the walk; it is first updated along the predictor's step from
+// that point, which carries the curve's turn) or taken by differences at
+// the first iterate (two samples more), and again whenever a step did not
+// halve the last. The converged point is sampled at the iteration's limit,
+// with the updated gradient: the next step's tangent.
 PetscErrorCode Codim2Follower::Correct(const PetscReal ypred[2], const PetscReal tau[2], const Codim2Sample &from, Codim2Sample *x, PetscReal grad[2],
                                        PetscInt *its, bool *ok, bool have_grad)
 {
@@ -559,6 +660,7 @@ PetscErrorCode Codim2Follower::Correct(const PetscReal ypred[2], const PetscReal
   bool fresh = have_grad, gok = false;
   PetscFunctionBeginUser;
   *ok = false;
+  if (have_grad && from.ok && std::isfinite(from.g)) d[0] = ypred[0] - from.a, d[1] = ypred[1] - from.b, g_prev = from.g; // the predictor's step
   for (*its = 1; *its <= kMaxIts; (*its)++) {
     PetscCall(f_.Sample(y[0], y[1], cur, x));
     if (!x->ok) PetscFunctionReturn(0);
@@ -567,50 +669,63 @@ PetscErrorCode Codim2Follower::Correct(const PetscReal ypred[2], const PetscReal
       PetscCall(Gradient(*x, grad, &gok));
       if (!gok) PetscFunctionReturn(0);
       fresh = true;
-    } else if (*its > 1) { // Broyden's update along the last step: the gradient's change seen by g itself, no sample more
-      const PetscReal dd = d[0] * d[0] + d[1] * d[1], r = (x->g - g_prev) - (grad[0] * d[0] + grad[1] * d[1]);
-      if (dd > 0) grad[0] += r * d[0] / dd, grad[1] += r * d[1] / dd;
+    } else if (!Broyden(d, x->g - g_prev, grad)) { // the change is noise: a fresh gradient here
+      PetscCall(Gradient(*x, grad, &gok));
+      if (!gok) PetscFunctionReturn(0);
     }
     const PetscReal F[2] = {x->g, row[0] * (y[0] - ypred[0]) + row[1] * (y[1] - ypred[1])};
     const PetscReal det = grad[0] * row[1] - grad[1] * row[0];
     if (!(std::abs(det) > 0) || !std::isfinite(det)) PetscFunctionReturn(0);
     d[0] = -(F[0] * row[1] - grad[1] * F[1]) / det, d[1] = -(grad[0] * F[1] - row[0] * F[0]) / det;
-    y[0] += d[0], y[1] += d[1];
     g_prev = x->g;
     const PetscReal step = std::hypot(d[0], d[1]);
     if (step <= o_.tol) {
-      PetscCall(f_.Sample(y[0], y[1], cur, x)); // the point at the converged y
+      // the point at the iteration's limit: on the curve to about the square of the last step, so that
+      // where the walk puts its points does not drift with rounding (1 and 2 ranks give the same rows)
+      PetscCall(f_.Sample(y[0] + d[0], y[1] + d[1], cur, x));
       if (!x->ok) PetscFunctionReturn(0);
-      PetscCall(Gradient(*x, grad, &gok)); // its own gradient
-      // and g's first-order distance to its zero set is small (a tiny step from a
+      // g's first-order distance to its zero set is small (a tiny step from a
       // garbage gradient is no convergence; g itself is only as exact as the orbit)
       // (each kind's g is dimensionless and O(1) off the curve: kNoise bounds it
       // where the orbit solves are too imprecise for the gradient, near E -> 0)
-      *ok = gok && std::abs(x->g) <= o_.test_tol * std::hypot(grad[0], grad[1]) && std::abs(x->g) <= kNoise;
+      *ok = std::abs(x->g) <= o_.test_tol * std::hypot(grad[0], grad[1]) && std::abs(x->g) <= kNoise;
       PetscFunctionReturn(0);
     }
-    fresh = !(step <= 0.5 * last); // the secant iteration converges: keep updating its gradient; else a new one next
+    y[0] += d[0], y[1] += d[1];
+    fresh = step <= 0.5 * last; // the secant iteration converges: keep updating its gradient; else a new one next
     last = step;
   }
   PetscFunctionReturn(0);
 }
 
 // The curve at arclength s from x along tau (the corrector of a step of s), and
-// phi there: the b-component of its tangent (oriented as tau), from a central
-// difference of g in a (the forward one of the walk is off by O(kH)).
+// phi there: the b-component of its tangent (oriented as tau), from central
+// differences of g (the walk's secant gradient is good for a tangent, not
+// for locating where its b-component vanishes).
 PetscErrorCode Codim2Follower::TurnAt(const Codim2Sample &x, const PetscReal tau[2], PetscReal s, Codim2Sample *xs, PetscReal *phi, bool *ok)
 {
   PetscReal grad[2];
   PetscInt its;
-  Codim2Sample lo, hi;
   PetscFunctionBeginUser;
   const PetscReal yp[2] = {x.a + s * tau[0], x.b + s * tau[1]};
   PetscCall(Correct(yp, tau, x, xs, grad, &its, ok));
   if (!*ok) PetscFunctionReturn(0);
-  PetscCall(f_.Sample(xs->a - kH, xs->b, *xs, &lo));
-  PetscCall(f_.Sample(xs->a + kH, xs->b, *xs, &hi));
-  *ok = lo.ok && hi.ok;
-  const PetscReal ga = (hi.g - lo.g) / (2 * kH), gb = grad[1];
+  PetscCall(Phi(*xs, tau, phi, ok));
+  PetscFunctionReturn(0);
+}
+
+// phi at the curve's point x: the b-component of its unit tangent, oriented
+// as tau, from central differences of g (four samples).
+PetscErrorCode Codim2Follower::Phi(const Codim2Sample &x, const PetscReal tau[2], PetscReal *phi, bool *ok)
+{
+  Codim2Sample lo, hi, left, right;
+  PetscFunctionBeginUser;
+  PetscCall(f_.Sample(x.a - kH, x.b, x, &lo));
+  PetscCall(f_.Sample(x.a + kH, x.b, x, &hi));
+  PetscCall(f_.Sample(x.a, x.b - kH, x, &left));
+  PetscCall(f_.Sample(x.a, x.b + kH, x, &right));
+  *ok = lo.ok && hi.ok && left.ok && right.ok;
+  const PetscReal ga = (hi.g - lo.g) / (2 * kH), gb = (right.g - left.g) / (2 * kH);
   const PetscReal sign = -gb * tau[0] + ga * tau[1] < 0 ? -1 : 1; // the tangent (-gb, ga) oriented along tau
   *phi = sign * ga / std::hypot(ga, gb);
   PetscFunctionReturn(0);
@@ -651,6 +766,32 @@ PetscErrorCode Codim2Follower::LocateTurn(const Codim2Sample &x, const PetscReal
   PetscFunctionReturn(0);
 }
 
+// The turn in p that the walk's chords show around step.x (the point k of
+// this side, 0 the start): in the chord from last.x (if k > 0) or in the one
+// to nx, as the tangent at step.x says (accurate, from central differences;
+// the walk's secant tangents are not, near their sign change). q: the turn,
+// located by LocateTurn; arc its fractional row. found: false if the
+// tangents at the chord's ends do not change sign (no turn there to locate).
+PetscErrorCode Codim2Follower::FindTurn(const Step &last, const Step &step, const Codim2Sample &nx, const PetscReal tau_n[2], PetscInt k, Codim2Trace::Point *q,
+                                        bool *found)
+{
+  PetscReal phi_x, phi_o, st;
+  bool ok, ok_o;
+  PetscFunctionBeginUser;
+  *found = false;
+  PetscCall(Phi(step.x, step.tau, &phi_x, &ok));
+  if (!ok) PetscFunctionReturn(0);
+  const bool before = k > 0 && phi_x * (nx.b - step.x.b) > 0; // x is already past the turn: it lies in the chord from last.x
+  const Step &in = before ? last : step;
+  if (before) PetscCall(Phi(last.x, last.tau, &phi_o, &ok_o));
+  else PetscCall(Phi(nx, tau_n, &phi_o, &ok_o));
+  if (!ok_o || phi_x * phi_o >= 0) PetscFunctionReturn(0);
+  PetscCall(before ? LocateTurn(in.x, in.tau, in.ds, phi_o, phi_x, &q->x, &st) : LocateTurn(in.x, in.tau, in.ds, phi_x, phi_o, &q->x, &st));
+  q->arc = (PetscReal)(before ? k - 1 : k) + st / in.ds;
+  *found = true;
+  PetscFunctionReturn(0);
+}
+
 // From x0 along the curve in direction dir (+1: p grows at the start), into pts;
 // the turns in p on the way into turns (arc: the walk's fractional point index, 0 at x0).
 PetscErrorCode Codim2Follower::Walk(const Codim2Sample &x0, const PetscReal grad0[2], PetscInt dir, std::vector<Codim2Sample> *pts,
@@ -659,6 +800,7 @@ PetscErrorCode Codim2Follower::Walk(const Codim2Sample &x0, const PetscReal grad
   Codim2Sample x = x0;
   PetscReal tau[2], gx[2] = {grad0[0], grad0[1]}; // gx: the gradient at x
   PetscReal ds = o_.step;
+  Step last{}; // the step that reached x
   PetscFunctionBeginUser;
   *collapsed = false;
   f_.Accept(x0);
@@ -674,17 +816,29 @@ PetscErrorCode Codim2Follower::Walk(const Codim2Sample &x0, const PetscReal grad
     Codim2Sample nx;
     PetscReal ng[2];
     PetscInt its = 0;
-    bool ok = false;
-    while (!ok && ds >= o_.step_min) {
+    bool ok = false, refreshed = false;
+    for (bool retry = false; !ok && ds >= o_.step_min; retry = true) {
+      if (retry && !refreshed) { // the first failure: x's own gradient and tangent (the secant ones may have misled the step), same step
+        bool gok;
+        PetscCall(Gradient(x, gx, &gok));
+        refreshed = true;
+        if (gok) {
+          const PetscReal nn = std::hypot(gx[0], gx[1]), t0[2] = {-gx[1] / nn, gx[0] / nn}, o = t0[0] * tau[0] + t0[1] * tau[1] < 0 ? -1 : 1;
+          tau[0] = o * t0[0], tau[1] = o * t0[1];
+          ds *= 2; // (undoes the halving below: the failed step again, on the new tangent)
+        }
+      }
       const PetscReal yp[2] = {x.a + ds * tau[0], x.b + ds * tau[1]};
       ng[0] = gx[0], ng[1] = gx[1];
-      PetscCall(Correct(yp, tau, x, &nx, ng, &its, &ok, true));
+      PetscCall(Correct(yp, tau, x, &nx, ng, &its, &ok, !retry)); // (a retry: a fresh gradient, the last one may have misled it)
       // a step is taken only on the same curve: the corrector moved the point a fraction of the step, and
       // the tangent turned little (another curve near, e.g. the next collision of the same pairs, would
       // otherwise catch a long step)
       if (ok) {
         const PetscReal nn = std::hypot(ng[0], ng[1]), c = std::abs(-ng[1] / nn * tau[0] + ng[0] / nn * tau[1]);
         ok = std::hypot(nx.a - yp[0], nx.b - yp[1]) <= kMaxCorrection * ds && c >= std::cos(kMaxAngle);
+        // (a collision past +-1 is of real pairs off the circle: the Hamiltonian-Hopf curve ends at +-1, the steps collapse onto it)
+        ok = ok && !(f_.Collision() && std::abs(nx.bmid) > 1);
       }
       if (!ok) ds *= 0.5;
     }
@@ -694,20 +848,25 @@ PetscErrorCode Codim2Follower::Walk(const Codim2Sample &x0, const PetscReal grad
     }
     // past a bound of p or E: that point is kept (the curve crosses the window's edge) and the side ends
     const char *out = nx.p < o_.pmin ? "reached -cont_codim2_min" : nx.p > o_.pmax ? "reached -cont_codim2_max"
-                    : nx.energy < o_.emin ? "reached -cont_codim2_energy_min" : nx.energy > o_.emax ? "reached -cont_codim2_energy_max" : nullptr;
+                    : nx.energy < o_.emin ? "reached -cont_codim2_energy_min" : nx.energy > o_.emax ? "reached -cont_codim2_energy_max"
+                    : AtLinearLimit(nx, x0) ? "the linear limit (E below 1e-4 of the start's)" : nullptr;
     const PetscReal nn = std::hypot(ng[0], ng[1]);
     PetscReal nt[2] = {-ng[1] / nn, ng[0] / nn};
     if (nt[0] * tau[0] + nt[1] * tau[1] < 0) nt[0] = -nt[0], nt[1] = -nt[1];
-    if (tau[1] * nt[1] < 0) { // dp/ds changes sign: a turn in p between x and nx
+    const Step step{x, {tau[0], tau[1]}, ds};
+    // p is not monotone over the last two chords (the first: the start's tangent): a turn in p, in one of them
+    if ((pts->empty() ? tau[1] : x.b - last.x.b) * (nx.b - x.b) < 0) {
       Codim2Trace::Point q{Codim2PointKind::Turn, Codim2Sample(), 0};
-      PetscReal st;
-      PetscCall(LocateTurn(x, tau, ds, tau[1], nt[1], &q.x, &st));
-      q.arc = (PetscReal)pts->size() + st / ds;
-      turns->push_back(q);
-      if (o_.verbose)
-        PetscCall(PetscPrintf(comm_, "  [%s] %+d turn in p at %.10g (a = q/q0 %.10g) between points %zu and %zu\n", label_, (int)dir, (double)q.x.p,
-                              (double)q.x.a, pts->size(), pts->size() + 1));
+      bool found;
+      PetscCall(FindTurn(last, step, nx, nt, (PetscInt)pts->size(), &q, &found));
+      if (found) {
+        turns->push_back(q);
+        if (o_.verbose)
+          PetscCall(PetscPrintf(comm_, "  [%s] %+d turn in p at %.10g (a = q/q0 %.10g), row %.4f of this side\n", label_, (int)dir, (double)q.x.p, (double)q.x.a,
+                                (double)q.arc));
+      }
     }
+    last = step;
     tau[0] = nt[0], tau[1] = nt[1];
     gx[0] = ng[0], gx[1] = ng[1];
     x = nx;
@@ -734,6 +893,7 @@ PetscErrorCode Codim2Follower::Walk(const Codim2Sample &x0, const PetscReal grad
 Codim2PointKind EndKind(const Codim2Function &f, const Codim2Sample &last, const Codim2Sample &start, bool collapsed)
 {
   constexpr PetscReal kEdge = 1e-2, kLinear = 1e-2;
+  if (AtLinearLimit(last, start)) return Codim2PointKind::LinearLimit;
   if (!collapsed) return Codim2PointKind::End;
   if (f.Collision() && 1 - std::abs(last.bmid) <= kEdge) return last.bmid > 0 ? Codim2PointKind::CollisionPlus : Codim2PointKind::CollisionMinus;
   if (start.energy > 0 && last.energy <= kLinear * start.energy) return Codim2PointKind::LinearLimit;

@@ -38,7 +38,7 @@ struct Codim2Options {
   Codim2Parameter parameter = Codim2Parameter::Gamma;
   PetscReal pmin = -1e6, pmax = 1e6; // bounds of p (the parameter's own range applies too)
   PetscReal step = 0.02;             // first step, in the scaled plane (ln(q / q0), p / p0)
-  PetscReal step_min = 1e-6, step_max = 0.1;
+  PetscReal step_min = 1e-4, step_max = 0.1;
   PetscInt max_points = 60;  // per direction from the event
   PetscReal tol = 1e-10;     // corrector: the last Newton step in the scaled plane
   PetscReal test_tol = 1e-7; // and |g| / |grad g| at the converged point (the distance to the curve, scaled plane)
@@ -83,6 +83,11 @@ struct Codim2Curve {
   PetscReal seconds = 0;
 };
 
+// A curve as bytes and back (a curve followed by one group of ranks, sent to
+// the others); Unpack's bytes come from Pack of the same build.
+std::vector<char> PackCodim2Curve(const Codim2Curve &c);
+Codim2Curve UnpackCodim2Curve(const std::vector<char> &bytes);
+
 // The orbit of an event: z0 in natural order [u, v] (every rank), T, beta.
 struct Codim2Start {
   std::vector<PetscReal> z0;
@@ -109,6 +114,7 @@ struct Codim2Sample {
   PetscReal omega = 0, p = 0, energy = 0, period = 0, beta = 0, g = NAN;
   PetscReal bmid = 0;        // kind 5: the middle of the two colliding pairs' b (kind 3: -1, kind 1: +1)
   std::vector<PetscReal> z0; // the orbit (natural order, every rank); empty for a closed form
+  std::vector<std::complex<PetscReal>> mu; // the orbit's multipliers (all 2N, as the test function computed them); empty for a closed form
 };
 
 class Codim2Function {

@@ -87,6 +87,18 @@ PetscInt LeadingIndex(const std::vector<std::complex<PetscReal>> &mu, PetscReal 
 // similarity of M); other ranks get an empty vector. Collective.
 PetscErrorCode GatherMonodromy(Mat S, PetscInt n, std::vector<PetscReal> *a);
 
+// H = Q^T M Q of a (n x n, column-major; a keeps the reflectors below the
+// subdiagonal, tau their factors), H into h and its eigenvalues wr + i wi
+// (QR on a copy). work: LAPACK's workspace, kept for the later calls. Not collective.
+PetscErrorCode HessenbergEigenvalues(int n, PetscReal *a, std::vector<PetscReal> &tau, std::vector<PetscReal> &h, std::vector<PetscReal> &wr,
+                                     std::vector<PetscReal> &wi, std::vector<PetscReal> &work);
+
+// The multipliers (eigenvalues only) of the first n columns of S on every
+// rank: the monodromy gathered on rank 0, Hessenberg QR there, broadcast.
+// The test functions of the codim-2 curves need no eigenvectors, Krein
+// signatures or classes (FloquetAnalysis). Collective.
+PetscErrorCode MonodromyMultipliers(Mat S, PetscInt n, std::vector<std::complex<PetscReal>> *mu);
+
 // The real vector e^{i phi} v with the largest real part, unit norm, its
 // largest entry positive (an eigenvector's shape, whatever its phase).
 std::vector<PetscReal> RealPhase(const std::vector<std::complex<PetscReal>> &v);

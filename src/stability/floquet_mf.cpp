@@ -59,35 +59,6 @@ PetscInt MatrixFreeVerdict(const LeadingMultipliers &r, PetscReal tol)
 
 namespace {
 
-// H = Q^T M Q of a (n x n, column-major; a keeps the reflectors below the
-// subdiagonal, tau their factors), H into h and its eigenvalues wr + i wi
-// (QR on a copy). work: LAPACK's workspace, kept for the later calls.
-PetscErrorCode HessenbergEigenvalues(int n, PetscReal *a, std::vector<PetscReal> &tau, std::vector<PetscReal> &h, std::vector<PetscReal> &wr,
-                                     std::vector<PetscReal> &wi, std::vector<PetscReal> &work)
-{
-  const int one = 1;
-  int info = 0, lwork = -1;
-  PetscReal wq;
-  PetscFunctionBeginUser;
-  tau.assign(std::max(1, n - 1), 0.0), wr.assign(n, 0.0), wi.assign(n, 0.0);
-  dgehrd_(&n, &one, &n, a, &n, tau.data(), &wq, &lwork, &info);
-  work.assign((size_t)wq + 1, 0.0);
-  lwork = (int)work.size();
-  dgehrd_(&n, &one, &n, a, &n, tau.data(), work.data(), &lwork, &info);
-  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet (dense): LAPACK dgehrd failed, info %d (2N = %d)", info, n);
-  h.assign((size_t)n * n, 0.0);
-  for (int c = 0; c < n; c++)
-    for (int i = 0; i <= std::min(c + 1, n - 1); i++) h[(size_t)c * n + i] = a[(size_t)c * n + i];
-  std::vector<PetscReal> hq = h; // eigenvalues only (QR overwrites its copy)
-  lwork = -1;
-  dhseqr_("E", "N", &n, &one, &n, hq.data(), &n, wr.data(), wi.data(), NULL, &one, &wq, &lwork, &info, 1, 1);
-  work.resize(std::max<size_t>(work.size(), (size_t)wq + 1));
-  lwork = (int)work.size();
-  dhseqr_("E", "N", &n, &one, &n, hq.data(), &n, wr.data(), wi.data(), NULL, &one, work.data(), &lwork, &info, 1, 1);
-  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet (dense): LAPACK dhseqr failed, info %d (2N = %d)", info, n);
-  PetscFunctionReturn(0);
-}
-
 // The nev leading pairs of the multipliers mu (indices, as DenseLeadingPairs
 // orders them) and the largest nontrivial |mu|.
 std::vector<int> PickLeadingPairs(const std::vector<std::complex<PetscReal>> &mu, PetscInt nev, PetscReal tol, PetscReal *max_modulus)

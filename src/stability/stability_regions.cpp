@@ -1,5 +1,6 @@
 #include "stability/stability_regions.hpp"
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace nltopo {
@@ -41,6 +42,47 @@ std::vector<Crossing> AllCrossings(const std::vector<RegionCurve> &curves, Petsc
   return xs;
 }
 
+// The curve's point k in the plane (p, ln E); beyond the ends, the end's reflection through its neighbour.
+std::array<PetscReal, 2> PlanePoint(const RegionCurve &c, PetscInt k)
+{
+  const PetscInt n = (PetscInt)c.p.size();
+  auto at = [&](PetscInt i) { return std::array<PetscReal, 2>{c.p[i], std::log(c.energy[i])}; };
+  if (k < 0) return {2 * at(0)[0] - at(1)[0], 2 * at(0)[1] - at(1)[1]};
+  if (k >= n) return {2 * at(n - 1)[0] - at(n - 2)[0], 2 * at(n - 1)[1] - at(n - 2)[1]};
+  return at(k);
+}
+
+// ln E where segment k (points k, k + 1, whose p bracket pc) crosses the
+// column pc, on the centripetal Catmull-Rom spline through points k - 1 ..
+// k + 2 (Barry-Goldman's recursion): third order in the spacing, where a chord
+// is second order (the follower's steps grow to where the chord's sagitta
+// exceeds the map's -smap_same_curve_rtol), and without the loops a uniform
+// spline makes where points bunch (a step collapse). The root in the segment's
+// parameter by bisection.
+PetscReal CrossingLogEnergy(const RegionCurve &c, size_t k, PetscReal pc)
+{
+  using P = std::array<PetscReal, 2>;
+  const P q[4] = {PlanePoint(c, (PetscInt)k - 1), PlanePoint(c, (PetscInt)k), PlanePoint(c, (PetscInt)k + 1), PlanePoint(c, (PetscInt)k + 2)};
+  PetscReal t[4] = {0, 0, 0, 0};
+  for (int i = 1; i < 4; i++) t[i] = t[i - 1] + std::max(std::sqrt(std::hypot(q[i][0] - q[i - 1][0], q[i][1] - q[i - 1][1])), (PetscReal)1e-12);
+  auto lerp = [](const P &a, const P &b, PetscReal ta, PetscReal tb, PetscReal u) {
+    const PetscReal w = (u - ta) / (tb - ta);
+    return P{(1 - w) * a[0] + w * b[0], (1 - w) * a[1] + w * b[1]};
+  };
+  auto at = [&](PetscReal u) {
+    const P a1 = lerp(q[0], q[1], t[0], t[1], u), a2 = lerp(q[1], q[2], t[1], t[2], u), a3 = lerp(q[2], q[3], t[2], t[3], u);
+    return lerp(lerp(a1, a2, t[0], t[2], u), lerp(a2, a3, t[1], t[3], u), t[1], t[2], u);
+  };
+  PetscReal lo = t[1], hi = t[2];
+  const bool rising = q[2][0] > q[1][0];
+  for (int it = 0; it < 60; it++) {
+    const PetscReal mid = 0.5 * (lo + hi);
+    if ((at(mid)[0] < pc) == rising) lo = mid;
+    else hi = mid;
+  }
+  return at(0.5 * (lo + hi))[1];
+}
+
 } // namespace
 
 PetscInt UnstableSide(const RegionCurve &c, PetscInt event_row, PetscInt direction)
@@ -61,9 +103,8 @@ std::vector<Crossing> ColumnCrossings(const RegionCurve &c, PetscReal pc)
     // half-open in p, so that a column through a point counts one of its two segments
     const bool in = (p0 <= pc && pc < p1) || (p1 <= pc && pc < p0);
     if (!in) continue;
-    const PetscReal t = (pc - p0) / (p1 - p0);
     Crossing x;
-    x.energy = std::exp((1 - t) * std::log(c.energy[k]) + t * std::log(c.energy[k + 1]));
+    x.energy = std::exp(CrossingLogEnergy(c, k, pc));
     x.unstable_above = c.side * (p1 - p0) > 0;
     x.cls = c.cls;
     xs.push_back(x);

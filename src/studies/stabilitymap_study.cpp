@@ -50,6 +50,7 @@ struct MapOptions {
   PetscInt max_curves = 40;
   PetscReal same_curve_rtol = 1e-3;
   PetscBool seed_checks = PETSC_TRUE;
+  PetscInt group_size = 1;
 };
 
 const auto &kMapTable = DeclareOptionTable<MapOptions>(
@@ -81,7 +82,11 @@ const auto &kMapTable = DeclareOptionTable<MapOptions>(
                 "this, relative")
           .Bool("seed_checks", &M::seed_checks,
                 "An event of a -smap_check branch that no curve passes through starts a curve of its own (a bubble the run's p does not cross); 0: "
-                "the checks only check");
+                "the checks only check")
+          .Int("group_size", &M::group_size, Closed(1, 1000000),
+               "Ranks per curve: the ranks in groups of this many consecutive ones (PetscSubcomm), each group following one curve at a time (as many "
+               "curves at once as groups); must divide the number of ranks. The branches and checks use every rank",
+               OptionClass::Bookkeeping);
     });
 
 PetscErrorCode MapOptionsFromOptions(MPI_Comm comm, MapOptions *o)
@@ -232,7 +237,17 @@ protected:
   }
   PetscErrorCode Build() override
   {
+    PetscMPIInt size, rank;
     PetscFunctionBeginUser;
+    PetscCallMPI(MPI_Comm_size(comm_, &size));
+    PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+    PetscCheck(size % mo_.group_size == 0, comm_, PETSC_ERR_USER, "-smap_group_size %" PetscInt_FMT " must divide the number of ranks (%d)", mo_.group_size,
+               size);
+    groups_ = size / mo_.group_size, my_group_ = rank / mo_.group_size;
+    PetscCall(PetscSubcommCreate(comm_, &subcomm_));
+    PetscCall(PetscSubcommSetNumber(subcomm_, groups_));
+    PetscCall(PetscSubcommSetType(subcomm_, PETSC_SUBCOMM_CONTIGUOUS));
+    group_ = PetscSubcommChild(subcomm_);
     for (PetscInt i = 0; i < mo_.raster_p; i++) p_.push_back(c2o_.pmin + (c2o_.pmax - c2o_.pmin) * i / (mo_.raster_p - 1));
     const PetscReal l0 = std::log(mo_.energy_min), l1 = std::log(base_.co.energy_max);
     for (PetscInt j = 0; j < mo_.raster_energy; j++) energy_.push_back(std::exp(l0 + (l1 - l0) * j / (mo_.raster_energy - 1)));
@@ -296,6 +311,8 @@ private:
   PetscErrorCode MapSize(PetscInt cells);
   PetscErrorCode FollowEvents(NnmSetup &nnm, BifurcationLocator &loc, const std::vector<BifurcationEvent> &events, PetscReal p, PetscInt seed, SizeMap *sm,
                               std::vector<PetscInt> *event_curve);
+  PetscErrorCode FollowRound(NnmSetup &nnm, const std::vector<BifurcationEvent> &events, const std::vector<size_t> &round,
+                             const std::vector<Codim2Start> &starts, const std::string &label, std::vector<Codim2Curve> *got, std::vector<std::string> *failed);
   PetscErrorCode Check(PetscReal p);
   PetscErrorCode Label();
   PetscErrorCode WriteSize(PetscViewer v, const SizeMap &sm) const;
@@ -312,6 +329,12 @@ private:
   std::vector<SizeMap> sizes_;
   std::vector<CheckRun> checks_;
   bool labelled_ = false;
+  PetscSubcomm subcomm_ = nullptr;   // -smap_group_size: the groups of ranks that follow curves
+  MPI_Comm group_ = MPI_COMM_NULL;   // this rank's group
+  PetscInt groups_ = 1, my_group_ = 0;
+
+public:
+  ~StabilityMapStudy() override { PetscSubcommDestroy(&subcomm_); }
 };
 
 PetscErrorCode StabilityMapStudy::MapSize(PetscInt cells)
@@ -343,6 +366,9 @@ PetscErrorCode StabilityMapStudy::MapSize(PetscInt cells)
 // followed, in order; each one no curve of sm passes through starts a curve
 // (its instability's side from the event's direction). event_curve: per event,
 // the curve it lies on or starts (-1 not a kind followed, -2 not followed).
+// The curves are followed in rounds, one event per group of ranks
+// (-smap_group_size); an event whose curve an earlier one of its round passes
+// through was followed twice, and is then counted as lying on that curve.
 PetscErrorCode StabilityMapStudy::FollowEvents(NnmSetup &nnm, BifurcationLocator &loc, const std::vector<BifurcationEvent> &events, PetscReal p, PetscInt seed,
                                                SizeMap *sm, std::vector<PetscInt> *event_curve)
 {
@@ -350,42 +376,94 @@ PetscErrorCode StabilityMapStudy::FollowEvents(NnmSetup &nnm, BifurcationLocator
   event_curve->assign(events.size(), -1);
   for (size_t k = 0; k < events.size(); k++)
     if (Followed(events[k])) (*event_curve)[k] = -2; // (until followed: what a stop signal leaves)
-  for (size_t k = 0; k < events.size(); k++) {
-    const BifurcationEvent &e = events[k];
-    if (!Followed(e)) continue;
-    const PetscInt on = CurveThrough(*sm, e, p);
-    if (on >= 0) {
-      (*event_curve)[k] = on;
-      PetscCall(PetscPrintf(comm_, "  [N = %" PetscInt_FMT "] event %zu (%s, omega %.7f) lies on curve %s\n", sm->N, k, EventKindName(e.kind), (double)e.omega,
-                            sm->curves[on].c.name.c_str()));
-      continue;
+  const std::string label = mo_.branch + " N=" + std::to_string(sm->N);
+  for (size_t next = 0; next < events.size();) {
+    std::vector<size_t> round; // the round: the next events (at most one per group) no curve passes through
+    std::vector<Codim2Start> starts;
+    for (; next < events.size() && (PetscInt)round.size() < groups_; next++) {
+      const BifurcationEvent &e = events[next];
+      if (!Followed(e)) continue;
+      const PetscInt on = CurveThrough(*sm, e, p);
+      if (on >= 0) {
+        (*event_curve)[next] = on;
+        PetscCall(PetscPrintf(comm_, "  [N = %" PetscInt_FMT "] event %zu (%s, omega %.7f) lies on curve %s\n", sm->N, next, EventKindName(e.kind),
+                              (double)e.omega, sm->curves[on].c.name.c_str()));
+        continue;
+      }
+      if ((PetscInt)(sm->curves.size() + round.size()) >= mo_.max_curves || (seed >= 0 && !mo_.seed_checks)) continue;
+      Codim2Start st;
+      bool found;
+      PetscCall(EventOrbit(comm_, loc, nnm, e, &st, &found));
+      if (!found) {
+        PetscCall(PetscPrintf(comm_, "  [N = %" PetscInt_FMT "] warning: the orbit of event %zu (omega %g) was not found again; not followed\n", sm->N, next,
+                              (double)e.omega));
+        continue;
+      }
+      round.push_back(next), starts.push_back(std::move(st));
     }
-    (*event_curve)[k] = -2;
-    if ((PetscInt)sm->curves.size() >= mo_.max_curves || (seed >= 0 && !mo_.seed_checks)) continue;
-    Codim2Start st;
-    bool found;
-    PetscCall(EventOrbit(comm_, loc, nnm, e, &st, &found));
-    if (!found) {
-      PetscCall(PetscPrintf(comm_, "  [N = %" PetscInt_FMT "] warning: the orbit of event %zu (omega %g) was not found again; not followed\n", sm->N, k,
-                            (double)e.omega));
-      continue;
+    std::vector<Codim2Curve> got;
+    std::vector<std::string> failed;
+    PetscCall(FollowRound(nnm, events, round, starts, label, &got, &failed));
+    for (size_t j = 0; j < round.size(); j++) {
+      const size_t k = round[j];
+      const BifurcationEvent &e = events[k];
+      if (!failed[j].empty()) { // a numerical failure of one curve (its start not found again): listed, not followed; the map goes on
+        PetscCall(PetscPrintf(comm_, "  [N = %" PetscInt_FMT "] warning: event %zu (omega %g) not followed: %s\n", sm->N, k, (double)e.omega, failed[j].c_str()));
+        continue;
+      }
+      const PetscInt on = j > 0 ? CurveThrough(*sm, e, p) : -1;
+      if (on >= 0) {
+        (*event_curve)[k] = on;
+        PetscCall(PetscPrintf(comm_, "  [N = %" PetscInt_FMT "] event %zu (%s, omega %.7f) lies on curve %s (followed in the same round)\n", sm->N, k,
+                              EventKindName(e.kind), (double)e.omega, sm->curves[on].c.name.c_str()));
+        continue;
+      }
+      MapCurve m;
+      m.event = (PetscInt)k, m.cls = e.instability, m.direction = e.direction, m.seed = seed;
+      m.c = std::move(got[j]);
+      if (seed >= 0) m.c.name = "check" + std::to_string(seed) + "_" + m.c.name; // (its event's row is the check branch's)
+      m.side = UnstableSide(AsRegion(m), m.c.event_point, m.direction);
+      (*event_curve)[k] = (PetscInt)sm->curves.size();
+      sm->curves.push_back(std::move(m));
     }
-    MapCurve m;
-    m.event = (PetscInt)k, m.cls = e.instability, m.direction = e.direction, m.seed = seed;
-    const std::string label = mo_.branch + " N=" + std::to_string(sm->N);
-    PetscErrorCode ierr = 0;
-    char msg[512];
-    PetscCall(CaptureError([&]() { return ContinueCodim2(comm_, nnm.lp, nnm.fo, nnm.so, flo_, 1, c2o_, e, (PetscInt)k, st, label.c_str(), &m.c); }, &ierr, msg,
-                           sizeof msg));
-    if (IsInterrupt(ierr)) SETERRQ(comm_, PETSC_ERR_SIG, "%s", msg);
-    if (ierr) { // a numerical failure of one curve (its start not found again): listed, not followed; the map goes on
-      PetscCall(PetscPrintf(comm_, "  [N = %" PetscInt_FMT "] warning: event %zu (omega %g) not followed: %s\n", sm->N, k, (double)e.omega, msg));
-      continue;
-    }
-    if (seed >= 0) m.c.name = "check" + std::to_string(seed) + "_" + m.c.name; // (its event's row is the check branch's)
-    m.side = UnstableSide(AsRegion(m), m.c.event_point, m.direction);
-    (*event_curve)[k] = (PetscInt)sm->curves.size();
-    sm->curves.push_back(std::move(m));
+  }
+  PetscFunctionReturn(0);
+}
+
+// Group j follows the curve of events[round[j]] from starts[j] on its ranks;
+// every rank gets every curve (got), or its failure's message (failed, "" for
+// none). A stop signal in any group stops every rank (PETSC_ERR_SIG) after the round.
+PetscErrorCode StabilityMapStudy::FollowRound(NnmSetup &nnm, const std::vector<BifurcationEvent> &events, const std::vector<size_t> &round,
+                                              const std::vector<Codim2Start> &starts, const std::string &label, std::vector<Codim2Curve> *got,
+                                              std::vector<std::string> *failed)
+{
+  Codim2Curve mine;
+  PetscErrorCode ierr = 0;
+  char msg[512] = "";
+  PetscFunctionBeginUser;
+  if ((size_t)my_group_ < round.size()) {
+    const size_t k = round[my_group_];
+    PetscCall(CaptureError([&]() { return ContinueCodim2(group_, nnm.lp, nnm.fo, nnm.so, flo_, 1, c2o_, events[k], (PetscInt)k, starts[my_group_], label.c_str(), &mine); },
+                           &ierr, msg, sizeof msg));
+  }
+  PetscInt sig = IsInterrupt(ierr) ? 1 : 0;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &sig, 1, MPIU_INT, MPI_MAX, comm_));
+  if (sig) SETERRQ(comm_, PETSC_ERR_SIG, "stopped while following curves");
+  got->assign(round.size(), Codim2Curve()), failed->assign(round.size(), "");
+  for (size_t j = 0; j < round.size(); j++) { // from the group's first rank to every rank
+    const PetscMPIInt root = (PetscMPIInt)(j * mo_.group_size);
+    PetscInt code = ierr;
+    char m[sizeof msg];
+    std::copy(msg, msg + sizeof msg, m);
+    std::vector<char> bytes = (size_t)my_group_ == j ? PackCodim2Curve(mine) : std::vector<char>();
+    unsigned long long n = bytes.size();
+    PetscCallMPI(MPI_Bcast(&code, 1, MPIU_INT, root, comm_));
+    PetscCallMPI(MPI_Bcast(m, (PetscMPIInt)sizeof m, MPI_CHAR, root, comm_));
+    PetscCallMPI(MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG_LONG, root, comm_));
+    bytes.resize(n);
+    PetscCallMPI(MPI_Bcast(bytes.data(), (PetscMPIInt)n, MPI_CHAR, root, comm_));
+    if (code) (*failed)[j] = m[0] ? m : "failed";
+    else (*got)[j] = UnpackCodim2Curve(bytes);
   }
   PetscFunctionReturn(0);
 }

@@ -229,7 +229,9 @@ void RequireScaledCurve(const Codim2Curve &c, const char *what)
   for (size_t k = 0; k < n; k++) {
     worst_eg = std::max(worst_eg, std::abs(c.energy[k] * c.p[k] / EG - 1));
     worst_w = std::max(worst_w, std::abs(c.omega[k] / w - 1));
-    REQUIRE(std::abs(c.test[k]) <= 1e-6);
+    // the follower's own bound on g (kNoise): a converged point lies within -cont_codim2_tol of the curve,
+    // and a fold's g changes by ~1e4 per unit of ln omega (E(omega) is sharply curved at its maximum)
+    REQUIRE(std::abs(c.test[k]) <= 1e-5);
   }
   INFO("worst |E Gamma / (E Gamma)* - 1| " << worst_eg << ", worst |omega / omega* - 1| " << worst_w);
   PCHK(PetscPrintf(PETSC_COMM_WORLD,

@@ -112,3 +112,26 @@ TEST_CASE("stability regions: E-E wins over B-E, an open E-E boundary labels eve
   REQUIRE(bad == crossed);
   for (PetscInt l : lab2) REQUIRE(l == 0);
 }
+
+TEST_CASE("stability regions: a column's crossing of a curve is third order in the points' spacing (the curve, not its chords)", "[regions][serial]")
+{
+  // an arc of the ellipse (half of it, the upper side: one crossing per column), n and 2n points; the crossing's
+  // ln E against the ellipse's own, over the columns away from the arc's vertical ends
+  auto worst = [](PetscInt n) {
+    const PetscReal p0 = 0.45, E0 = 3, a = 0.3, b = 1.2;
+    RegionCurve c = Ellipse(p0, E0, a, b, 2 * n, 1, 0, 2);
+    c.p.resize(n + 1), c.energy.resize(n + 1); // t in [0, pi]
+    c.side = 1;
+    PetscReal w = 0;
+    for (PetscReal x = -0.8; x <= 0.8; x += 0.01) {
+      const std::vector<Crossing> xs = ColumnCrossings(c, p0 + a * x);
+      REQUIRE(xs.size() == 1);
+      w = std::max(w, std::abs(std::log(xs[0].energy / E0) - b * std::sqrt(1 - x * x)));
+    }
+    return w;
+  };
+  const PetscReal e16 = worst(16), e32 = worst(32);
+  INFO("largest |ln E - ln E(curve)|: " << e16 << " (16 points), " << e32 << " (32 points)");
+  REQUIRE(e16 / e32 >= 6); // the chords': 4
+  REQUIRE(e32 <= 1e-4);
+}

@@ -13,7 +13,7 @@ FIELDS = ("p", "energy", "omega", "period", "test")
 def curve():
     """The Hamiltonian-Hopf curve of event 0 in -lattice_gamma: kind 5, at least 6 points on each side of the
     event (row event_point, at the run's own gamma 0.4), p increasing along the rows over [0.35, 0.45] (one past each bound), the
-    test function zero along it; 1 and 2 ranks give the same curve to 1e-9 (relative)."""
+    test function zero along it; 1 and 2 ranks give the same curve (rows to 5e-8 relative: their places along it drift with rounding)."""
     a, b = group("c1.h5", CURVE), group("c2.h5", CURVE)
     require(a.attrs["kind"] == 5 and a.attrs["event"] == 0 and attr_str(a, "parameter") == "-lattice_gamma",
             dict(a.attrs))
@@ -26,7 +26,9 @@ def curve():
     for f in FIELDS[:4]:
         x, y = a[f][:], b[f][:]
         worst = max(worst, float(np.max(np.abs(x - y) / np.abs(x))))
-    require(worst <= 1e-9, worst)
+    # the rows: points on the curve to -cont_codim2_tol; where along it a row lies drifts with rounding (the walk's
+    # secant gradients, hence its tangents, differ in the last digits between rank counts): 1e-9 per step at most
+    require(worst <= 5e-8, worst)
     # its codim-2 points: no turn in p (p increases along the rows), both ends at the bounds of p (code 0, rows 0 and npts - 1)
     for g in (a, b):
         require(list(g["point_kind"][:]) == [0, 0] and list(g["point_arc"][:]) == [0, len(p) - 1], g["point_kind"][:], g["point_arc"][:])

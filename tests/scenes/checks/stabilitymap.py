@@ -67,7 +67,7 @@ def crossings_at(c, pc):
 
 
 def ranks(a_path, b_path):
-    """1 and 2 ranks: the same curves (to 1e-9 relative) and the same raster."""
+    """1 and 2 ranks: the same curves (rows to 5e-8 relative) and the same raster."""
     a, b = group(a_path, "/stabilitymap/cells5"), group(b_path, "/stabilitymap/cells5")
     require(attr_str(a, "curves") == attr_str(b, "curves"), attr_str(a, "curves"), attr_str(b, "curves"))
     require(np.array_equal(a["region"][:], b["region"][:]), "region rasters differ")
@@ -77,7 +77,7 @@ def ranks(a_path, b_path):
         require(x["p"].shape == y["p"].shape, name, x["p"].shape, y["p"].shape)
         for f in ("p", "energy", "omega"):
             worst = max(worst, float(np.max(np.abs(x[f][:] - y[f][:]) / np.abs(x[f][:]))))
-    require(worst <= 1e-9, worst)
+    require(worst <= 5e-8, worst)  # (rows on the curve to -cont_codim2_tol; their places along it drift with rounding, as in codim2.py)
     print("stabilitymap 1 vs 2 ranks: same curves (largest relative difference %.1e) and raster" % worst)
 
 
