@@ -587,7 +587,7 @@ class Codim2Follower {
 public:
   Codim2Follower(MPI_Comm comm, Codim2Function &f, const Codim2Options &o, const char *label) : comm_(comm), f_(f), o_(o), label_(label) {}
   PetscErrorCode Correct(const PetscReal ypred[2], const PetscReal tau[2], const Codim2Sample &from, Codim2Sample *x, PetscReal grad[2], PetscInt *its,
-                         bool *ok, bool have_grad = false);
+                         bool *ok, bool have_grad = false, PetscReal max_move = INFINITY);
   PetscErrorCode Walk(const Codim2Sample &x0, const PetscReal grad0[2], PetscInt dir, std::vector<Codim2Sample> *pts, std::vector<Codim2Trace::Point> *turns,
                       std::string *why, bool *collapsed);
 
@@ -649,9 +649,10 @@ PetscErrorCode Codim2Follower::Gradient(const Codim2Sample &x, PetscReal grad[2]
 // that point, which carries the curve's turn) or taken by differences at
 // the first iterate (two samples more), and again whenever a step did not
 // halve the last. The converged point is sampled at the iteration's limit,
-// with the updated gradient: the next step's tangent.
+// with the updated gradient: the next step's tangent. An iterate farther
+// than max_move from ypred ends it unconverged.
 PetscErrorCode Codim2Follower::Correct(const PetscReal ypred[2], const PetscReal tau[2], const Codim2Sample &from, Codim2Sample *x, PetscReal grad[2],
-                                       PetscInt *its, bool *ok, bool have_grad)
+                                       PetscInt *its, bool *ok, bool have_grad, PetscReal max_move)
 {
   PetscReal y[2] = {ypred[0], ypred[1]}, last = INFINITY, d[2] = {0, 0}, g_prev = 0;
   const bool fixed_p = tau[0] == 0 && tau[1] == 0;
@@ -692,6 +693,7 @@ PetscErrorCode Codim2Follower::Correct(const PetscReal ypred[2], const PetscReal
       PetscFunctionReturn(0);
     }
     y[0] += d[0], y[1] += d[1];
+    if (std::hypot(y[0] - ypred[0], y[1] - ypred[1]) > max_move) PetscFunctionReturn(0); // (the caller refuses a point this far: no more samples)
     fresh = step <= 0.5 * last; // the secant iteration converges: keep updating its gradient; else a new one next
     last = step;
   }
@@ -830,7 +832,7 @@ PetscErrorCode Codim2Follower::Walk(const Codim2Sample &x0, const PetscReal grad
       }
       const PetscReal yp[2] = {x.a + ds * tau[0], x.b + ds * tau[1]};
       ng[0] = gx[0], ng[1] = gx[1];
-      PetscCall(Correct(yp, tau, x, &nx, ng, &its, &ok, !retry)); // (a retry: a fresh gradient, the last one may have misled it)
+      PetscCall(Correct(yp, tau, x, &nx, ng, &its, &ok, !retry, 2 * kMaxCorrection * ds)); // (a retry: a fresh gradient, the last one may have misled it)
       // a step is taken only on the same curve: the corrector moved the point a fraction of the step, and
       // the tangent turned little (another curve near, e.g. the next collision of the same pairs, would
       // otherwise catch a long step)

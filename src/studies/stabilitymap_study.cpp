@@ -391,6 +391,11 @@ PetscErrorCode StabilityMapStudy::FollowEvents(NnmSetup &nnm, BifurcationLocator
         continue;
       }
       if ((PetscInt)(sm->curves.size() + round.size()) >= mo_.max_curves || (seed >= 0 && !mo_.seed_checks)) continue;
+      // one round holds no two events of a kind and class in opposite directions: likely the two ends of one
+      // bubble, the later one is left to the next round, where the earlier's curve may pass through it
+      bool pair = false;
+      for (size_t j : round) pair = pair || (events[j].kind == e.kind && events[j].instability == e.instability && events[j].direction == -e.direction);
+      if (pair) break;
       Codim2Start st;
       bool found;
       PetscCall(EventOrbit(comm_, loc, nnm, e, &st, &found));
