@@ -1,4 +1,5 @@
 #include "stability/codim2.hpp"
+#include "core/bytes.hpp"
 #include "core/gather.hpp"
 #include "core/log.hpp"
 #include "core/option_table.hpp"
@@ -478,63 +479,11 @@ PetscErrorCode ContinueCodim2(MPI_Comm comm, const LatticeParams &base, const Fl
   PetscFunctionReturn(0);
 }
 
-namespace {
-
-// Each field in the order of Codim2Curve: a string or vector as its size, then its bytes.
-struct CurveBytes {
-  std::vector<char> b;
-  size_t at = 0;
-  template <typename T> void Put(const T &v) { b.insert(b.end(), (const char *)&v, (const char *)&v + sizeof v); }
-  template <typename T> void Put(const std::vector<T> &v)
-  {
-    Put(v.size());
-    b.insert(b.end(), (const char *)v.data(), (const char *)(v.data() + v.size()));
-  }
-  void Put(const std::string &s) { Put(std::vector<char>(s.begin(), s.end())); }
-  template <typename T> void Get(T *v)
-  {
-    std::copy(b.begin() + at, b.begin() + at + sizeof *v, (char *)v);
-    at += sizeof *v;
-  }
-  template <typename T> void Get(std::vector<T> *v)
-  {
-    size_t n;
-    Get(&n);
-    v->resize(n);
-    std::copy(b.begin() + at, b.begin() + at + n * sizeof(T), (char *)v->data());
-    at += n * sizeof(T);
-  }
-  void Get(std::string *s)
-  {
-    std::vector<char> c;
-    Get(&c);
-    s->assign(c.begin(), c.end());
-  }
-  template <typename C> void Fields(C &c, bool put)
-  {
-    auto f = [&](auto &x) { put ? Put(x) : Get(&x); };
-    f(c.name), f(c.kind), f(c.event), f(c.parameter), f(c.p), f(c.energy), f(c.omega), f(c.period), f(c.test), f(c.max_modulus), f(c.mu_re), f(c.mu_im);
-    f(c.event_point), f(c.point_kind), f(c.point_p), f(c.point_energy), f(c.point_omega), f(c.point_arc), f(c.stop_reason), f(c.solves), f(c.seconds);
-  }
-};
-
-} // namespace
-
-std::vector<char> PackCodim2Curve(const Codim2Curve &c)
+void Codim2CurveFields(Codim2Curve &c, Bytes &w, bool put)
 {
-  CurveBytes w;
-  Codim2Curve copy = c;
-  w.Fields(copy, true);
-  return w.b;
-}
-
-Codim2Curve UnpackCodim2Curve(const std::vector<char> &bytes)
-{
-  CurveBytes r;
-  Codim2Curve c;
-  r.b = bytes;
-  r.Fields(c, false);
-  return c;
+  auto f = [&](auto &x) { w.Field(x, put); };
+  f(c.name), f(c.kind), f(c.event), f(c.parameter), f(c.p), f(c.energy), f(c.omega), f(c.period), f(c.test), f(c.max_modulus), f(c.mu_re), f(c.mu_im);
+  f(c.event_point), f(c.point_kind), f(c.point_p), f(c.point_energy), f(c.point_omega), f(c.point_arc), f(c.stop_reason), f(c.solves), f(c.seconds);
 }
 
 bool HopfDiscriminant(const std::vector<std::complex<PetscReal>> &mu, PetscReal tol, PetscReal bstar, PetscReal *g, PetscReal *bmid)

@@ -83,10 +83,10 @@ struct Codim2Curve {
   PetscReal seconds = 0;
 };
 
-// A curve as bytes and back (a curve followed by one group of ranks, sent to
-// the others); Unpack's bytes come from Pack of the same build.
-std::vector<char> PackCodim2Curve(const Codim2Curve &c);
-Codim2Curve UnpackCodim2Curve(const std::vector<char> &bytes);
+// A curve's fields to bytes (put) or from them, in one order (a curve
+// followed by one group of ranks, sent to the others).
+class Bytes;
+void Codim2CurveFields(Codim2Curve &c, Bytes &w, bool put);
 
 // The orbit of an event: z0 in natural order [u, v] (every rank), T, beta.
 struct Codim2Start {

@@ -11,6 +11,7 @@
 // label at each of their orbits. /stabilitymap of outputs.md.
 #include "studies/nnm_setup.hpp"
 #include "bands/bloch.hpp"
+#include "core/bytes.hpp"
 #include "core/errors.hpp"
 #include "core/log.hpp"
 #include "core/option_table.hpp"
@@ -36,8 +37,8 @@ namespace {
 
 constexpr const char *kRegionCodes = "0 stable; 1 B-B unstable; 2 B-E unstable; 3 E-E unstable";
 constexpr const char *kCurveSideCodes = "1 left of its direction of travel; -1 right; 0 unknown (no direction, or vertical at its event)";
-constexpr const char *kAgreeCodes = "1 the map's label equals the orbit's class; 0 it does not; -1 not compared (within -smap_same_curve_rtol of a curve, or below "
-                                    "-smap_energy_min)";
+constexpr const char *kAgreeCodes = "1 the map's label equals the orbit's class; 0 it does not; -1 not compared (within -smap_same_curve_rtol of a curve, or "
+                                    "outside [-smap_energy_min, -cont_energy_max])";
 
 struct MapOptions {
   std::vector<PetscReal> cells{5};
@@ -135,6 +136,35 @@ struct CheckRun {
   std::vector<PetscReal> event_offset; // per event: relative E distance to the nearest crossing of a curve of its kind at p
   PetscReal seconds = 0;
 };
+
+// Ranks that work together: comm, split into groups (group: this rank's) of
+// group_size consecutive ranks; each group follows one curve at a time.
+struct Team {
+  MPI_Comm comm, group;
+  PetscInt groups, my_group, group_size;
+};
+
+void MapCurveFields(MapCurve &m, Bytes &w, bool put)
+{
+  Codim2CurveFields(m.c, w, put);
+  w.Field(m.event, put), w.Field(m.cls, put), w.Field(m.direction, put), w.Field(m.side, put), w.Field(m.seed, put);
+}
+
+// A check branch, the curves its events seeded and its failure ("" none), as bytes or from them.
+void CheckFields(CheckRun &cr, std::vector<MapCurve> &seeds, std::string &failure, Bytes &w, bool put)
+{
+  w.Field(failure, put), w.Field(cr.p, put), w.Field(cr.seconds, put), w.Field(cr.b.energy, put), w.Field(cr.b.omega, put);
+  w.Field(cr.f.instability, put), w.Field(cr.event_curve, put);
+  size_t n = cr.events.size(), ns = seeds.size();
+  w.Field(n, put), w.Field(ns, put);
+  cr.events.resize(n), seeds.resize(ns);
+  for (BifurcationEvent &e : cr.events) { // (not its critical vector: the map draws no eigenvectors)
+    w.Field(e.kind, put), w.Field(e.direction, put), w.Field(e.point, put), w.Field(e.energy, put), w.Field(e.omega, put), w.Field(e.s, put);
+    w.Field(e.omega_bracket, put), w.Field(e.mu_re, put), w.Field(e.mu_im, put), w.Field(e.krein, put), w.Field(e.instability, put);
+    w.Field(e.sigma, put), w.Field(e.resonance, put);
+  }
+  for (MapCurve &m : seeds) MapCurveFields(m, w, put);
+}
 
 // The branch of nnm (built) continued with dense Floquet, its events located.
 PetscErrorCode BranchWithEvents(MPI_Comm comm, NnmSetup &nnm, const std::string &branch, const FloquetOptions &flo, const BifurcationOptions &bo,
@@ -260,7 +290,7 @@ protected:
                           Codim2ParameterOption(c2o_.parameter), Codim2ParameterOption(c2o_.parameter), (double)c2o_.pmin, (double)c2o_.pmax,
                           mo_.cells.size(), mo_.check.size()));
     for (PetscReal c : mo_.cells) PetscCall(MapSize((PetscInt)c));
-    for (PetscReal q : mo_.check) PetscCall(Check(q));
+    PetscCall(Checks());
     PetscCall(Label());
     PetscFunctionReturn(0);
   }
@@ -309,11 +339,14 @@ private:
     return -1;
   }
   PetscErrorCode MapSize(PetscInt cells);
-  PetscErrorCode FollowEvents(NnmSetup &nnm, BifurcationLocator &loc, const std::vector<BifurcationEvent> &events, PetscReal p, PetscInt seed, SizeMap *sm,
-                              std::vector<PetscInt> *event_curve);
-  PetscErrorCode FollowRound(NnmSetup &nnm, const std::vector<BifurcationEvent> &events, const std::vector<size_t> &round,
+  PetscErrorCode FollowEvents(const Team &t, NnmSetup &nnm, BifurcationLocator &loc, const std::vector<BifurcationEvent> &events, PetscReal p, PetscInt seed,
+                              SizeMap *sm, std::vector<PetscInt> *event_curve);
+  PetscErrorCode FollowRound(const Team &t, NnmSetup &nnm, const std::vector<BifurcationEvent> &events, const std::vector<size_t> &round,
                              const std::vector<Codim2Start> &starts, const std::string &label, std::vector<Codim2Curve> *got, std::vector<std::string> *failed);
-  PetscErrorCode Check(PetscReal p);
+  PetscErrorCode Checks();
+  PetscErrorCode RunCheck(const Team &t, PetscReal p, PetscInt seed, CheckRun *cr, std::vector<MapCurve> *seeds, std::string *failure);
+  void MergeCheck(CheckRun cr, std::vector<MapCurve> seeds, size_t first_seed_row);
+  Team All() const { return {comm_, group_, groups_, my_group_, mo_.group_size}; }
   PetscErrorCode Label();
   PetscErrorCode WriteSize(PetscViewer v, const SizeMap &sm) const;
   PetscErrorCode WriteCheck(PetscViewer v, size_t k, const CheckRun &cr) const;
@@ -354,7 +387,7 @@ PetscErrorCode StabilityMapStudy::MapSize(PetscInt cells)
   sm.b.z0.clear(); // the orbits are -study continuation's to keep; the map keeps its columns
   sizes_.push_back(std::move(sm)); // from here a stop signal writes the curves done (Interrupted)
   SizeMap &done = sizes_.back();
-  PetscCall(FollowEvents(*nnm, loc, done.events, done.p, -1, &done, &done.event_curve));
+  PetscCall(FollowEvents(All(), *nnm, loc, done.events, done.p, -1, &done, &done.event_curve));
   PetscCall(PetscTime(&t1));
   done.seconds = t1 - t0;
   PetscCall(PetscPrintf(comm_, "  [%s, N = %" PetscInt_FMT "] %zu events, %zu curves, %.1f s\n", mo_.branch.c_str(), done.N, done.events.size(),
@@ -369,8 +402,8 @@ PetscErrorCode StabilityMapStudy::MapSize(PetscInt cells)
 // The curves are followed in rounds, one event per group of ranks
 // (-smap_group_size); an event whose curve an earlier one of its round passes
 // through was followed twice, and is then counted as lying on that curve.
-PetscErrorCode StabilityMapStudy::FollowEvents(NnmSetup &nnm, BifurcationLocator &loc, const std::vector<BifurcationEvent> &events, PetscReal p, PetscInt seed,
-                                               SizeMap *sm, std::vector<PetscInt> *event_curve)
+PetscErrorCode StabilityMapStudy::FollowEvents(const Team &t, NnmSetup &nnm, BifurcationLocator &loc, const std::vector<BifurcationEvent> &events, PetscReal p,
+                                               PetscInt seed, SizeMap *sm, std::vector<PetscInt> *event_curve)
 {
   PetscFunctionBeginUser;
   event_curve->assign(events.size(), -1);
@@ -380,13 +413,13 @@ PetscErrorCode StabilityMapStudy::FollowEvents(NnmSetup &nnm, BifurcationLocator
   for (size_t next = 0; next < events.size();) {
     std::vector<size_t> round; // the round: the next events (at most one per group) no curve passes through
     std::vector<Codim2Start> starts;
-    for (; next < events.size() && (PetscInt)round.size() < groups_; next++) {
+    for (; next < events.size() && (PetscInt)round.size() < t.groups; next++) {
       const BifurcationEvent &e = events[next];
       if (!Followed(e)) continue;
       const PetscInt on = CurveThrough(*sm, e, p);
       if (on >= 0) {
         (*event_curve)[next] = on;
-        PetscCall(PetscPrintf(comm_, "  [N = %" PetscInt_FMT "] event %zu (%s, omega %.7f) lies on curve %s\n", sm->N, next, EventKindName(e.kind),
+        PetscCall(PetscPrintf(t.comm, "  [N = %" PetscInt_FMT "] event %zu (%s, omega %.7f) lies on curve %s\n", sm->N, next, EventKindName(e.kind),
                               (double)e.omega, sm->curves[on].c.name.c_str()));
         continue;
       }
@@ -398,9 +431,9 @@ PetscErrorCode StabilityMapStudy::FollowEvents(NnmSetup &nnm, BifurcationLocator
       if (pair) break;
       Codim2Start st;
       bool found;
-      PetscCall(EventOrbit(comm_, loc, nnm, e, &st, &found));
+      PetscCall(EventOrbit(t.comm, loc, nnm, e, &st, &found));
       if (!found) {
-        PetscCall(PetscPrintf(comm_, "  [N = %" PetscInt_FMT "] warning: the orbit of event %zu (omega %g) was not found again; not followed\n", sm->N, next,
+        PetscCall(PetscPrintf(t.comm, "  [N = %" PetscInt_FMT "] warning: the orbit of event %zu (omega %g) was not found again; not followed\n", sm->N, next,
                               (double)e.omega));
         continue;
       }
@@ -408,18 +441,18 @@ PetscErrorCode StabilityMapStudy::FollowEvents(NnmSetup &nnm, BifurcationLocator
     }
     std::vector<Codim2Curve> got;
     std::vector<std::string> failed;
-    PetscCall(FollowRound(nnm, events, round, starts, label, &got, &failed));
+    PetscCall(FollowRound(t, nnm, events, round, starts, label, &got, &failed));
     for (size_t j = 0; j < round.size(); j++) {
       const size_t k = round[j];
       const BifurcationEvent &e = events[k];
       if (!failed[j].empty()) { // a numerical failure of one curve (its start not found again): listed, not followed; the map goes on
-        PetscCall(PetscPrintf(comm_, "  [N = %" PetscInt_FMT "] warning: event %zu (omega %g) not followed: %s\n", sm->N, k, (double)e.omega, failed[j].c_str()));
+        PetscCall(PetscPrintf(t.comm, "  [N = %" PetscInt_FMT "] warning: event %zu (omega %g) not followed: %s\n", sm->N, k, (double)e.omega, failed[j].c_str()));
         continue;
       }
       const PetscInt on = j > 0 ? CurveThrough(*sm, e, p) : -1;
       if (on >= 0) {
         (*event_curve)[k] = on;
-        PetscCall(PetscPrintf(comm_, "  [N = %" PetscInt_FMT "] event %zu (%s, omega %.7f) lies on curve %s (followed in the same round)\n", sm->N, k,
+        PetscCall(PetscPrintf(t.comm, "  [N = %" PetscInt_FMT "] event %zu (%s, omega %.7f) lies on curve %s (followed in the same round)\n", sm->N, k,
                               EventKindName(e.kind), (double)e.omega, sm->curves[on].c.name.c_str()));
         continue;
       }
@@ -438,7 +471,7 @@ PetscErrorCode StabilityMapStudy::FollowEvents(NnmSetup &nnm, BifurcationLocator
 // Group j follows the curve of events[round[j]] from starts[j] on its ranks;
 // every rank gets every curve (got), or its failure's message (failed, "" for
 // none). A stop signal in any group stops every rank (PETSC_ERR_SIG) after the round.
-PetscErrorCode StabilityMapStudy::FollowRound(NnmSetup &nnm, const std::vector<BifurcationEvent> &events, const std::vector<size_t> &round,
+PetscErrorCode StabilityMapStudy::FollowRound(const Team &t, NnmSetup &nnm, const std::vector<BifurcationEvent> &events, const std::vector<size_t> &round,
                                               const std::vector<Codim2Start> &starts, const std::string &label, std::vector<Codim2Curve> *got,
                                               std::vector<std::string> *failed)
 {
@@ -446,63 +479,125 @@ PetscErrorCode StabilityMapStudy::FollowRound(NnmSetup &nnm, const std::vector<B
   PetscErrorCode ierr = 0;
   char msg[512] = "";
   PetscFunctionBeginUser;
-  if ((size_t)my_group_ < round.size()) {
-    const size_t k = round[my_group_];
-    PetscCall(CaptureError([&]() { return ContinueCodim2(group_, nnm.lp, nnm.fo, nnm.so, flo_, 1, c2o_, events[k], (PetscInt)k, starts[my_group_], label.c_str(), &mine); },
-                           &ierr, msg, sizeof msg));
+  if ((size_t)t.my_group < round.size()) {
+    const size_t k = round[t.my_group];
+    PetscCall(CaptureError(
+        [&]() { return ContinueCodim2(t.group, nnm.lp, nnm.fo, nnm.so, flo_, 1, c2o_, events[k], (PetscInt)k, starts[t.my_group], label.c_str(), &mine); },
+        &ierr, msg, sizeof msg));
   }
   PetscInt sig = IsInterrupt(ierr) ? 1 : 0;
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &sig, 1, MPIU_INT, MPI_MAX, comm_));
-  if (sig) SETERRQ(comm_, PETSC_ERR_SIG, "stopped while following curves");
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &sig, 1, MPIU_INT, MPI_MAX, t.comm));
+  if (sig) SETERRQ(t.comm, PETSC_ERR_SIG, "stopped while following curves");
   got->assign(round.size(), Codim2Curve()), failed->assign(round.size(), "");
   for (size_t j = 0; j < round.size(); j++) { // from the group's first rank to every rank
-    const PetscMPIInt root = (PetscMPIInt)(j * mo_.group_size);
-    PetscInt code = ierr;
-    char m[sizeof msg];
-    std::copy(msg, msg + sizeof msg, m);
-    std::vector<char> bytes = (size_t)my_group_ == j ? PackCodim2Curve(mine) : std::vector<char>();
-    unsigned long long n = bytes.size();
-    PetscCallMPI(MPI_Bcast(&code, 1, MPIU_INT, root, comm_));
-    PetscCallMPI(MPI_Bcast(m, (PetscMPIInt)sizeof m, MPI_CHAR, root, comm_));
-    PetscCallMPI(MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG_LONG, root, comm_));
-    bytes.resize(n);
-    PetscCallMPI(MPI_Bcast(bytes.data(), (PetscMPIInt)n, MPI_CHAR, root, comm_));
-    if (code) (*failed)[j] = m[0] ? m : "failed";
-    else (*got)[j] = UnpackCodim2Curve(bytes);
+    Bytes w;
+    std::string why = ierr ? (msg[0] ? msg : "failed") : "";
+    if ((size_t)t.my_group == j) w.Field(why, true), Codim2CurveFields(mine, w, true);
+    PetscCall(w.Bcast(t.comm, (PetscMPIInt)(j * t.group_size)));
+    w.Field((*failed)[j], false), Codim2CurveFields((*got)[j], w, false);
   }
   PetscFunctionReturn(0);
 }
 
-// The brute force at p: the branch as a one-parameter run at the first size,
-// each orbit's verdict against the map's label there, each event's distance
-// to the map's curves of its kind.
-PetscErrorCode StabilityMapStudy::Check(PetscReal p)
+// The brute force: the branches at the -smap_check values of p, one per group
+// of ranks at a time (RunCheck), each with the curves its events seeded;
+// every rank gets every check (in order) and its seeded curves (MergeCheck).
+PetscErrorCode StabilityMapStudy::Checks()
+{
+  const Team solo{group_, group_, 1, 0, mo_.group_size};
+  PetscFunctionBeginUser;
+  for (size_t r0 = 0; r0 < mo_.check.size(); r0 += (size_t)groups_) {
+    const size_t n = std::min(mo_.check.size() - r0, (size_t)groups_), first_seed_row = sizes_.front().curves.size();
+    CheckRun mine;
+    std::vector<MapCurve> seeds;
+    std::string failure;
+    PetscErrorCode ierr = 0;
+    char msg[512] = "";
+    if ((size_t)my_group_ < n) {
+      const size_t j = r0 + (size_t)my_group_;
+      PetscCall(CaptureError([&]() { return RunCheck(solo, mo_.check[j], (PetscInt)j, &mine, &seeds, &failure); }, &ierr, msg, sizeof msg));
+      if (ierr && !IsInterrupt(ierr)) failure = msg;
+    }
+    PetscInt sig = IsInterrupt(ierr) ? 1 : 0;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &sig, 1, MPIU_INT, MPI_MAX, comm_));
+    if (sig) SETERRQ(comm_, PETSC_ERR_SIG, "stopped in the check branches");
+    for (size_t j = 0; j < n; j++) {
+      Bytes w;
+      CheckRun cr;
+      std::vector<MapCurve> sd;
+      std::string why;
+      if ((size_t)my_group_ == j) CheckFields(mine, seeds, failure, w, true);
+      PetscCall(w.Bcast(comm_, (PetscMPIInt)(j * mo_.group_size)));
+      CheckFields(cr, sd, why, w, false);
+      if (!why.empty()) { // a numerical failure of one check branch: said, left out; the map and the other checks go on
+        PetscCall(PetscPrintf(comm_, "  [check %s %g] warning: the branch failed (%s); this check is left out\n", Codim2ParameterOption(c2o_.parameter),
+                              (double)mo_.check[r0 + j], why.c_str()));
+        continue;
+      }
+      MergeCheck(std::move(cr), std::move(sd), first_seed_row);
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+// The brute force at p on team t: the branch as a one-parameter run at the
+// first size; the curves its events seed (seed: the check's index among
+// -smap_check) into seeds, not into the first size's curves (MergeCheck puts
+// them there). A failure of the branch: *failure, and no error.
+PetscErrorCode StabilityMapStudy::RunCheck(const Team &t, PetscReal p, PetscInt seed, CheckRun *cr, std::vector<MapCurve> *seeds, std::string *failure)
 {
   PetscLogDouble t0, t1;
   BifurcationLocator loc;
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t0));
-  const SizeMap &sm = sizes_.front();
-  CheckRun cr;
-  cr.p = p;
+  SizeMap &sm = sizes_.front();
+  cr->p = p;
   auto nnm = std::make_unique<NnmSetup>();
   Adopt(nnm.get(), sm.cells, p);
-  PetscCall(nnm->Build(comm_, "-study stabilitymap"));
-  PetscCall(PetscPrintf(comm_, "  [check, N = %" PetscInt_FMT "] the branch at %s %g\n", sm.N, Codim2ParameterOption(c2o_.parameter), (double)p));
+  PetscCall(nnm->Build(t.comm, "-study stabilitymap"));
+  PetscCall(PetscPrintf(t.comm, "  [check, N = %" PetscInt_FMT "] the branch at %s %g\n", sm.N, Codim2ParameterOption(c2o_.parameter), (double)p));
   PetscErrorCode ierr = 0;
   char msg[512];
-  PetscCall(CaptureError([&]() { return BranchWithEvents(comm_, *nnm, mo_.branch, flo_, bo_, &loc, &cr.b, &cr.f, &cr.events); }, &ierr, msg, sizeof msg));
-  if (IsInterrupt(ierr)) SETERRQ(comm_, PETSC_ERR_SIG, "%s", msg);
-  if (ierr) { // a numerical failure of one check branch: said, left out; the map and the other checks go on
-    PetscCall(PetscPrintf(comm_, "  [check %s %g] warning: the branch failed (%s); this check is left out\n", Codim2ParameterOption(c2o_.parameter), (double)p, msg));
+  PetscCall(CaptureError([&]() { return BranchWithEvents(t.comm, *nnm, mo_.branch, flo_, bo_, &loc, &cr->b, &cr->f, &cr->events); }, &ierr, msg, sizeof msg));
+  if (IsInterrupt(ierr)) SETERRQ(t.comm, PETSC_ERR_SIG, "%s", msg);
+  if (ierr) {
+    *failure = msg;
     PetscFunctionReturn(0);
   }
-  PetscCall(FollowEvents(*nnm, loc, cr.events, p, (PetscInt)checks_.size(), &sizes_.front(), &cr.event_curve));
+  const size_t n0 = sm.curves.size();
+  PetscCall(FollowEvents(t, *nnm, loc, cr->events, p, seed, &sm, &cr->event_curve));
+  seeds->assign(std::make_move_iterator(sm.curves.begin() + n0), std::make_move_iterator(sm.curves.end()));
+  sm.curves.resize(n0); // (every rank's first size keeps the same curves until MergeCheck)
   PetscCall(PetscTime(&t1));
-  cr.seconds = t1 - t0;
-  cr.b.z0.clear();
-  checks_.push_back(std::move(cr));
+  cr->seconds = t1 - t0;
+  cr->b.z0.clear();
   PetscFunctionReturn(0);
+}
+
+// Check cr (run with the first size's first_seed_row curves: its event_curve
+// rows from there on are its seeds) joins checks_; a seed that a curve merged
+// since passes through (another check of its round seeded the same bubble)
+// is dropped for that curve, the others join the first size's curves.
+void StabilityMapStudy::MergeCheck(CheckRun cr, std::vector<MapCurve> seeds, size_t first_seed_row)
+{
+  SizeMap &sm = sizes_.front();
+  const PetscInt idx = (PetscInt)checks_.size();
+  std::vector<PetscInt> row(seeds.size()); // each seed's row in the first size's curves
+  for (size_t i = 0; i < seeds.size(); i++) {
+    MapCurve &m = seeds[i];
+    const PetscInt on = CurveThrough(sm, cr.events[m.event], cr.p);
+    if (on >= 0) {
+      row[i] = on;
+      continue;
+    }
+    const size_t cut = m.c.name.find('_');
+    m.seed = idx, m.c.name = "check" + std::to_string(idx) + (cut == std::string::npos ? "_" + m.c.name : m.c.name.substr(cut));
+    row[i] = (PetscInt)sm.curves.size();
+    sm.curves.push_back(std::move(m));
+  }
+  for (PetscInt &ec : cr.event_curve)
+    if (ec >= (PetscInt)first_seed_row) ec = row[ec - first_seed_row];
+  checks_.push_back(std::move(cr));
 }
 
 // The raster of each size from its curves; each check orbit's class against
@@ -536,7 +631,7 @@ PetscErrorCode StabilityMapStudy::Label()
       bool near = false;
       for (const RegionCurve &r : rc)
         for (const Crossing &x : ColumnCrossings(r, cr.p)) near = near || std::abs(x.energy - E) <= mo_.same_curve_rtol * E;
-      const PetscInt a = near || E < mo_.energy_min ? -1 : (lab == got ? 1 : 0);
+      const PetscInt a = near || E < mo_.energy_min || E > base_.co.energy_max ? -1 : (lab == got ? 1 : 0); // (outside the map's window: not mapped)
       cr.map_label.push_back(lab), cr.agree.push_back(a);
       if (a >= 0) compared++, agree += a;
     }
