@@ -152,6 +152,7 @@ const std::vector<BadCase> &OptionCases()
       {"-smap_check 0.9 lies outside", "-study stabilitymap -smap_cells 5 -cont_codim2_min 0.3 -cont_codim2_max 0.5 -smap_check 0.9"},
       {"-smap_kinds 4: the kinds followed", "-study stabilitymap -smap_cells 5 -cont_codim2_min 0.3 -cont_codim2_max 0.5 -smap_kinds 5,4"},
       {"-smap_cells 2.5: cells per side are integers", "-study stabilitymap -smap_cells 2.5 -cont_codim2_min 0.3 -cont_codim2_max 0.5"},
+      {"-smap_group_size 3 must divide the number of ranks", "-study stabilitymap -smap_cells 5 -cont_codim2_min 0.3 -cont_codim2_max 0.5 -smap_group_size 3"},
       {"-study stabilitymap locates the branch's events", "-study stabilitymap -smap_cells 5 -cont_codim2_min 0.3 -cont_codim2_max 0.5 -cont_bifurcations 0"},
       // resource guard: the estimate is named before anything is allocated
       {"-lattice_cells must lie in 1..2500000, got 20000000", "-study simulate -lattice_cells 20000000 -sim_t_final 1000"},
