@@ -166,26 +166,10 @@ void VectorShares(const std::vector<PetscReal> &v, const LocalizedRegion &reg, c
 PetscErrorCode LocalizedEigen(PetscInt n2_, PetscReal *a, const LocalizedRegion &reg, const std::vector<PetscReal> &f, PetscInt nev, const FloquetOptions &fo,
                               LocalizedSpectrum *out)
 {
-  const int n = (int)n2_, one = 1;
-  int info = 0, lwork = -1;
-  PetscReal wq;
+  const int n = (int)n2_;
+  std::vector<PetscReal> tau, h, wr, wi, work;
   PetscFunctionBeginUser;
-  std::vector<PetscReal> tau(std::max(1, n - 1)), wr(n), wi(n);
-  dgehrd_(&n, &one, &n, a, &n, tau.data(), &wq, &lwork, &info);
-  std::vector<PetscReal> work((size_t)wq + 1);
-  lwork = (int)work.size();
-  dgehrd_(&n, &one, &n, a, &n, tau.data(), work.data(), &lwork, &info);
-  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "localized Floquet: LAPACK dgehrd failed, info %d (2n = %d)", info, n);
-  std::vector<PetscReal> h((size_t)n * n, 0.0);
-  for (int c = 0; c < n; c++)
-    for (int i = 0; i <= std::min(c + 1, n - 1); i++) h[(size_t)c * n + i] = a[(size_t)c * n + i];
-  std::vector<PetscReal> hq = h;
-  lwork = -1;
-  dhseqr_("E", "N", &n, &one, &n, hq.data(), &n, wr.data(), wi.data(), NULL, &one, &wq, &lwork, &info, 1, 1);
-  work.resize(std::max<size_t>(work.size(), (size_t)wq + 1));
-  lwork = (int)work.size();
-  dhseqr_("E", "N", &n, &one, &n, hq.data(), &n, wr.data(), wi.data(), NULL, &one, work.data(), &lwork, &info, 1, 1);
-  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "localized Floquet: LAPACK dhseqr failed, info %d (2n = %d)", info, n);
+  PetscCall(HessenbergEigenvalues(n, a, tau, h, wr, wi, work));
   out->all.resize(n);
   for (int i = 0; i < n; i++) out->all[i] = {wr[i], wi[i]};
   // The trivial pair: within 1e-2 of 1 and along f(z0) (the time shift; its
