@@ -34,8 +34,8 @@ CODIM2_POINT = ("0 end of the curve (a bound, -cont_codim2_max_points or step co
 # the stability map (/stabilitymap): its regions, which side of a curve is unstable, whether a check orbit agrees
 REGION = "0 stable; 1 B-B unstable; 2 B-E unstable; 3 E-E unstable"
 CURVE_SIDE = "1 left of its direction of travel; -1 right; 0 unknown (no direction, or vertical at its event)"
-AGREE = ("1 the map's label equals the orbit's class; 0 it does not; -1 not compared (within -smap_same_curve_rtol of a curve, or below "
-         "-smap_energy_min)")
+AGREE = ("1 the map's label equals the orbit's class; 0 it does not; -1 not compared (within -smap_same_curve_rtol of a curve, or "
+         "outside [-smap_energy_min, -cont_energy_max])")
 # the Krein resonance map (/continuation/<branch>/krein_map): open is a bitmask, the sum of its classes' bits
 KREIN_PAIRS = ("0 none; 1 AA (acoustic + acoustic); 2 AO (acoustic + optical); 4 OO (optical + optical); "
                "8 EA (localised + acoustic); 16 EO (localised + optical); "

@@ -141,7 +141,7 @@ T = {
     "smap_cells": ("reals", 1, 5), "smap_branch": ("enum", 0, 0, ["insulated", "interface", "mode0", "nope"]),
     "smap_kinds": ("reals", 1, 5), "smap_classes": ("reals", 1, 3), "smap_check": ("reals", 0.1, 0.8), "smap_raster_p": ("int", 2, 50), "smap_raster_energy": ("int", 2, 50),
     "smap_energy_min": ("real", 1e-3, 1.0), "smap_max_curves": ("int", 1, 5), "smap_same_curve_rtol": ("real", 1e-6, 0.1),
-    "smap_seed_checks": ("bool",),
+    "smap_seed_checks": ("bool",), "smap_group_size": ("int", 1, 3),
     "cont_branch": ("strings", 0, 0, ["insulated", "interface", "acoustic_top", "optical_bottom", "optical_top", "mode3", "7"]),
     "nnm_steps_per_period": ("int", 8, 64), "nnm_monodromy": ("enum", 0, 0, ["variational", "tsforward"]),
     "nnm_jacobian": ("enum", 0, 0, ["dense", "mf"]), "nnm_start_dense_max": ("int", 0, 100),
