@@ -12,6 +12,9 @@ void dhseqr_(const char *job, const char *compz, const int *n, const int *ilo, c
 void dhsein_(const char *side, const char *eigsrc, const char *initv, int *select, const int *n, const double *h, const int *ldh, double *wr, const double *wi,
              double *vl, const int *ldvl, double *vr, const int *ldvr, const int *mm, int *m, double *work, int *ifaill, int *ifailr, int *info, size_t, size_t,
              size_t);
+void dorghr_(const int *n, const int *ilo, const int *ihi, double *a, const int *lda, const double *tau, double *work, const int *lwork, int *info);
+void dtrsen_(const char *job, const char *compq, const int *select, const int *n, double *t, const int *ldt, double *q, const int *ldq, double *wr, double *wi,
+             int *m, double *s, double *sep, double *work, const int *lwork, int *iwork, const int *liwork, int *info, size_t, size_t);
 void dormhr_(const char *side, const char *trans, const int *m, const int *n, const int *ilo, const int *ihi, const double *a, const int *lda,
              const double *tau, double *c, const int *ldc, double *work, const int *lwork, int *info, size_t, size_t);
 }

@@ -1,6 +1,7 @@
 #include "stability/codim2.hpp"
 #include "core/bytes.hpp"
 #include "core/gather.hpp"
+#include "stability/collision_subspace.hpp"
 #include "core/log.hpp"
 #include "core/option_table.hpp"
 #include "effects/effect.hpp"
@@ -183,7 +184,7 @@ public:
   }
   PetscErrorCode Run(const Codim2Start &start, const BifurcationEvent &e);
   PetscErrorCode Sample(PetscReal a, PetscReal b, const Codim2Sample &from, Codim2Sample *x) override;
-  void Accept(const Codim2Sample &x) override { bstar_ = x.bmid; } // the collision moves along the curve
+  void Accept(const Codim2Sample &x) override { bstar_ = x.bmid, basis_ = x.basis; } // the collision moves along the curve
   bool Collision() const override { return c_->kind == EventKind::HamiltonianHopf; }
 
 private:
@@ -211,6 +212,7 @@ private:
   Codim2Curve *c_;
   PetscReal q0_ = 1, p0_ = 1;                        // scales of the plane: the event's q and p (1 if p = 0)
   PetscReal bstar_ = 0;                              // kind 5: where the two colliding pairs' b = (mu + 1/mu)/2 meet (followed along the curve)
+  std::vector<PetscReal> basis_;                     // kind 5: their invariant subspace at the last point (rank 0)
   std::vector<std::unique_ptr<Codim2Stack>> stacks_; // the lattices of the last two values of p (a gradient alternates between them)
 };
 
@@ -275,17 +277,31 @@ PetscErrorCode Codim2Walk::FoldTest(Codim2Stack &s, Codim2Sample *x)
 
 // Kind 5: B = (M + M^-1)/2 has b = (mu + 1/mu)/2 for each pair; a pair on the
 // circle gives a real b = cos(theta) in [-1, 1], a quadruplet's two upper members
-// give b and conj(b). The two colliding pairs are the two values of b nearest
-// b* (where they meet), and g = Re (b1 - b2)^2 is the discriminant of B on
+// give b and conj(b). The two colliding pairs are, among the values of b
+// nearest b* (where they meet), the two whose invariant subspace continues
+// the last point's (TrackCollision; at the start: the two nearest b*), and
+// g = Re (b1 - b2)^2 is the discriminant of B on
 // their 4-dim invariant subspace (B is 2 x 2 on one vector per pair): > 0 on
 // the circle side, < 0 for the quadruplet, 0 at the non-semisimple double b,
 // and smooth through it (the locator's G is its square-root-free form in angles).
 PetscErrorCode Codim2Walk::HopfTest(Codim2Stack &s, Codim2Sample *x)
 {
-  std::vector<std::complex<PetscReal>> mu;
+  const PetscInt n = 2 * s.lat.N();
+  std::vector<PetscReal> a;
+  CollisionChoice c;
+  PetscMPIInt rank;
   PetscFunctionBeginUser;
-  PetscCall(Multipliers(s, x, &mu));
-  HopfDiscriminant(mu, flo_.tol, bstar_, &x->g, &x->bmid); // (g stays NaN without two pairs to collide)
+  PetscCall(s.flow.IntegrateWithMonodromy(s.z, x->period, s.flow.FloquetBeta(x->beta), s.zT, s.S));
+  PetscCall(GatherMonodromy(s.S, n, &a));
+  PetscCallMPI(MPI_Comm_rank(s.lat.Comm(), &rank));
+  // the pairs whose subspace continues the last point's, among those nearest b* (rank 0, then every rank)
+  if (rank == 0) PetscCall(TrackCollision((int)n, a.data(), flo_.tol, bstar_, basis_, &c));
+  PetscReal head[3] = {c.ok ? 1.0 : 0.0, c.g, c.bmid};
+  PetscCallMPI(MPI_Bcast(head, 3, MPIU_REAL, 0, s.lat.Comm()));
+  c.mu.resize(n);
+  PetscCallMPI(MPI_Bcast(c.mu.data(), (PetscMPIInt)(2 * n), MPIU_REAL, 0, s.lat.Comm()));
+  x->mu = std::move(c.mu), x->basis = std::move(c.basis);
+  if (head[0] != 0) x->g = head[1], x->bmid = head[2]; // (g stays NaN without two pairs to collide)
   PetscFunctionReturn(0);
 }
 

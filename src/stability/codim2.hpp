@@ -115,6 +115,7 @@ struct Codim2Sample {
   PetscReal bmid = 0;        // kind 5: the middle of the two colliding pairs' b (kind 3: -1, kind 1: +1)
   std::vector<PetscReal> z0; // the orbit (natural order, every rank); empty for a closed form
   std::vector<std::complex<PetscReal>> mu; // the orbit's multipliers (all 2N, as the test function computed them); empty for a closed form
+  std::vector<PetscReal> basis;            // kind 5: the colliding pairs' invariant subspace (2N x 4, rank 0; stability/collision_subspace.hpp)
 };
 
 class Codim2Function {

@@ -11,6 +11,7 @@
 #include "stability/bifurcation_locator.hpp"
 #include "stability/branch_switch.hpp"
 #include "stability/codim2.hpp"
+#include "stability/collision_subspace.hpp"
 #include <array>
 #include <cmath>
 #include <petscblaslapack.h>
@@ -302,11 +303,11 @@ public:
 
 private:
   PetscReal bstar_ = 0;
-  // The four multipliers: eigenvalues of M = exp(T A), A = J Hess H in z = (q1, q2, p1, p2)
-  // (scaling and squaring of the Taylor series; LAPACK dgeev).
-  static PetscErrorCode Multipliers(PetscReal w1s, PetscReal w2s, PetscReal c, std::vector<std::complex<PetscReal>> *mu)
+public:
+  using M4 = std::array<PetscReal, 16>; // row-major
+  // M = exp(T A), A = J Hess H in z = (q1, q2, p1, p2) (scaling and squaring of the Taylor series).
+  static M4 Monodromy(PetscReal w1s, PetscReal w2s, PetscReal c)
   {
-    using M4 = std::array<PetscReal, 16>; // row-major
     auto mul = [](const M4 &x, const M4 &y) {
       M4 z{};
       for (int i = 0; i < 4; i++)
@@ -328,6 +329,14 @@ private:
       for (int i = 0; i < 16; i++) E[i] += term[i];
     }
     for (int k = 0; k < sq; k++) E = mul(E, E);
+    return E;
+  }
+
+private:
+  // The four multipliers: eigenvalues of the monodromy (LAPACK dgeev).
+  static PetscErrorCode Multipliers(PetscReal w1s, PetscReal w2s, PetscReal c, std::vector<std::complex<PetscReal>> *mu)
+  {
+    const M4 E = Monodromy(w1s, w2s, c);
     PetscScalar a[16], work[64], vl[1], vr[1];
     PetscReal wr[4], wi[4];
     for (int i = 0; i < 4; i++)
@@ -387,6 +396,58 @@ TEST_CASE("codim-2: a constructed pair's Hamiltonian-Hopf curve |c| = |w1^2 - w2
     REQUIRE((sign > 0 ? lo : hi).kind == Codim2PointKind::End);
     REQUIRE((sign > 0 ? t.why_down : t.why_up) == (sign > 0 ? "reached -cont_codim2_min" : "reached -cont_codim2_max"));
   }
+}
+
+TEST_CASE("codim-2: the colliding pairs are told apart by their invariant subspace, not by the nearest b (a third pair between them)", "[codim2]")
+{
+  // The constructed pair on the circle side near its collision (a = 1.5, c = 0.37 < r(a) = 0.375): b1, b2
+  // around b* = (b1 + b2)/2, and a third oscillator (frequency wc, b = cos(wc T)) between them, nearer b*
+  // than either: the two nearest b* pair it with one of them. The 6 x 6 monodromy blockdiag(M_pair, M_c) is
+  // rotated by an orthogonal Q (the eigenvalues and the subspaces' geometry kept); the last point's subspace
+  // is the pair's own coordinates, Q's first four columns.
+  const PetscReal a = 1.5, c = 0.37, r = OppositePair::R(a), s = OppositePair::S(a), d = std::sqrt(r * r - c * c);
+  const PetscReal b1 = std::cos(std::sqrt(s + d) * OppositePair::kT), b2 = std::cos(std::sqrt(s - d) * OppositePair::kT);
+  const PetscReal bstar = 0.5 * (b1 + b2), bc = bstar + 0.1 * (b2 - b1), wc = std::acos(bc) / OppositePair::kT;
+  const OppositePair::M4 P = OppositePair::Monodromy(s + r, s - r, c);
+  const int n = 6;
+  std::vector<PetscReal> M(n * n, 0.0), Q(n * n), A(n * n, 0.0); // M, A row-major; Q column-major (its columns orthonormal)
+  for (int i = 0; i < 4; i++)
+    for (int j = 0; j < 4; j++) M[n * i + j] = P[4 * i + j];
+  // q' = p, p' = -wc^2 q over T: [[cos, sin / wc], [-wc sin, cos]]
+  M[n * 4 + 4] = std::cos(wc * OppositePair::kT), M[n * 4 + 5] = std::sin(wc * OppositePair::kT) / wc;
+  M[n * 5 + 4] = -wc * std::sin(wc * OppositePair::kT), M[n * 5 + 5] = std::cos(wc * OppositePair::kT);
+  for (int k = 0; k < n * n; k++) Q[k] = std::sin(1.0 + 7.3 * k) + (k % (n + 1) == 0 ? 2.0 : 0.0); // Gram-Schmidt below
+  for (int j = 0; j < n; j++) {
+    for (int i = 0; i < j; i++) {
+      PetscReal dot = 0;
+      for (int k = 0; k < n; k++) dot += Q[n * i + k] * Q[n * j + k];
+      for (int k = 0; k < n; k++) Q[n * j + k] -= dot * Q[n * i + k];
+    }
+    PetscReal nrm = 0;
+    for (int k = 0; k < n; k++) nrm += Q[n * j + k] * Q[n * j + k];
+    for (int k = 0; k < n; k++) Q[n * j + k] /= std::sqrt(nrm);
+  }
+  // A = Q M Q^T, column-major for LAPACK: A[col * n + row]
+  for (int i = 0; i < n; i++)
+    for (int j = 0; j < n; j++)
+      for (int k = 0; k < n; k++)
+        for (int l = 0; l < n; l++) A[n * j + i] += Q[n * k + i] * M[n * k + l] * Q[n * l + j];
+  const std::vector<PetscReal> prev(Q.begin(), Q.begin() + 4 * n);
+  const PetscReal truth = (b1 - b2) * (b1 - b2);
+  CollisionChoice tracked, nearest;
+  std::vector<PetscReal> A2 = A;
+  PCHK(TrackCollision(n, A.data(), 1e-6, bstar, prev, &tracked));
+  PCHK(TrackCollision(n, A2.data(), 1e-6, bstar, {}, &nearest));
+  INFO("b1 " << b1 << ", b2 " << b2 << ", third " << bc << "; g tracked " << tracked.g << " (overlap " << tracked.overlap << "), nearest two "
+             << nearest.g << ", truth " << truth);
+  REQUIRE(tracked.ok);
+  REQUIRE(std::abs(tracked.g - truth) <= 1e-10 * truth);
+  REQUIRE(std::abs(tracked.bmid - bstar) <= 1e-10);
+  REQUIRE(tracked.overlap >= 1 - 1e-10);
+  REQUIRE(nearest.ok);
+  REQUIRE(std::abs(nearest.g - truth) > 0.5 * truth); // the nearest two are not the pair
+  PCHK(PetscPrintf(PETSC_COMM_WORLD, "  codim2 collision subspace: g tracked %.6e (truth %.6e, overlap %.12f), nearest two in b %.6e\n", (double)tracked.g,
+                   (double)truth, (double)tracked.overlap, (double)nearest.g));
 }
 
 TEST_CASE("codim-2: the curve is smooth through a turning point in p, located at p's extremum (the constructed pair)", "[codim2]")
