@@ -30,6 +30,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <numeric>
 
 namespace nltopo {
 
@@ -341,6 +342,9 @@ private:
   PetscErrorCode MapSize(PetscInt cells);
   PetscErrorCode FollowEvents(const Team &t, NnmSetup &nnm, BifurcationLocator &loc, const std::vector<BifurcationEvent> &events, PetscReal p, PetscInt seed,
                               SizeMap *sm, std::vector<PetscInt> *event_curve);
+  PetscErrorCode PickRound(const Team &t, NnmSetup &nnm, BifurcationLocator &loc, const std::vector<BifurcationEvent> &events, PetscReal p, PetscInt seed,
+                           SizeMap *sm, std::vector<PetscInt> *event_curve, std::vector<size_t> *pending, std::vector<size_t> *round,
+                           std::vector<Codim2Start> *starts);
   PetscErrorCode FollowRound(const Team &t, NnmSetup &nnm, const std::vector<BifurcationEvent> &events, const std::vector<size_t> &round,
                              const std::vector<Codim2Start> &starts, const std::string &label, std::vector<Codim2Curve> *got, std::vector<std::string> *failed);
   PetscErrorCode Checks();
@@ -410,35 +414,14 @@ PetscErrorCode StabilityMapStudy::FollowEvents(const Team &t, NnmSetup &nnm, Bif
   for (size_t k = 0; k < events.size(); k++)
     if (Followed(events[k])) (*event_curve)[k] = -2; // (until followed: what a stop signal leaves)
   const std::string label = mo_.branch + " N=" + std::to_string(sm->N);
-  for (size_t next = 0; next < events.size();) {
-    std::vector<size_t> round; // the round: the next events (at most one per group) no curve passes through
+  const size_t n0 = sm->curves.size();
+  std::vector<size_t> pending; // the events of the kinds followed, neither on a curve nor followed yet
+  for (size_t k = 0; k < events.size(); k++)
+    if (Followed(events[k])) pending.push_back(k);
+  while (!pending.empty()) {
+    std::vector<size_t> round; // the round: at most one event per group
     std::vector<Codim2Start> starts;
-    for (; next < events.size() && (PetscInt)round.size() < t.groups; next++) {
-      const BifurcationEvent &e = events[next];
-      if (!Followed(e)) continue;
-      const PetscInt on = CurveThrough(*sm, e, p);
-      if (on >= 0) {
-        (*event_curve)[next] = on;
-        PetscCall(PetscPrintf(t.comm, "  [N = %" PetscInt_FMT "] event %zu (%s, omega %.7f) lies on curve %s\n", sm->N, next, EventKindName(e.kind),
-                              (double)e.omega, sm->curves[on].c.name.c_str()));
-        continue;
-      }
-      if ((PetscInt)(sm->curves.size() + round.size()) >= mo_.max_curves || (seed >= 0 && !mo_.seed_checks)) continue;
-      // one round holds no two events of a kind and class in opposite directions: likely the two ends of one
-      // bubble, the later one is left to the next round, where the earlier's curve may pass through it
-      bool pair = false;
-      for (size_t j : round) pair = pair || (events[j].kind == e.kind && events[j].instability == e.instability && events[j].direction == -e.direction);
-      if (pair) break;
-      Codim2Start st;
-      bool found;
-      PetscCall(EventOrbit(t.comm, loc, nnm, e, &st, &found));
-      if (!found) {
-        PetscCall(PetscPrintf(t.comm, "  [N = %" PetscInt_FMT "] warning: the orbit of event %zu (omega %g) was not found again; not followed\n", sm->N, next,
-                              (double)e.omega));
-        continue;
-      }
-      round.push_back(next), starts.push_back(std::move(st));
-    }
+    PetscCall(PickRound(t, nnm, loc, events, p, seed, sm, event_curve, &pending, &round, &starts));
     std::vector<Codim2Curve> got;
     std::vector<std::string> failed;
     PetscCall(FollowRound(t, nnm, events, round, starts, label, &got, &failed));
@@ -464,6 +447,62 @@ PetscErrorCode StabilityMapStudy::FollowEvents(const Team &t, NnmSetup &nnm, Bif
       (*event_curve)[k] = (PetscInt)sm->curves.size();
       sm->curves.push_back(std::move(m));
     }
+  }
+  // the new curves in the order of their events, whatever the rounds were (the same rows at any number of groups)
+  std::vector<size_t> order(sm->curves.size() - n0), row(order.size());
+  std::iota(order.begin(), order.end(), n0);
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return sm->curves[a].event < sm->curves[b].event; });
+  std::vector<MapCurve> sorted;
+  for (size_t i = 0; i < order.size(); i++) row[order[i] - n0] = n0 + i, sorted.push_back(std::move(sm->curves[order[i]]));
+  std::move(sorted.begin(), sorted.end(), sm->curves.begin() + (std::ptrdiff_t)n0);
+  for (PetscInt &ec : *event_curve)
+    if (ec >= (PetscInt)n0) ec = (PetscInt)row[ec - n0];
+  PetscFunctionReturn(0);
+}
+
+// The next round from pending (in order; each pick removes from pending the
+// events it takes, those a curve passes through, and those not followed):
+// at most t.groups events no curve passes through, with their orbits. A
+// round holds no two events of a kind and class in opposite directions
+// (likely the two ends of one bubble: the later one waits, and the earlier's
+// curve may pass through it) unless a group would otherwise be idle.
+PetscErrorCode StabilityMapStudy::PickRound(const Team &t, NnmSetup &nnm, BifurcationLocator &loc, const std::vector<BifurcationEvent> &events, PetscReal p,
+                                            PetscInt seed, SizeMap *sm, std::vector<PetscInt> *event_curve, std::vector<size_t> *pending,
+                                            std::vector<size_t> *round, std::vector<Codim2Start> *starts)
+{
+  std::vector<size_t> open, chosen;
+  PetscFunctionBeginUser;
+  for (size_t k : *pending) {
+    const BifurcationEvent &e = events[k];
+    const PetscInt on = CurveThrough(*sm, e, p);
+    if (on >= 0) {
+      (*event_curve)[k] = on;
+      PetscCall(PetscPrintf(t.comm, "  [N = %" PetscInt_FMT "] event %zu (%s, omega %.7f) lies on curve %s\n", sm->N, k, EventKindName(e.kind), (double)e.omega,
+                            sm->curves[on].c.name.c_str()));
+    } else if ((PetscInt)sm->curves.size() + (PetscInt)open.size() < mo_.max_curves && !(seed >= 0 && !mo_.seed_checks)) open.push_back(k);
+  }
+  auto paired = [&](size_t k) {
+    for (size_t j : chosen)
+      if (events[j].kind == events[k].kind && events[j].instability == events[k].instability && events[j].direction == -events[k].direction) return true;
+    return false;
+  };
+  for (bool strict : {true, false})
+    for (size_t k : open)
+      if ((PetscInt)chosen.size() < t.groups && std::find(chosen.begin(), chosen.end(), k) == chosen.end() && !(strict && paired(k))) chosen.push_back(k);
+  std::sort(chosen.begin(), chosen.end());
+  pending->clear();
+  for (size_t k : open)
+    if (std::find(chosen.begin(), chosen.end(), k) == chosen.end()) pending->push_back(k);
+  for (size_t k : chosen) {
+    Codim2Start st;
+    bool found;
+    PetscCall(EventOrbit(t.comm, loc, nnm, events[k], &st, &found));
+    if (!found) {
+      PetscCall(PetscPrintf(t.comm, "  [N = %" PetscInt_FMT "] warning: the orbit of event %zu (omega %g) was not found again; not followed\n", sm->N, k,
+                            (double)events[k].omega));
+      continue;
+    }
+    round->push_back(k), starts->push_back(std::move(st));
   }
   PetscFunctionReturn(0);
 }
