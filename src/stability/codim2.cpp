@@ -1,5 +1,6 @@
 #include "stability/codim2.hpp"
 #include "core/bytes.hpp"
+#include "core/errors.hpp"
 #include "core/gather.hpp"
 #include "stability/collision_subspace.hpp"
 #include "core/log.hpp"
@@ -295,7 +296,10 @@ PetscErrorCode Codim2Walk::HopfTest(Codim2Stack &s, Codim2Sample *x)
   PetscCall(GatherMonodromy(s.S, n, &a));
   PetscCallMPI(MPI_Comm_rank(s.lat.Comm(), &rank));
   // the pairs whose subspace continues the last point's, among those nearest b* (rank 0, then every rank)
-  if (rank == 0) PetscCall(TrackCollision((int)n, a.data(), flo_.tol, bstar_, basis_, &c));
+  PetscErrorCode ierr = 0;
+  char msg[256] = "";
+  if (rank == 0) PetscCall(CaptureError([&]() { return TrackCollision((int)n, a.data(), flo_.tol, bstar_, basis_, &c); }, &ierr, msg, sizeof msg));
+  PetscCall(FailTogether(s.lat.Comm(), ierr, msg)); // (rank 0's LAPACK failure: every rank, not a wait in the broadcast)
   PetscReal head[3] = {c.ok ? 1.0 : 0.0, c.g, c.bmid};
   PetscCallMPI(MPI_Bcast(head, 3, MPIU_REAL, 0, s.lat.Comm()));
   c.mu.resize(n);

@@ -1,4 +1,5 @@
 #include "stability/floquet.hpp"
+#include "core/errors.hpp"
 #include "core/gather.hpp"
 #include "core/lapack.hpp"
 #include "core/log.hpp"
@@ -113,7 +114,10 @@ PetscErrorCode MonodromyMultipliers(Mat S, PetscInt n, std::vector<std::complex<
   PetscCall(PetscLogEventBegin(Log().floquet_eigenvalues, 0, 0, 0, 0));
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCall(GatherMonodromy(S, n, &a));
-  if (rank == 0) PetscCall(HessenbergEigenvalues((int)n, a.data(), tau, h, wr, wi, work));
+  PetscErrorCode ierr = 0;
+  char msg[256] = "";
+  if (rank == 0) PetscCall(CaptureError([&]() { return HessenbergEigenvalues((int)n, a.data(), tau, h, wr, wi, work); }, &ierr, msg, sizeof msg));
+  PetscCall(FailTogether(comm, ierr, msg)); // (rank 0's LAPACK failure: every rank, not a wait in the broadcast)
   PetscCallMPI(MPI_Bcast(wr.data(), (PetscMPIInt)n, MPIU_REAL, 0, comm));
   PetscCallMPI(MPI_Bcast(wi.data(), (PetscMPIInt)n, MPIU_REAL, 0, comm));
   mu->resize(n);
