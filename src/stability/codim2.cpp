@@ -506,23 +506,6 @@ void Codim2CurveFields(Codim2Curve &c, Bytes &w, bool put)
   f(c.event_point), f(c.point_kind), f(c.point_p), f(c.point_energy), f(c.point_omega), f(c.point_arc), f(c.stop_reason), f(c.solves), f(c.seconds);
 }
 
-bool HopfDiscriminant(const std::vector<std::complex<PetscReal>> &mu, PetscReal tol, PetscReal bstar, PetscReal *g, PetscReal *bmid)
-{
-  using C = std::complex<PetscReal>;
-  std::vector<C> b;
-  for (const C &m : mu)
-    if (m.imag() > tol * std::abs(m)) b.push_back(0.5 * (m + 1.0 / m)); // upper members (a real pair: a branch point or period doubling, not these)
-  if (b.size() < 2) return false;                                       // no two pairs to collide
-  std::partial_sort(b.begin(), b.begin() + 2, b.end(), [&](const C &u, const C &v) { return std::abs(u - bstar) < std::abs(v - bstar); });
-  // the two colliding pairs' b are both real (on the circle) or conjugate (a quadruplet's): Im (b1 + b2) = 0,
-  // a trace over their invariant subspace, exact to rounding even at the Jordan block. A real b and an
-  // unrelated quadruplet's b are no collision, and Re (b1 - b2)^2 has spurious zeros there (|Re d| = |Im d|)
-  if (std::abs(std::imag(b[0] + b[1])) > 2 * tol) return false;
-  *g = std::real((b[0] - b[1]) * (b[0] - b[1]));
-  *bmid = 0.5 * std::real(b[0] + b[1]);
-  return true;
-}
-
 std::vector<Codim2Crossing> Codim2Intersections(const std::vector<PetscReal> &p1, const std::vector<PetscReal> &e1, const std::vector<PetscReal> &p2,
                                                 const std::vector<PetscReal> &e2)
 {

@@ -150,13 +150,6 @@ struct Codim2Trace {
 // classifying both ends. label: the messages' prefix.
 PetscErrorCode FollowCodim2(MPI_Comm comm, Codim2Function &f, const Codim2Options &o, const Codim2Sample &guess, const char *label, Codim2Trace *t);
 
-// The Hamiltonian-Hopf test function on a list of nontrivial multipliers: the
-// upper members' b = (mu + 1/mu)/2, the two nearest bstar, g = Re (b1 - b2)^2
-// (their discriminant) and bmid = Re (b1 + b2)/2; false (g left alone) with
-// fewer than two, or when they are not both real or conjugate (abs(Im (b1 + b2))
-// > 2 tol: no collision). tol: an upper member has Im mu > tol |mu| (a real pair is not one).
-bool HopfDiscriminant(const std::vector<std::complex<PetscReal>> &mu, PetscReal tol, PetscReal bstar, PetscReal *g, PetscReal *bmid);
-
 // Where two curves' polylines (p, E) cross, by linear interpolation within the
 // segments: p, E there and the fractional rows arc1, arc2 of either curve.
 struct Codim2Crossing {

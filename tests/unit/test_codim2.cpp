@@ -275,7 +275,7 @@ void RequireEventAtCurveEnd(const BifurcationEvent &h, const Codim2Curve &c, con
 // its b* = cos(Omega* T) reaches +1 at a = 1/4 (Omega* -> 0: a 1:1 resonance),
 // where the curve ends (beyond, a pair is real). The monodromy exp(T J Hess H)
 // over T = 1 goes through the lattice's own Hamiltonian-Hopf test function
-// (HopfDiscriminant) and the same follower (FollowCodim2); p = b, E = a.
+// (TrackCollision) and the same follower (FollowCodim2); p = b, E = a.
 class OppositePair : public Codim2Function {
 public:
   static PetscReal R(PetscReal a) { return 0.5 * a * (2 - a); }
@@ -286,12 +286,17 @@ public:
     PetscFunctionBeginUser;
     *x = Codim2Sample();
     x->a = a, x->b = b, x->p = b, x->energy = a, x->omega = std::sqrt(std::max(S(a), (PetscReal)0));
-    std::vector<std::complex<PetscReal>> mu;
-    PetscCall(Multipliers(S(a) + R(a), S(a) - R(a), b, &mu));
-    x->ok = HopfDiscriminant(mu, FloquetOptions().tol, bstar_, &x->g, &x->bmid) && std::isfinite(x->g);
+    const M4 E = Monodromy(S(a) + R(a), S(a) - R(a), b);
+    std::vector<PetscReal> m(16);
+    for (int i = 0; i < 4; i++)
+      for (int j = 0; j < 4; j++) m[4 * j + i] = E[4 * i + j]; // column-major
+    CollisionChoice ch;
+    PetscCall(TrackCollision(4, m.data(), FloquetOptions().tol, bstar_, basis_, &ch));
+    x->ok = ch.ok && std::isfinite(ch.g), x->basis = std::move(ch.basis);
+    if (x->ok) x->g = ch.g, x->bmid = ch.bmid;
     PetscFunctionReturn(0);
   }
-  void Accept(const Codim2Sample &x) override { bstar_ = x.bmid; }
+  void Accept(const Codim2Sample &x) override { bstar_ = x.bmid, basis_ = x.basis; }
   bool Collision() const override { return true; }
   // The start: on the curve b = sign r(a), off it by 0.01 in b (the corrector puts it back), the collision's b* there.
   static Codim2Sample Guess(PetscReal a, PetscReal sign)
@@ -303,6 +308,8 @@ public:
 
 private:
   PetscReal bstar_ = 0;
+  std::vector<PetscReal> basis_;
+
 public:
   using M4 = std::array<PetscReal, 16>; // row-major
   // M = exp(T A), A = J Hess H in z = (q1, q2, p1, p2) (scaling and squaring of the Taylor series).
@@ -330,24 +337,6 @@ public:
     }
     for (int k = 0; k < sq; k++) E = mul(E, E);
     return E;
-  }
-
-private:
-  // The four multipliers: eigenvalues of the monodromy (LAPACK dgeev).
-  static PetscErrorCode Multipliers(PetscReal w1s, PetscReal w2s, PetscReal c, std::vector<std::complex<PetscReal>> *mu)
-  {
-    const M4 E = Monodromy(w1s, w2s, c);
-    PetscScalar a[16], work[64], vl[1], vr[1];
-    PetscReal wr[4], wi[4];
-    for (int i = 0; i < 4; i++)
-      for (int j = 0; j < 4; j++) a[4 * j + i] = E[4 * i + j]; // column-major
-    PetscBLASInt n = 4, one = 1, lwork = 64, info;
-    PetscFunctionBeginUser;
-    LAPACKgeev_("N", "N", &n, a, &n, wr, wi, vl, &one, vr, &one, work, &lwork, &info);
-    PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "dgeev failed: info %d", (int)info);
-    mu->clear();
-    for (int i = 0; i < 4; i++) mu->emplace_back(wr[i], wi[i]);
-    PetscFunctionReturn(0);
   }
 };
 
