@@ -29,6 +29,11 @@ public:
 
   // Newton from X (in/out). converged false when SNES failed (X then holds the last iterate).
   PetscErrorCode Solve(Vec X, bool *converged, PetscInt *its) { return solver_.Solve(X, converged, its); }
+  // Energy-constrained solves by the start solver (default) or the main solver's LU (ShootingSolver::SetEnergyStartSolver).
+  void SetEnergyStartSolver(bool on) { solver_.SetEnergyStartSolver(on); }
+  // Chord Newton for the next solve from the monodromy S of a nearby orbit (ShootingSolver::SeedJacobian; Seedable: the dense route).
+  PetscErrorCode SeedJacobian(Vec X, Mat S) { return solver_.SeedJacobian(X, S); }
+  bool Seedable() const { return solver_.Seedable(); }
   // Why the last Solve stopped: SNES's reason name, e.g. DIVERGED_LINEAR_SOLVE
   // (GMRES hit -nnm_ksp_max_it) or DIVERGED_MAX_IT (-nnm_snes_max_it).
   const char *LastReason() const { return solver_.LastReason(); }

@@ -65,7 +65,7 @@ PetscErrorCode ShootJacobian(SNES snes, Vec X, Mat A, Mat P, void *ctx)
     PetscCall(SNESSetJacobianDomainError(snes));
     PetscFunctionReturn(0);
   }
-  PetscCall(s->Jacobian(X, P));
+  PetscCall(s->SnesJacobian(snes, X, P));
   if (A != P) {
     PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
@@ -198,32 +198,78 @@ PetscErrorCode ShootingSolver::Converged(SNES snes, PetscInt it, PetscReal xnorm
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ShootingSolver::Solve(Vec X, bool *converged, PetscInt *its)
+// The chord's contraction: kept while |F| falls by this factor per iteration
+// (to -nnm_snes_atol from a guess's |F| within the default -nnm_snes_max_it).
+static constexpr PetscReal kChordRate = 0.1;
+
+PetscErrorCode ShootingSolver::SeedJacobian(Vec X, Mat S)
 {
-  SNESConvergedReason reason;
-  // The first orbit of a branch (energy constraint) uses the start solver.
-  SNES snes = sys_->EnergyConstrained() && snes_start_ ? snes_start_.get() : snes_.get();
   PetscFunctionBeginUser;
-  const PetscInt j0 = sys_->JacobianEvaluations();
-  PetscCall(SNESSolve(snes, NULL, X));
-  fresh_ = sys_->JacobianEvaluations() > j0 && snes == snes_.get() && opt_.jacobian == ShootingJacobian::Dense && !snes_mf_;
-  PetscCall(SNESGetConvergedReason(snes, &reason));
-  PetscCall(SNESGetIterationNumber(snes, its));
-  {
-    PetscInt lits;
-    PetscCall(SNESGetLinearSolveIterations(snes, &lits));
-    nkrylov_ += lits;
+  PetscCheck(opt_.jacobian == ShootingJacobian::Dense && !snes_mf_, sys_->Lat().Comm(), PETSC_ERR_PLIB, "SeedJacobian: the dense route only");
+  PetscCall(sys_->AssembleJacobianFrom(X, S, Jdense_));
+  if (!Xseed_) PetscCall(VecDuplicate(X, Xseed_.out()));
+  PetscCall(VecCopy(X, Xseed_));
+  chord_ = true, chord_fnorm_ = 0;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ShootingSolver::SnesJacobian(SNES snes, Vec X, Mat J)
+{
+  PetscFunctionBeginUser;
+  if (chord_) {
+    PetscInt it;
+    PetscReal fnorm;
+    PetscCall(SNESGetIterationNumber(snes, &it));
+    PetscCall(SNESGetFunctionNorm(snes, &fnorm));
+    if (it == 0 || fnorm <= kChordRate * chord_fnorm_) { // J unchanged: the LU is kept too (PCSetUp sees the same state)
+      chord_fnorm_ = fnorm;
+      PetscFunctionReturn(0);
+    }
+    chord_ = false; // contracting too slowly: Newton from here
   }
-  *converged = reason > 0;
-  reason_ = reason;
-  if (!*converged) { // e.g. a zero pivot at a bifurcation: start the next factorisation afresh
+  PetscCall(Jacobian(X, J));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ShootingSolver::SolveOnce(SNES snes, Vec X)
+{
+  PetscInt lits;
+  PetscFunctionBeginUser;
+  PetscCall(SNESSolve(snes, NULL, X));
+  PetscCall(SNESGetConvergedReason(snes, &reason_));
+  PetscCall(SNESGetLinearSolveIterations(snes, &lits));
+  nkrylov_ += lits;
+  if (reason_ <= 0) { // e.g. a zero pivot at a bifurcation: start the next factorisation afresh
     KSP ksp;
     PC pc;
     PetscCall(SNESGetKSP(snes, &ksp));
     PetscCall(KSPGetPC(ksp, &pc));
     PetscCall(PCReset(pc));
-    fresh_ = false;
   }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ShootingSolver::Solve(Vec X, bool *converged, PetscInt *its)
+{
+  // The first orbit of a branch (energy constraint) uses the start solver.
+  SNES snes = sys_->EnergyConstrained() && energy_start_ && snes_start_ ? snes_start_.get() : snes_.get();
+  PetscFunctionBeginUser;
+  if (snes != snes_.get()) chord_ = false; // (a seed is the main solver's)
+  const bool seeded = chord_;
+  const PetscInt j0 = sys_->JacobianEvaluations();
+  PetscCall(SolveOnce(snes, X));
+  PetscCall(SNESGetIterationNumber(snes, its));
+  if (seeded && reason_ <= 0) { // the chord failed: plain Newton from the guess
+    PetscInt more;
+    chord_ = false;
+    PetscCall(VecCopy(Xseed_, X));
+    PetscCall(SolveOnce(snes, X));
+    PetscCall(SNESGetIterationNumber(snes, &more));
+    *its += more;
+  }
+  chord_ = false;
+  *converged = reason_ > 0;
+  fresh_ = *converged && sys_->JacobianEvaluations() > j0 && snes == snes_.get() && opt_.jacobian == ShootingJacobian::Dense && !snes_mf_;
   PetscFunctionReturn(0);
 }
 

@@ -39,11 +39,26 @@ public:
   // Normalised solution of J t = e_last at X, t . t_prev > 0.
   PetscErrorCode Tangent(Vec X, Vec t_prev, Vec t);
   PetscInt KrylovIterations() const { return nkrylov_; }
+  // Energy-constrained solves use the start solver (SVD pseudo-inverse: a
+  // branch's first orbit near the linear limit, or a Jacobian singular at the
+  // solution) unless this is off: then the main solver's pivoting LU, an
+  // order of magnitude cheaper at 2N = 404, for orbits whose Jacobian is
+  // regular and whose guess is near (codim-2 curves of kinds 3 and 5).
+  void SetEnergyStartSolver(bool on) { energy_start_ = on; }
+  // Chord Newton for the next Solve by the main solver (dense route): the
+  // Jacobian assembled at X (the guess, its constraint set) from the monodromy
+  // S of a nearby orbit (ShootingSystem::AssembleJacobianFrom), kept while each
+  // iteration cuts |F| by kChordRate, then fresh Jacobians. A chord solve that
+  // fails is repeated from X by plain Newton. Saves the monodromies of a
+  // solve whose guess is near an orbit whose monodromy is already known.
+  PetscErrorCode SeedJacobian(Vec X, Mat S);
+  bool Seedable() const { return opt_.jacobian == ShootingJacobian::Dense && !snes_mf_ && Jdense_; }
   Mat Operator() const { return Jshell_ ? Jshell_.get() : Jdense_.get(); }
   ShootingSystem &System() { return *sys_; }
 
   // SNES callbacks.
-  PetscErrorCode Jacobian(Vec X, Mat J); // J: the assembled or the shell Jacobian
+  PetscErrorCode Jacobian(Vec X, Mat J);                // J: the assembled or the shell Jacobian
+  PetscErrorCode SnesJacobian(SNES snes, Vec X, Mat J); // Jacobian, or the chord's kept while it contracts
   PetscErrorCode PCApply(Vec r, Vec x);
   PetscErrorCode Converged(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm, SNESConvergedReason *reason);
 
@@ -52,6 +67,7 @@ private:
   PetscErrorCode SetupMatrixFree(KSP ksp, PC pc);
   PetscErrorCode SetupStart();
   PetscErrorCode UpdatePreconditioner();
+  PetscErrorCode SolveOnce(SNES snes, Vec X);
 
   ShootingSystem *sys_ = nullptr;
   ShootingOptions opt_;
@@ -60,6 +76,10 @@ private:
   OwnedVec F_, rhs_, zT_;           // residual; right-hand side of the tangent solve; scratch state
   PetscBool snes_mf_ = PETSC_FALSE; // -nnm_snes_mf: finite-difference Jacobian
   bool fresh_ = false;              // the KSP holds this solve's last Jacobian
+  bool energy_start_ = true;        // energy-constrained solves by the start solver (SetEnergyStartSolver)
+  bool chord_ = false;              // the next or current solve keeps the seeded Jacobian (SeedJacobian)
+  PetscReal chord_fnorm_ = 0;       // |F| at the chord's last iteration
+  OwnedVec Xseed_;                  // the seeded solve's guess (a failed chord is repeated from it)
   PetscInt nkrylov_ = 0;            // linear iterations of all solves so far
   SNESConvergedReason reason_ = SNES_CONVERGED_ITERATING;
   PetscReal snes_atol_ = 0;              // -nnm_snes_atol of the main solver

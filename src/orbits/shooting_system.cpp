@@ -229,7 +229,6 @@ PetscErrorCode ShootingSystem::GatherBorderRows(Vec X, PetscReal *T, PetscReal *
 {
   PetscFunctionBeginUser;
   PetscCall(CheckInterrupt(lat_->Comm())); // a stop signal ends the solve here (core/signals.hpp)
-  njac_++;
   PetscCall(Unpack(X, z_, T, beta));
   if (kind_ == Constraint::Energy) PetscCall(flow_->GradEnergy(z_, g_));
   PetscCall(GatherVec(fref_, true, &fr_));
@@ -244,6 +243,7 @@ PetscErrorCode ShootingSystem::GatherBorderRows(Vec X, PetscReal *T, PetscReal *
 PetscErrorCode ShootingSystem::Linearise(Vec X)
 {
   PetscFunctionBeginUser;
+  njac_++;
   PetscCall(GatherBorderRows(X, &Tlin_, &blin_));
   PetscCall(VecCopy(z_, zlin_));
   PetscFunctionReturn(0);
@@ -253,9 +253,28 @@ PetscErrorCode ShootingSystem::AssembleJacobian(Vec X, Mat J)
 {
   PetscReal T, beta;
   PetscFunctionBeginUser;
+  njac_++;
   PetscCall(GatherBorderRows(X, &T, &beta));
   PetscCall(flow_->IntegrateWithMonodromy(z_, T, beta, zT_, S_));
   PetscCall(flow_->EvalRhs(T, zT_, fT_)); // dz(T)/dT = f_beta(z(T))
+  PetscCall(FillJacobian(S_, J));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ShootingSystem::AssembleJacobianFrom(Vec X, Mat S, Mat J)
+{
+  PetscReal T, beta;
+  PetscFunctionBeginUser;
+  PetscCall(GatherBorderRows(X, &T, &beta));
+  PetscCall(flow_->Integrate(z_, T, beta, zT_));
+  PetscCall(flow_->EvalRhs(T, zT_, fT_));
+  PetscCall(FillJacobian(S, J));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ShootingSystem::FillJacobian(Mat S, Mat J)
+{
+  PetscFunctionBeginUser;
   const PetscScalar *s, *ft;
   PetscInt lda, rs;
   const PetscInt m = 2 * lat_->OwnedCount(), M = n_ + 2;
@@ -266,8 +285,8 @@ PetscErrorCode ShootingSystem::AssembleJacobian(Vec X, Mat J)
   for (PetscInt c = 0; c < M; c++) cols[c] = c;
   PetscCall(MatZeroEntries(J));
   PetscCall(VecGetOwnershipRange(z_, &rs, NULL));
-  PetscCall(MatDenseGetLDA(S_, &lda));
-  PetscCall(MatDenseGetArrayRead(S_, &s));
+  PetscCall(MatDenseGetLDA(S, &lda));
+  PetscCall(MatDenseGetArrayRead(S, &s));
   PetscCall(VecGetArrayRead(fT_, &ft));
   for (PetscInt k = 0; k < m; k++) {
     const PetscInt r = rs + k;
@@ -277,7 +296,7 @@ PetscErrorCode ShootingSystem::AssembleJacobian(Vec X, Mat J)
     PetscCall(MatSetValues(J, 1, &r, M, cols.data(), row.data(), INSERT_VALUES));
   }
   PetscCall(VecRestoreArrayRead(fT_, &ft));
-  PetscCall(MatDenseRestoreArrayRead(S_, &s));
+  PetscCall(MatDenseRestoreArrayRead(S, &s));
   PetscCall(SetBorderRows(J));
   PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));

@@ -52,6 +52,11 @@ public:
   // not fit in memory, CheckDenseJacobianMemory), filled at X by AssembleJacobian.
   PetscErrorCode CreateDenseJacobian(Mat *J);
   PetscErrorCode AssembleJacobian(Vec X, Mat J);
+  // The same at X with a given monodromy S (from CreateSensitivityMatrix, of a
+  // nearby orbit, possibly at another parameter value) instead of X's own: a
+  // chord Jacobian for ShootingSolver::SeedJacobian. One trajectory, no
+  // sensitivities; not counted as a Jacobian evaluation.
+  PetscErrorCode AssembleJacobianFrom(Vec X, Mat S, Mat J);
   // The matrix-free Jacobian: a MATSHELL whose product (ShellMult) is taken at
   // the point of the last Linearise.
   PetscErrorCode CreateShellJacobian(Mat *J);
@@ -74,6 +79,7 @@ private:
   PetscErrorCode SetTargetConstraint(Vec zref, Constraint kind, PetscReal target); // c = E(z0) - target or T - target
   PetscErrorCode GatherBorderRows(Vec X, PetscReal *T, PetscReal *beta);
   PetscErrorCode SetBorderRows(Mat J);
+  PetscErrorCode FillJacobian(Mat S, Mat J); // J from S, fT_ and the gathered border rows
   PetscErrorCode SetRows(Vec a, Vec b, PetscReal p, PetscReal c, Vec y) const;
 
   PeriodicFlow *flow_ = nullptr;

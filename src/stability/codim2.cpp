@@ -48,14 +48,20 @@ bool InParameterRange(Codim2Parameter p, PetscReal v)
 }
 
 // The kinds -cont_codim2 follows, by the names (and codes) of /bifurcations "kind".
+// regular: the orbit's shooting Jacobian (at fixed E) stays regular at the
+// event, so the orbits are solved by the pivoting LU; at a branch point it is
+// singular (the critical pair at +1 adds a null vector), and the start
+// solver's SVD pseudo-inverse drops that direction (a fold is solved at fixed
+// period, by the LU).
 struct Codim2KindName {
   const char *name, *tag;
   EventKind kind;
+  bool regular;
 };
-const Codim2KindName kCodim2Kinds[] = {{"fold", "fold", EventKind::Fold},
-                                       {"branch_point", "bp", EventKind::BranchPoint},
-                                       {"period_doubling", "pd", EventKind::PeriodDoubling},
-                                       {"hamiltonian_hopf", "hh", EventKind::HamiltonianHopf}};
+const Codim2KindName kCodim2Kinds[] = {{"fold", "fold", EventKind::Fold, true},
+                                       {"branch_point", "bp", EventKind::BranchPoint, false},
+                                       {"period_doubling", "pd", EventKind::PeriodDoubling, true},
+                                       {"hamiltonian_hopf", "hh", EventKind::HamiltonianHopf, true}};
 
 const Codim2KindName *KindOf(EventKind k)
 {
@@ -80,8 +86,9 @@ static const auto &kCodim2Table = DeclareOptionTable<Codim2Options>("cont_", "Tw
       .Real("codim2_min", &C::pmin, Closed(-1e6, 1e6), "-cont_codim2: the curve stops where p falls below this", OptionClass::Extent)
       .Real("codim2_max", &C::pmax, Closed(-1e6, 1e6), "-cont_codim2: the curve stops where p exceeds this", OptionClass::Extent)
       .Real("codim2_step", &C::step, Open(0, 1), "-cont_codim2: the first step along the curve, in the scaled plane (ln(q / q0), p / p0) of the event's q0, p0")
-      .Real("codim2_step_min", &C::step_min, Open(0, 1), "-cont_codim2: the curve stops when the step falls below this (step collapse: a curve whose tangent turns by 0.3 rad over a "
-                 "step this short is the test function's noise, as near E -> 0)")
+      .Real("codim2_step_min", &C::step_min, Open(0, 1),
+            "-cont_codim2: the curve stops when the step falls below this (step collapse: a curve whose tangent turns by 0.3 rad over a "
+            "step this short is the test function's noise, as near E -> 0)")
       .Real("codim2_step_max", &C::step_max, Open(0, 10), "-cont_codim2: the largest step along the curve (scaled plane)")
       .Real("codim2_energy_min", &C::emin, Closed(0, 1e12), "-cont_codim2: the curve stops where E falls below this (the first point below it is kept)",
             OptionClass::Extent)
@@ -215,6 +222,7 @@ private:
   PetscReal bstar_ = 0;                              // kind 5: where the two colliding pairs' b = (mu + 1/mu)/2 meet (followed along the curve)
   std::vector<PetscReal> basis_;                     // kind 5: their invariant subspace at the last point (rank 0)
   std::vector<std::unique_ptr<Codim2Stack>> stacks_; // the lattices of the last two values of p (a gradient alternates between them)
+  OwnedMat seed_;                                    // the last test's monodromy: the next orbit solve's chord Jacobian (kinds 3, 5)
 };
 
 PetscErrorCode Codim2Walk::StackAt(PetscReal p, Codim2Stack **s)
@@ -230,6 +238,7 @@ PetscErrorCode Codim2Walk::StackAt(PetscReal p, Codim2Stack **s)
   SetCodim2Parameter(&lp, c_->parameter, p);
   auto k = std::make_unique<Codim2Stack>();
   PetscCall(k->Build(comm_, lp, fo_, so_, multiple_));
+  k->shoot.SetEnergyStartSolver(!KindOf(c_->kind)->regular);
   k->p = p;
   *s = k.get();
   stacks_.push_back(std::move(k));
@@ -366,8 +375,9 @@ PetscErrorCode Codim2Walk::Evaluate(PetscReal a, PetscReal b, const Codim2Sample
   PetscCall(StackAt(x->p, &s));
   PetscCall(StateFromRow(s->lat, guess.z0.data(), s->z));
   PetscCall(s->shoot.Pack(s->z, x->period, guess.beta, s->X));
-  if (ByEnergy()) PetscCall(s->shoot.SetEnergyConstraint(s->z, x->energy)); // (the start solver: the SVD pseudo-inverse)
+  if (ByEnergy()) PetscCall(s->shoot.SetEnergyConstraint(s->z, x->energy)); // (kind 2: the start solver, the SVD pseudo-inverse)
   else PetscCall(s->shoot.SetPeriodConstraint(s->z, x->period));
+  if (seed_ && s->shoot.Seedable()) PetscCall(s->shoot.SeedJacobian(s->X, seed_)); // the guess's neighbour's monodromy (any p): a chord
   PetscCall(s->shoot.Solve(s->X, &ok, &its));
   c_->solves++;
   if (!ok) PetscFunctionReturn(0);
@@ -380,6 +390,10 @@ PetscErrorCode Codim2Walk::Evaluate(PetscReal a, PetscReal b, const Codim2Sample
   else if (c_->kind == EventKind::PeriodDoubling) PetscCall(DoublingTest(*s, x));
   else if (c_->kind == EventKind::BranchPoint) PetscCall(BranchTest(*s, x));
   else PetscCall(FoldTest(*s, x));
+  if (KindOf(c_->kind)->regular && c_->kind != EventKind::Fold) { // (s->S: the orbit's monodromy, from the test)
+    if (!seed_) PetscCall(MatDuplicate(s->S, MAT_DO_NOT_COPY_VALUES, seed_.out()));
+    PetscCall(MatCopy(s->S, seed_, SAME_NONZERO_PATTERN));
+  }
   x->ok = std::isfinite(x->g);
   PetscFunctionReturn(0);
 }
@@ -477,8 +491,10 @@ PetscErrorCode ContinueCodim2(MPI_Comm comm, const LatticeParams &base, const Fl
   PetscLogDouble t0, t1;
   PetscFunctionBeginUser;
   const Codim2KindName *k = KindOf(e.kind);
-  PetscCheck(k, comm, PETSC_ERR_SUP, "-cont_codim2: a %s bounds no region of stability and is not followed (folds, branch points, period doublings and "
-             "Hamiltonian-Hopf onsets are)", EventKindName(e.kind));
+  PetscCheck(k, comm, PETSC_ERR_SUP,
+             "-cont_codim2: a %s bounds no region of stability and is not followed (folds, branch points, period doublings and "
+             "Hamiltonian-Hopf onsets are)",
+             EventKindName(e.kind));
   PetscCheck(so.jacobian == ShootingJacobian::Dense, comm, PETSC_ERR_SUP,
              "-cont_codim2 needs -nnm_jacobian dense (its test function factors the shooting Jacobian)");
   PetscCheck(start.z0.size() == (size_t)(2 * base.N()), comm, PETSC_ERR_PLIB, "-cont_codim2: the event's orbit has %zu values for 2N = %" PetscInt_FMT,
@@ -558,10 +574,10 @@ private:
   Codim2Function &f_;
   const Codim2Options &o_;
   const char *label_;
-  static constexpr PetscReal kH = 1e-6;     // finite-difference step of grad g in the scaled plane
-  static constexpr PetscInt kMaxIts = 10;   // corrector iterations
-  static constexpr PetscReal kNoise = 1e-5; // the largest |g| a converged point may have
-  static constexpr PetscInt kTurnIts = 60;  // secant steps locating a turn
+  static constexpr PetscReal kH = 1e-6;            // finite-difference step of grad g in the scaled plane
+  static constexpr PetscInt kMaxIts = 10;          // corrector iterations
+  static constexpr PetscReal kNoise = 1e-5;        // the largest |g| a converged point may have
+  static constexpr PetscInt kTurnIts = 60;         // secant steps locating a turn
   static constexpr PetscReal kMaxCorrection = 0.3; // a step's corrector moves the predicted point at most this times the step
   static constexpr PetscReal kMaxAngle = 0.3;      // and the tangent turns at most this (rad) over the step
 };
@@ -801,9 +817,12 @@ PetscErrorCode Codim2Follower::Walk(const Codim2Sample &x0, const PetscReal grad
       break;
     }
     // past a bound of p or E: that point is kept (the curve crosses the window's edge) and the side ends
-    const char *out = nx.p < o_.pmin ? "reached -cont_codim2_min" : nx.p > o_.pmax ? "reached -cont_codim2_max"
-                    : nx.energy < o_.emin ? "reached -cont_codim2_energy_min" : nx.energy > o_.emax ? "reached -cont_codim2_energy_max"
-                    : AtLinearLimit(nx, x0) ? "the linear limit (E below 1e-4 of the start's)" : nullptr;
+    const char *out = nx.p < o_.pmin          ? "reached -cont_codim2_min"
+                      : nx.p > o_.pmax        ? "reached -cont_codim2_max"
+                      : nx.energy < o_.emin   ? "reached -cont_codim2_energy_min"
+                      : nx.energy > o_.emax   ? "reached -cont_codim2_energy_max"
+                      : AtLinearLimit(nx, x0) ? "the linear limit (E below 1e-4 of the start's)"
+                                              : nullptr;
     const PetscReal nn = std::hypot(ng[0], ng[1]);
     PetscReal nt[2] = {-ng[1] / nn, ng[0] / nn};
     if (nt[0] * tau[0] + nt[1] * tau[1] < 0) nt[0] = -nt[0], nt[1] = -nt[1];
@@ -816,8 +835,8 @@ PetscErrorCode Codim2Follower::Walk(const Codim2Sample &x0, const PetscReal grad
       if (found) {
         turns->push_back(q);
         if (o_.verbose)
-          PetscCall(PetscPrintf(comm_, "  [%s] %+d turn in p at %.10g (a = q/q0 %.10g), row %.4f of this side\n", label_, (int)dir, (double)q.x.p, (double)q.x.a,
-                                (double)q.arc));
+          PetscCall(PetscPrintf(comm_, "  [%s] %+d turn in p at %.10g (a = q/q0 %.10g), row %.4f of this side\n", label_, (int)dir, (double)q.x.p,
+                                (double)q.x.a, (double)q.arc));
       }
     }
     last = step;

@@ -1,5 +1,6 @@
 #include "stability/collision_subspace.hpp"
 #include "core/lapack.hpp"
+#include "core/log.hpp"
 #include <algorithm>
 #include <cmath>
 
@@ -79,7 +80,10 @@ PetscErrorCode TrackCollision(int n, PetscReal *a, PetscReal tol, PetscReal bsta
 {
   using C = std::complex<PetscReal>;
   std::vector<PetscReal> t, z, wr, wi;
+  static PetscLogEvent ev = 0;
   PetscFunctionBeginUser;
+  if (!ev) PetscCall(NamedLogEvent("CollisionTrack", &ev));
+  PetscCall(PetscLogEventBegin(ev, 0, 0, 0, 0));
   *out = CollisionChoice();
   PetscCall(RealSchur(n, a, t, z, wr, wi));
   for (int k = 0; k < n; k++) out->mu.emplace_back(wr[k], wi[k]);
@@ -106,6 +110,7 @@ PetscErrorCode TrackCollision(int n, PetscReal *a, PetscReal tol, PetscReal bsta
         out->basis = std::move(basis);
       }
     }
+  PetscCall(PetscLogEventEnd(ev, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
