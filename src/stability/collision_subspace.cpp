@@ -3,12 +3,16 @@
 #include "core/log.hpp"
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
+#include <utility>
 
 namespace nltopo {
 
 namespace {
 
-constexpr int kCandidates = 4; // upper members nearest b*: 6 pairs to compare
+constexpr int kCandidates = 8;         // upper members nearest b* (a step off the curve splits the pair's b by +-sqrt(g)/2)
+constexpr int kPairsOf = 3;            // of these, the best by their own overlap with the last subspace: 3 pairs to compare
+constexpr PetscReal kMinOverlap = 0.5; // a choice that overlaps less with the last point's subspace is another collision
 
 // The real Schur form T = Z^T M Z of a (n x n): T into t, Z into z, the eigenvalues into wr, wi.
 PetscErrorCode RealSchur(int n, PetscReal *a, std::vector<PetscReal> &t, std::vector<PetscReal> &z, std::vector<PetscReal> &wr, std::vector<PetscReal> &wi)
@@ -43,35 +47,38 @@ PetscErrorCode RealSchur(int n, PetscReal *a, std::vector<PetscReal> &t, std::ve
   PetscFunctionReturn(0);
 }
 
-// The orthonormal basis (n x 4) of the invariant subspace of the complex pairs at Schur positions i and j;
-// empty where the reordering fails (a block too close to another to be swapped past it: LAPACK's info 1).
-PetscErrorCode PairBasis(int n, const std::vector<PetscReal> &t, const std::vector<PetscReal> &z, int i, int j, std::vector<PetscReal> *basis)
+// The orthonormal basis (n x 2 per complex pair) of the invariant subspace of the complex pairs at Schur
+// positions idx; empty where the reordering fails (a block too close to another to be swapped past it:
+// LAPACK's info 1).
+PetscErrorCode Basis(int n, const std::vector<PetscReal> &t, const std::vector<PetscReal> &z, std::initializer_list<int> idx, std::vector<PetscReal> *basis)
 {
   int m = 0, info = 0, liwork = 1, iwork = 0;
   PetscReal s, sep;
   PetscFunctionBeginUser;
   std::vector<int> select(n, 0);
-  select[i] = select[j] = 1; // (a complex pair's two positions move together)
+  for (int i : idx) select[i] = 1; // (a complex pair's two positions move together)
   std::vector<PetscReal> tt = t, zz = z, wr(n), wi(n), work(n);
-  const int lwork = n;
+  const int lwork = n, want = 2 * (int)idx.size();
   dtrsen_("N", "V", select.data(), &n, tt.data(), &n, zz.data(), &n, wr.data(), wi.data(), &m, &s, &sep, work.data(), &lwork, &iwork, &liwork, &info, 1, 1);
   basis->clear();
   if (info == 1) PetscFunctionReturn(0);
-  PetscCheck(info == 0 && m == 4, PETSC_COMM_SELF, PETSC_ERR_LIB, "collision subspace: LAPACK dtrsen failed, info %d, m %d", info, m);
-  basis->assign(zz.begin(), zz.begin() + (size_t)4 * n);
+  PetscCheck(info == 0 && m == want, PETSC_COMM_SELF, PETSC_ERR_LIB, "collision subspace: LAPACK dtrsen failed, info %d, m %d", info, m);
+  basis->assign(zz.begin(), zz.begin() + (size_t)want * n);
   PetscFunctionReturn(0);
 }
 
+// ||u^T v||_F^2 / k for u (n x 4) and v (n x k), orthonormal columns: 1 when v lies in u's span.
 PetscReal Overlap(int n, const std::vector<PetscReal> &u, const std::vector<PetscReal> &v)
 {
+  const int k = (int)(v.size() / n);
   PetscReal f = 0;
   for (int a = 0; a < 4; a++)
-    for (int b = 0; b < 4; b++) {
+    for (int b = 0; b < k; b++) {
       PetscReal d = 0;
-      for (int k = 0; k < n; k++) d += u[(size_t)a * n + k] * v[(size_t)b * n + k];
+      for (int i = 0; i < n; i++) d += u[(size_t)a * n + i] * v[(size_t)b * n + i];
       f += d * d;
     }
-  return f / 4;
+  return f / k;
 }
 
 } // namespace
@@ -93,6 +100,17 @@ PetscErrorCode TrackCollision(int n, PetscReal *a, PetscReal tol, PetscReal bsta
   auto b = [&](int k) { return 0.5 * (out->mu[k] + 1.0 / out->mu[k]); };
   std::sort(up.begin(), up.end(), [&](int p, int q) { return std::abs(b(p) - bstar) < std::abs(b(q) - bstar); });
   if (up.size() > (size_t)kCandidates) up.resize(kCandidates);
+  if (!prev.empty()) { // the candidates whose own subspace lies most in the last point's (a failed reordering: 0.5, undecided)
+    std::vector<std::pair<PetscReal, int>> own;
+    for (int k : up) {
+      std::vector<PetscReal> u;
+      PetscCall(Basis(n, t, z, {k}, &u));
+      own.emplace_back(u.empty() ? 0.5 : Overlap(n, prev, u), k);
+    }
+    std::stable_sort(own.begin(), own.end(), [](const auto &x, const auto &y) { return x.first > y.first; });
+    up.clear();
+    for (size_t k = 0; k < own.size() && k < (size_t)kPairsOf; k++) up.push_back(own[k].second);
+  }
   PetscReal best = -1;
   const size_t last = prev.empty() ? std::min<size_t>(up.size(), 2) : up.size(); // without prev: the two nearest b* alone
   for (size_t p = 0; p < last; p++)
@@ -100,9 +118,10 @@ PetscErrorCode TrackCollision(int n, PetscReal *a, PetscReal tol, PetscReal bsta
       const C s = b(up[p]) + b(up[q]);
       if (std::abs(s.imag()) > 2 * tol) continue; // not both real nor conjugate: no collision
       std::vector<PetscReal> basis;
-      PetscCall(PairBasis(n, t, z, up[p], up[q], &basis));
+      PetscCall(Basis(n, t, z, {up[p], up[q]}, &basis));
       if (basis.empty() && !prev.empty()) continue;
       const PetscReal ov = prev.empty() || basis.empty() ? 0 : Overlap(n, prev, basis);
+      if (!prev.empty() && ov < kMinOverlap) continue;
       if (ov > best) {
         best = ov, out->ok = true, out->overlap = ov;
         out->g = std::real((b(up[p]) - b(up[q])) * (b(up[p]) - b(up[q])));
