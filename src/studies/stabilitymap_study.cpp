@@ -87,7 +87,8 @@ const auto &kMapTable = DeclareOptionTable<MapOptions>(
                 "the checks only check")
           .Int("group_size", &M::group_size, Closed(1, 1000000),
                "Ranks per curve: the ranks in groups of this many consecutive ones (PetscSubcomm), each group following one curve at a time (as many "
-               "curves at once as groups); must divide the number of ranks. The branches and checks use every rank",
+               "curves at once as groups; the -smap_check branches likewise, one per group); must divide the number of ranks. The branches at the "
+               "run's p use every rank",
                OptionClass::Bookkeeping);
     });
 
