@@ -508,3 +508,82 @@ TEST_CASE_METHOD(NonlinearChain14, "-nnm_orbit_rtol stops Newton at |F| <= rtol 
   REQUIRE(its[1] < its[0]);
   REQUIRE(its[2] == 0);
 }
+
+// Chord Newton (ShootingSolver::SeedJacobian): the orbit at E2 from the orbit
+// at E1 as guess, its Jacobian assembled from the E1 orbit's monodromy,
+// reaches the orbit plain Newton reaches (both to -nnm_snes_atol) without a
+// fresh Jacobian; a seed whose Jacobian is singular (a zero monodromy: its
+// beta column vanishes) fails the chord, and the solve is repeated by Newton.
+// Symplectic route and the pivoting LU, as the codim-2 curves use them.
+TEST_CASE_METHOD(NonlinearChain14, "chord Newton from a nearby orbit's monodromy reaches Newton's orbit; a singular seed falls back to Newton", "[orbits]")
+{
+  const PetscInt N = lat.N();
+  LinearModes modes;
+  PCHK(modes.Compute(lat, LinearModesOptions()));
+  ScopedOptions sym{{"-nnm_ts_type", "symsplit"}};
+  PeriodicFlow flow;
+  auto fx_flow = Effects(lat);
+  PCHK(flow.Setup(*fx_flow, FlowOptions()));
+  OwnedVec z, X1, X, Xn, zT;
+  OwnedMat S, S0;
+  PCHK(lat.CreateStateVector(z.out()));
+  PCHK(VecDuplicate(z, zT.out()));
+  PCHK(VecZeroEntries(z));
+  {
+    PetscScalar *a;
+    const PetscScalar *m;
+    PCHK(VecGetArray(z, &a));
+    PCHK(VecGetArrayRead(modes.Mode(N - 1), &m));
+    for (PetscInt k = 0; k < lat.OwnedCount(); k++) a[k] = 0.2 * m[k];
+    PCHK(VecRestoreArrayRead(modes.Mode(N - 1), &m));
+    PCHK(VecRestoreArray(z, &a));
+  }
+  EnergyParts e;
+  PCHK(Effects(lat)->Energy(z, &e));
+  const PetscReal E1 = e.Total(), E2 = 1.05 * E1;
+  Shooting s;
+  PCHK(s.Setup(flow, ShootingOptions()));
+  s.SetEnergyStartSolver(false); // the pivoting LU, as for codim-2 kinds 3 and 5
+  REQUIRE(s.Seedable());
+  PCHK(s.CreateUnknowns(X1.out()));
+  PCHK(VecDuplicate(X1, X.out()));
+  PCHK(VecDuplicate(X1, Xn.out()));
+  bool ok;
+  PetscInt its;
+  PCHK(s.Pack(z, 2 * PETSC_PI / modes.Omega()[N - 1], 0.0, X1));
+  PCHK(s.SetEnergyConstraint(z, E1));
+  PCHK(s.Solve(X1, &ok, &its));
+  REQUIRE(ok);
+  PetscReal T1, b1;
+  PCHK(s.Unpack(X1, z, &T1, &b1));
+  PCHK(flow.CreateSensitivityMatrix(S.out()));
+  PCHK(flow.IntegrateWithMonodromy(z, T1, flow.FloquetBeta(b1), zT, S)); // the E1 orbit's monodromy (as a codim-2 test takes it)
+  // three solves of the E2 orbit from the E1 orbit: Newton, chord, chord from a singular seed
+  PetscInt jac[3], iters[3];
+  PetscReal diff[3];
+  PCHK(MatDuplicate(S, MAT_DO_NOT_COPY_VALUES, S0.out()));
+  PCHK(MatZeroEntries(S0));
+  for (int r = 0; r < 3; r++) {
+    PCHK(VecCopy(X1, X));
+    PCHK(s.SetEnergyConstraint(z, E2));
+    if (r > 0) PCHK(s.SeedJacobian(X, r == 1 ? S.get() : S0.get()));
+    const PetscInt j0 = s.JacobianEvaluations();
+    PCHK(s.Solve(X, &ok, &iters[r]));
+    REQUIRE(ok);
+    jac[r] = s.JacobianEvaluations() - j0;
+    if (r == 0) PCHK(VecCopy(X, Xn));
+    PetscReal nx;
+    PCHK(VecNorm(Xn, NORM_INFINITY, &nx));
+    PCHK(VecAXPY(X, -1.0, Xn));
+    PCHK(VecNorm(X, NORM_INFINITY, &diff[r]));
+    diff[r] /= nx;
+  }
+  INFO("E1 " << E1 << ": Newton " << iters[0] << " its, " << jac[0] << " Jacobians; chord " << iters[1] << " its, " << jac[1] << " Jacobians, |X - X_newton| "
+             << diff[1] << "; singular seed " << iters[2] << " its, " << jac[2] << " Jacobians, " << diff[2]);
+  REQUIRE(jac[0] >= 1);
+  REQUIRE(jac[1] == 0);          // the chord converged on the seed alone
+  REQUIRE(iters[1] >= iters[0]); // (linearly: at least as many iterations)
+  REQUIRE(diff[1] <= 1e-10);     // the same orbit (both to the SNES atol)
+  REQUIRE(jac[2] == jac[0]);     // the failed chord, then Newton from the guess as in the first solve
+  REQUIRE(diff[2] <= 1e-10);
+}
