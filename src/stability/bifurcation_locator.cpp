@@ -92,6 +92,9 @@ PetscErrorCode BifurcationLocator::Probe(PetscReal sigma, bool floquet, bool tan
   PetscCall(VecWAXPY(Xpred_, sigma * chord_, d_, Xa_));
   PetscCall(shoot_->SetArclengthConstraint(za_, d_, Xpred_));
   PetscCall(Predict(sigma, X_));
+  // a probe that takes its monodromy anyway starts from the last one's: chord Newton (a tangent probe needs the
+  // Jacobian at its orbit, so a plain Newton)
+  if (floquet && !tangent && seed_ && shoot_->Seedable()) PetscCall(shoot_->SeedJacobian(X_, S_));
   PetscCall(shoot_->Solve(X_, &ok, &its));
   probes_++;
   if (!ok) {
@@ -121,6 +124,7 @@ PetscErrorCode BifurcationLocator::Probe(PetscReal sigma, bool floquet, bool tan
   }
   if (floquet) {
     PetscCall(flow.IntegrateWithMonodromy(z_, T, flow.FloquetBeta(beta), zT_, S_));
+    seed_ = true;
     PetscCall(FloquetAnalysis(flow.Lat(), S_, fo_, &s->fr, target, vec, vectors_));
     s->out = OutsideMultipliers(s->fr, fo_.tol, min_edge_);
   }
@@ -331,6 +335,7 @@ PetscErrorCode BifurcationLocator::HalfPeriod(bool *symmetric, FloquetResult *ha
     // the symmetry (the step commutes with z -> -z: the force is odd)
     PeriodMultipleScope half_period(flow, flow.PeriodMultiple(), 2 * flow.PeriodDivisor());
     PetscCall(flow.IntegrateWithMonodromy(z_, 0.5 * last_T_, flow.FloquetBeta(last_beta_), zT_, S_));
+    seed_ = false; // (half the period's: no seed)
   }
   PetscCall(VecNorm(z_, NORM_2, &n0));
   PetscCall(VecAXPY(zT_, 1.0, z_));

@@ -60,6 +60,7 @@ private:
   std::vector<PetscReal> rows_, period_, beta_, s_; // z0 rows of every point (every rank), arclength at each point
   OwnedVec Xa_, Xb_, d_, X_, Xpred_, t_, z_, za_, zT_, tz_, g_;
   OwnedMat S_;
+  bool seed_ = false; // S_ holds the last probe's monodromy: the next probe's chord Jacobian (ShootingSolver::SeedJacobian)
   PetscReal chord_ = 0;
   PetscReal vectors_ = -1; // >= 0: probes also keep the circle eigenvectors of at least this edge share (FloquetResult::vectors)
   PetscReal last_T_ = 0, last_beta_ = 0;
