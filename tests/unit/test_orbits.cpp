@@ -450,6 +450,20 @@ TEST_CASE_METHOD(NonlinearChain14, "matrix-free shooting Jacobian is the derivat
   REQUIRE(err[1] > 10 * err[0]);
 }
 
+// z = amp times the top linear mode (displacements; velocities zero): a strongly nonlinear orbit's guess.
+static void TopModeState(const Lattice &lat, const LinearModes &modes, PetscReal amp, Vec z)
+{
+  PetscScalar *a;
+  const PetscScalar *m;
+  const PetscInt top = lat.N() - 1;
+  PCHK(VecZeroEntries(z));
+  PCHK(VecGetArray(z, &a));
+  PCHK(VecGetArrayRead(modes.Mode(top), &m));
+  for (PetscInt k = 0; k < lat.OwnedCount(); k++) a[k] = amp * m[k];
+  PCHK(VecRestoreArrayRead(modes.Mode(top), &m));
+  PCHK(VecRestoreArray(z, &a));
+}
+
 // -nnm_orbit_rtol: Newton accepts an orbit once |F| <= rtol |z0|. From the
 // same guess (the top linear mode at amplitude 0.3, strongly nonlinear) a
 // loose rtol stops earlier, with a residual within it; rtol 0 goes on to the
@@ -466,16 +480,7 @@ TEST_CASE_METHOD(NonlinearChain14, "-nnm_orbit_rtol stops Newton at |F| <= rtol 
   OwnedVec z, zs, X, F;
   PCHK(lat.CreateStateVector(z.out()));
   PCHK(VecDuplicate(z, zs.out()));
-  PCHK(VecZeroEntries(z));
-  {
-    PetscScalar *a;
-    const PetscScalar *m;
-    PCHK(VecGetArray(z, &a));
-    PCHK(VecGetArrayRead(modes.Mode(N - 1), &m));
-    for (PetscInt k = 0; k < lat.OwnedCount(); k++) a[k] = 0.3 * m[k];
-    PCHK(VecRestoreArrayRead(modes.Mode(N - 1), &m));
-    PCHK(VecRestoreArray(z, &a));
-  }
+  TopModeState(lat, modes, 0.3, z);
   EnergyParts e;
   PCHK(Effects(lat)->Energy(z, &e));
   const PetscReal T = 2 * PETSC_PI / modes.Omega()[N - 1];
@@ -528,16 +533,7 @@ TEST_CASE_METHOD(NonlinearChain14, "chord Newton from a nearby orbit's monodromy
   OwnedMat S, S0;
   PCHK(lat.CreateStateVector(z.out()));
   PCHK(VecDuplicate(z, zT.out()));
-  PCHK(VecZeroEntries(z));
-  {
-    PetscScalar *a;
-    const PetscScalar *m;
-    PCHK(VecGetArray(z, &a));
-    PCHK(VecGetArrayRead(modes.Mode(N - 1), &m));
-    for (PetscInt k = 0; k < lat.OwnedCount(); k++) a[k] = 0.2 * m[k];
-    PCHK(VecRestoreArrayRead(modes.Mode(N - 1), &m));
-    PCHK(VecRestoreArray(z, &a));
-  }
+  TopModeState(lat, modes, 0.2, z);
   EnergyParts e;
   PCHK(Effects(lat)->Energy(z, &e));
   const PetscReal E1 = e.Total(), E2 = 1.05 * E1;
