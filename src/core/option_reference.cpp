@@ -86,7 +86,9 @@ std::string OptionReferenceMarkdown()
                   "its type, default, range and class. The class says what a resume or an overwrite compares\n"
                   "(docs/errors.md, \"Resume rules\"): *physics* (physics and numerics: must agree), *extent*\n"
                   "(how far a run goes: may grow on resume), *bookkeeping* (never compared). Solver options\n"
-                  "(`-sim_ts_*`, `-nnm_snes_*`, `-floquet_eps_*`, ...) are PETSc's and SLEPc's: `-help` lists them.\n";
+                  "(`-sim_ts_*`, `-nnm_snes_*`, `-floquet_eps_*`, ...) are PETSc's and SLEPc's: `-help` lists them.\n"
+                  "A *real list* is comma-separated; the word `none` gives the empty list (e.g. to clear on the\n"
+                  "command line a list an options file sets).\n";
   // by title, then by first option (registration order follows the link order)
   std::vector<const RegisteredOptionTable *> tables;
   for (const RegisteredOptionTable &t : OptionTables())

@@ -154,12 +154,21 @@ public:
     rows_.push_back(std::move(r));
     return *this;
   }
-  // A comma-separated list of at most max_count reals, each in b (checked by Read).
+  // A comma-separated list of at most max_count reals, each in b (checked by Read); the word none gives the
+  // empty list (a list an options file sets, cleared on the command line).
   OptionTable &RealList(const char *name, std::vector<PetscReal> S::*m, PetscInt max_count, Bounds b, const char *help, OptionClass c = OptionClass::Physics)
   {
     Row r = NewRow(name, OptionType::RealList, b, help, c);
     r.info.default_text = ListText(S{}.*m);
     r.read = [m, max_count](PetscOptionItems *PetscOptionsObject, const char *opt, const char *text, S *s, PetscBool *set) -> PetscErrorCode {
+      char word[8] = "";
+      PetscBool given, none = PETSC_FALSE;
+      PetscCall(PetscOptionsGetString(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, word, sizeof word, &given));
+      if (given) PetscCall(PetscStrcasecmp(word, "none", &none));
+      if (none) {
+        (s->*m).clear(), *set = PETSC_TRUE;
+        return 0;
+      }
       // one more than allowed, so that a longer list is refused rather than cut; the current values for -help
       std::vector<PetscReal> v(s->*m);
       v.resize(max_count + 1);

@@ -140,3 +140,32 @@ TEST_CASE("option tables: a row's class is how a resume and an overwrite compare
     }
   CHECK(compared >= 50);
 }
+
+TEST_CASE("option tables: a real list reads its values, refuses a longer list, and the word none gives the empty list", "[options]")
+{
+  struct L {
+    std::vector<PetscReal> v{0.3, 0.5};
+  };
+  OptionTable<L> t("tlist_", "a list (test)"); // not registered: no option of the tool's
+  t.RealList("values", &L::v, 3, Closed(0, 1), "a test list");
+  auto read = [&](const char *value, L *l, PetscErrorCode *code) {
+    char buf[512];
+    if (value) PCHK(PetscOptionsSetValue(NULL, "-tlist_values", value));
+    PCHK(CaptureError([&]() { return t.Read(PETSC_COMM_WORLD, l); }, code, buf, sizeof buf));
+    if (value) PCHK(PetscOptionsClearValue(NULL, "-tlist_values"));
+  };
+  PetscErrorCode code;
+  L unset, two, none, upper, longer, outside;
+  read(nullptr, &unset, &code);
+  CHECK((code == 0 && unset.v == std::vector<PetscReal>{0.3, 0.5}));
+  read("0.1,0.2", &two, &code);
+  CHECK((code == 0 && two.v == std::vector<PetscReal>{0.1, 0.2}));
+  read("none", &none, &code);
+  CHECK((code == 0 && none.v.empty()));
+  read("NONE", &upper, &code);
+  CHECK((code == 0 && upper.v.empty()));
+  read("0.1,0.2,0.3,0.4", &longer, &code);
+  CHECK(code != 0);
+  read("0.1,2", &outside, &code);
+  CHECK(code != 0);
+}
