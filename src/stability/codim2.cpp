@@ -2,11 +2,11 @@
 #include "core/bytes.hpp"
 #include "core/errors.hpp"
 #include "core/gather.hpp"
-#include "stability/collision_subspace.hpp"
 #include "core/log.hpp"
 #include "core/option_table.hpp"
 #include "effects/effect.hpp"
 #include "orbits/continuation.hpp"
+#include "stability/collision_subspace.hpp"
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -52,16 +52,19 @@ bool InParameterRange(Codim2Parameter p, PetscReal v)
 // event, so the orbits are solved by the pivoting LU; at a branch point it is
 // singular (the critical pair at +1 adds a null vector), and the start
 // solver's SVD pseudo-inverse drops that direction (a fold is solved at fixed
-// period, by the LU).
+// period, by the LU). chord: the test integrates the orbit's monodromy (into
+// the stack's S), and the next orbit solve starts from it by chord Newton
+// (the main solver's LU only: not at a branch point; a fold's test takes the
+// shooting Jacobian instead).
 struct Codim2KindName {
   const char *name, *tag;
   EventKind kind;
-  bool regular;
+  bool regular, chord;
 };
-const Codim2KindName kCodim2Kinds[] = {{"fold", "fold", EventKind::Fold, true},
-                                       {"branch_point", "bp", EventKind::BranchPoint, false},
-                                       {"period_doubling", "pd", EventKind::PeriodDoubling, true},
-                                       {"hamiltonian_hopf", "hh", EventKind::HamiltonianHopf, true}};
+const Codim2KindName kCodim2Kinds[] = {{"fold", "fold", EventKind::Fold, true, false},
+                                       {"branch_point", "bp", EventKind::BranchPoint, false, false},
+                                       {"period_doubling", "pd", EventKind::PeriodDoubling, true, true},
+                                       {"hamiltonian_hopf", "hh", EventKind::HamiltonianHopf, true, true}};
 
 const Codim2KindName *KindOf(EventKind k)
 {
@@ -390,7 +393,7 @@ PetscErrorCode Codim2Walk::Evaluate(PetscReal a, PetscReal b, const Codim2Sample
   else if (c_->kind == EventKind::PeriodDoubling) PetscCall(DoublingTest(*s, x));
   else if (c_->kind == EventKind::BranchPoint) PetscCall(BranchTest(*s, x));
   else PetscCall(FoldTest(*s, x));
-  if (KindOf(c_->kind)->regular && c_->kind != EventKind::Fold) { // (s->S: the orbit's monodromy, from the test)
+  if (KindOf(c_->kind)->chord) { // (s->S: the orbit's monodromy, from the test)
     if (!seed_) PetscCall(MatDuplicate(s->S, MAT_DO_NOT_COPY_VALUES, seed_.out()));
     PetscCall(MatCopy(s->S, seed_, SAME_NONZERO_PATTERN));
   }
