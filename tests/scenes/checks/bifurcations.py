@@ -100,13 +100,16 @@ def events():
     require(np.abs(e0["omega"][:] - e1["omega"][:][keep]).max() < 2 * tol)
     require(np.isin(k1, (4,)).sum() >= 1 and np.isin(k1, (6,)).sum() >= 1)   # N = 22: E-E passes and 1:3 resonances
     # each resonance of the small lattice (every multiplier counts there): the stored spectra on either
-    # side of its segment differ in how many lie below the root, by at least as many as are located there
+    # side of its segment differ in how many lie in the half radian below the root, by at least as many as
+    # are located there. (Not the count of all below it: a pair that leaves or joins the circle elsewhere in
+    # the segment, e.g. at +1, changes that count too.)
     b1 = group("s1.h5", "continuation/insulated")
     mu1 = multipliers(b1)
     for r in np.flatnonzero(k1 == 6):
         p, q = e1["resonance"][r]
         th, j = 2 * np.pi * p / q, e1["point"][r]
-        below = [((np.abs(np.abs(m) - 1) < 1e-6) & (m.imag > 0) & (np.angle(m) < th)).sum() for m in (mu1[j], mu1[j + 1])]
+        below = [((np.abs(np.abs(m) - 1) < 1e-6) & (m.imag > 0) & (np.angle(m) < th) & (np.angle(m) > th - 0.5)).sum()
+                 for m in (mu1[j], mu1[j + 1])]
         same = [k for k in np.flatnonzero(k1 == 6) if e1["point"][k] == j and tuple(e1["resonance"][k]) == (p, q)]
         require(abs(below[1] - below[0]) >= len(same), r, below, same)   # (crossings no harmonic drives count too)
     print("bifurcations scene OK:", len(k1), "events on N = 22, E-E branch point at omega", wbp)
