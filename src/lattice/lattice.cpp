@@ -45,6 +45,8 @@ PetscErrorCode Lattice::Setup(MPI_Comm comm, const LatticeParams &p)
   }
   PetscCall(ISCreateStride(comm, xm_, 2 * xs_, 1, is_u_.out()));
   PetscCall(ISCreateStride(comm, xm_, 2 * xs_ + xm_, 1, is_v_.out()));
+  // the u part of a state vector as a site vector, by its array (GetGhostedU)
+  if (size_ > 1) PetscCall(VecCreateMPIWithArray(comm, 1, xm_, N, NULL, u_view_.out()));
 
   PetscCall(DMCreateMatrix(da_, K_.out()));
   PetscCall(PetscObjectSetName((PetscObject)K_.get(), "K"));
@@ -96,12 +98,22 @@ PetscErrorCode Lattice::GetGhostedU(Vec x, Vec *ul, const PetscScalar **u) const
     PetscFunctionReturn(0);
   }
   PetscCall(VecGetLocalSize(x, &n));
-  Vec xu = x;
-  if (n == 2 * xm_) PetscCall(VecGetSubVector(x, is_u_, &xu)); // zero-copy: contiguous per rank
   PetscCall(DMGetLocalVector(da_, ul));
-  PetscCall(DMGlobalToLocalBegin(da_, xu, INSERT_VALUES, *ul));
-  PetscCall(DMGlobalToLocalEnd(da_, xu, INSERT_VALUES, *ul));
-  if (xu != x) PetscCall(VecRestoreSubVector(x, is_u_, &xu));
+  if (n == 2 * xm_) {
+    // a state vector: its owned u values lead its local array, and u_view_ wraps
+    // them for the ghost exchange. (VecGetSubVector would do the same, with an
+    // MPI_Allreduce on every call: a global synchronisation per force evaluation.)
+    const PetscScalar *xa;
+    PetscCall(VecGetArrayRead(x, &xa));
+    PetscCall(VecPlaceArray(u_view_, const_cast<PetscScalar *>(xa))); // (read only: the source of the scatter)
+    PetscCall(DMGlobalToLocalBegin(da_, u_view_, INSERT_VALUES, *ul));
+    PetscCall(DMGlobalToLocalEnd(da_, u_view_, INSERT_VALUES, *ul));
+    PetscCall(VecResetArray(u_view_));
+    PetscCall(VecRestoreArrayRead(x, &xa));
+  } else {
+    PetscCall(DMGlobalToLocalBegin(da_, x, INSERT_VALUES, *ul));
+    PetscCall(DMGlobalToLocalEnd(da_, x, INSERT_VALUES, *ul));
+  }
   PetscCall(DMDAGetGhostCorners(da_, &gxs, NULL, NULL, NULL, NULL, NULL));
   PetscCall(VecGetArrayRead(*ul, u));
   *u -= gxs;

@@ -77,6 +77,7 @@ private:
   OwnedDM da_;
   OwnedMat K_;
   OwnedIS is_u_, is_v_;
+  OwnedVec u_view_; // (ranks > 1) a site vector without an array of its own: a state vector's u part in GetGhostedU
   PetscInt xs_ = 0, xm_ = 0;
   std::vector<PetscInt> starts_; // first site of every rank, plus N
   std::vector<PetscReal> kb_;    // k of bonds xs-1 .. xs+xm-1 (0 outside the chain): kb_[b - xs + 1]
