@@ -3,6 +3,7 @@
 #include "core/effective_options.hpp"
 #include "core/option_table.hpp"
 #include "core/ts_traits.hpp"
+#include "core/text.hpp"
 #include <petscts.h>
 #include <slepceps.h>
 #include <algorithm>
@@ -101,7 +102,6 @@ PetscErrorCode UnusedOptions(Unused *u)
   PetscFunctionReturn(0);
 }
 
-bool StartsWith(const std::string &s, const char *p) { return s.compare(0, std::strlen(p), p) == 0; }
 
 // PETSc compares option names case-insensitively (strcasecmp): so does every check here.
 std::string Lower(std::string s)

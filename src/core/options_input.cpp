@@ -1,5 +1,6 @@
 #include "core/options_input.hpp"
 #include "core/errors.hpp"
+#include "core/text.hpp"
 #include <cctype>
 #include <cerrno>
 #include <cstdint>
@@ -27,7 +28,6 @@ bool IsKey(const char *t)
   return key;
 }
 bool Is(const char *t, const char *name) { return t && !strcasecmp(t, name); } // PETSc matches these keys case-insensitively
-bool StartsWith(const std::string &s, const char *p) { return !s.compare(0, std::strlen(p), p); }
 
 // A word as the user can read it in one line: control and non-ASCII bytes as \xNN, at most 40 characters.
 std::string Printable(const std::string &w)

@@ -3,6 +3,7 @@
 #include "core/effective_options.hpp"
 #include "core/option_table.hpp"
 #include "io/input.hpp"
+#include "core/text.hpp"
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -18,7 +19,6 @@ namespace {
 
 enum class Kind { Ignore, Extent, Physics };
 
-bool StartsWith(const std::string &s, const char *p) { return s.compare(0, std::strlen(p), p) == 0; }
 
 Kind Classify(const std::string &key)
 {

@@ -14,7 +14,7 @@ struct BadRequest {
   std::string pattern, args;
 };
 
-const std::string C = "-study continuation -lattice_cells 5 -cont_energy_max 1e-4 -cont_max_points 2 -cont_verbose 0 ";
+const std::string kContinuation = "-study continuation -lattice_cells 5 -cont_energy_max 1e-4 -cont_max_points 2 -cont_verbose 0 ";
 
 const std::vector<BadRequest> &Requests()
 {
@@ -29,15 +29,15 @@ const std::vector<BadRequest> &Requests()
        "-study perturb -lattice_cells 5 -perturb_energy_list 1e-7,1e-3"},
       {"-force_mode_index 3: linear mode indices count all N = 22 modes, but N > -linear_dense_max 10",
        "-study simulate -lattice_cells 5 -linear_dense_max 10 -force_profile mode -force_mode_index 3 -sim_t_final 5"},
-      {"-cont_branch mode3: linear mode indices count all N = 22 modes", C + "-linear_dense_max 10 -cont_branch mode3"},
+      {"-cont_branch mode3: linear mode indices count all N = 22 modes", kContinuation + "-linear_dense_max 10 -cont_branch mode3"},
       // 13b: a branch listed twice
-      {"-cont_branch: insulated is listed twice", C + "-cont_branch insulated,interface,insulated"},
-      {"-cont_branch: 3 (as mode3 too) is listed twice", C + "-cont_branch 3,mode3"},
-      {"-cont_branch: interface and mode21 are the same linear mode (mode21)", C + "-cont_branch interface,mode21"},
+      {"-cont_branch: insulated is listed twice", kContinuation + "-cont_branch insulated,interface,insulated"},
+      {"-cont_branch: 3 (as mode3 too) is listed twice", kContinuation + "-cont_branch 3,mode3"},
+      {"-cont_branch: interface and mode21 are the same linear mode (mode21)", kContinuation + "-cont_branch interface,mode21"},
       // 13c: no insulated mode, and why
-      {"no insulated mode: -lattice_cells 2 is too few cells for the insulated mode to form at -lattice_gamma 0.4", C + "-lattice_cells 2"},
-      {"no insulated mode: -lattice_gamma 0 closes the gap", C + "-lattice_gamma 0"},
-      {"no insulated mode: -lattice_layout left has no interface", C + "-lattice_layout left"},
+      {"no insulated mode: -lattice_cells 2 is too few cells for the insulated mode to form at -lattice_gamma 0.4", kContinuation + "-lattice_cells 2"},
+      {"no insulated mode: -lattice_gamma 0 closes the gap", kContinuation + "-lattice_gamma 0"},
+      {"no insulated mode: -lattice_layout left has no interface", kContinuation + "-lattice_layout left"},
       {"-study stability follows the insulated branch, and this lattice has no insulated mode: -lattice_cells 1 is too few cells",
        "-study stability -lattice_cells 1"},
       {"-force_profile exponential fits the insulated mode, and this lattice has none: -lattice_gamma 0 closes the gap",
