@@ -12,27 +12,34 @@ source "$(dirname "$0")/common.bash"
 common=(-cont_energy_max 3 -cont_verbose 0 -cont_max_change 0.2)
 # the dense reference with small steps, past E = 3 (the mf branches' last step may overshoot it by ~40 %):
 # interpolated to the mf points (their steps differ: inexact Newton)
-run1 -options_file "$SRC/options/fep.opts" -cont_branch insulated -floquet 0 -cont_energy_max 5 -cont_verbose 0 -cont_max_change 0.04 -output dense.h5 > dense.txt
+# (1-rank runs two at a time: run1 ... & then wait for it, which fails the scene if the run failed)
+run1 -options_file "$SRC/options/fep.opts" -cont_branch insulated -floquet 0 -cont_energy_max 5 -cont_verbose 0 -cont_max_change 0.04 -output dense.h5 > dense.txt &
+dense=$!
 run1 -options_file "$SRC/options/fep_long.opts" -lattice_cells 25 -floquet 0 "${common[@]}" -output mf102.h5 > mf102.txt
 run2 -options_file "$SRC/options/fep_long.opts" -lattice_cells 250 -floquet 0 "${common[@]}" -output mf1002.h5 > mf1002.txt
 # the matrix-free route (forced at this N by -floquet_mf_dense_max 0; the critical selection, not the
 # localized route fep_long.opts takes), with enough eigensolver restarts that every multiplier converges
 run1 -options_file "$SRC/options/fep_long.opts" -lattice_cells 25 -cont_energy_max 1 -cont_verbose 0 -cont_max_change 0.2 -floquet_mf_eps_max_it 40 -floquet_mf_dense_max 0 -floquet_mf_which critical -output floquet.h5 > floquet.txt
+wait $dense
 # issue 20's check at N = 102: fep_long.opts as shipped to E = 20 (2N = 204 <= -floquet_mf_dense_max: the
 # dense leading pairs) on 2 ranks, against the full dense analysis (-floquet_mf 0: every multiplier, SLEPc) and
 # against the matrix-free route on the same branch
 long20=(-options_file "$SRC/options/fep_long.opts" -lattice_cells 25 -cont_energy_max 20 -cont_checkpoint_seconds 0)
 run2 "${long20[@]}" -output lead20.h5 > lead20.txt
-run1 "${long20[@]}" -floquet_mf 0 -output dense20.h5 > dense20.txt
+run1 "${long20[@]}" -floquet_mf 0 -output dense20.h5 > dense20.txt &
+dense20=$!
 run1 "${long20[@]}" -floquet_mf_dense_max 0 -floquet_mf_which critical -output mf20.h5 > mf20.txt
+wait $dense20
 # Krylov-Schur on M (largest) with these settings called a spurious |mu| = 306.9 converged at E = 1.86
 # (benchmarks/README.md); the true-residual check must keep it from becoming an "unstable" verdict
-run1 "${long20[@]}" -cont_energy_max 2 -floquet_mf_dense_max 0 -floquet_mf_which largest -floquet_mf_eps_ncv 60 -floquet_mf_eps_max_it 30 -output largest.h5 > largest.txt
+run1 "${long20[@]}" -cont_energy_max 2 -floquet_mf_dense_max 0 -floquet_mf_which largest -floquet_mf_eps_ncv 60 -floquet_mf_eps_max_it 30 -output largest.h5 > largest.txt &
+largest=$!
 # the localized route (-floquet_mf_which localized, fep_long.opts' own, forced at N = 202 by -floquet_mf_dense_max 0):
 # a verdict at every orbit, at 1 and 2 ranks (N = 202, not 402: the same verdicts at every orbit, in half the time;
 # the route's N-independence is benchmarks/README.md "Issue 35", its dense agreement unit_tests "[localized]")
 loc=(-options_file "$SRC/options/fep_long.opts" -lattice_cells 50 -cont_energy_max 1 -cont_verbose 0 -cont_checkpoint_seconds 0 -floquet_mf_dense_max 0)
 run1 "${loc[@]}" -output loc1.h5 > loc1.txt
+wait $largest
 run2 "${loc[@]}" -output loc2.h5 > loc2.txt
 $PY "$CHECKS/long_nnm.py" localized
 # -cont_resume on 2 ranks: the E <= 1 branch above, continued to E = 3 (with
