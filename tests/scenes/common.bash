@@ -12,3 +12,7 @@ CHECKS=$SRC/tests/scenes/checks # the scenes' check steps: $PY "$CHECKS/<scene>.
 MPIEXEC=${MPIEXEC:-mpiexec}
 run1() { "$NLTOPO" "$@" -options_left; }
 run2() { "$MPIEXEC" -n 2 "$NLTOPO" "$@" -options_left; }
+# A run started in the background (run1 ... &, then wait for its pid) next to another
+# singleton: give it its own TMPDIR, where Open MPI keeps its session directory
+# (tests/CMakeLists.txt), e.g. TMPDIR=$(own_tmpdir) run1 ... &
+own_tmpdir() { mktemp -d "$WORK/tmpdir.XXXXXX"; }

@@ -13,7 +13,7 @@ common=(-cont_energy_max 3 -cont_verbose 0 -cont_max_change 0.2)
 # the dense reference with small steps, past E = 3 (the mf branches' last step may overshoot it by ~40 %):
 # interpolated to the mf points (their steps differ: inexact Newton)
 # (1-rank runs two at a time: run1 ... & then wait for it, which fails the scene if the run failed)
-run1 -options_file "$SRC/options/fep.opts" -cont_branch insulated -floquet 0 -cont_energy_max 5 -cont_verbose 0 -cont_max_change 0.04 -output dense.h5 > dense.txt &
+TMPDIR=$(own_tmpdir) run1 -options_file "$SRC/options/fep.opts" -cont_branch insulated -floquet 0 -cont_energy_max 5 -cont_verbose 0 -cont_max_change 0.04 -output dense.h5 > dense.txt &
 dense=$!
 run1 -options_file "$SRC/options/fep_long.opts" -lattice_cells 25 -floquet 0 "${common[@]}" -output mf102.h5 > mf102.txt
 run2 -options_file "$SRC/options/fep_long.opts" -lattice_cells 250 -floquet 0 "${common[@]}" -output mf1002.h5 > mf1002.txt
@@ -26,13 +26,13 @@ wait $dense
 # against the matrix-free route on the same branch
 long20=(-options_file "$SRC/options/fep_long.opts" -lattice_cells 25 -cont_energy_max 20 -cont_checkpoint_seconds 0)
 run2 "${long20[@]}" -output lead20.h5 > lead20.txt
-run1 "${long20[@]}" -floquet_mf 0 -output dense20.h5 > dense20.txt &
+TMPDIR=$(own_tmpdir) run1 "${long20[@]}" -floquet_mf 0 -output dense20.h5 > dense20.txt &
 dense20=$!
 run1 "${long20[@]}" -floquet_mf_dense_max 0 -floquet_mf_which critical -output mf20.h5 > mf20.txt
 wait $dense20
 # Krylov-Schur on M (largest) with these settings called a spurious |mu| = 306.9 converged at E = 1.86
 # (benchmarks/README.md); the true-residual check must keep it from becoming an "unstable" verdict
-run1 "${long20[@]}" -cont_energy_max 2 -floquet_mf_dense_max 0 -floquet_mf_which largest -floquet_mf_eps_ncv 60 -floquet_mf_eps_max_it 30 -output largest.h5 > largest.txt &
+TMPDIR=$(own_tmpdir) run1 "${long20[@]}" -cont_energy_max 2 -floquet_mf_dense_max 0 -floquet_mf_which largest -floquet_mf_eps_ncv 60 -floquet_mf_eps_max_it 30 -output largest.h5 > largest.txt &
 largest=$!
 # the localized route (-floquet_mf_which localized, fep_long.opts' own, forced at N = 202 by -floquet_mf_dense_max 0):
 # a verdict at every orbit, at 1 and 2 ranks (N = 202, not 402: the same verdicts at every orbit, in half the time;
