@@ -102,7 +102,6 @@ PetscErrorCode UnusedOptions(Unused *u)
   PetscFunctionReturn(0);
 }
 
-
 // PETSc compares option names case-insensitively (strcasecmp): so does every check here.
 std::string Lower(std::string s)
 {

@@ -19,7 +19,6 @@ namespace {
 
 enum class Kind { Ignore, Extent, Physics };
 
-
 Kind Classify(const std::string &key)
 {
   const std::vector<std::string> &prefixes = ComponentPrefixes();
